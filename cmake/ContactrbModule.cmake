@@ -33,6 +33,5 @@ function(contactrb_test module)
   target_compile_definitions(test_${module} PRIVATE
     CONTACTRB_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     CONTACTRB_CLI="$<TARGET_FILE:contactrb>")
-  add_dependencies(test_${module} contactrb)
   gtest_discover_tests(test_${module} PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -1,0 +1,45 @@
+#include "contactrb/cases/catalog.hpp"
+
+#include <sstream>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/mesh/geometries.hpp"
+
+namespace contactrb::cases {
+
+const std::vector<CaseInfo>& builtin_cases() {
+  static const std::vector<CaseInfo> cases{
+      {"hertz-a", "two half-disks R1 = R2 = 1, gap 0.1, imposed displacement mu in [0.15, 0.45], collocation"},
+      {"hertz-b", "two half-disks, lower radius R2 = mu in [0.9, 1.12], non-matching meshes, collocation"},
+      {"ring-block", "half-ring of radius mu in [0.95, 1.15] pressed on a softer block, LAC"},
+  };
+  return cases;
+}
+
+const CaseInfo& find_case(const std::string& name) {
+  for (const CaseInfo& c : builtin_cases()) {
+    if (c.name == name) return c;
+  }
+  std::ostringstream os;
+  os << "unknown case '" << name << "' (built-in cases:";
+  for (const CaseInfo& c : builtin_cases()) os << " " << c.name;
+  os << ")";
+  throw Error(os.str());
+}
+
+mesh::Mesh reference_mesh(const std::string& name, int level) {
+  find_case(name);
+  require(level >= 0, "refinement level must be >= 0 (got " + std::to_string(level) + ")");
+  if (name == "hertz-a" || name == "hertz-b") {
+    mesh::HertzGeometry geometry;
+    geometry.slave_arc_nodes = mesh::hertz_arc_nodes_for_level(level);
+    return mesh::generate_hertz(geometry);
+  }
+  mesh::RingBlockGeometry geometry;
+  const int factor = 1 << level;
+  geometry.slave_arc_nodes = (geometry.slave_arc_nodes - 1) * factor + 1;
+  geometry.master_edge_nodes = (geometry.master_edge_nodes - 1) * factor + 1;
+  return mesh::generate_ring_block(geometry);
+}
+
+}  // namespace contactrb::cases

@@ -1,0 +1,24 @@
+#pragma once
+// The built-in cases (paper Section 6) by name. The full case specification (parameter
+// domain, training sets, affine decompositions) grows here with issue [3/5].
+#include <string>
+#include <vector>
+
+#include "contactrb/mesh/mesh.hpp"
+
+namespace contactrb::cases {
+
+struct CaseInfo {
+  std::string name;
+  std::string summary;  // one line for `contactrb cases`
+};
+
+const std::vector<CaseInfo>& builtin_cases();
+// Throws contactrb::Error naming the unknown case and listing the known ones.
+const CaseInfo& find_case(const std::string& name);
+
+// Reference mesh of a built-in case (mu = reference value) at refinement level `level`
+// (0: the paper's mesh). Throws contactrb::Error for an unknown case or level < 0.
+mesh::Mesh reference_mesh(const std::string& name, int level = 0);
+
+}  // namespace contactrb::cases

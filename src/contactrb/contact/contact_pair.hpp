@@ -1,0 +1,42 @@
+#pragma once
+// The slave and master contact boundaries as ordered node chains, and the quadrature that
+// turns pointwise constraints at slave nodes into the rows of K(w), g(w) (paper (10)-(11)).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "contactrb/mesh/mesh.hpp"
+
+namespace contactrb::contact {
+
+enum class Discretization { Collocation, LAC };
+const char* to_string(Discretization d);
+Discretization discretization_from_string(const std::string& name);  // "collocation" | "lac"
+
+// Slave boundary Gamma_1^c (body 0) and master boundary Gamma_2^c (body 1) as ordered
+// chains of node indices (mesh groups "slave" and "master", in edge orientation).
+struct ContactPair {
+  std::vector<int> slave;
+  std::vector<int> master;
+};
+// Throws contactrb::Error if a group is missing, not a single polyline, or on the wrong body.
+ContactPair make_contact_pair(const mesh::Mesh& mesh);
+
+// Row r of K and g is int_{I_r} (pointwise value) psi_r, approximated by a quadrature over
+// the slave nodes: rows = W * pointwise. Multipliers are then contact pressures.
+//  Collocation (6.1.1): one row per slave node, W = diag(|I_r|), |I_r| = half the two
+//    adjacent slave edges.
+//  LAC (6.1.2): one row per macro-segment of two slave edges, Simpson's rule (62) on its
+//    three nodes; with an odd number of slave edges the last macro-segment is a single
+//    edge integrated by the trapezoidal rule (documented in docs/contact.md).
+struct ContactQuadrature {
+  Discretization discretization = Discretization::Collocation;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> W;  // R x S, S = slave.size()
+  Eigen::VectorXd weight;                          // |I_r| (row sums of W)
+  std::vector<int> center_node;                    // slave node at the center of I_r
+};
+// Built on the undeformed configuration of `mesh` (i.e. Omega(mu), not Omega(mu) + w).
+ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pair, Discretization d);
+
+}  // namespace contactrb::contact
