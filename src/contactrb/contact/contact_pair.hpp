@@ -16,11 +16,14 @@ Discretization discretization_from_string(const std::string& name);  // "colloca
 
 // Slave boundary Gamma_1^c (body 0) and master boundary Gamma_2^c (body 1) as ordered
 // chains of node indices (mesh groups "slave" and "master", in edge orientation).
+// A closed master loop is stored with its first node repeated at the end
+// (master.front() == master.back()), so master segment k is always (master[k], master[k+1]).
 struct ContactPair {
   std::vector<int> slave;
   std::vector<int> master;
 };
-// Throws contactrb::Error if a group is missing, not a single polyline, or on the wrong body.
+// Throws contactrb::Error if a group is missing, not a single polyline, has fewer than two
+// nodes, or lies on the wrong body, or if the slave chain is a closed loop.
 ContactPair make_contact_pair(const mesh::Mesh& mesh);
 
 // Row r of K and g is int_{I_r} (pointwise value) psi_r, approximated by a quadrature over
@@ -34,7 +37,10 @@ struct ContactQuadrature {
   Discretization discretization = Discretization::Collocation;
   Eigen::SparseMatrix<double, Eigen::RowMajor> W;  // R x S, S = slave.size()
   Eigen::VectorXd weight;                          // |I_r| (row sums of W)
-  std::vector<int> center_node;                    // slave node at the center of I_r
+  std::vector<int> center_node;                    // mesh node index of the slave node at
+                                                   // the center of I_r (collocation: z_r;
+                                                   // LAC: the middle node; a single-edge
+                                                   // last segment: its first node)
 };
 // Built on the undeformed configuration of `mesh` (i.e. Omega(mu), not Omega(mu) + w).
 ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pair, Discretization d);

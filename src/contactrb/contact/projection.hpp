@@ -9,9 +9,13 @@
 //   k(w; v)_s = ((1 - xi) v_a + xi v_b - v_s) . n2   (27)
 //   g(w)_s    = (X_s - rho) . n2                     (28)
 // and non-penetration reads k(w; u) <= g(w).
+// Ties (a slave node equidistant from several segments, e.g. from the two segments at a
+// vertex) go to the lowest segment index, so a vertex between segments k and k+1 is reported
+// as (k, xi = 1).
 // A slave node is a candidate when its closest point is not an end point of the master
 // chain approached from outside (no master facing it). Non-candidates get a zero K row
-// and g = their distance to the master polyline (> 0), so the constraint is inactive.
+// and g = their distance to the master polyline (> 0), so the constraint is inactive;
+// their projection record (segment, xi, normal, rho, distance) is still filled.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -36,10 +40,32 @@ struct PointwiseContact {
   Eigen::VectorXd g;                               // S, g(w)_s
 };
 
-// w: global displacement (num_dofs). Uses a bounding-box grid search beyond about 1000
-// master segments; all-pairs below. Throws contactrb::Error on size mismatch or non-finite w.
+// How the closest master segment is found. Both methods return exactly the same result:
+// the segment minimizing (squared distance, segment index) lexicographically.
+enum class SearchMethod {
+  Automatic,  // AllPairs below ProjectionOptions::tree_min_segments segments, Tree from there
+  AllPairs,   // O(S M): every slave node against every master segment
+  Tree,       // bounding-volume tree over the master chain (O(M log M) build, ~O(log M) per node)
+};
+
+struct ProjectionOptions {
+  SearchMethod search = SearchMethod::Automatic;
+  // Master segment count from which Automatic uses the tree (bench_contact: the tree
+  // already wins at 100 segments; below 32, all-pairs is as fast and simplest).
+  int tree_min_segments = 32;
+  // A slave node is "beyond" an end of an open master chain when its projection parameter on
+  // the end segment is < -end_tolerance or > 1 + end_tolerance (relative to the segment
+  // length). The tolerance keeps a slave node aligned with the master end (same-width
+  // bodies) a candidate despite round-off.
+  double end_tolerance = 1e-10;
+};
+
+// w: global displacement (num_dofs). A closed master chain (master.front() == master.back(),
+// see make_contact_pair) has no end, so every slave node is a candidate.
+// Throws contactrb::Error on size mismatch, non-finite w, a node index out of range, or a
+// deformed master segment of zero length (its normal is undefined).
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair,
-                                     const Eigen::VectorXd& w);
+                                     const Eigen::VectorXd& w, const ProjectionOptions& options = {});
 
 // The constraint rows for a discretization: K = W K_pt, g = W g_pt (paper (10)-(11)).
 struct ConstraintRows {

@@ -28,7 +28,7 @@ Mesh generate_hertz(const HertzGeometry& geometry);
 int hertz_arc_nodes_for_level(int level);
 
 // A half-ring over a rectangular block (paper Section 6.3, Fig. 17; dimensions chosen in
-// docs/cases.md). Half-ring Omega_1 (slave, body 0): lower half of the annulus with outer
+// docs/meshes.md). Half-ring Omega_1 (slave, body 0): lower half of the annulus with outer
 // radius R_out and inner radius R_in, centered at (0, gap + R_out). Block Omega_2 (master,
 // body 1): [-W/2, W/2] x [-H, 0].
 // Boundary groups: "slave" (outer arc of the ring), "master" (top edge of the block),

@@ -20,6 +20,17 @@ struct MshGroups {
 // physical group, inverted or zero-area triangle, unreferenced node. Triangles are
 // reoriented counter-clockwise only if ALL of a body's triangles are clockwise
 // (a consistently mirrored file); a mix of orientations is an error.
+// Details (docs/meshes.md):
+//  - Only ASCII format 4.1 is read (binary, 2.x and 4.0 files are rejected with a hint).
+//  - Elements: 3-node triangles (type 2), 2-node lines (type 1) and points (type 15);
+//    any other type is an error. body_groups may name 1 or 2 groups; every triangle must
+//    be in exactly one of them; the bodies must not share nodes.
+//  - Unreferenced nodes: a node used by no triangle is dropped when it lies on a
+//    geometry point or curve entity (dim 0 or 1, e.g. Gmsh's corner-point nodes) and is
+//    used by no line element; a surface node used by no triangle is an error. A line of
+//    a boundary group must be an edge of exactly one triangle; it is reoriented with its
+//    body on the left.
+//  - Node indices follow the order of the $Nodes section (unused nodes skipped).
 Mesh read_msh(const std::string& path, const MshGroups& groups = {});
 
 // Writes format 4.1 ASCII with physical groups "body1", "body2" and one 1D group per

@@ -1,0 +1,76 @@
+// Projection of the slave nodes on the deformed master polyline against the contact surface size.
+//
+// Hertz-like configuration: the master is the upper unit half circle (outer arc of a half
+// annulus, n nodes); the n slave nodes are placed by the displacement on the lower half of
+// the unit circle centred at (0, 2.1) (gap 0.1 at the centre, about 1.2 at the sides), so
+// the search sees near and far nodes. Counters: slave nodes per second.
+//
+//   bench_contact --benchmark_filter=Project
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/projection.hpp"
+#include "contactrb/mesh/structured.hpp"
+
+namespace {
+
+using namespace contactrb;
+
+struct Setup {
+  mesh::Mesh mesh;
+  contact::ContactPair pair;
+  Eigen::VectorXd w;
+};
+
+Setup hertz_like(int n) {
+  mesh::Mesh slave = mesh::rectangle(-1.0, 2.0, 1.0, 2.5, n - 1, 1, mesh::kSlaveBody);
+  mesh::Mesh master = mesh::rectangle(0.0, 0.0, 1.0, 1.0, n - 1, 1, mesh::kMasterBody);
+  for (auto& p : master.nodes) {  // half annulus r in [0.5, 1], theta = pi (1 - x)
+    const double r = 0.5 + 0.5 * p.y(), t = std::numbers::pi * (1.0 - p.x());
+    p = Eigen::Vector2d(r * std::cos(t), r * std::sin(t));
+  }
+  for (const char* g : {"right", "top", "left"}) mesh::rename_boundary(slave, g, std::string("s_") + g);
+  for (const char* g : {"right", "bottom", "left"}) mesh::rename_boundary(master, g, std::string("m_") + g);
+  mesh::rename_boundary(slave, "bottom", mesh::kSlaveBoundary);
+  mesh::rename_boundary(master, "top", mesh::kMasterBoundary);
+  Setup s;
+  s.mesh = mesh::merge(slave, master);
+  s.pair = contact::make_contact_pair(s.mesh);
+  s.w = Eigen::VectorXd::Zero(s.mesh.num_dofs());
+  for (std::size_t i = 0; i < s.pair.slave.size(); ++i) {
+    const int v = s.pair.slave[i];
+    const double t = std::numbers::pi * (1.0 + static_cast<double>(i) / static_cast<double>(n - 1));
+    const Eigen::Vector2d target(std::cos(t), 2.1 + std::sin(t));
+    s.w.segment<2>(2 * v) = target - s.mesh.nodes[static_cast<std::size_t>(v)];
+  }
+  return s;
+}
+
+void run(benchmark::State& state, contact::SearchMethod method) {
+  const int n = static_cast<int>(state.range(0));
+  const Setup s = hertz_like(n);
+  contact::ProjectionOptions options;
+  options.search = method;
+  for (auto _ : state) {
+    contact::PointwiseContact pc = contact::project_slave_nodes(s.mesh, s.pair, s.w, options);
+    benchmark::DoNotOptimize(pc.g.data());
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  state.SetComplexityN(n);
+}
+
+void BM_ProjectAutomatic(benchmark::State& state) { run(state, contact::SearchMethod::Automatic); }
+void BM_ProjectTree(benchmark::State& state) { run(state, contact::SearchMethod::Tree); }
+void BM_ProjectAllPairs(benchmark::State& state) { run(state, contact::SearchMethod::AllPairs); }
+
+}  // namespace
+
+BENCHMARK(BM_ProjectAutomatic)->RangeMultiplier(10)->Range(100, 100000)->Unit(benchmark::kMicrosecond)->Complexity();
+BENCHMARK(BM_ProjectTree)->RangeMultiplier(10)->Range(100, 100000)->Unit(benchmark::kMicrosecond)->Complexity(benchmark::oNLogN);
+BENCHMARK(BM_ProjectAllPairs)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond)->Complexity(benchmark::oNSquared);
+
+BENCHMARK_MAIN();

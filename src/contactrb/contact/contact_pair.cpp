@@ -1,0 +1,154 @@
+#include "contactrb/contact/contact_pair.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::contact {
+
+const char* to_string(Discretization d) {
+  switch (d) {
+    case Discretization::Collocation:
+      return "collocation";
+    case Discretization::LAC:
+      return "lac";
+  }
+  return "unknown";
+}
+
+Discretization discretization_from_string(const std::string& name) {
+  for (Discretization d : {Discretization::Collocation, Discretization::LAC}) {
+    if (name == to_string(d)) return d;
+  }
+  throw Error("unknown contact discretization '" + name + "' (valid: 'collocation', 'lac')");
+}
+
+namespace {
+
+// Body id of every node: -1 unreferenced, 0 / 1 the body, 2 referenced by both bodies.
+std::vector<int> node_bodies(const mesh::Mesh& mesh) {
+  std::vector<int> owner(mesh.nodes.size(), -1);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const int b = mesh.body[static_cast<std::size_t>(t)];
+    for (int v : mesh.triangles[static_cast<std::size_t>(t)]) {
+      if (v < 0 || v >= mesh.num_nodes()) continue;  // mesh::validate reports these
+      int& o = owner[static_cast<std::size_t>(v)];
+      o = (o == -1 || o == b) ? b : 2;
+    }
+  }
+  return owner;
+}
+
+std::vector<int> checked_chain(const mesh::Mesh& mesh, const std::vector<int>& owner, const char* group,
+                               int body, const char* role) {
+  std::vector<int> chain = mesh::ordered_chain(mesh, group);
+  require(chain.size() >= 2, std::string(role) + " boundary '" + group + "' has " +
+                                 std::to_string(chain.size()) + " node(s); at least 2 are needed");
+  for (int v : chain) {
+    if (v < 0 || v >= mesh.num_nodes()) {
+      throw Error(std::string(role) + " boundary '" + group + "' references node " + std::to_string(v) +
+                  " outside [0, " + std::to_string(mesh.num_nodes()) + ")");
+    }
+    const int o = owner[static_cast<std::size_t>(v)];
+    if (o != body) {
+      throw Error(std::string(role) + " boundary '" + group + "' node " + std::to_string(v) +
+                  (o == -1  ? " belongs to no triangle"
+                   : o == 2 ? " belongs to both bodies"
+                            : " belongs to body " + std::to_string(o)) +
+                  " (the " + role + " boundary must lie on body " + std::to_string(body) + ")");
+    }
+  }
+  return chain;
+}
+
+}  // namespace
+
+ContactPair make_contact_pair(const mesh::Mesh& mesh) {
+  require(mesh.body.size() == mesh.triangles.size(),
+          "make_contact_pair: mesh has " + std::to_string(mesh.triangles.size()) + " triangles but " +
+              std::to_string(mesh.body.size()) + " body ids");
+  const std::vector<int> owner = node_bodies(mesh);
+  ContactPair pair;
+  pair.slave = checked_chain(mesh, owner, mesh::kSlaveBoundary, mesh::kSlaveBody, "slave");
+  pair.master = checked_chain(mesh, owner, mesh::kMasterBoundary, mesh::kMasterBody, "master");
+  // A closed chain comes back from ordered_chain without repeating its first node.
+  const auto closed = [&mesh](const char* group, std::size_t nodes) {
+    return mesh.boundary(group).size() == nodes;
+  };
+  require(!closed(mesh::kSlaveBoundary, pair.slave.size()),
+          "slave boundary 'slave' is a closed loop; it must be an open polyline");
+  if (closed(mesh::kMasterBoundary, pair.master.size())) pair.master.push_back(pair.master.front());
+  return pair;
+}
+
+namespace {
+
+double edge_length(const mesh::Mesh& mesh, int a, int b) {
+  return (mesh.nodes[static_cast<std::size_t>(b)] - mesh.nodes[static_cast<std::size_t>(a)]).norm();
+}
+
+}  // namespace
+
+ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pair, Discretization d) {
+  const auto& slave = pair.slave;
+  const int S = static_cast<int>(slave.size());
+  require(S >= 2, "make_quadrature: the slave chain has " + std::to_string(S) + " node(s); at least 2 are needed");
+  for (int v : slave) {
+    if (v < 0 || v >= mesh.num_nodes()) {
+      throw Error("make_quadrature: slave node " + std::to_string(v) + " outside [0, " +
+                  std::to_string(mesh.num_nodes()) + ")");
+    }
+  }
+  const int E = S - 1;  // slave edges, edge e = (slave[e], slave[e + 1])
+  std::vector<double> len(static_cast<std::size_t>(E));
+  for (int e = 0; e < E; ++e) {
+    len[static_cast<std::size_t>(e)] =
+        edge_length(mesh, slave[static_cast<std::size_t>(e)], slave[static_cast<std::size_t>(e + 1)]);
+  }
+
+  ContactQuadrature q;
+  q.discretization = d;
+  std::vector<Eigen::Triplet<double>> entries;
+  int rows = 0;
+  if (d == Discretization::Collocation) {
+    // (60)-(61): one-node quadrature at z_r; psi_r is P0 on I_r = half of each adjacent edge.
+    rows = S;
+    for (int r = 0; r < S; ++r) {
+      const double left = r > 0 ? len[static_cast<std::size_t>(r - 1)] : 0.0;
+      const double right = r < E ? len[static_cast<std::size_t>(r)] : 0.0;
+      entries.emplace_back(r, r, 0.5 * (left + right));
+      q.center_node.push_back(slave[static_cast<std::size_t>(r)]);
+    }
+  } else {
+    // (62): macro-segment r = slave edges 2r and 2r + 1, Simpson's rule on its three nodes.
+    // With an odd number of edges the last macro-segment is one edge (trapezoidal rule).
+    rows = (E + 1) / 2;
+    for (int r = 0; r < rows; ++r) {
+      const int first = 2 * r;
+      if (first + 1 < E) {
+        const double I = len[static_cast<std::size_t>(first)] + len[static_cast<std::size_t>(first + 1)];
+        entries.emplace_back(r, first, I / 6.0);
+        entries.emplace_back(r, first + 1, 4.0 * I / 6.0);
+        entries.emplace_back(r, first + 2, I / 6.0);
+        q.center_node.push_back(slave[static_cast<std::size_t>(first + 1)]);
+      } else {
+        const double I = len[static_cast<std::size_t>(first)];
+        entries.emplace_back(r, first, I / 2.0);
+        entries.emplace_back(r, first + 1, I / 2.0);
+        q.center_node.push_back(slave[static_cast<std::size_t>(first)]);
+      }
+    }
+  }
+  q.W.resize(rows, S);
+  q.W.setFromTriplets(entries.begin(), entries.end());
+  q.weight = Eigen::VectorXd::Zero(rows);
+  for (int r = 0; r < rows; ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(q.W, r); it; ++it) q.weight(r) += it.value();
+  }
+  return q;
+}
+
+}  // namespace contactrb::contact

@@ -1,0 +1,82 @@
+#include "contactrb/solve/kacanov.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::solve {
+
+void check_settings(const KacanovSettings& s) {
+  require(std::isfinite(s.alpha) && s.alpha > 0.0 && s.alpha <= 1.0,
+          "Kacanov relaxation alpha must be in (0, 1] (got " + std::to_string(s.alpha) + ")");
+  require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
+          "Kacanov tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
+  require(s.max_iterations >= 1,
+          "Kacanov max_iterations must be >= 1 (got " + std::to_string(s.max_iterations) + ")");
+}
+
+const char* to_string(KacanovStatus status) {
+  switch (status) {
+    case KacanovStatus::Converged: return "converged";
+    case KacanovStatus::MaxIterations: return "max_iterations";
+    case KacanovStatus::StepFailed: return "step_failed";
+  }
+  return "unknown";
+}
+
+double relative_increment(const Eigen::VectorXd& current, const Eigen::VectorXd& previous) {
+  const double diff = (current - previous).norm();
+  const double ref = previous.norm();
+  if (diff == 0.0) return 0.0;
+  return ref > 0.0 ? diff / ref : diff;
+}
+
+KacanovResult kacanov(const KacanovStep& step, Eigen::VectorXd u, Eigen::VectorXd lambda,
+                      const KacanovSettings& settings) {
+  check_settings(settings);
+  KacanovResult result;
+  const double a = settings.alpha;
+  for (int k = 1; k <= settings.max_iterations; ++k) {
+    KacanovIteration it;
+    std::string message;
+    if (!step(u, lambda, result.u_bar, result.lambda_bar, it.step_iterations, message)) {
+      result.status = KacanovStatus::StepFailed;
+      result.iterations = k;
+      result.u = std::move(u);
+      result.lambda = std::move(lambda);
+      result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
+      return result;
+    }
+    Eigen::VectorXd u_new = a * result.u_bar + (1.0 - a) * u;
+    Eigen::VectorXd lambda_new =
+        lambda.size() == result.lambda_bar.size() ? Eigen::VectorXd(a * result.lambda_bar + (1.0 - a) * lambda)
+                                                  : Eigen::VectorXd(a * result.lambda_bar);
+    it.du = relative_increment(u_new, u);
+    it.dlambda = lambda.size() == lambda_new.size() ? relative_increment(lambda_new, lambda) : INFINITY;
+    result.history.push_back(it);
+    u = std::move(u_new);
+    lambda = std::move(lambda_new);
+    // (63): both relative increments below eps_KA.
+    if (std::max(it.du, it.dlambda) <= settings.tolerance) {
+      result.status = KacanovStatus::Converged;
+      result.iterations = k;
+      result.u = std::move(u);
+      result.lambda = std::move(lambda);
+      return result;
+    }
+  }
+  const KacanovIteration& last = result.history.back();
+  std::ostringstream os;
+  os << "Kacanov did not converge in " << settings.max_iterations
+     << " iterations (last relative increments: displacement " << last.du << ", multipliers "
+     << last.dlambda << ", tolerance " << settings.tolerance << ")";
+  result.status = KacanovStatus::MaxIterations;
+  result.iterations = settings.max_iterations;
+  result.u = std::move(u);
+  result.lambda = std::move(lambda);
+  result.message = os.str();
+  return result;
+}
+
+}  // namespace contactrb::solve
