@@ -11,20 +11,44 @@ namespace contactrb::fem {
 enum class FactorStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(FactorStatus status);
 
+// EigenSimplicial: Eigen::SimplicialLLT with AMD ordering; the default, measured faster up
+// to about 1e5 DOFs on the reference machine (docs/fem.md, docs/benchmarks.md).
+// Cholmod: CHOLMOD supernodal LL' (SuiteSparse, through Eigen's CholmodSupport, default
+// CHOLMOD ordering strategy: AMD, then METIS when AMD fills badly); faster at 1e6 DOFs, and
+// much faster with an optimized BLAS.
+enum class CholeskyBackend { Cholmod, EigenSimplicial };
+const char* to_string(CholeskyBackend backend);
+
 class SparseCholesky {
  public:
-  SparseCholesky();
+  SparseCholesky();  // default backend (EigenSimplicial)
+  explicit SparseCholesky(CholeskyBackend backend);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
   // Symbolic analysis and numeric factorization of a symmetric matrix (both triangles
-  // stored). Returns the status; solve() requires Success.
+  // stored). Returns the status; solve() requires Success. InvalidInput: not square,
+  // not symmetric (relative tolerance kSymmetryTolerance), non-finite entries, or a
+  // backend error (e.g. out of memory). NotPositiveDefinite: a pivot <= 0.
   FactorStatus compute(const Eigen::SparseMatrix<double>& A);
+  static constexpr double kSymmetryTolerance = 1e-12;
+  CholeskyBackend backend() const;
   FactorStatus status() const;
   int rows() const;
+  // Throw contactrb::Error unless status() == Success and the sizes match.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  // Any dense expression (A * x, f - K * u, ...): evaluated, then solved as a vector when it
+  // has one column at compile time, as a matrix otherwise.
+  template <class Derived>
+  auto solve(const Eigen::MatrixBase<Derived>& b) const {
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+      return solve(Eigen::VectorXd(b));
+    } else {
+      return solve(Eigen::MatrixXd(b));
+    }
+  }
 
  private:
   struct Impl;

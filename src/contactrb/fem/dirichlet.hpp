@@ -37,6 +37,8 @@ class DofMap {
   Eigen::VectorXd extend(const Eigen::VectorXd& free) const;      // zeros on constrained
   // A_00 (free x free) and A_0D applied to the lift: A_00 u_0 = f_0 - (A u_D)_0.
   SparseMatrix restrict_matrix(const SparseMatrix& A) const;
+  // Right-hand side of the reduced system: restrict(f - A * lift()).
+  Eigen::VectorXd restrict_rhs(const SparseMatrix& A, const Eigen::VectorXd& f) const;
   // Columns restricted to free DOFs (for K: R x num_dofs -> R x num_free).
   Eigen::SparseMatrix<double, Eigen::RowMajor> restrict_columns(
       const Eigen::SparseMatrix<double, Eigen::RowMajor>& K) const;

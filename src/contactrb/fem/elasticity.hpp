@@ -4,6 +4,8 @@
 // mu_L = E / (2 (1 + nu)). The paper's (16) prints (1 + 2 nu): a typo (DESIGN.md).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "contactrb/mesh/mesh.hpp"
@@ -32,6 +34,11 @@ SparseMatrix symmetric_gradient_part(const mesh::Mesh& mesh, int body);
 
 // Load vector of a constant body force `load` on one body: int load . w.
 Eigen::VectorXd body_load(const mesh::Mesh& mesh, int body, const Eigen::Vector2d& load);
+// Load vector of a variable body force: int load(x) . w, with the triangle quadrature
+// exact for polynomials of total degree `degree` (quadrature.hpp; the default 4 makes
+// load . phi exact for loads of degree <= 3).
+Eigen::VectorXd body_load(const mesh::Mesh& mesh, int body,
+                          const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& load, int degree = 4);
 
 // Vector L2 mass int v . w, vector Laplacian int grad v : grad w, and the H1 inner
 // product (their sum), over the whole mesh.

@@ -1,0 +1,22 @@
+// `contactrb cases`: one line per built-in case (paper Section 6).
+#include <iomanip>
+#include <iostream>
+
+#include "commands.hpp"
+#include "contactrb/cases/catalog.hpp"
+
+namespace contactrb::app {
+
+Command add_cases_command(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("cases", "List the built-in cases (paper Section 6), one per line");
+  return {sub, [] {
+            std::size_t width = 0;
+            for (const auto& c : cases::builtin_cases()) width = std::max(width, c.name.size());
+            for (const auto& c : cases::builtin_cases()) {
+              std::cout << std::left << std::setw(static_cast<int>(width) + 2) << c.name << c.summary << "\n";
+            }
+            return 0;
+          }};
+}
+
+}  // namespace contactrb::app

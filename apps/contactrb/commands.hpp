@@ -1,0 +1,26 @@
+#pragma once
+// One subcommand per file (cmd_<name>.cpp). Each add_*_command registers its subcommand
+// and options on the top-level app and returns the Command that main() runs when that
+// subcommand was given. Commands print their results on stdout and throw
+// contactrb::Error for anything the user can fix; main() turns that into one line
+// "contactrb: error: ..." on stderr and exit code 1.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace contactrb::app {
+
+struct Command {
+  CLI::App* subcommand = nullptr;
+  std::function<int()> run;  // returns the process exit code
+};
+
+Command add_cases_command(CLI::App& app);
+Command add_mesh_command(CLI::App& app);
+Command add_solve_command(CLI::App& app);
+
+// Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
+// fails or when it exists and is not a directory.
+void ensure_output_directory(const std::string& dir);
+
+}  // namespace contactrb::app

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Installs the Debian packages contactrb needs, only those missing (idempotent).
+# Sourced by demo.sh and test.sh; can also be run on its own.
+set -euo pipefail
+
+CONTACTRB_DEBIAN_PACKAGES=(
+  build-essential cmake g++ pkg-config
+  libeigen3-dev libcli11-dev libgmsh-dev libhdf5-dev libtomlplusplus-dev libsuitesparse-dev
+  nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-meshio python3-numpy python3-matplotlib
+)
+
+contactrb_install_deps() {
+  local missing=()
+  local pkg
+  for pkg in "${CONTACTRB_DEBIAN_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$pkg")
+    fi
+  done
+  if [ "${#missing[@]}" -eq 0 ]; then
+    echo "contactrb: all ${#CONTACTRB_DEBIAN_PACKAGES[@]} Debian packages are installed"
+    return 0
+  fi
+  echo "contactrb: installing missing Debian packages: ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if ! command -v sudo >/dev/null 2>&1; then
+      echo "contactrb: need root or sudo to install: ${missing[*]}" >&2
+      return 1
+    fi
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+}
+
+# Number of parallel build jobs: all cores, at most 8 (keeps memory in check).
+contactrb_jobs() {
+  local n
+  n=$(nproc 2>/dev/null || echo 2)
+  if [ "$n" -gt 8 ]; then n=8; fi
+  echo "$n"
+}
+
+if [ "${BASH_SOURCE[0]}" = "$0" ]; then
+  contactrb_install_deps
+fi

@@ -1,0 +1,30 @@
+#pragma once
+// The paper's three cases as high-fidelity problems at a parameter value (Section 6;
+// DESIGN.md "The three paper cases"). Issue [3/5] turns these into case specifications
+// with affine decompositions; the data here are the paper's.
+#include <optional>
+#include <string>
+
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/hf/contact_problem.hpp"
+
+namespace contactrb::cases {
+
+struct ParameterDomain {
+  std::string name;
+  double min = 0.0;
+  double max = 0.0;
+  double reference = 0.0;  // the value at which the reference mesh is Omega(mu)
+};
+
+const ParameterDomain& parameter_domain(const std::string& case_name);
+// Throws contactrb::Error for a NaN or a value outside [min, max], naming the case,
+// the parameter and the domain.
+void check_parameter(const std::string& case_name, double mu);
+
+// The HF problem of a built-in case at mu (mesh level `level`, 0 = the paper's mesh).
+// `constraint` overrides the case's default discretization.
+hf::ContactProblem make_problem(const std::string& case_name, double mu, int level = 0,
+                                std::optional<contact::Discretization> constraint = std::nullopt);
+
+}  // namespace contactrb::cases

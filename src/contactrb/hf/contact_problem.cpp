@@ -1,0 +1,30 @@
+#include "contactrb/hf/contact_problem.hpp"
+
+#include <cmath>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::hf {
+
+void check_problem(const ContactProblem& p) {
+  mesh::validate(p.mesh);
+  const int bodies = 2;
+  require(p.mesh.num_bodies() == bodies,
+          "a contact problem needs two bodies; the mesh has " + std::to_string(p.mesh.num_bodies()));
+  require(static_cast<int>(p.materials.size()) == bodies,
+          "one material per body expected (" + std::to_string(bodies) + "), got " +
+              std::to_string(p.materials.size()));
+  for (const fem::Material& m : p.materials) fem::check_material(m);
+  require(p.body_loads.empty() || static_cast<int>(p.body_loads.size()) == bodies,
+          "body loads: one per body or none, got " + std::to_string(p.body_loads.size()));
+  for (const Eigen::Vector2d& l : p.body_loads) require(l.allFinite(), "body load is not finite");
+  for (const fem::DirichletCondition& c : p.dirichlet) {
+    p.mesh.boundary(c.group);  // throws naming the group
+    require((!c.ux || std::isfinite(*c.ux)) && (!c.uy || std::isfinite(*c.uy)),
+            "Dirichlet data on group '" + c.group + "' is not finite");
+  }
+  p.mesh.boundary(mesh::kSlaveBoundary);
+  p.mesh.boundary(mesh::kMasterBoundary);
+}
+
+}  // namespace contactrb::hf

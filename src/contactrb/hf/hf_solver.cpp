@@ -1,0 +1,226 @@
+#include "contactrb/hf/hf_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/hf/contact_condensation.hpp"
+
+namespace contactrb::hf {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+}  // namespace
+
+double HFKKT::max() const { return std::max({stationarity, primal, dual, complementarity}); }
+
+struct HFSolver::Impl {
+  ContactProblem problem;
+  fem::DofMap dofs;
+  contact::ContactPair pair;
+  contact::ContactQuadrature quadrature;
+  Eigen::SparseMatrix<double> A;  // global
+  Eigen::VectorXd f;              // global
+  std::unique_ptr<ContactCondensation> A00;
+  Eigen::VectorXd b;              // f_0 - (A u_D)_0
+  Eigen::VectorXd z;              // A_00^-1 b
+  std::vector<int> contact_free;  // free indices of contact-boundary DOFs
+  std::vector<int> free_to_contact;  // free index -> position in contact_free or -1
+  Eigen::MatrixXd S;              // (A_00^-1)[contact_free, contact_free]
+  Eigen::VectorXd z_c;
+  double setup_time = 0.0;
+
+  // K restricted to contact free DOFs (R x nc) and the lifted gap g - K u_D.
+  void restrict_rows(const contact::ConstraintRows& rows, RowSparse& Kc, Eigen::VectorXd& g_lift) const {
+    const Eigen::VectorXd& lift = dofs.lift();
+    g_lift = rows.g - rows.K * lift;
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(static_cast<std::size_t>(rows.K.nonZeros()));
+    const std::vector<int>& free = dofs.free_dofs();
+    (void)free;
+    for (int r = 0; r < rows.K.outerSize(); ++r) {
+      for (RowSparse::InnerIterator it(rows.K, r); it; ++it) {
+        const int fi = global_to_free[static_cast<std::size_t>(it.col())];
+        if (fi < 0) continue;
+        const int ci = free_to_contact[static_cast<std::size_t>(fi)];
+        if (ci < 0) throw Error("internal: constraint row touches a DOF outside the contact boundaries");
+        trip.emplace_back(r, ci, it.value());
+      }
+    }
+    Kc.resize(rows.K.rows(), static_cast<Eigen::Index>(contact_free.size()));
+    Kc.setFromTriplets(trip.begin(), trip.end());
+  }
+  std::vector<int> global_to_free;
+
+  Eigen::VectorXd total(const Eigen::VectorXd& u0) const { return dofs.lift() + dofs.extend(u0); }
+};
+
+HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
+  const auto t0 = Clock::now();
+  check_problem(problem);
+  Impl& m = *impl_;
+  m.problem = std::move(problem);
+  const mesh::Mesh& mesh = m.problem.mesh;
+  m.dofs = fem::DofMap(mesh, m.problem.dirichlet);
+  require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
+  m.pair = contact::make_contact_pair(mesh);
+  m.quadrature = contact::make_quadrature(mesh, m.pair, m.problem.discretization);
+  {
+    // A slave boundary with no master facing it cannot make contact: almost surely a
+    // mislabelled group (e.g. the two contact groups swapped or on far-apart bodies).
+    const contact::PointwiseContact pw = contact::project_slave_nodes(mesh, m.pair, m.dofs.lift());
+    int candidates = 0;
+    for (const auto& p : pw.projection) candidates += p.candidate ? 1 : 0;
+    require(candidates > 0, "no node of the slave boundary faces the master boundary (" +
+                                std::to_string(m.pair.slave.size()) +
+                                " slave nodes, none projects inside the master polyline): check the "
+                                "'slave' and 'master' groups");
+  }
+  m.A = fem::stiffness(mesh, m.problem.materials);
+  m.f = Eigen::VectorXd::Zero(mesh.num_dofs());
+  for (std::size_t body = 0; body < m.problem.body_loads.size(); ++body) {
+    m.f += fem::body_load(mesh, static_cast<int>(body), m.problem.body_loads[body]);
+  }
+  m.b = m.dofs.restrict(m.f - m.A * m.dofs.lift());
+  m.global_to_free.assign(static_cast<std::size_t>(mesh.num_dofs()), -1);
+  for (int i = 0; i < m.dofs.num_free(); ++i) {
+    m.global_to_free[static_cast<std::size_t>(m.dofs.free_dofs()[static_cast<std::size_t>(i)])] = i;
+  }
+  m.free_to_contact.assign(static_cast<std::size_t>(m.dofs.num_free()), -1);
+  std::vector<int> nodes = m.pair.slave;
+  nodes.insert(nodes.end(), m.pair.master.begin(), m.pair.master.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  for (int node : nodes) {
+    for (int c = 0; c < 2; ++c) {
+      const int fi = m.global_to_free[static_cast<std::size_t>(2 * node + c)];
+      if (fi < 0) continue;
+      m.free_to_contact[static_cast<std::size_t>(fi)] = static_cast<int>(m.contact_free.size());
+      m.contact_free.push_back(fi);
+    }
+  }
+  // S = (A_00^-1)[c, c] from the factorization with the contact DOFs ordered last.
+  const int nc = static_cast<int>(m.contact_free.size());
+  m.A00 = std::make_unique<ContactCondensation>(m.dofs.restrict_matrix(m.A), m.contact_free);
+  m.S = m.A00->contact_inverse();
+  m.z = m.A00->solve(m.b);
+  m.z_c.resize(nc);
+  for (int i = 0; i < nc; ++i) m.z_c(i) = m.z(m.contact_free[static_cast<std::size_t>(i)]);
+  m.setup_time = seconds_since(t0);
+}
+
+HFSolver::~HFSolver() = default;
+HFSolver::HFSolver(HFSolver&&) noexcept = default;
+HFSolver& HFSolver::operator=(HFSolver&&) noexcept = default;
+
+const ContactProblem& HFSolver::problem() const { return impl_->problem; }
+const contact::ContactPair& HFSolver::pair() const { return impl_->pair; }
+const contact::ContactQuadrature& HFSolver::quadrature() const { return impl_->quadrature; }
+const fem::DofMap& HFSolver::dofs() const { return impl_->dofs; }
+const Eigen::SparseMatrix<double>& HFSolver::stiffness() const { return impl_->A; }
+const Eigen::VectorXd& HFSolver::load() const { return impl_->f; }
+double HFSolver::setup_time_s() const { return impl_->setup_time; }
+
+HFSolution HFSolver::solve(const HFSettings& settings) const {
+  const auto t0 = Clock::now();
+  solve::check_settings(settings.kacanov);
+  const Impl& m = *impl_;
+  const mesh::Mesh& mesh = m.problem.mesh;
+  const int R = static_cast<int>(m.quadrature.weight.size());
+
+  HFSolution sol;
+  std::vector<int> warm;  // passive set of the previous QP
+  contact::PointwiseContact last_pointwise;
+  contact::ConstraintRows last_rows;
+  Eigen::VectorXd last_g_lift;
+  RowSparse last_Kc;
+  Eigen::VectorXd last_u0;
+
+  // One linearized step (12): K, g frozen at the previous iterate u.
+  solve::KacanovStep step = [&](const Eigen::VectorXd& u, const Eigen::VectorXd&, Eigen::VectorXd& u_bar,
+                                Eigen::VectorXd& lambda_bar, int& inner, std::string& message) {
+    contact::PointwiseContact pw = contact::project_slave_nodes(mesh, m.pair, u);
+    contact::ConstraintRows rows = contact::constraint_rows(m.quadrature, pw);
+    RowSparse Kc;
+    Eigen::VectorXd g_lift;
+    m.restrict_rows(rows, Kc, g_lift);
+    // Dual QP: min 1/2 l' Q l - c' l, Q = K_0 A_00^-1 K_0', c = K_0 A_00^-1 b - (g - K u_D).
+    const Eigen::MatrixXd KS = Kc * m.S;
+    Eigen::MatrixXd Q = KS * Kc.transpose();
+    Q = 0.5 * (Q + Q.transpose());
+    const Eigen::VectorXd c = Kc * m.z_c - g_lift;
+    const solve::QPResult qp = solve::solve_nonnegative_qp(Q, c, settings.qp, warm);
+    inner = qp.iterations;
+    if (qp.status != solve::QPStatus::Solved) {
+      message = std::string("contact QP ") + solve::to_string(qp.status) + ": " + qp.message;
+      return false;
+    }
+    warm = qp.passive;
+    lambda_bar = qp.x;
+    // u_0 = A_00^-1 (b - K_0' lambda): one back-solve.
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m.dofs.num_free());
+    const Eigen::VectorXd Kt_lambda_c = Kc.transpose() * lambda_bar;
+    for (int i = 0; i < Kt_lambda_c.size(); ++i) rhs(m.contact_free[static_cast<std::size_t>(i)]) = Kt_lambda_c(i);
+    last_u0 = m.z - m.A00->solve(rhs);
+    u_bar = m.total(last_u0);
+    last_pointwise = std::move(pw);
+    last_rows = std::move(rows);
+    last_g_lift = std::move(g_lift);
+    last_Kc = std::move(Kc);
+    return true;
+  };
+
+  const Eigen::VectorXd u_start = m.dofs.lift();
+  solve::KacanovResult kr = solve::kacanov(step, u_start, Eigen::VectorXd::Zero(R), settings.kacanov);
+  sol.status = kr.status;
+  sol.converged = kr.status == solve::KacanovStatus::Converged;
+  sol.message = kr.message;
+  sol.iterations = kr.iterations;
+  sol.history = kr.history;
+  if (kr.u_bar.size() == 0) {  // the very first step failed
+    sol.u = u_start;
+    sol.u0 = Eigen::VectorXd::Zero(m.dofs.num_free());
+    sol.lambda = Eigen::VectorXd::Zero(R);
+    sol.time_s = seconds_since(t0) + m.setup_time;
+    return sol;
+  }
+  sol.u = kr.u_bar;
+  sol.u0 = last_u0;
+  sol.lambda = kr.lambda_bar;
+  sol.pointwise = std::move(last_pointwise);
+  sol.rows = std::move(last_rows);
+
+  // KKT residuals of (u_bar, lambda_bar) for the linearized problem it solved.
+  const fem::SparseMatrix A00 = m.dofs.restrict_matrix(m.A);
+  Eigen::VectorXd Kt_lambda = Eigen::VectorXd::Zero(m.dofs.num_free());
+  const Eigen::VectorXd Ktl_c = last_Kc.transpose() * sol.lambda;
+  for (int i = 0; i < Ktl_c.size(); ++i) Kt_lambda(m.contact_free[static_cast<std::size_t>(i)]) = Ktl_c(i);
+  const double force_scale = std::max({m.b.norm(), Kt_lambda.norm(), 1e-300});
+  sol.kkt.stationarity = (A00 * sol.u0 + Kt_lambda - m.b).norm() / force_scale;
+  Eigen::VectorXd u0_c(static_cast<Eigen::Index>(m.contact_free.size()));
+  for (int i = 0; i < u0_c.size(); ++i) u0_c(i) = sol.u0(m.contact_free[static_cast<std::size_t>(i)]);
+  const Eigen::VectorXd slack = last_g_lift - last_Kc * u0_c;  // >= 0 when feasible
+  const double gap_scale = std::max({last_g_lift.cwiseAbs().maxCoeff(), (last_Kc * u0_c).cwiseAbs().maxCoeff(), 1e-300});
+  const double lmax = std::max(sol.lambda.cwiseAbs().maxCoeff(), 1e-300);
+  sol.kkt.primal = std::max(0.0, -slack.minCoeff()) / gap_scale;
+  sol.kkt.dual = std::max(0.0, -sol.lambda.minCoeff()) / lmax;
+  sol.kkt.complementarity = sol.lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / (lmax * gap_scale);
+
+  // Nonlinear feasibility: geometry re-evaluated at the returned displacement.
+  const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, m.pair, sol.u);
+  const Eigen::VectorXd violation = at_u.K * sol.u - at_u.g;
+  sol.gap_violation = std::max(0.0, violation.maxCoeff());
+
+  sol.energy = 0.5 * sol.u.dot(m.A * sol.u) - m.f.dot(sol.u);
+  sol.contact_force = sol.lambda.dot(m.quadrature.weight);
+  sol.active_constraints = static_cast<int>((sol.lambda.array() > 0.0).count());
+  sol.time_s = seconds_since(t0) + m.setup_time;
+  return sol;
+}
+
+}  // namespace contactrb::hf

@@ -1,0 +1,68 @@
+#pragma once
+// Runs the built contactrb executable (CONTACTRB_CLI) through the shell and captures its
+// exit code, stdout and stderr separately.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace contactrb::test {
+
+struct CliResult {
+  int exit_code = -1;  // -1 when the process did not exit normally (a crash)
+  std::string out;
+  std::string err;
+};
+
+inline std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      q += "'\\''";
+    } else {
+      q += c;
+    }
+  }
+  return q + "'";
+}
+
+// `args` is appended to the command line as is (quote paths with shell_quote).
+inline CliResult run_cli(const std::string& args) {
+  static int counter = 0;
+  const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
+                                         ("contactrb_cli_stderr_" + std::to_string(static_cast<long>(::getpid())) +
+                                          "_" + std::to_string(counter++));
+  const std::string cmd = shell_quote(CONTACTRB_CLI) + " " + args + " 2>" + shell_quote(err_file.string());
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (pipe == nullptr) throw std::runtime_error("popen failed for: " + cmd);
+  CliResult r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+// Value after "key: " on its own line of `text`, or "" when absent.
+inline std::string field_value(const std::string& text, const std::string& key) {
+  std::istringstream in(text);
+  std::string line;
+  const std::string prefix = key + ": ";
+  while (std::getline(in, line)) {
+    if (line.rfind(prefix, 0) == 0) return line.substr(prefix.size());
+  }
+  return "";
+}
+
+}  // namespace contactrb::test

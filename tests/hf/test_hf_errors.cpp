@@ -1,0 +1,68 @@
+// Usage errors of the HF solver: one clear message each.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/hf/hf_solver.hpp"
+#include "hf_test_meshes.hpp"
+
+using namespace contactrb;
+
+namespace {
+hf::ContactProblem blocks() {
+  hf::ContactProblem p;
+  p.mesh = test_meshes::two_blocks(1.0, 1.0, 1.0, 4, 2, 5, 2);
+  p.materials = {{10.0, 0.3}, {10.0, 0.3}};
+  p.dirichlet = {{"top", 0.0, -0.01}, {"bottom", 0.0, 0.0}};
+  return p;
+}
+std::string message_of(const hf::ContactProblem& p, const hf::HFSettings& s = {}) {
+  try {
+    hf::HFSolver(p).solve(s);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(HFErrors, SlaveNeverFacingTheMaster) {
+  hf::ContactProblem p = blocks();
+  // Move the slave block far to the right: no slave node projects inside the master.
+  mesh::map_body(p.mesh, mesh::kSlaveBody, Eigen::Matrix2d::Identity(), Eigen::Vector2d(5.0, 0.0));
+  EXPECT_NE(message_of(p).find("faces the master"), std::string::npos) << message_of(p);
+}
+
+TEST(HFErrors, BadSettingsAndData) {
+  hf::HFSettings s;
+  s.kacanov.alpha = 0.0;
+  EXPECT_NE(message_of(blocks(), s).find("alpha"), std::string::npos);
+  s.kacanov.alpha = 1.5;
+  EXPECT_NE(message_of(blocks(), s).find("alpha"), std::string::npos);
+  s = {};
+  s.kacanov.tolerance = -1.0;
+  EXPECT_NE(message_of(blocks(), s).find("tolerance"), std::string::npos);
+  hf::ContactProblem p = blocks();
+  p.materials.pop_back();
+  EXPECT_NE(message_of(p).find("material"), std::string::npos);
+  p = blocks();
+  p.dirichlet.push_back({"nowhere", 0.0, 0.0});
+  EXPECT_NE(message_of(p).find("nowhere"), std::string::npos);
+  p = blocks();
+  p.dirichlet = {{"top", 0.0, -0.01}};  // lower block free to float
+  EXPECT_NE(message_of(p).find("positive definite"), std::string::npos) << message_of(p);
+}
+
+TEST(HFErrors, NonConvergenceIsAStatusWithIterationsAndIncrements) {
+  hf::HFSettings s;
+  s.kacanov.max_iterations = 2;
+  s.kacanov.tolerance = 1e-14;
+  s.kacanov.alpha = 0.3;
+  const hf::HFSolution sol = hf::HFSolver(blocks()).solve(s);
+  EXPECT_FALSE(sol.converged);
+  EXPECT_EQ(sol.status, solve::KacanovStatus::MaxIterations);
+  EXPECT_EQ(sol.iterations, 2);
+  EXPECT_NE(sol.message.find("2 iterations"), std::string::npos) << sol.message;
+  EXPECT_NE(sol.message.find("increments"), std::string::npos) << sol.message;
+}
