@@ -16,6 +16,7 @@ cmake --build "$build_dir" -j "$(contactrb_jobs)" --target contactrb
 "$build_dir/apps/contactrb/contactrb" --version
 "$build_dir/apps/contactrb/contactrb" cases
 "$build_dir/apps/contactrb/contactrb" mesh --case hertz-b --out out/demo
-# TODO(solver): add the elastic solve without contact on the default case here once the
-# HF solver lands; a later issue replaces this whole job with `contactrb demo`.
-echo "contactrb: demo outputs in out/demo/ (open out/demo/mesh.vtu in ParaView)"
+# One high-fidelity contact solve of the default case (a later issue replaces this job
+# with `contactrb demo`: snapshots, offline, online).
+"$build_dir/apps/contactrb/contactrb" solve --case hertz-b --mu 1.05 --out out/demo
+echo "contactrb: demo outputs in out/demo/ (open out/demo/solution.vtu in ParaView)"

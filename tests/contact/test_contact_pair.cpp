@@ -47,13 +47,16 @@ void grade_slave(Mesh& m, const ContactPair& pair, double x0, double L) {
 }  // namespace
 
 TEST(ContactPair, DiscretizationNamesRoundTrip) {
-  for (Discretization d : {Discretization::Collocation, Discretization::LAC}) {
+  for (Discretization d : {Discretization::Collocation, Discretization::LAC, Discretization::LACSimpson}) {
     EXPECT_EQ(discretization_from_string(to_string(d)), d);
   }
+  EXPECT_EQ(discretization_from_string("lac"), Discretization::LAC);
+  EXPECT_EQ(discretization_from_string("lac-simpson"), Discretization::LACSimpson);
   const std::string msg = error_message([] { discretization_from_string("mortar"); });
   EXPECT_NE(msg.find("mortar"), std::string::npos) << msg;
   EXPECT_NE(msg.find("collocation"), std::string::npos) << msg;
   EXPECT_NE(msg.find("lac"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("lac-simpson"), std::string::npos) << msg;
 }
 
 TEST(ContactPair, ChainsFollowEdgeOrientation) {
@@ -143,7 +146,7 @@ TEST(Quadrature, LacSimpsonIsExactForQuadratics) {
   // 8 uniform slave edges: 4 macro-segments, Simpson exact for a quadratic of the abscissa.
   const Mesh m = flat_blocks(0.0, 2.0, 0.25, 8, 0.0, 2.0, 3);
   const ContactPair pair = make_contact_pair(m);
-  const ContactQuadrature q = make_quadrature(m, pair, Discretization::LAC);
+  const ContactQuadrature q = make_quadrature(m, pair, Discretization::LACSimpson);
   ASSERT_EQ(q.W.rows(), 4);
   ASSERT_EQ(q.W.cols(), 9);
   EXPECT_NEAR(q.weight.sum(), 2.0, 1e-14);
@@ -166,24 +169,50 @@ TEST(Quadrature, LacOddEdgeCountEndsWithTrapezoid) {
   Mesh m = flat_blocks(0.0, 1.0, 0.25, 7, 0.0, 1.0, 3);
   const ContactPair pair = make_contact_pair(m);
   grade_slave(m, pair, 0.0, 1.0);
-  const ContactQuadrature q = make_quadrature(m, pair, Discretization::LAC);
   const Eigen::VectorXd s = abscissa(m, pair);
-  ASSERT_EQ(q.W.rows(), 4);  // ceil(7 / 2)
-  EXPECT_NEAR(q.weight.sum(), 1.0, 1e-14);
-  const double e = s(7) - s(6);
-  EXPECT_EQ(q.W.row(3).nonZeros(), 2);
-  EXPECT_NEAR(q.W.coeff(3, 6), e / 2.0, 1e-15);
-  EXPECT_NEAR(q.W.coeff(3, 7), e / 2.0, 1e-15);
-  EXPECT_EQ(q.center_node[3], pair.slave[6]);
+  for (Discretization d : {Discretization::LAC, Discretization::LACSimpson}) {
+    const ContactQuadrature q = make_quadrature(m, pair, d);
+    ASSERT_EQ(q.W.rows(), 4);  // ceil(7 / 2)
+    EXPECT_NEAR(q.weight.sum(), 1.0, 1e-14);
+    const double e = s(7) - s(6);
+    EXPECT_EQ(q.W.row(3).nonZeros(), 2);
+    EXPECT_NEAR(q.W.coeff(3, 6), e / 2.0, 1e-15);
+    EXPECT_NEAR(q.W.coeff(3, 7), e / 2.0, 1e-15);
+    EXPECT_EQ(q.center_node[3], pair.slave[6]);
+  }
   // On a uniform chain, linear functions are integrated exactly by both rules. (On a graded
   // chain the Simpson weights |I|/6, 4|I|/6, |I|/6 assume the middle node at the midpoint,
-  // as in the paper, so they are not exact there.)
+  // as in the paper, so they are not exact there; the LAC weights are, see below.)
   const Mesh u = flat_blocks(0.0, 1.0, 0.25, 7, 0.0, 1.0, 3);
   const ContactPair pu = make_contact_pair(u);
-  const ContactQuadrature qu = make_quadrature(u, pu, Discretization::LAC);
+  const ContactQuadrature qu = make_quadrature(u, pu, Discretization::LACSimpson);
   const Eigen::VectorXd su = abscissa(u, pu);
   const Eigen::VectorXd f = (5.0 * su.array() - 1.0).matrix();
   EXPECT_NEAR((qu.W * f).sum(), 2.5 - 1.0, 1e-14);
+}
+
+TEST(Quadrature, LacWeightsAreExactForP1OnAGradedChain) {
+  // LAC's W: int_{I_r} phi_s = h1/2, (h1 + h2)/2, h2/2, exact for P1 on the slave chain.
+  Mesh m = flat_blocks(0.0, 2.0, 0.25, 8, 0.0, 2.0, 3);
+  const ContactPair pair = make_contact_pair(m);
+  grade_slave(m, pair, 0.0, 2.0);
+  const ContactQuadrature q = make_quadrature(m, pair, Discretization::LAC);
+  const Eigen::VectorXd s = abscissa(m, pair);
+  ASSERT_EQ(q.W.rows(), 4);
+  EXPECT_NEAR(q.weight.sum(), 2.0, 1e-14);
+  const Eigen::VectorXd f = (5.0 * s.array() - 1.0).matrix();
+  for (int r = 0; r < 4; ++r) {
+    const double a = s(2 * r), mid = s(2 * r + 1), b = s(2 * r + 2);
+    EXPECT_NEAR(q.W.coeff(r, 2 * r), 0.5 * (mid - a), 1e-15);
+    EXPECT_NEAR(q.W.coeff(r, 2 * r + 1), 0.5 * (b - a), 1e-15);
+    EXPECT_NEAR(q.W.coeff(r, 2 * r + 2), 0.5 * (b - mid), 1e-15);
+    EXPECT_NEAR(q.weight(r), b - a, 1e-15);
+    EXPECT_NEAR((q.W * f)(r), 2.5 * (b * b - a * a) - (b - a), 1e-14);
+    EXPECT_EQ(q.center_node[static_cast<std::size_t>(r)], pair.slave[static_cast<std::size_t>(2 * r + 1)]);
+  }
+  // The Simpson rule on the same graded chain is not exact for linear functions.
+  const ContactQuadrature simpson = make_quadrature(m, pair, Discretization::LACSimpson);
+  EXPECT_GT(std::abs((simpson.W * f).sum() - (10.0 - 2.0)), 1e-3);
 }
 
 TEST(Quadrature, RejectsShortChains) {

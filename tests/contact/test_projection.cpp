@@ -143,56 +143,117 @@ TEST(Projection, ConstraintAtWIsTheSignedDistanceCircleVersusLine) {
   EXPECT_TRUE(penetrates);  // the configuration exercises the sign of the gap
 }
 
-TEST(Projection, CurvedMasterVertexAndSegmentNormals) {
+TEST(Projection, CurvedMasterUsesTheInterpolatedVertexNormal) {
   // Master: outer arc (radius 1) of a half annulus with 12 segments, from theta = 0 to pi.
   const int nseg = 12;
-  const Mesh m = join(mesh::rectangle(-0.1, 1.5, 0.1, 1.7, 2, 1, mesh::kSlaveBody), half_annulus(0.5, 1.0, nseg, 2));
+  const Mesh m = join(mesh::rectangle(-0.1, 1.5, 0.1, 1.7, 3, 1, mesh::kSlaveBody), half_annulus(0.5, 1.0, nseg, 2));
   ASSERT_NO_THROW(mesh::validate(m));
   const ContactPair pair = make_contact_pair(m);
-  ASSERT_EQ(pair.slave.size(), 3u);
+  ASSERT_EQ(pair.slave.size(), 4u);
   ASSERT_EQ(pair.master.size(), static_cast<std::size_t>(nseg + 1));
   const double dt = std::numbers::pi / nseg;
   const auto radial = [](double t) { return Vector2d(std::cos(t), std::sin(t)); };
+  const auto M = [&](int j) { return X(m, pair.master[static_cast<std::size_t>(j)]); };
+  const auto seg_normal = [&](int k) {
+    const Vector2d e = M(k + 1) - M(k);
+    return Vector2d(e.y(), -e.x()).normalized();
+  };
+  // Independent vertex normals: master vertex j lies at angle j dt on the unit circle, so the
+  // average of its two chord normals is radial there.
+  const auto vertex_normal = [&](int j) { return Vector2d(M(j).normalized()); };
+  for (int j = 1; j < nseg; ++j) {
+    ASSERT_NEAR((vertex_normal(j) - (seg_normal(j - 1) + seg_normal(j)).normalized()).norm(), 0.0, 1e-15);
+  }
   // Slave 0 radially above vertex 5 (interior), slave 1 above the midpoint of segment 7,
-  // slave 2 slightly inside the master below the midpoint of segment 3.
+  // slave 2 slightly inside the master below the midpoint of segment 3, slave 3 at 0.04 off
+  // segment 9 along its normal at xi = 1/4.
   const double t_vertex = 5 * dt, t_mid = 7.5 * dt, t_in = 3.5 * dt;
   const double r_mid = std::cos(0.5 * dt);  // distance of a chord midpoint to the centre
   Eigen::VectorXd w = Eigen::VectorXd::Zero(m.num_dofs());
+  const Vector2d quarter = 0.75 * M(9) + 0.25 * M(10);
   const std::vector<Vector2d> target = {1.05 * radial(t_vertex), (r_mid + 0.05) * radial(t_mid),
-                                        (r_mid - 0.01) * radial(t_in)};
-  for (std::size_t s = 0; s < 3; ++s) set(w, pair.slave[s], target[s] - X(m, pair.slave[s]));
+                                        (r_mid - 0.01) * radial(t_in), quarter + 0.04 * seg_normal(9)};
+  for (std::size_t s = 0; s < 4; ++s) set(w, pair.slave[s], target[s] - X(m, pair.slave[s]));
   const PointwiseContact pc = project_slave_nodes(m, pair, w);
 
   // Vertex: the lower segment index wins the tie, so (segment 4, xi = 1) exactly; the normal
-  // is the normalized average of the two segment normals, i.e. radial at the vertex.
+  // is the vertex normal, radial at the vertex.
   const SlaveProjection& pv = pc.projection[0];
   EXPECT_EQ(pv.segment, 4);
   EXPECT_EQ(pv.xi, 1.0);
-  const auto seg_normal = [&](int k) {
-    const Vector2d e = X(m, pair.master[static_cast<std::size_t>(k + 1)]) - X(m, pair.master[static_cast<std::size_t>(k)]);
-    return Vector2d(e.y(), -e.x()).normalized();
-  };
-  const Vector2d avg = (seg_normal(4) + seg_normal(5)).normalized();
-  EXPECT_NEAR((pv.normal - avg).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((pv.normal - (seg_normal(4) + seg_normal(5)).normalized()).norm(), 0.0, 1e-15);
   EXPECT_NEAR((pv.normal - radial(t_vertex)).norm(), 0.0, 1e-14);
   EXPECT_NEAR(pv.distance, 0.05, 1e-14);
   EXPECT_TRUE(pv.candidate);
 
-  // Segment interior: segment normal, xi = 1/2.
+  // Segment midpoint: the average of the two vertex normals, radial at the midpoint (here it
+  // coincides with the chord normal).
   const SlaveProjection& ps = pc.projection[1];
   EXPECT_EQ(ps.segment, 7);
   EXPECT_NEAR(ps.xi, 0.5, 1e-13);
-  EXPECT_NEAR((ps.normal - seg_normal(7)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((ps.normal - (vertex_normal(7) + vertex_normal(8)).normalized()).norm(), 0.0, 1e-15);
   EXPECT_NEAR((ps.normal - radial(t_mid)).norm(), 0.0, 1e-14);
   EXPECT_NEAR(ps.distance, 0.05, 1e-14);
 
-  // Penetration: g(w) - k(w; w) = -0.01 (signed distance), distance 0.01.
+  // xi = 1/4: the interpolated normal, which differs from the chord normal.
+  const SlaveProjection& pq = pc.projection[3];
+  EXPECT_EQ(pq.segment, 9);
+  EXPECT_NEAR(pq.xi, 0.25, 1e-13);
+  const Vector2d n_quarter = (0.75 * vertex_normal(9) + 0.25 * vertex_normal(10)).normalized();
+  EXPECT_NEAR((pq.normal - n_quarter).norm(), 0.0, 1e-13);
+  EXPECT_GT((pq.normal - seg_normal(9)).norm(), 0.05);
+  EXPECT_NEAR(pq.distance, 0.04, 1e-14);
+  EXPECT_NEAR((pq.rho - quarter).norm(), 0.0, 1e-14);  // the master is not displaced
+
+  // g(w) - k(w; w) = (x_s - closest point) . n2.
   const Eigen::VectorXd gap = pc.g - pc.K * w;
   EXPECT_EQ(pc.projection[2].segment, 3);
   EXPECT_NEAR(pc.projection[2].distance, 0.01, 1e-14);
   EXPECT_NEAR(gap(2), -0.01, 1e-14);
   EXPECT_NEAR(gap(0), 0.05, 1e-14);
   EXPECT_NEAR(gap(1), 0.05, 1e-14);
+  EXPECT_NEAR(gap(3), 0.04 * seg_normal(9).dot(n_quarter), 1e-14);
+  EXPECT_NEAR(pc.g(3), (X(m, pair.slave[3]) - quarter).dot(n_quarter), 1e-13);
+}
+
+TEST(Projection, ContactMapIsContinuousAtAMasterVertex) {
+  // A slave node exactly on a master vertex of a curved master; perturbations of 1e-9 move its
+  // closest point between the vertex and the interiors of the two adjacent segments. With the
+  // interpolated normal K and g change by O(1e-9); with segment normals they jumped by O(dt).
+  const int nseg = 12;
+  const Mesh m = join(mesh::rectangle(-0.1, 1.5, 0.1, 1.7, 2, 1, mesh::kSlaveBody), half_annulus(0.5, 1.0, nseg, 2));
+  const ContactPair pair = make_contact_pair(m);
+  const int vertex = 5;
+  const Vector2d yv = X(m, pair.master[vertex]);
+  const Vector2d n = yv.normalized(), tau(-n.y(), n.x());
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(m.num_dofs());
+  // Middle slave node on the vertex, its neighbours along the tangent (slave edges straddle it).
+  set(w, pair.slave[1], yv - X(m, pair.slave[1]));
+  set(w, pair.slave[0], yv - 0.1 * tau - X(m, pair.slave[0]));
+  set(w, pair.slave[2], yv + 0.1 * tau - X(m, pair.slave[2]));
+  const PointwiseContact base = project_slave_nodes(m, pair, w);
+  const ContactQuadrature lac = make_quadrature(m, pair, Discretization::LAC);
+  const ConstraintRows base_rows = constraint_rows(m, pair, lac, base, w);
+  std::vector<int> segments;
+  for (const Vector2d& dir : {n, Vector2d(-n), tau, Vector2d(-tau)}) {
+    for (double eps : {1e-9, 1e-12}) {
+      Eigen::VectorXd wp = w;
+      set(wp, pair.slave[1], at(w, pair.slave[1]) + eps * dir);
+      const PointwiseContact pc = project_slave_nodes(m, pair, wp);
+      segments.push_back(pc.projection[1].segment * 10 + (pc.projection[1].xi == 1.0 ? 1 : 0));
+      const double dK = Eigen::MatrixXd(pc.K - base.K).cwiseAbs().maxCoeff();
+      const double dg = (pc.g - base.g).cwiseAbs().maxCoeff();
+      EXPECT_LT(dK, 100.0 * eps) << "direction " << dir.transpose() << " eps " << eps;
+      EXPECT_LT(dg, 100.0 * eps);
+      const ConstraintRows rows = constraint_rows(m, pair, lac, pc, wp);
+      EXPECT_LT(Eigen::MatrixXd(rows.K - base_rows.K).cwiseAbs().maxCoeff(), 100.0 * eps);
+      EXPECT_LT((rows.g - base_rows.g).cwiseAbs().maxCoeff(), 100.0 * eps);
+    }
+  }
+  // The perturbations did visit both adjacent segments (interior and vertex hits).
+  std::sort(segments.begin(), segments.end());
+  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
+  EXPECT_GE(segments.size(), 2u);
 }
 
 TEST(Projection, OverhangingSlaveNodesAreNoCandidates) {
@@ -294,20 +355,20 @@ TEST(Projection, TreeSearchEqualsAllPairsOnALargeCurvedMaster) {
   EXPECT_LT(non_candidates, static_cast<int>(pair.slave.size()) / 2);
 }
 
-TEST(ConstraintRows, AreTheWeightedPointwiseRows) {
+TEST(ConstraintRows, CollocationAndSimpsonAreTheWeightedPointwiseRows) {
   const Mesh m = flat_blocks(0.0, 1.0, 0.25, 5, 0.0, 1.0, 3);
   const ContactPair pair = make_contact_pair(m);
   const Eigen::VectorXd w = 0.01 * random_vector(m.num_dofs(), 5);
   const PointwiseContact pc = project_slave_nodes(m, pair, w);
   const ContactQuadrature col = make_quadrature(m, pair, Discretization::Collocation);
-  const ConstraintRows rc = constraint_rows(col, pc);
+  const ConstraintRows rc = constraint_rows(m, pair, col, pc, w);
   ASSERT_EQ(rc.K.rows(), 6);
   for (int r = 0; r < 6; ++r) {
     EXPECT_NEAR(rc.g(r), col.weight(r) * pc.g(r), 1e-16);
     EXPECT_NEAR((Eigen::RowVectorXd(rc.K.row(r)) - col.weight(r) * Eigen::RowVectorXd(pc.K.row(r))).norm(), 0.0, 1e-15);
   }
-  const ContactQuadrature lac = make_quadrature(m, pair, Discretization::LAC);
-  const ConstraintRows rl = constraint_rows(lac, pc);
+  const ContactQuadrature lac = make_quadrature(m, pair, Discretization::LACSimpson);
+  const ConstraintRows rl = constraint_rows(m, pair, lac, pc, w);
   ASSERT_EQ(rl.K.rows(), 3);
   const Eigen::VectorXd v = random_vector(m.num_dofs(), 9);
   EXPECT_NEAR((rl.K * v - lac.W * (pc.K * v)).norm(), 0.0, 1e-14);
@@ -315,7 +376,10 @@ TEST(ConstraintRows, AreTheWeightedPointwiseRows) {
 
   PointwiseContact wrong = pc;
   wrong.g.resize(3);
-  EXPECT_THROW(constraint_rows(lac, wrong), Error);
+  EXPECT_THROW(constraint_rows(m, pair, lac, wrong, w), Error);
+  EXPECT_THROW(constraint_rows(m, pair, make_quadrature(m, pair, Discretization::LAC), wrong, w), Error);
+  EXPECT_THROW(constraint_rows(m, pair, make_quadrature(m, pair, Discretization::LAC), pc, Eigen::VectorXd::Zero(3)),
+               Error);
 }
 
 TEST(Projection, RejectsBadDisplacements) {

@@ -34,12 +34,22 @@ hf::HFSettings tight() {
 
 // hertz-a with matching mirrored meshes is symmetric about y = 0: each half-disk sees a
 // frictionless rigid plane at half the gap. The rigid plane is a clamped block whose top
-// edge is the master boundary.
-TEST(Hertz, SymmetricTwoBodyEqualsHalfDiskOnRigidPlane) {
+// edge is the master boundary. The discrete two-body problem is not exactly mirror
+// symmetric (node-to-segment: slave and master play different roles, and at the two edges
+// of the contact zone the continuous master normal carries half the kink of the deformed
+// master), so the two solutions agree up to a discretization error that must vanish
+// under refinement; the total force agrees much more closely than pointwise values.
+namespace {
+struct SymmetryGap {
+  double lambda = 0.0;  // max |lambda_1 - lambda_2| / max lambda_2
+  double force = 0.0;   // relative contact-force difference
+  double kkt = 0.0;
+};
+SymmetryGap symmetric_vs_plane(int arc_nodes) {
   const double mu = 0.3;
-  const hf::ContactProblem two = hertz_a(mu, 51);
+  const hf::ContactProblem two = hertz_a(mu, arc_nodes);
   hf::ContactProblem one;
-  mesh::Mesh upper = test_meshes::extract_body(two.mesh, mesh::kSlaveBody, mesh::kSlaveBody);
+  const mesh::Mesh upper = test_meshes::extract_body(two.mesh, mesh::kSlaveBody, mesh::kSlaveBody);
   mesh::Mesh plane = mesh::rectangle(-1.5, -0.3, 1.5, 0.0, 60, 6, mesh::kMasterBody);
   mesh::rename_boundary(plane, "top", mesh::kMasterBoundary);
   one.mesh = mesh::merge(upper, plane);
@@ -48,43 +58,42 @@ TEST(Hertz, SymmetricTwoBodyEqualsHalfDiskOnRigidPlane) {
                    {"right", 0.0, 0.0}, {mesh::kMasterBoundary, 0.0, 0.0}};
   const hf::HFSolution s2 = hf::HFSolver(two).solve(tight());
   const hf::HFSolution s1 = hf::HFSolver(one).solve(tight());
-  ASSERT_TRUE(s2.converged) << s2.message;
-  ASSERT_TRUE(s1.converged) << s1.message;
-  EXPECT_LT(s2.kkt.max(), 1e-8);
-  EXPECT_LT(s1.kkt.max(), 1e-8);
-  ASSERT_EQ(s1.lambda.size(), s2.lambda.size());
-  const double lmax = s2.lambda.maxCoeff();
-  ASSERT_GT(lmax, 0.0);
-  EXPECT_LT((s1.lambda - s2.lambda).cwiseAbs().maxCoeff() / lmax, 1e-6);
-  // Displacements of the upper half-disk (its nodes come first in both meshes' order of
-  // first appearance; compare through the coordinates).
-  double worst = 0.0, scale = 0.0;
-  for (int i = 0; i < upper.num_nodes(); ++i) {
-    int j = -1;
-    for (int k = 0; k < two.mesh.num_nodes(); ++k) {
-      if ((two.mesh.nodes[static_cast<std::size_t>(k)] - upper.nodes[static_cast<std::size_t>(i)]).norm() < 1e-12) {
-        j = k;
-        break;
-      }
-    }
-    ASSERT_GE(j, 0);
-    worst = std::max(worst, (s1.u.segment(2 * i, 2) - s2.u.segment(2 * j, 2)).norm());
-    scale = std::max(scale, s2.u.segment(2 * j, 2).norm());
-  }
-  EXPECT_LT(worst / scale, 1e-6);
-  EXPECT_NEAR(s1.contact_force, s2.contact_force, 1e-6 * s2.contact_force);
+  EXPECT_TRUE(s2.converged) << s2.message;
+  EXPECT_TRUE(s1.converged) << s1.message;
+  EXPECT_EQ(s1.lambda.size(), s2.lambda.size());
+  SymmetryGap gap;
+  gap.lambda = (s1.lambda - s2.lambda).cwiseAbs().maxCoeff() / s2.lambda.maxCoeff();
+  gap.force = std::abs(s1.contact_force - s2.contact_force) / s2.contact_force;
+  gap.kkt = std::max(s1.kkt.max(), s2.kkt.max());
+  return gap;
+}
+}  // namespace
+
+TEST(Hertz, SymmetricTwoBodyApproachesHalfDiskOnRigidPlane) {
+  const SymmetryGap coarse = symmetric_vs_plane(51);
+  const SymmetryGap fine = symmetric_vs_plane(101);
+  std::printf("[ report ] two-body vs rigid plane: lambda %.2e -> %.2e, force %.2e -> %.2e\n", coarse.lambda,
+              fine.lambda, coarse.force, fine.force);
+  EXPECT_LT(coarse.kkt, 1e-8);
+  EXPECT_LT(fine.kkt, 1e-8);
+  EXPECT_LT(coarse.lambda, 1e-2);
+  EXPECT_LT(fine.lambda, coarse.lambda);
+  EXPECT_LT(coarse.force, 1e-4);
+  EXPECT_LT(fine.force, 1e-4);
 }
 
 // Two cylinders in plane strain (Hertz): p(x) = p0 sqrt(1 - x^2/a^2) with
 // a = sqrt(4 P R* / (pi E*)), p0 = 2 P / (pi a), 1/R* = 1/R1 + 1/R2, 1/E* = 2 (1 - nu^2)/E.
-// At a small load (a/R about 0.15) the half-disks behave locally like cylinders. We fit
-// p^2 = p0^2 (1 - x^2/a^2) on the active nodes (least squares in x^2) and compare a and
-// p0 with the theory driven by the computed total force P. Tolerance: the contact zone
-// spans about 2a/h = 12 elements of the level-2 arc (h = pi/120), so a and p0 are resolved
-// to a few percent; the finite size of the half-disks (the flat edges at distance R)
-// changes the local solution by O((a/R)^2), about 2%. We assert 6%.
+// At a small load (mu = 0.13: an overlap of 0.03, a/R about 0.1) the half-disks behave
+// locally like cylinders. We fit p^2 = p0^2 (1 - x^2/a^2) on the active nodes (least
+// squares in x^2) and compare a and p0 with the theory driven by the computed total force
+// P. Tolerance 5%: the contact zone spans 2a/h = 15 elements of the 241-node arc
+// (h = pi/240), so the edge of the zone is located within h/2, about 6% of a for one node,
+// reduced by the fit over 15 nodes; the finite size of the half-disks (flat edges at
+// distance R) changes the local solution by O((a/R)^2), about 1%. Measured: a within 2%,
+// p0 within 1.5%.
 TEST(Hertz, AgreesWithHertzTheoryAtSmallLoad) {
-  const hf::ContactProblem p = hertz_a(0.115, 121);
+  const hf::ContactProblem p = hertz_a(0.13, 241);
   const hf::HFSolver solver(p);
   const hf::HFSolution s = solver.solve(tight());
   ASSERT_TRUE(s.converged) << s.message;
@@ -103,14 +112,14 @@ TEST(Hertz, AgreesWithHertzTheoryAtSmallLoad) {
     const double X = x * x, Y = s.lambda(r) * s.lambda(r);
     sx += X; sy += Y; sxx += X * X; sxy += X * Y; ++n;
   }
-  ASSERT_GE(n, 7);
+  ASSERT_GE(n, 12);
   const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double alpha = (sy - beta * sx) / n;
   const double p0_fit = std::sqrt(alpha), a_fit = std::sqrt(-alpha / beta);
   std::printf("[ report ] Hertz: P = %.5f, a = %.4f (theory %.4f), p0 = %.4f (theory %.4f), %d active\n", P,
               a_fit, a_theory, p0_fit, p0_theory, n);
-  EXPECT_NEAR(a_fit / a_theory, 1.0, 0.06);
-  EXPECT_NEAR(p0_fit / p0_theory, 1.0, 0.06);
+  EXPECT_NEAR(a_fit / a_theory, 1.0, 0.05);
+  EXPECT_NEAR(p0_fit / p0_theory, 1.0, 0.05);
 }
 
 TEST(Hertz, EnergyAndForceConvergeUnderRefinement) {

@@ -15,15 +15,17 @@ const char* to_string(Discretization d) {
       return "collocation";
     case Discretization::LAC:
       return "lac";
+    case Discretization::LACSimpson:
+      return "lac-simpson";
   }
   return "unknown";
 }
 
 Discretization discretization_from_string(const std::string& name) {
-  for (Discretization d : {Discretization::Collocation, Discretization::LAC}) {
+  for (Discretization d : {Discretization::Collocation, Discretization::LAC, Discretization::LACSimpson}) {
     if (name == to_string(d)) return d;
   }
-  throw Error("unknown contact discretization '" + name + "' (valid: 'collocation', 'lac')");
+  throw Error("unknown contact discretization '" + name + "' (valid: 'collocation', 'lac', 'lac-simpson')");
 }
 
 namespace {
@@ -123,16 +125,24 @@ ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pai
       q.center_node.push_back(slave[static_cast<std::size_t>(r)]);
     }
   } else {
-    // (62): macro-segment r = slave edges 2r and 2r + 1, Simpson's rule on its three nodes.
-    // With an odd number of edges the last macro-segment is one edge (trapezoidal rule).
+    // Macro-segment r = slave edges 2r and 2r + 1; with an odd number of edges the last
+    // macro-segment is one edge (trapezoidal rule: exact slave weights). LACSimpson: (62),
+    // Simpson's rule on the three nodes. LAC: the exact weights int_{I_r} phi_s.
     rows = (E + 1) / 2;
     for (int r = 0; r < rows; ++r) {
       const int first = 2 * r;
       if (first + 1 < E) {
-        const double I = len[static_cast<std::size_t>(first)] + len[static_cast<std::size_t>(first + 1)];
-        entries.emplace_back(r, first, I / 6.0);
-        entries.emplace_back(r, first + 1, 4.0 * I / 6.0);
-        entries.emplace_back(r, first + 2, I / 6.0);
+        const double h1 = len[static_cast<std::size_t>(first)], h2 = len[static_cast<std::size_t>(first + 1)];
+        if (d == Discretization::LACSimpson) {
+          const double I = h1 + h2;
+          entries.emplace_back(r, first, I / 6.0);
+          entries.emplace_back(r, first + 1, 4.0 * I / 6.0);
+          entries.emplace_back(r, first + 2, I / 6.0);
+        } else {
+          entries.emplace_back(r, first, h1 / 2.0);
+          entries.emplace_back(r, first + 1, (h1 + h2) / 2.0);
+          entries.emplace_back(r, first + 2, h2 / 2.0);
+        }
         q.center_node.push_back(slave[static_cast<std::size_t>(first + 1)]);
       } else {
         const double I = len[static_cast<std::size_t>(first)];

@@ -10,9 +10,13 @@
 
 namespace contactrb::contact {
 
-enum class Discretization { Collocation, LAC };
+// Collocation: paper 6.1.1. LAC: macro-segments of two slave edges, rows integrated exactly
+// (segment to segment, lac_integration.hpp); our default LAC because it passes the contact
+// patch test. LACSimpson: the paper's (62), Simpson's rule on the three slave nodes of each
+// macro-segment, kept for comparison (not consistent for P1 fields, docs/contact.md).
+enum class Discretization { Collocation, LAC, LACSimpson };
 const char* to_string(Discretization d);
-Discretization discretization_from_string(const std::string& name);  // "collocation" | "lac"
+Discretization discretization_from_string(const std::string& name);  // "collocation" | "lac" | "lac-simpson"
 
 // Slave boundary Gamma_1^c (body 0) and master boundary Gamma_2^c (body 1) as ordered
 // chains of node indices (mesh groups "slave" and "master", in edge orientation).
@@ -26,13 +30,17 @@ struct ContactPair {
 // nodes, or lies on the wrong body, or if the slave chain is a closed loop.
 ContactPair make_contact_pair(const mesh::Mesh& mesh);
 
-// Row r of K and g is int_{I_r} (pointwise value) psi_r, approximated by a quadrature over
-// the slave nodes: rows = W * pointwise. Multipliers are then contact pressures.
+// Row r of K and g is int_{I_r} (pointwise value) psi_r. W (R x S) is a quadrature over
+// the slave nodes; multipliers are then contact pressures.
 //  Collocation (6.1.1): one row per slave node, W = diag(|I_r|), |I_r| = half the two
-//    adjacent slave edges.
-//  LAC (6.1.2): one row per macro-segment of two slave edges, Simpson's rule (62) on its
-//    three nodes; with an odd number of slave edges the last macro-segment is a single
-//    edge integrated by the trapezoidal rule (documented in docs/contact.md).
+//    adjacent slave edges; rows = W * pointwise.
+//  LAC and LACSimpson (6.1.2): one row per macro-segment of two slave edges (with an odd
+//    number of slave edges the last macro-segment is the single last edge).
+//    LAC: W holds the exact slave-side weights int_{I_r} phi_s (h1/2, (h1+h2)/2, h2/2; a
+//      single edge h/2, h/2), exact for P1 on the slave side; the rows themselves are
+//      integrated exactly segment to segment by constraint_rows (lac_integration.hpp).
+//    LACSimpson: Simpson's rule (62), |I|/6, 4|I|/6, |I|/6 on the three nodes (a single
+//      edge: trapezoidal rule); rows = W * pointwise.
 struct ContactQuadrature {
   Discretization discretization = Discretization::Collocation;
   Eigen::SparseMatrix<double, Eigen::RowMajor> W;  // R x S, S = slave.size()

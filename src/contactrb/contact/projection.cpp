@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/contact/lac_integration.hpp"
+#include "contactrb/contact/master_polyline.hpp"
 
 namespace contactrb::contact {
 
@@ -26,14 +28,6 @@ constexpr double kBoundSlack = 1e-9;
 Vec2 position(const mesh::Mesh& mesh, const Eigen::VectorXd& w, int node) {
   return mesh.nodes[static_cast<std::size_t>(node)] + w.segment<2>(2 * node);
 }
-
-// The deformed master polyline: vertices y_k = X_k + w_k and unit outward segment normals.
-struct MasterPolyline {
-  std::vector<Vec2> y;
-  std::vector<Vec2> normal;  // one per segment
-  bool closed = false;
-  int num_segments() const { return static_cast<int>(normal.size()); }
-};
 
 // Closest point of x on segment k, clamped into the segment's bounding box so that the
 // computed squared distance is never below the computed distance to any box holding the
@@ -196,38 +190,6 @@ void check_node(const mesh::Mesh& mesh, int v, const char* role) {
   }
 }
 
-MasterPolyline deformed_master(const mesh::Mesh& mesh, const std::vector<int>& master, const Eigen::VectorXd& w) {
-  MasterPolyline m;
-  m.closed = master.size() > 2 && master.front() == master.back();
-  for (int v : master) m.y.push_back(position(mesh, w, v));
-  for (std::size_t k = 0; k + 1 < m.y.size(); ++k) {
-    const Vec2 e = m.y[k + 1] - m.y[k];
-    const double len = e.norm();
-    if (!(len > 0.0)) {
-      throw Error("project_slave_nodes: deformed master segment " + std::to_string(k) + " (nodes " +
-                  std::to_string(master[k]) + ", " + std::to_string(master[k + 1]) +
-                  ") has zero length; its normal is undefined");
-    }
-    m.normal.emplace_back(e.y() / len, -e.x() / len);  // body on the left: outward (dy, -dx)/|e|
-  }
-  return m;
-}
-
-// n2 at the closest point: the segment normal, or at an interior vertex (xi = 0 or 1 exactly)
-// the normalized average of the two adjacent segment normals.
-Vec2 master_normal(const MasterPolyline& m, const SegmentHit& h) {
-  const int k = h.segment;
-  const int last = m.num_segments() - 1;
-  const Vec2& nk = m.normal[static_cast<std::size_t>(k)];
-  int other = -1;
-  if (h.xi == 0.0) other = k > 0 ? k - 1 : (m.closed ? last : -1);
-  if (h.xi == 1.0) other = k < last ? k + 1 : (m.closed ? 0 : -1);
-  if (other < 0) return nk;
-  const Vec2 sum = nk + m.normal[static_cast<std::size_t>(other)];
-  const double len = sum.norm();
-  return len > 0.0 ? Vec2(sum / len) : nk;  // anti-parallel segments (a fold): keep segment k's
-}
-
 }  // namespace
 
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& w,
@@ -274,7 +236,7 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
     SlaveProjection& p = out.projection[static_cast<std::size_t>(s)];
     p.segment = h.segment;
     p.xi = h.xi;
-    p.normal = master_normal(m, h);
+    p.normal = m.normal_at(h.segment, h.xi);  // the continuous normal field
     p.rho = (1.0 - h.xi) * mesh.nodes[static_cast<std::size_t>(a)] + h.xi * mesh.nodes[static_cast<std::size_t>(b)];
     p.distance = std::sqrt(h.d2);
     const bool before_start = h.segment == 0 && h.t_raw < -options.end_tolerance;
@@ -299,11 +261,17 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
   return out;
 }
 
-ConstraintRows constraint_rows(const ContactQuadrature& quadrature, const PointwiseContact& pointwise) {
+ConstraintRows constraint_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                              const PointwiseContact& pointwise, const Eigen::VectorXd& w) {
   require(quadrature.W.cols() == pointwise.K.rows() && pointwise.g.size() == pointwise.K.rows(),
           "constraint_rows: quadrature has " + std::to_string(quadrature.W.cols()) +
               " slave columns but the pointwise contact has " + std::to_string(pointwise.K.rows()) + " K rows and " +
               std::to_string(pointwise.g.size()) + " gap entries");
+  require(static_cast<std::size_t>(quadrature.W.cols()) == pair.slave.size(),
+          "constraint_rows: quadrature has " + std::to_string(quadrature.W.cols()) + " slave columns but the pair has " +
+              std::to_string(pair.slave.size()) + " slave nodes");
+  // Exact segment-to-segment integration over each macro-segment (lac_integration.hpp).
+  if (quadrature.discretization == Discretization::LAC) return integrate_lac_rows(mesh, pair, quadrature, pointwise, w);
   ConstraintRows rows;
   // (10)-(11) with the quadrature of (61) / (62).
   rows.K = quadrature.W * pointwise.K;

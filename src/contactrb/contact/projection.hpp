@@ -3,12 +3,23 @@
 // the pointwise contact and gap maps (paper (22)-(28), DESIGN.md "Numerical choices").
 //
 // For slave node s with position X_s in Omega(mu) and deformed position x_s = X_s + w_s,
-// the closest point of the deformed master polyline lies on segment (a, b) at parameter
-// xi in [0, 1]; n2 is the master's outward unit normal there (at a vertex: the normalized
-// average of the two adjacent segment normals); rho = (1 - xi) X_a + xi X_b. Then
+// the closest point of the deformed master polyline lies on segment k = (a, b) at parameter
+// xi in [0, 1]; rho = (1 - xi) X_a + xi X_b. Then
 //   k(w; v)_s = ((1 - xi) v_a + xi v_b - v_s) . n2   (27)
 //   g(w)_s    = (X_s - rho) . n2                     (28)
 // and non-penetration reads k(w; u) <= g(w).
+// n2 is a continuous normal field on the master polyline, not the segment normal: with the
+// vertex normals n_j = normalized average of the two adjacent (deformed) segment normals
+// (an end vertex of an open chain: its only segment's normal; a closed chain wraps),
+//   n2 = normalize((1 - xi) n_k + xi n_{k+1}).
+// Reason: continuity of the fixed-point map w -> (K(w), g(w)) iterated by Kacanov. With the
+// segment normal, a slave node sitting on a master vertex (e.g. Hertz with matching meshes)
+// jumps between "closest point = vertex" (averaged normal) and "closest point = segment
+// interior" (segment normal) under round-off, and the iteration stalls at ~1e-6. With the
+// interpolated normal, (segment k, xi = 1) and (segment k + 1, xi = 0) give the same K row
+// and gap, so K and g are continuous in w where the closest segment switches at a vertex
+// (as long as the closest point itself moves continuously, e.g. on convex masters).
+// On a flat master every n_j equals the segment normal: nothing changes there.
 // Ties (a slave node equidistant from several segments, e.g. from the two segments at a
 // vertex) go to the lowest segment index, so a vertex between segments k and k+1 is reported
 // as (k, xi = 1).
@@ -28,7 +39,7 @@ namespace contactrb::contact {
 struct SlaveProjection {
   int segment = -1;         // index k of master segment (master[k], master[k+1])
   double xi = 0.0;          // in [0, 1]
-  Eigen::Vector2d normal{0.0, 0.0};  // n2, unit, outward of the master body
+  Eigen::Vector2d normal{0.0, 0.0};  // n2, unit, outward of the master body (interpolated)
   Eigen::Vector2d rho{0.0, 0.0};     // (1 - xi) X_a + xi X_b (undeformed)
   double distance = 0.0;    // |x_s - closest deformed master point|
   bool candidate = false;
@@ -67,11 +78,16 @@ struct ProjectionOptions {
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair,
                                      const Eigen::VectorXd& w, const ProjectionOptions& options = {});
 
-// The constraint rows for a discretization: K = W K_pt, g = W g_pt (paper (10)-(11)).
+// The constraint rows of a discretization (paper (10)-(11)): row r = int_{I_r} k(w; .) psi_r
+// and int_{I_r} g(w) psi_r.
+//  Collocation and LACSimpson: K = W K_pt, g = W g_pt (the quadrature on the slave nodes).
+//  LAC: exact segment-to-segment integration over each macro-segment (lac_integration.hpp);
+//    it needs the geometry: `pointwise` must be project_slave_nodes(mesh, pair, w).
 struct ConstraintRows {
   Eigen::SparseMatrix<double, Eigen::RowMajor> K;  // R x num_dofs
   Eigen::VectorXd g;                               // R
 };
-ConstraintRows constraint_rows(const ContactQuadrature& quadrature, const PointwiseContact& pointwise);
+ConstraintRows constraint_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                               const PointwiseContact& pointwise, const Eigen::VectorXd& w);
 
 }  // namespace contactrb::contact

@@ -145,7 +145,7 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   solve::KacanovStep step = [&](const Eigen::VectorXd& u, const Eigen::VectorXd&, Eigen::VectorXd& u_bar,
                                 Eigen::VectorXd& lambda_bar, int& inner, std::string& message) {
     contact::PointwiseContact pw = contact::project_slave_nodes(mesh, m.pair, u);
-    contact::ConstraintRows rows = contact::constraint_rows(m.quadrature, pw);
+    contact::ConstraintRows rows = contact::constraint_rows(mesh, m.pair, m.quadrature, pw, u);
     RowSparse Kc;
     Eigen::VectorXd g_lift;
     m.restrict_rows(rows, Kc, g_lift);
@@ -205,7 +205,12 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   Eigen::VectorXd u0_c(static_cast<Eigen::Index>(m.contact_free.size()));
   for (int i = 0; i < u0_c.size(); ++i) u0_c(i) = sol.u0(m.contact_free[static_cast<std::size_t>(i)]);
   const Eigen::VectorXd slack = last_g_lift - last_Kc * u0_c;  // >= 0 when feasible
-  const double gap_scale = std::max({last_g_lift.cwiseAbs().maxCoeff(), (last_Kc * u0_c).cwiseAbs().maxCoeff(), 1e-300});
+  // Gap scale that cannot cancel: |g|_inf and the largest row sum of |K_rj| |u_j| (with
+  // matching meshes both g and K u vanish together at the solution).
+  Eigen::VectorXd abs_u(static_cast<Eigen::Index>(m.contact_free.size()));
+  for (int i = 0; i < abs_u.size(); ++i) abs_u(i) = std::abs(u0_c(i));
+  const double row_scale = (last_Kc.cwiseAbs() * abs_u).maxCoeff();
+  const double gap_scale = std::max({last_g_lift.cwiseAbs().maxCoeff(), row_scale, 1e-300});
   const double lmax = std::max(sol.lambda.cwiseAbs().maxCoeff(), 1e-300);
   sol.kkt.primal = std::max(0.0, -slack.minCoeff()) / gap_scale;
   sol.kkt.dual = std::max(0.0, -sol.lambda.minCoeff()) / lmax;

@@ -30,7 +30,7 @@ struct HFSettings {
 // exactly (K, g frozen at the previous Kacanov iterate).
 struct HFKKT {
   double stationarity = 0.0;     // |A_00 u_0 + K_0' lambda - b| / max(|b|, |K_0' lambda|)
-  double primal = 0.0;           // max(0, max_r (K u - g)_r) / gap scale
+  double primal = 0.0;           // max(0, max_r (K u - g)_r) / gap scale (max(|g|, max_r sum_j |K_rj u_j|))
   double dual = 0.0;             // max(0, -min lambda) / max(lambda)
   double complementarity = 0.0;  // max_r |lambda_r (g - K u)_r| / (max lambda * gap scale)
   double max() const;

@@ -1,0 +1,103 @@
+// contactrb solve: outputs, their contents, and the errors a user can cause.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "test_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::test::CliResult;
+using contactrb::test::run_cli;
+using contactrb::test::shell_quote;
+
+namespace {
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+void expect_user_error(const CliResult& r, const std::string& words) {
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+}
+}  // namespace
+
+TEST(CliSolve, HertzAWritesJsonCsvAndVtu) {
+  contactrb::test::TempDir dir("solve_ok");
+  const CliResult r = run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  for (const char* key : {"case", "mu", "constraint", "converged", "iterations", "energy", "contact_force",
+                          "active_constraints", "kkt", "time_s", "n_dofs", "n_constraints"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["case"], "hertz-a");
+  EXPECT_EQ(j["constraint"], "collocation");
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_EQ(j["n_constraints"].get<int>(), 51);
+  EXPECT_GT(j["contact_force"].get<double>(), 0.0);
+  EXPECT_LT(j["kkt"]["stationarity"].get<double>(), 1e-8);
+  // multipliers.csv: a header and one row per constraint; pressures >= 0 and the weighted
+  // sum equals the reported contact force.
+  std::ifstream csv(dir.path() / "multipliers.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "r,abscissa,x,y,gap,pressure,weight");
+  int rows = 0;
+  double force = 0.0;
+  while (std::getline(csv, line)) {
+    double v[7];
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                          &v[6]),
+              7)
+        << line;
+    EXPECT_GE(v[5], 0.0);
+    EXPECT_GT(v[6], 0.0);
+    force += v[5] * v[6];
+    ++rows;
+  }
+  EXPECT_EQ(rows, 51);
+  EXPECT_NEAR(force, j["contact_force"].get<double>(), 1e-9 * force);
+  EXPECT_GT(fs::file_size(dir.path() / "solution.vtu"), 1000u);
+}
+
+TEST(CliSolve, LacHasHalfTheConstraints) {
+  contactrb::test::TempDir dir("solve_lac");
+  const CliResult r =
+      run_cli("solve --case hertz-a --mu 0.2 --constraint lac --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_EQ(j["constraint"], "lac");
+  EXPECT_EQ(j["n_constraints"].get<int>(), 25);
+}
+
+TEST(CliSolve, BadInputsGiveOneClearError) {
+  contactrb::test::TempDir dir("solve_bad");
+  const std::string out = " --out " + shell_quote(dir.path().string());
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.5" + out), "outside the domain");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.1" + out), "[0.15, 0.45]");
+  expect_user_error(run_cli("solve --case hertz-a --mu nan" + out), "outside the domain");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --alpha 0" + out), "alpha");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --alpha 1.5" + out), "alpha");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --tol 0" + out), "tolerance");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --tol -1" + out), "tolerance");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --constraint mortar" + out), "mortar");
+  expect_user_error(run_cli("solve --case nocase --mu 0.3" + out), "nocase");
+  EXPECT_FALSE(fs::exists(dir.path() / "solution.json"));
+}
+
+TEST(CliSolve, NonConvergenceExitsThreeAndStillWritesTheJson) {
+  contactrb::test::TempDir dir("solve_noconv");
+  const CliResult r = run_cli("solve --case hertz-a --mu 0.3 --max-iterations 3 --out " +
+                              shell_quote(dir.path().string()));
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("did not converge in 3 iterations"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("increments"), std::string::npos) << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_EQ(j["iterations"].get<int>(), 3);
+}
