@@ -6,6 +6,7 @@ set -euo pipefail
 CONTACTRB_DEBIAN_PACKAGES=(
   build-essential cmake g++ pkg-config
   libeigen3-dev libcli11-dev libgmsh-dev libhdf5-dev libtomlplusplus-dev libsuitesparse-dev
+  libopenblas0-pthread
   nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib

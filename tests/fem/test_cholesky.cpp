@@ -83,3 +83,17 @@ TEST(CholeskyStatus, Names) {
   EXPECT_STREQ(to_string(FactorStatus::NotPositiveDefinite), "not positive definite");
   EXPECT_STREQ(to_string(FactorStatus::InvalidInput), "invalid input");
 }
+
+// The default (Automatic) backend switches to CHOLMOD from kCholmodMinRows rows: both
+// sides of the switch solve an elasticity system to round-off.
+TEST(SparseCholeskyAutomatic, SolvesOnBothSidesOfTheSwitch) {
+  for (int n : {20, 110}) {  // about 9e2 and 2.5e4 free DOFs
+    contactrb::mesh::Mesh m = contactrb::mesh::rectangle(0.0, 0.0, 1.0, 1.0, n, n);
+    const contactrb::fem::DofMap dofs(m, {{"bottom", 0.0, 0.0}});
+    const Eigen::SparseMatrix<double> A = dofs.restrict_matrix(contactrb::fem::stiffness(m, {{1.0, 0.3}}));
+    contactrb::fem::SparseCholesky chol;
+    ASSERT_EQ(chol.compute(A), contactrb::fem::FactorStatus::Success);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 1.0);
+    EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-10 * b.norm()) << A.rows();
+  }
+}

@@ -22,10 +22,10 @@ using EigenLLT = Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<i
 using CholmodLLT = Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>;
 #endif
 
-// Chosen by bench/bench_fem.cpp (docs/benchmarks.md): Eigen's simplicial LL' factorizes the
-// elasticity matrices of 1e3 to 1e5 DOFs 1.3 to 2 times faster than CHOLMOD linked to the
-// reference BLAS; CHOLMOD only wins at 1e6 DOFs (METIS ordering).
-constexpr CholeskyBackend kDefaultBackend = CholeskyBackend::EigenSimplicial;
+// Chosen by bench/bench_fem.cpp (docs/benchmarks.md): Eigen's simplicial LL' is fastest up
+// to about 1e4 DOFs; CHOLMOD's supernodal LL' (METIS ordering, BLAS-3 on OpenBLAS) is about
+// 3 times faster at 1e5 DOFs.
+constexpr CholeskyBackend kDefaultBackend = CholeskyBackend::Automatic;
 
 // InvalidInput unless A is square with finite entries and symmetric to a relative tolerance.
 bool valid_symmetric(const Matrix& A) {
@@ -63,6 +63,7 @@ bool valid_symmetric(const Matrix& A) {
 
 struct SparseCholesky::Impl {
   CholeskyBackend backend = kDefaultBackend;
+  CholeskyBackend used = CholeskyBackend::EigenSimplicial;  // resolved by compute()
   FactorStatus status = FactorStatus::InvalidInput;
   int rows = 0;
   bool computed = false;
@@ -86,6 +87,8 @@ const char* to_string(FactorStatus status) {
 
 const char* to_string(CholeskyBackend backend) {
   switch (backend) {
+    case CholeskyBackend::Automatic:
+      return "automatic";
     case CholeskyBackend::Cholmod:
       return "cholmod";
     case CholeskyBackend::EigenSimplicial:
@@ -113,7 +116,12 @@ FactorStatus SparseCholesky::compute(const Eigen::SparseMatrix<double>& A) {
   s.rows = static_cast<int>(A.rows());
   if (!valid_symmetric(A)) return s.status = FactorStatus::InvalidInput;
   if (A.rows() == 0) return s.status = FactorStatus::Success;
-  if (s.backend == CholeskyBackend::EigenSimplicial) {
+  s.used = s.backend;
+  if (s.used == CholeskyBackend::Automatic) {
+    s.used = (CONTACTRB_HAVE_CHOLMOD && A.rows() >= kCholmodMinRows) ? CholeskyBackend::Cholmod
+                                                                      : CholeskyBackend::EigenSimplicial;
+  }
+  if (s.used == CholeskyBackend::EigenSimplicial) {
     if (!s.eigen) s.eigen = std::make_unique<EigenLLT>();
     s.eigen->compute(A);
     s.status = s.eigen->info() == Eigen::Success ? FactorStatus::Success : FactorStatus::NotPositiveDefinite;
@@ -152,7 +160,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   require(B.rows() == impl_->rows, "SparseCholesky::solve: right-hand side has " + std::to_string(B.rows()) +
                                        " rows, matrix has " + std::to_string(impl_->rows));
   if (B.rows() == 0 || B.cols() == 0) return Eigen::MatrixXd(B.rows(), B.cols());
-  if (impl_->backend == CholeskyBackend::EigenSimplicial) return impl_->eigen->solve(B);
+  if (impl_->used == CholeskyBackend::EigenSimplicial) return impl_->eigen->solve(B);
 #if CONTACTRB_HAVE_CHOLMOD
   return impl_->cholmod->solve(B);
 #else

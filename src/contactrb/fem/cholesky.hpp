@@ -16,12 +16,16 @@ const char* to_string(FactorStatus status);
 // Cholmod: CHOLMOD supernodal LL' (SuiteSparse, through Eigen's CholmodSupport, default
 // CHOLMOD ordering strategy: AMD, then METIS when AMD fills badly); faster at 1e6 DOFs, and
 // much faster with an optimized BLAS.
-enum class CholeskyBackend { Cholmod, EigenSimplicial };
+// Automatic: EigenSimplicial below kCholmodMinRows rows, Cholmod from there on
+// (docs/benchmarks.md: with an optimized BLAS, CHOLMOD's supernodal factorization wins
+// from about 2e4 DOFs; Eigen's simplicial one wins below).
+enum class CholeskyBackend { Automatic, Cholmod, EigenSimplicial };
+inline constexpr int kCholmodMinRows = 20000;
 const char* to_string(CholeskyBackend backend);
 
 class SparseCholesky {
  public:
-  SparseCholesky();  // default backend (EigenSimplicial)
+  SparseCholesky();  // default backend (Automatic)
   explicit SparseCholesky(CholeskyBackend backend);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
