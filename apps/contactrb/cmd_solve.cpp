@@ -1,6 +1,7 @@
-// `contactrb solve`: one high-fidelity contact solve of a built-in case at one parameter
-// value. Writes DIR/solution.json, DIR/multipliers.csv and DIR/solution.vtu
-// (docs/user-guide.md). A solve that does not converge still writes solution.json
+// `contactrb solve`: one high-fidelity contact solve of a built-in case (--case) or a TOML
+// case file (--case-file) at one parameter value. Writes DIR/solution.json,
+// DIR/multipliers.csv, DIR/solution.vtu (Omega(mu) with the displacement field) and
+// DIR/solution_deformed.vtu (the deformed configuration) (docs/user-guide.md). A solve that does not converge still writes solution.json
 // (converged = false) and exits with code 3.
 #include <Eigen/Core>
 #include <iostream>
@@ -11,6 +12,9 @@
 
 #include "commands.hpp"
 #include "contactrb/cases/builtin_problems.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/hf_solver.hpp"
@@ -24,6 +28,7 @@ namespace {
 
 struct SolveOptions {
   std::string case_name;
+  std::string case_file;
   double mu = 0.0;
   std::string constraint;  // empty: the case's default
   double alpha = solve::KacanovSettings{}.alpha;
@@ -52,6 +57,7 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
                              const hf::HFSettings& settings) {
   nlohmann::json j;
   j["case"] = opt.case_name;
+  if (!opt.case_file.empty()) j["case_file"] = opt.case_file;
   j["mu"] = opt.mu;
   j["level"] = opt.level;
   j["constraint"] = contact::to_string(solver.problem().discretization);
@@ -83,10 +89,17 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
   return j;
 }
 
-int run_solve(const SolveOptions& opt) {
-  // Cheap checks first: case, parameter, settings, output directory.
-  cases::find_case(opt.case_name);
-  cases::check_parameter(opt.case_name, opt.mu);
+int run_solve(SolveOptions opt) {
+  // Cheap checks first: case (the TOML file is read and checked here), parameter,
+  // settings, output directory; the mesh comes later.
+  cases::CaseSpec spec;
+  if (!opt.case_file.empty()) {
+    spec = cases::case_from_toml_file(opt.case_file);
+    opt.case_name = spec.name;
+  } else {
+    spec = cases::builtin_case_spec(opt.case_name);
+  }
+  spec.parameter.check(opt.mu, "case '" + spec.name + "'" + (opt.case_file.empty() ? "" : " (" + opt.case_file + ")"));
   hf::HFSettings settings;
   settings.kacanov.alpha = opt.alpha;
   settings.kacanov.tolerance = opt.tolerance;
@@ -97,16 +110,17 @@ int run_solve(const SolveOptions& opt) {
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   ensure_output_directory(opt.out_dir);
 
-  const hf::HFSolver solver(cases::make_problem(opt.case_name, opt.mu, opt.level, constraint));
+  const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
+  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint));
   const hf::HFSolution s = solver.solve(settings);
   const mesh::Mesh& m = solver.problem().mesh;
-  const mesh::Mesh reference = cases::reference_mesh(opt.case_name, opt.level);
 
   const std::string json_path = opt.out_dir + "/solution.json";
   io::write_json(solution_json(opt, solver, s, settings), json_path);
 
   const std::string csv_path = opt.out_dir + "/multipliers.csv";
   const std::string vtu_path = opt.out_dir + "/solution.vtu";
+  const std::string deformed_path = opt.out_dir + "/solution_deformed.vtu";
   if (s.rows.K.rows() == s.lambda.size() && s.lambda.size() > 0) {
     io::CsvWriter csv({"r", "abscissa", "x", "y", "gap", "pressure", "weight"});
     const Eigen::VectorXd slack = s.rows.g - s.rows.K * s.u;  // integrated deformed gap
@@ -117,10 +131,10 @@ int run_solve(const SolveOptions& opt) {
                    slack(r) / q.weight(r), s.lambda(r), q.weight(r)});
     }
     csv.write(csv_path);
-    io::VtuWriter(m)
-        .add_point_vector("displacement", s.u)
-        .add_point_scalar("contact_pressure", nodal_pressure(m, solver, s.lambda))
-        .write(vtu_path);
+    io::VtuWriter vtu(m);
+    vtu.add_point_vector("displacement", s.u).add_point_scalar("contact_pressure", nodal_pressure(m, solver, s.lambda));
+    vtu.write(vtu_path);
+    vtu.deform_by("displacement").write(deformed_path);
   }
 
   std::cout << "case " << opt.case_name << ", mu = " << opt.mu << ", " << contact::to_string(solver.problem().discretization)
@@ -133,7 +147,8 @@ int run_solve(const SolveOptions& opt) {
   std::cout << "converged in " << s.iterations << " Kacanov iterations (" << s.time_s * 1e3 << " ms)\n"
             << "energy " << s.energy << ", contact force " << s.contact_force << ", active constraints "
             << s.active_constraints << ", max KKT residual " << s.kkt.max() << "\n"
-            << "wrote " << json_path << "\nwrote " << csv_path << "\nwrote " << vtu_path << "\n";
+            << "wrote " << json_path << "\nwrote " << csv_path << "\nwrote " << vtu_path << "\nwrote "
+            << deformed_path << "\n";
   return 0;
 }
 
@@ -141,14 +156,20 @@ int run_solve(const SolveOptions& opt) {
 
 Command add_solve_command(CLI::App& app) {
   auto opt = std::make_shared<SolveOptions>();
-  CLI::App* sub = app.add_subcommand("solve", "High-fidelity contact solve of a built-in case at one parameter value");
-  sub->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)")->required();
+  CLI::App* sub =
+      app.add_subcommand("solve", "High-fidelity contact solve of a built-in or TOML case at one parameter value");
+  // Exactly one case source (a usage error otherwise).
+  CLI::Option_group* input = sub->add_option_group("case", "Case (exactly one)");
+  input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
+  input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");
+  input->require_option(1);
   sub->add_option("--mu", opt->mu, "Parameter value (inside the case's domain)")->required();
   sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
-  sub->add_option("--level", opt->level, "Mesh refinement level (0: the paper's mesh)")->capture_default_str();
+  sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")
+      ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();
   return {sub, [opt] { return run_solve(*opt); }};
 }

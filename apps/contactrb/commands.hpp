@@ -18,6 +18,7 @@ struct Command {
 Command add_cases_command(CLI::App& app);
 Command add_mesh_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
+Command add_snapshots_command(CLI::App& app);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       contactrb::app::add_cases_command(app),
       contactrb::app::add_mesh_command(app),
       contactrb::app::add_solve_command(app),
+      contactrb::app::add_snapshots_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -1,10 +1,12 @@
 #pragma once
-// The paper's three cases as high-fidelity problems at a parameter value (Section 6;
-// DESIGN.md "The three paper cases"). Issue [3/5] turns these into case specifications
-// with affine decompositions; the data here are the paper's.
+// The paper's three cases by name (Section 6; DESIGN.md "The three paper cases"): thin
+// wrappers over their CaseSpec (case_spec.hpp, builtin_case_spec) and make_problem
+// (case_problem.hpp), the one code path shared with the TOML cases.
 #include <optional>
 #include <string>
 
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/hf/contact_problem.hpp"
 

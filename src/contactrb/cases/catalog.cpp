@@ -3,7 +3,8 @@
 #include <sstream>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/mesh/geometries.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
 
 namespace contactrb::cases {
 
@@ -28,18 +29,7 @@ const CaseInfo& find_case(const std::string& name) {
 }
 
 mesh::Mesh reference_mesh(const std::string& name, int level) {
-  find_case(name);
-  require(level >= 0, "refinement level must be >= 0 (got " + std::to_string(level) + ")");
-  if (name == "hertz-a" || name == "hertz-b") {
-    mesh::HertzGeometry geometry;
-    geometry.slave_arc_nodes = mesh::hertz_arc_nodes_for_level(level);
-    return mesh::generate_hertz(geometry);
-  }
-  mesh::RingBlockGeometry geometry;
-  const int factor = 1 << level;
-  geometry.slave_arc_nodes = (geometry.slave_arc_nodes - 1) * factor + 1;
-  geometry.master_edge_nodes = (geometry.master_edge_nodes - 1) * factor + 1;
-  return mesh::generate_ring_block(geometry);
+  return reference_mesh(builtin_case_spec(name), level);
 }
 
 }  // namespace contactrb::cases

@@ -1,0 +1,151 @@
+// `contactrb snapshots`: high-fidelity solves of a case over a parameter set, in parallel,
+// stored in one HDF5 file (docs/user-guide.md, "snapshots"). Failed solves are recorded in
+// the file; the command then exits with code 3 unless --allow-failures.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/case_toml.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
+
+namespace contactrb::app {
+
+namespace {
+
+// Exit code when some solve failed (same as `contactrb solve` for a non-converged solve).
+constexpr int kExitSolveFailed = 3;
+
+struct SnapshotsOptions {
+  std::string case_name;
+  std::string case_file;
+  std::string set_name = "training";
+  std::vector<double> values;  // overrides the set when given
+  int jobs = 1;
+  int level = 0;
+  std::string constraint;  // empty: the case's default
+  double alpha = solve::KacanovSettings{}.alpha;
+  double tolerance = solve::KacanovSettings{}.tolerance;
+  int max_iterations = solve::KacanovSettings{}.max_iterations;
+  bool allow_failures = false;
+  bool quiet = false;
+  std::string out;
+};
+
+// The directory of `path` must exist and be writable before hours of solves are spent.
+void check_output_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  require(!p.filename().empty(), "--out '" + path + "' names a directory, not a file");
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' does not exist");
+  require(::access(dir.c_str(), W_OK) == 0, "the directory of --out '" + path + "' is not writable");
+  require(!fs::is_directory(p, ec), "--out '" + path + "' is a directory");
+}
+
+int run_snapshots(const SnapshotsOptions& opt) {
+  // Cheap checks first.
+  const cases::CaseSpec spec =
+      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
+  require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  std::optional<contact::Discretization> constraint;
+  if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
+  hf::HFSettings settings;
+  settings.kacanov.alpha = opt.alpha;
+  settings.kacanov.tolerance = opt.tolerance;
+  settings.kacanov.max_iterations = opt.max_iterations;
+  solve::check_settings(settings.kacanov);
+  check_output_file(opt.out);
+  std::optional<std::vector<double>> values;
+  if (!opt.values.empty()) values = opt.values;
+
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  const auto t0 = Clock::now();
+  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  request.settings = settings;
+  rb::SnapshotRunOptions run;
+  run.jobs = opt.jobs;
+  run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  const auto t1 = Clock::now();
+  const io::SnapshotSet set = rb::generate_snapshots(request, run);
+  const auto t2 = Clock::now();
+  io::write_snapshot_file(set, opt.out);
+  const auto t3 = Clock::now();
+  const double solves_wall = seconds(t1, t2);
+
+  const rb::SnapshotSummary s = rb::summarize(set);
+  const std::size_t rows = set.snapshots.empty() ? 0 : static_cast<std::size_t>(set.snapshots.front().lambda.size());
+  std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
+            << set.parameter_name << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
+            << " constraints, " << opt.jobs << (opt.jobs == 1 ? " job\n" : " jobs\n");
+  std::cout << "solves: " << s.solves << "\n"
+            << "failures: " << s.failures << "\n";
+  if (s.failures < s.solves) {
+    std::cout << "iterations: min " << s.iterations_min << ", median " << s.iterations_median << ", max "
+              << s.iterations_max << " (converged solves)\n";
+  } else {
+    std::cout << "iterations: none converged\n";
+  }
+  std::cout << std::fixed << std::setprecision(3) << "total time: " << seconds(t0, t3) << " s (wall clock: reference mesh "
+            << seconds(t0, t1) << " s, solves " << solves_wall << " s, file " << seconds(t2, t3) << " s)\n"
+            << "time per solve: " << s.time_total_s / s.solves << " s wall, " << s.cpu_time_total_s / s.solves
+            << " s CPU (means over the solves); throughput " << solves_wall / s.solves
+            << " s per value (solves wall clock / solves)\n"
+            << std::defaultfloat << std::setprecision(6) << "wrote " << opt.out << "\n";
+  if (s.failures > 0) {
+    std::ostringstream os;
+    os << s.failures << " of " << s.solves << " solves failed (recorded in " << opt.out << "):";
+    for (const io::Snapshot& snap : set.snapshots) {
+      if (!snap.converged) os << "\n  mu = " << snap.mu << ": " << snap.status << ": " << snap.message;
+    }
+    if (opt.allow_failures) {
+      std::cerr << "contactrb: warning: " << os.str() << "\n";
+      return 0;
+    }
+    std::cerr << "contactrb: error: " << os.str() << "\n";
+    return kExitSolveFailed;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_snapshots_command(CLI::App& app) {
+  auto opt = std::make_shared<SnapshotsOptions>();
+  CLI::App* sub = app.add_subcommand("snapshots", "High-fidelity snapshots of a case over a parameter set, in HDF5");
+  // Exactly one case source (a usage error otherwise).
+  CLI::Option_group* input = sub->add_option_group("case", "Case (exactly one)");
+  input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
+  input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");
+  input->require_option(1);
+  sub->add_option("--set", opt->set_name, "Parameter set: training | verification")->capture_default_str();
+  sub->add_option("--values", opt->values, "Explicit parameter values instead of a set (comma-separated)")
+      ->delimiter(',');
+  sub->add_option("--jobs,-j", opt->jobs, "Worker threads")->capture_default_str();
+  sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")
+      ->capture_default_str();
+  sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
+  sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
+  sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
+  sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
+  sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some solves failed (they are recorded)");
+  sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
+  sub->add_option("--out", opt->out, "Output HDF5 file (written atomically)")->required();
+  return {sub, [opt] { return run_snapshots(*opt); }};
+}
+
+}  // namespace contactrb::app

@@ -1,0 +1,121 @@
+#include "contactrb/cases/case_problem.hpp"
+
+#include <utility>
+
+#include "contactrb/cases/catalog.hpp"
+#include "contactrb/cases/geometric_map.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/mesh/geometries.hpp"
+#include "contactrb/mesh/msh_io.hpp"
+
+namespace contactrb::cases {
+
+namespace {
+
+std::string context(const CaseSpec& spec) {
+  return "case '" + spec.name + "'" + (spec.origin.empty() ? std::string() : " from " + spec.origin);
+}
+
+// Renames the user's contact groups to "slave" / "master" (a swap is allowed).
+void map_contact_groups(mesh::Mesh& m, const MeshSpec& ms) {
+  std::vector<mesh::Edge> slave = m.boundary(ms.slave_group);
+  std::vector<mesh::Edge> master = m.boundary(ms.master_group);
+  m.boundaries.erase(ms.slave_group);
+  m.boundaries.erase(ms.master_group);
+  for (const char* name : {mesh::kSlaveBoundary, mesh::kMasterBoundary}) {
+    require(!m.has_boundary(name), "the .msh file " + ms.msh_file + " has a group '" + name +
+                                       "' that is not the contact group named in the case; rename it");
+  }
+  m.boundaries[mesh::kSlaveBoundary] = std::move(slave);
+  m.boundaries[mesh::kMasterBoundary] = std::move(master);
+}
+
+}  // namespace
+
+mesh::Mesh reference_mesh(const CaseSpec& spec, int level) {
+  check_case_spec(spec);
+  require(level >= 0, "refinement level must be >= 0 (got " + std::to_string(level) + ")");
+  const MeshSpec& ms = spec.mesh;
+  if (ms.generator == "hertz") {
+    mesh::HertzGeometry geometry;
+    geometry.slave_arc_nodes = mesh::hertz_arc_nodes_for_level(level);
+    return mesh::generate_hertz(geometry);
+  }
+  if (ms.generator == "ring-block") {
+    mesh::RingBlockGeometry geometry;
+    const int factor = 1 << level;
+    geometry.slave_arc_nodes = (geometry.slave_arc_nodes - 1) * factor + 1;
+    geometry.master_edge_nodes = (geometry.master_edge_nodes - 1) * factor + 1;
+    return mesh::generate_ring_block(geometry);
+  }
+  require(level == 0, "refinement level " + std::to_string(level) + " requested, but the mesh of " + context(spec) +
+                          " is the file " + ms.msh_file + " (level 0 only)");
+  mesh::MshGroups groups;
+  groups.body_groups = {ms.body_groups[0], ms.body_groups[1]};
+  groups.required_boundaries = {ms.slave_group, ms.master_group};
+  mesh::Mesh m = mesh::read_msh(ms.msh_file, groups);
+  require(m.num_bodies() == 2, "the .msh file " + ms.msh_file + " of " + context(spec) + " has " +
+                                   std::to_string(m.num_bodies()) + " body, a contact case needs two");
+  map_contact_groups(m, ms);
+  for (const DirichletSpec& d : spec.dirichlet) {
+    if (!m.has_boundary(d.group)) {
+      std::string present;
+      for (const auto& [name, edges] : m.boundaries) present += " " + name;
+      throw Error("Dirichlet group '" + d.group + "' of " + context(spec) + " is not a 1D physical group of " +
+                  ms.msh_file + " (groups:" + present + ")");
+    }
+  }
+  mesh::validate(m);
+  return m;
+}
+
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu) {
+  mesh::Mesh m = reference;
+  const std::array<AffineMap, 2> maps = geometric_maps(spec.parameter, mu);
+  for (int body = 0; body < 2; ++body) {
+    const AffineMap& h = maps[static_cast<std::size_t>(body)];
+    if (!h.is_identity()) mesh::map_body(m, body, h.M, h.b);
+  }
+  return m;
+}
+
+std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, double mu) {
+  std::vector<fem::DirichletCondition> out;
+  out.reserve(spec.dirichlet.size());
+  for (const DirichletSpec& d : spec.dirichlet) {
+    fem::DirichletCondition c;
+    c.group = d.group;
+    if (d.ux) c.ux = d.ux->at(mu);
+    if (d.uy) c.uy = d.uy->at(mu);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::vector<fem::Material> materials(const CaseSpec& spec) {
+  return {fem::Material{spec.bodies[0].E, spec.bodies[0].nu}, fem::Material{spec.bodies[1].E, spec.bodies[1].nu}};
+}
+
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
+                                std::optional<contact::Discretization> constraint) {
+  check_case_spec(spec);
+  spec.parameter.check(mu, context(spec));
+  hf::ContactProblem p;
+  p.mesh = mapped_mesh(spec, reference, mu);
+  p.materials = materials(spec);
+  if (!spec.bodies[0].load.isZero(0.0) || !spec.bodies[1].load.isZero(0.0)) {
+    p.body_loads = {spec.bodies[0].load, spec.bodies[1].load};
+  }
+  p.dirichlet = dirichlet_at(spec, mu);
+  p.discretization = constraint ? *constraint : spec.constraint;
+  return p;
+}
+
+hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level,
+                                std::optional<contact::Discretization> constraint) {
+  check_case_spec(spec);
+  spec.parameter.check(mu, context(spec));  // before the (costly) mesh
+  return make_problem(spec, reference_mesh(spec, level), mu, constraint);
+}
+
+}  // namespace contactrb::cases

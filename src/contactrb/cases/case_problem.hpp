@@ -1,0 +1,34 @@
+#pragma once
+// From a case specification to the high-fidelity problem at mu: the reference mesh, the
+// geometric maps applied to it (same connectivity for every mu, so snapshots at different
+// mu live in one R^N), the materials and the Dirichlet data at mu.
+#include <optional>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/hf/contact_problem.hpp"
+#include "contactrb/mesh/mesh.hpp"
+
+namespace contactrb::cases {
+
+// The reference mesh Omega = Omega(reference) of a case at refinement level `level`
+// (0: the generator's default, the paper's mesh). A .msh case has level 0 only; its
+// slave and master groups are renamed "slave" and "master". Throws contactrb::Error naming
+// the file and the problem (missing file, missing group, level > 0 for a .msh).
+mesh::Mesh reference_mesh(const CaseSpec& spec, int level = 0);
+
+// Omega(mu) = h(mu)(reference): the geometric maps applied to a copy of `reference`.
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu);
+
+// The HF problem at mu. `constraint` overrides the case's discretization. Throws
+// contactrb::Error for an invalid spec or mu outside the parameter domain.
+hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level = 0,
+                                std::optional<contact::Discretization> constraint = std::nullopt);
+// Same, from a reference mesh built once by reference_mesh(spec, level) (parameter sweeps).
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
+                                std::optional<contact::Discretization> constraint = std::nullopt);
+
+// Dirichlet conditions at mu (values a + b mu).
+std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, double mu);
+std::vector<fem::Material> materials(const CaseSpec& spec);
+
+}  // namespace contactrb::cases

@@ -1,0 +1,157 @@
+#include "contactrb/cases/case_spec.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "contactrb/cases/catalog.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/mesh/geometries.hpp"
+
+namespace contactrb::cases {
+
+namespace {
+
+const char* const kBuiltin = "built-in";
+
+// Paper Section 6.2: E = 15, nu = 0.35 for both half-disks.
+constexpr double kHertzE = 15.0;
+constexpr double kHertzNu = 0.35;
+// Ring-on-block (Section 6.3): the ring is 15 times stiffer than the block (docs/cases.md).
+constexpr double kRingE = 15.0;
+constexpr double kBlockE = 1.0;
+constexpr double kRingBlockNu = 0.3;
+// Downward displacement of the ring's end faces (docs/cases.md: the paper's 50 m do not
+// fit a ring of radius 1). 0.1 gave the same active set at mu = 1 and 1.13 (10 rows);
+// 0.2 (the ring thickness) gives 18 and 16 rows (Fig. 18: the zone varies with mu).
+constexpr double kRingPush = 0.2;
+
+AffineValue constant(double a) { return {a, 0.0}; }
+
+CaseSpec hertz_a() {
+  CaseSpec c;
+  c.name = "hertz-a";
+  c.description = "two half-disks R1 = R2 = 1, gap 0.1, imposed displacement mu in [0.15, 0.45], collocation";
+  c.mesh.generator = "hertz";
+  c.bodies = {BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}, BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}};
+  // Section 6.2.1 (a): u = (0, -mu/2) on the upper flat edge, (0, mu/2) on the lower one.
+  c.dirichlet = {{"top", constant(0.0), AffineValue{0.0, -0.5}}, {"bottom", constant(0.0), AffineValue{0.0, 0.5}}};
+  c.constraint = contact::Discretization::Collocation;
+  ParameterSpec& p = c.parameter;
+  p.name = "imposed displacement";
+  p.kind = ParameterKind::DirichletScale;
+  p.min = 0.15;
+  p.max = 0.45;
+  p.reference = 0.3;
+  const std::vector<double> training = arithmetic_set(0.15, 0.01, 31);  // 0.15 + 0.01 i, i = 0..30
+  p.sets = {{"training", training}, {"verification", midpoints(training)}};
+  return c;
+}
+
+CaseSpec hertz_b() {
+  CaseSpec c;
+  c.name = "hertz-b";
+  c.description = "two half-disks, lower radius R2 = mu in [0.9, 1.12], non-matching meshes, collocation";
+  c.mesh.generator = "hertz";
+  c.bodies = {BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}, BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"top", constant(0.0), constant(-0.2)}, {"bottom", constant(0.0), constant(0.2)}};
+  c.constraint = contact::Discretization::Collocation;
+  ParameterSpec& p = c.parameter;
+  p.name = "lower radius R2";
+  p.kind = ParameterKind::BodyScaling;
+  p.min = 0.9;
+  p.max = 1.12;
+  // R2 = mu: the reference mesh has R2 = 1; body 2 is scaled by mu about the top of its
+  // arc (0, -gap/2), so the gap on the vertical axis stays 0.1.
+  const mesh::HertzGeometry g;
+  p.reference = g.R2;
+  p.body = mesh::kMasterBody;
+  p.center = Eigen::Vector2d(0.0, -0.5 * g.gap);
+  // The paper writes i = 0..22 but also P = 22 solves and P = [0.9, 1.12]; i = 22 gives
+  // 1.125, outside P. We keep the 22 points inside P (docs/cases.md).
+  const std::vector<double> training = arithmetic_set(0.905, 0.01, 22);
+  p.sets = {{"training", training}, {"verification", midpoints(training)}};
+  return c;
+}
+
+CaseSpec ring_block() {
+  CaseSpec c;
+  c.name = "ring-block";
+  c.description = "half-ring of radius mu in [0.95, 1.15] pressed on a softer block, LAC";
+  c.mesh.generator = "ring-block";
+  c.bodies = {BodySpec{kRingE, kRingBlockNu, Eigen::Vector2d::Zero()},
+              BodySpec{kBlockE, kRingBlockNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"ring_ends", constant(0.0), constant(-kRingPush)},
+                 {"block_bottom", constant(0.0), constant(0.0)}};
+  c.constraint = contact::Discretization::LAC;
+  ParameterSpec& p = c.parameter;
+  p.name = "ring radius R1";
+  p.kind = ParameterKind::BodyScaling;
+  p.min = 0.95;
+  p.max = 1.15;
+  // R1 = mu: the ring (outer radius 1 in the reference mesh) scaled about its lowest
+  // point (0, gap), which stays on the block.
+  const mesh::RingBlockGeometry g;
+  p.reference = g.R_out;
+  p.body = mesh::kSlaveBody;
+  p.center = Eigen::Vector2d(0.0, g.gap);
+  // The paper's verification set is 0.9575 + 0.02 i, i = 0..10, but i = 10 gives 1.1575,
+  // outside P = [0.95, 1.15]; we keep the 10 points inside P (docs/cases.md).
+  p.sets = {{"training", arithmetic_set(0.95, 0.01, 21)}, {"verification", arithmetic_set(0.9575, 0.02, 10)}};
+  return c;
+}
+
+}  // namespace
+
+void check_case_spec(const CaseSpec& c) {
+  const std::string where = c.origin.empty() ? "case '" + c.name + "'" : "case '" + c.name + "' from " + c.origin;
+  auto fail = [&](const std::string& what) { throw Error(what + " (" + where + ")"); };
+  if (c.name.empty()) fail("the case has no name");
+  const bool gen = !c.mesh.generator.empty();
+  const bool msh = !c.mesh.msh_file.empty();
+  if (gen == msh) fail("the mesh needs exactly one of a generator or a .msh file");
+  if (gen && c.mesh.generator != "hertz" && c.mesh.generator != "ring-block") {
+    fail("unknown mesh generator '" + c.mesh.generator + "' (expected hertz or ring-block)");
+  }
+  for (const std::string& g : c.mesh.body_groups) {
+    if (g.empty()) fail("empty body group name");
+  }
+  if (c.mesh.body_groups[0] == c.mesh.body_groups[1]) fail("the two bodies have the same group '" + c.mesh.body_groups[0] + "'");
+  if (c.mesh.slave_group.empty() || c.mesh.master_group.empty()) fail("empty contact group name");
+  if (c.mesh.slave_group == c.mesh.master_group) fail("slave and master are the same group '" + c.mesh.slave_group + "'");
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const BodySpec& b = c.bodies[i];
+    const std::string body = "body " + std::to_string(i + 1);
+    if (!(std::isfinite(b.E) && b.E > 0.0)) fail(body + ": Young's modulus E must be > 0 (got " + std::to_string(b.E) + ")");
+    if (!(std::isfinite(b.nu) && b.nu > -1.0 && b.nu < 0.5)) {
+      fail(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + std::to_string(b.nu) + ")");
+    }
+    if (!b.load.allFinite()) fail(body + ": body load is not finite");
+  }
+  for (const DirichletSpec& d : c.dirichlet) {
+    if (d.group.empty()) fail("a Dirichlet condition has no group");
+    if (!d.ux && !d.uy) fail("Dirichlet condition on '" + d.group + "' prescribes no component");
+    for (const auto& v : {d.ux, d.uy}) {
+      if (v && !(std::isfinite(v->a) && std::isfinite(v->b))) fail("Dirichlet data on '" + d.group + "' is not finite");
+    }
+  }
+  check_parameter_spec(c.parameter, where);
+  if (c.parameter.kind == ParameterKind::DirichletScale && !has_affine_dirichlet(c)) {
+    fail("parameter kind 'dirichlet-scale' but no Dirichlet value depends on mu (give one as {a, b}: a + b mu)");
+  }
+}
+
+bool has_affine_dirichlet(const CaseSpec& spec) {
+  for (const DirichletSpec& d : spec.dirichlet) {
+    if ((d.ux && d.ux->b != 0.0) || (d.uy && d.uy->b != 0.0)) return true;
+  }
+  return false;
+}
+
+CaseSpec builtin_case_spec(const std::string& name) {
+  find_case(name);  // throws naming the unknown case
+  CaseSpec c = name == "hertz-a" ? hertz_a() : name == "hertz-b" ? hertz_b() : ring_block();
+  c.origin = kBuiltin;
+  return c;
+}
+
+}  // namespace contactrb::cases

@@ -1,0 +1,448 @@
+#include "contactrb/cases/case_toml.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::cases {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Relative distance (to the largest bound) within which a value of a generated parameter
+// set {start, step, count} is moved onto the domain bound it overshoots by round-off.
+constexpr double kSetSnapTolerance = 1e-12;
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+    case toml::node_type::time:
+    case toml::node_type::date_time:
+      return "a date/time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+// Reads one TOML document into a CaseSpec; every message names the file, the line (when
+// toml++ knows it) and the dotted key.
+class Reader {
+ public:
+  Reader(std::string origin, fs::path base_dir) : origin_(std::move(origin)), base_dir_(std::move(base_dir)) {}
+
+  [[noreturn]] void fail(const toml::node* n, const std::string& what) const {
+    std::ostringstream os;
+    os << origin_;
+    if (n != nullptr && n->source().begin.line > 0) os << ":" << n->source().begin.line;
+    os << ": " << what;
+    throw Error(os.str());
+  }
+
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  void check_keys(const toml::table& t, const std::string& path, std::initializer_list<const char*> allowed) const {
+    for (auto&& [k, v] : t) {
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || k.str() == a;
+      if (!ok) {
+        std::string list;
+        for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+        fail(&v, "unknown key '" + join(path, std::string(k.str())) + "' (allowed" +
+                     (path.empty() ? std::string() : " in [" + path + "]") + ": " + list + ")");
+      }
+    }
+  }
+
+  const toml::node& required(const toml::table& t, const std::string& path, const char* key) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) {
+      fail(path.empty() ? nullptr : &t, "missing key '" + join(path, key) + "'" +
+                                            (path.empty() ? std::string() : " in [" + path + "]"));
+    }
+    return *n;
+  }
+
+  [[noreturn]] void wrong_type(const toml::node& n, const std::string& key, const std::string& expected) const {
+    fail(&n, "key '" + key + "' must be " + expected + ", got " + type_name(n));
+  }
+
+  double number(const toml::node& n, const std::string& key) const {
+    if (const auto* f = n.as_floating_point()) return f->get();
+    if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+    wrong_type(n, key, "a number");
+  }
+  std::string string(const toml::node& n, const std::string& key) const {
+    if (const auto* s = n.as_string()) return s->get();
+    wrong_type(n, key, "a string");
+  }
+  long long integer(const toml::node& n, const std::string& key) const {
+    if (const auto* i = n.as_integer()) return i->get();
+    wrong_type(n, key, "an integer");
+  }
+  const toml::table& table(const toml::node& n, const std::string& key) const {
+    if (const auto* t = n.as_table()) return *t;
+    wrong_type(n, key, "a table");
+  }
+  std::vector<double> numbers(const toml::node& n, const std::string& key, int size = -1) const {
+    const std::string expected =
+        size < 0 ? "an array of numbers" : "an array of " + std::to_string(size) + " numbers";
+    const auto* a = n.as_array();
+    if (a == nullptr) wrong_type(n, key, expected);
+    std::vector<double> v;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::node& e = *a->get(i);
+      if (!e.is_number()) fail(&e, "key '" + key + "' must be " + expected + ", element " + std::to_string(i + 1) +
+                                       " is " + type_name(e));
+      v.push_back(number(e, key));
+    }
+    if (size >= 0 && static_cast<int>(v.size()) != size) {
+      fail(&n, "key '" + key + "' must be " + expected + ", got " + std::to_string(v.size()));
+    }
+    return v;
+  }
+  Eigen::Vector2d vector2(const toml::node& n, const std::string& key) const {
+    const std::vector<double> v = numbers(n, key, 2);
+    return {v[0], v[1]};
+  }
+
+  // A Dirichlet value: a number (constant) or an inline table {a, b} (a + b mu).
+  AffineValue affine(const toml::node& n, const std::string& key) const {
+    if (n.is_number()) return {number(n, key), 0.0};
+    const auto* t = n.as_table();
+    if (t == nullptr) wrong_type(n, key, "a number or a table {a = ..., b = ...} (a + b mu)");
+    check_keys(*t, key, {"a", "b"});
+    AffineValue v;
+    if (const toml::node* a = t->get("a")) v.a = number(*a, key + ".a");
+    v.b = number(required(*t, key, "b"), key + ".b");
+    return v;
+  }
+
+  // A parameter set: an array of numbers or {start, step, count}.
+  std::vector<double> parameter_set(const toml::node& n, const std::string& key) const {
+    if (n.is_array()) return numbers(n, key);
+    const auto* t = n.as_table();
+    if (t == nullptr) wrong_type(n, key, "an array of numbers or a table {start, step, count}");
+    check_keys(*t, key, {"start", "step", "count"});
+    const double start = number(required(*t, key, "start"), key + ".start");
+    const double step = number(required(*t, key, "step"), key + ".step");
+    const toml::node& c = required(*t, key, "count");
+    const long long count = integer(c, key + ".count");
+    if (count < 1 || count > 1000000) fail(&c, "key '" + key + ".count' must be in [1, 1000000]");
+    return arithmetic_set(start, step, static_cast<int>(count));
+  }
+
+  // A generated value within round-off of the domain (0.15 + 6 * 0.05 = 0.45000000000000007)
+  // is moved onto the bound, so that {start, step, count} can end exactly at the domain's end.
+  static void snap_to_domain(std::vector<double>& values, double min, double max) {
+    const double tol = kSetSnapTolerance * std::max(std::abs(min), std::abs(max));
+    for (double& v : values) {
+      if (v > max && v <= max + tol) v = max;
+      if (v < min && v >= min - tol) v = min;
+    }
+  }
+
+  void read_body(const toml::table& root, const char* role, int index, CaseSpec& c) const {
+    const std::string path = role;
+    const toml::table& t = table(required(root, "", role), path);
+    check_keys(t, path, {"body", "boundary", "E", "nu", "load"});
+    BodySpec& b = c.bodies[static_cast<std::size_t>(index)];
+    b.E = number(required(t, path, "E"), path + ".E");
+    b.nu = number(required(t, path, "nu"), path + ".nu");
+    if (const toml::node* l = t.get("load")) b.load = vector2(*l, path + ".load");
+    std::string& boundary = index == 0 ? c.mesh.slave_group : c.mesh.master_group;
+    for (const char* key : {"body", "boundary"}) {
+      const toml::node* n = t.get(key);
+      if (n == nullptr) continue;
+      if (c.mesh.msh_file.empty()) {
+        fail(n, "key '" + path + "." + key + "' names a group of a .msh file: not allowed with mesh.generator");
+      }
+      const std::string value = string(*n, path + "." + key);
+      if (value.empty()) fail(n, "key '" + path + "." + key + "' is empty");
+      (std::string(key) == "body" ? c.mesh.body_groups[static_cast<std::size_t>(index)] : boundary) = value;
+    }
+  }
+
+  CaseSpec read(const toml::table& root) const {
+    CaseSpec c;
+    c.origin = origin_;
+    check_keys(root, "", {"name", "description", "constraint", "mesh", "slave", "master", "dirichlet", "parameter"});
+    c.name = string(required(root, "", "name"), "name");
+    if (const toml::node* d = root.get("description")) c.description = string(*d, "description");
+    if (const toml::node* d = root.get("constraint")) {
+      const std::string s = string(*d, "constraint");
+      try {
+        c.constraint = contact::discretization_from_string(s);
+      } catch (const Error&) {
+        fail(d, "key 'constraint' must be collocation, lac or lac-simpson, got '" + s + "'");
+      }
+    }
+
+    const toml::node& mesh_node = required(root, "", "mesh");
+    const toml::table& mesh = table(mesh_node, "mesh");
+    check_keys(mesh, "mesh", {"file", "generator"});
+    const toml::node* file = mesh.get("file");
+    const toml::node* generator = mesh.get("generator");
+    if ((file == nullptr) == (generator == nullptr)) {
+      fail(&mesh_node, "[mesh] needs exactly one of the keys 'mesh.file' and 'mesh.generator'");
+    }
+    if (generator != nullptr) {
+      c.mesh.generator = string(*generator, "mesh.generator");
+      if (c.mesh.generator != "hertz" && c.mesh.generator != "ring-block") {
+        fail(generator, "key 'mesh.generator' must be hertz or ring-block, got '" + c.mesh.generator + "'");
+      }
+    } else {
+      const std::string f = string(*file, "mesh.file");
+      if (f.empty()) fail(file, "key 'mesh.file' is empty");
+      fs::path p(f);
+      if (p.is_relative()) p = base_dir_ / p;
+      p = p.lexically_normal();
+      std::error_code ec;
+      if (!fs::is_regular_file(p, ec)) fail(file, "key 'mesh.file': mesh file " + p.string() + " not found");
+      c.mesh.msh_file = p.string();
+    }
+
+    read_body(root, "slave", 0, c);
+    read_body(root, "master", 1, c);
+
+    if (const toml::node* d = root.get("dirichlet")) {
+      const auto* arr = d->as_array();
+      if (arr == nullptr || !arr->is_array_of_tables()) {
+        wrong_type(*d, "dirichlet", "an array of tables ([[dirichlet]])");
+      }
+      for (std::size_t i = 0; i < arr->size(); ++i) {
+        const toml::table& t = *arr->get(i)->as_table();
+        const std::string path = "dirichlet[" + std::to_string(i + 1) + "]";
+        check_keys(t, path, {"group", "ux", "uy"});
+        DirichletSpec ds;
+        ds.group = string(required(t, path, "group"), path + ".group");
+        if (const toml::node* v = t.get("ux")) ds.ux = affine(*v, path + ".ux");
+        if (const toml::node* v = t.get("uy")) ds.uy = affine(*v, path + ".uy");
+        if (!ds.ux && !ds.uy) fail(&t, "[[dirichlet]] on group '" + ds.group + "' needs 'ux' or 'uy' (" + path + ")");
+        c.dirichlet.push_back(std::move(ds));
+      }
+    }
+
+    const toml::node& par_node = required(root, "", "parameter");
+    const toml::table& par = table(par_node, "parameter");
+    check_keys(par, "parameter",
+               {"name", "kind", "domain", "reference", "body", "center", "training", "verification"});
+    ParameterSpec& p = c.parameter;
+    p.name = string(required(par, "parameter", "name"), "parameter.name");
+    const toml::node& kind = required(par, "parameter", "kind");
+    const std::string kind_name = string(kind, "parameter.kind");
+    try {
+      p.kind = parameter_kind_from_string(kind_name);
+    } catch (const Error&) {
+      fail(&kind, "key 'parameter.kind' must be dirichlet-scale or body-scaling, got '" + kind_name + "'");
+    }
+    const std::vector<double> domain = numbers(required(par, "parameter", "domain"), "parameter.domain", 2);
+    p.min = domain[0];
+    p.max = domain[1];
+    const toml::node* body = par.get("body");
+    const toml::node* center = par.get("center");
+    const toml::node* reference = par.get("reference");
+    if (p.kind == ParameterKind::BodyScaling) {
+      const toml::node& b = required(par, "parameter", "body");
+      const std::string bs = string(b, "parameter.body");
+      if (bs != "slave" && bs != "master") fail(&b, "key 'parameter.body' must be slave or master, got '" + bs + "'");
+      p.body = bs == "slave" ? 0 : 1;
+      p.center = vector2(required(par, "parameter", "center"), "parameter.center");
+      p.reference = number(required(par, "parameter", "reference"), "parameter.reference");
+    } else {
+      for (const toml::node* n : {body, center}) {
+        if (n != nullptr) fail(n, "keys 'parameter.body' and 'parameter.center' need kind = \"body-scaling\"");
+      }
+      p.reference = reference != nullptr ? number(*reference, "parameter.reference") : p.min;
+    }
+    const toml::node& training = required(par, "parameter", "training");
+    p.sets.push_back({"training", parameter_set(training, "parameter.training")});
+    if (training.is_table()) snap_to_domain(p.sets.back().values, p.min, p.max);
+    if (const toml::node* v = par.get("verification")) {
+      p.sets.push_back({"verification", parameter_set(*v, "parameter.verification")});
+      if (v->is_table()) snap_to_domain(p.sets.back().values, p.min, p.max);
+    } else {
+      p.sets.push_back({"verification", midpoints(p.sets.front().values)});
+    }
+    try {
+      check_case_spec(c);
+    } catch (const Error& e) {
+      fail(nullptr, e.what());
+    }
+    return c;
+  }
+
+ private:
+  std::string origin_;
+  fs::path base_dir_;
+};
+
+// TOML text of a double: shortest round-trip form, always a float literal.
+std::string number_text(double x) {
+  require(std::isfinite(x), "to_toml: non-finite value");
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  std::string s(buf, r.ptr);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string quoted(const std::string& s) {
+  std::ostringstream os;
+  os << '"';
+  for (const char ch : s) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      os << '\\' << ch;
+    } else if (u < 0x20 || u == 0x7f) {
+      static const char* hex = "0123456789ABCDEF";
+      os << "\\u00" << hex[u >> 4] << hex[u & 15];
+    } else {
+      os << ch;
+    }
+  }
+  os << '"';
+  return os.str();
+}
+
+std::string list_text(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number_text(v[i]);
+  return s + "]";
+}
+
+std::string affine_text(const AffineValue& v) {
+  if (v.b == 0.0) return number_text(v.a);
+  return "{ a = " + number_text(v.a) + ", b = " + number_text(v.b) + " }";
+}
+
+bool same_value(const std::optional<AffineValue>& a, const std::optional<AffineValue>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || (a->a == b->a && a->b == b->b);
+}
+
+}  // namespace
+
+CaseSpec case_from_toml_string(const std::string& text, const std::string& origin) {
+  fs::path base = fs::path(origin).parent_path();
+  if (base.empty()) base = fs::current_path();
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << origin << ":" << e.source().begin.line << ":" << e.source().begin.column << ": TOML syntax error: "
+       << e.description();
+    throw Error(os.str());
+  }
+  return Reader(origin, base).read(root);
+}
+
+CaseSpec case_from_toml_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  require(in.good() && fs::is_regular_file(path), "cannot open case file " + path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return case_from_toml_string(ss.str(), path);
+}
+
+std::string to_toml(const CaseSpec& c) {
+  check_case_spec(c);
+  std::ostringstream os;
+  os << "# contactrb case (docs/cases.md)\n";
+  os << "name = " << quoted(c.name) << "\n";
+  if (!c.description.empty()) os << "description = " << quoted(c.description) << "\n";
+  os << "constraint = " << quoted(contact::to_string(c.constraint)) << "\n\n";
+  os << "[mesh]\n";
+  if (!c.mesh.generator.empty()) {
+    os << "generator = " << quoted(c.mesh.generator) << "\n";
+  } else {
+    os << "file = " << quoted(c.mesh.msh_file) << "\n";
+  }
+  for (int i = 0; i < 2; ++i) {
+    const BodySpec& b = c.bodies[static_cast<std::size_t>(i)];
+    os << "\n[" << (i == 0 ? "slave" : "master") << "]\n";
+    if (c.mesh.generator.empty()) {
+      os << "body = " << quoted(c.mesh.body_groups[static_cast<std::size_t>(i)]) << "\n";
+      os << "boundary = " << quoted(i == 0 ? c.mesh.slave_group : c.mesh.master_group) << "\n";
+    }
+    os << "E = " << number_text(b.E) << "\nnu = " << number_text(b.nu) << "\n";
+    if (!b.load.isZero(0.0)) os << "load = [" << number_text(b.load.x()) << ", " << number_text(b.load.y()) << "]\n";
+  }
+  for (const DirichletSpec& d : c.dirichlet) {
+    os << "\n[[dirichlet]]\ngroup = " << quoted(d.group) << "\n";
+    if (d.ux) os << "ux = " << affine_text(*d.ux) << "\n";
+    if (d.uy) os << "uy = " << affine_text(*d.uy) << "\n";
+  }
+  const ParameterSpec& p = c.parameter;
+  os << "\n[parameter]\nname = " << quoted(p.name) << "\nkind = " << quoted(to_string(p.kind)) << "\n"
+     << "domain = [" << number_text(p.min) << ", " << number_text(p.max) << "]\n"
+     << "reference = " << number_text(p.reference) << "\n";
+  if (p.kind == ParameterKind::BodyScaling) {
+    os << "body = " << quoted(p.body == 0 ? "slave" : "master") << "\n"
+       << "center = [" << number_text(p.center.x()) << ", " << number_text(p.center.y()) << "]\n";
+  }
+  for (const char* set : {"training", "verification"}) {
+    if (p.has_set(set)) os << set << " = " << list_text(p.set(set)) << "\n";
+  }
+  for (const ParameterSet& s : p.sets) {
+    require(s.name == "training" || s.name == "verification",
+            "to_toml: parameter set '" + s.name + "' cannot be written (only training and verification)");
+  }
+  return os.str();
+}
+
+bool same_case(const CaseSpec& a, const CaseSpec& b) {
+  if (a.name != b.name || a.description != b.description || a.constraint != b.constraint) return false;
+  if (a.mesh.generator != b.mesh.generator || a.mesh.msh_file != b.mesh.msh_file ||
+      a.mesh.body_groups != b.mesh.body_groups || a.mesh.slave_group != b.mesh.slave_group ||
+      a.mesh.master_group != b.mesh.master_group) {
+    return false;
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (a.bodies[i].E != b.bodies[i].E || a.bodies[i].nu != b.bodies[i].nu || a.bodies[i].load != b.bodies[i].load) {
+      return false;
+    }
+  }
+  if (a.dirichlet.size() != b.dirichlet.size()) return false;
+  for (std::size_t i = 0; i < a.dirichlet.size(); ++i) {
+    const DirichletSpec& x = a.dirichlet[i];
+    const DirichletSpec& y = b.dirichlet[i];
+    if (x.group != y.group || !same_value(x.ux, y.ux) || !same_value(x.uy, y.uy)) return false;
+  }
+  const ParameterSpec& p = a.parameter;
+  const ParameterSpec& q = b.parameter;
+  if (p.name != q.name || p.kind != q.kind || p.min != q.min || p.max != q.max || p.reference != q.reference) {
+    return false;
+  }
+  if (p.kind == ParameterKind::BodyScaling && (p.body != q.body || p.center != q.center)) return false;
+  if (p.sets.size() != q.sets.size()) return false;
+  for (std::size_t i = 0; i < p.sets.size(); ++i) {
+    if (p.sets[i].name != q.sets[i].name || p.sets[i].values != q.sets[i].values) return false;
+  }
+  return true;
+}
+
+}  // namespace contactrb::cases

@@ -1,0 +1,85 @@
+#pragma once
+// Snapshot files (HDF5): the high-fidelity solutions of one case over one parameter set,
+// with everything the offline stage needs (POD of u_0, the dual cone of lambda, the EIM of
+// the gap and of the contact map on the contact-surface DOFs). Layout: docs/user-guide.md,
+// "snapshots".
+//
+// Writing goes to a temporary file next to the target that is renamed over it at the end;
+// the root attribute `complete` is written last. A reader therefore never takes an
+// interrupted run for a finished one.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace contactrb::io {
+
+inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
+inline constexpr int kSnapshotFormatVersion = 1;
+
+// The outcome of one HF solve at one parameter value. A failed solve keeps whatever the
+// solver returned (a non-converged solve: its last iterate; an exception: no arrays).
+struct Snapshot {
+  double mu = 0.0;
+  bool converged = false;
+  std::string status;   // solve::to_string(KacanovStatus) ("converged", "max_iterations",
+                        // "step_failed") or "exception" (building or solving threw)
+  std::string message;  // why it failed (empty when converged)
+  int iterations = 0;   // Kacanov iterations
+  double time_s = 0.0;      // problem construction + HF setup + solve, wall clock
+  double cpu_time_s = 0.0;  // the same, CPU time of the thread that did it (load independent)
+
+  Eigen::VectorXd u0;      // free part of the displacement (num_free, order of free_dofs)
+  Eigen::VectorXd u;       // total displacement u_D + u_0 (num_dofs)
+  Eigen::VectorXd lambda;  // contact pressures, one per constraint row (R)
+  Eigen::MatrixXd K;       // contact rows K(w) on the contact DOF columns (R x n_c)
+  Eigen::VectorXd g;       // gap rows g(w) (R)
+  Eigen::VectorXd weight;  // |I_r| (R): depends on mu when the slave body is mapped
+  Eigen::VectorXd gap_pointwise;  // pointwise gap g(w)_s of the slave nodes (S)
+};
+
+// A snapshot set: the case, the parameter set and one Snapshot per parameter value,
+// in the order of the set.
+struct SnapshotSet {
+  // Case specification: for a built-in case, case_spec is its name (kind "builtin");
+  // for any other case, its TOML text (kind "toml", cases::to_toml: self-contained, read
+  // back by cases::case_from_toml_string).
+  std::string case_name;
+  std::string case_kind;  // "builtin" | "toml"
+  std::string case_spec;
+  int level = 0;           // mesh refinement level (0: the paper's mesh)
+  std::string constraint;  // "collocation" | "lac" | "lac-simpson"
+
+  std::string parameter_name;
+  double parameter_min = 0.0;
+  double parameter_max = 0.0;
+  std::string set_name;  // "training", "verification" or "custom"
+
+  // Kacanov settings the solves used.
+  double kacanov_alpha = 0.0;
+  double kacanov_tolerance = 0.0;
+  int kacanov_max_iterations = 0;
+
+  // Discretization, identical for every mu (one reference mesh, mapped).
+  int num_dofs = 0;
+  std::vector<int> free_dofs;     // global index of each entry of u0
+  std::vector<int> contact_dofs;  // global index of each column of K (both components of
+                                  // every slave and master node, ascending)
+  std::vector<int> slave;         // slave chain (mesh node indices)
+  std::vector<int> master;        // master chain (closed: first node repeated at the end)
+
+  std::vector<Snapshot> snapshots;
+
+  int num_failed() const;
+};
+
+// Writes `set` to `path` atomically (temporary file + rename). Throws contactrb::Error
+// naming `path` when the file cannot be written or the set is inconsistent (array sizes
+// against num_dofs, free_dofs, contact_dofs).
+void write_snapshot_file(const SnapshotSet& set, const std::string& path);
+
+// Reads a file written by write_snapshot_file. Throws contactrb::Error naming `path` for a
+// missing file, a file that is not HDF5, an HDF5 file of another format, another format
+// version, a truncated or damaged file, or an incomplete one (an interrupted write).
+SnapshotSet read_snapshot_file(const std::string& path);
+
+}  // namespace contactrb::io

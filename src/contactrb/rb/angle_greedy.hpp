@@ -1,0 +1,43 @@
+#pragma once
+// Angle-greedy (paper Section 5, after Algorithm 2): line 5 of Algorithm 2 with the LINEAR
+// projection onto W_{n-1} = span{lambda(mu_1), ..., lambda(mu_{n-1})} in the Lambda norm. The
+// generators are the selected snapshots; the cone actually used online is their span+, whose
+// (true) projection error is reported beside the steering linear error (Fig. 19).
+#include <Eigen/Core>
+#include <vector>
+
+#include "contactrb/rb/dual_cone.hpp"
+#include "contactrb/rb/greedy.hpp"
+
+namespace contactrb::rb {
+
+// evaluate(): |lambda(mu) - Pi_{W_n}(lambda(mu))|_Lambda for every snapshot (0 for a selected one).
+// Keeps the residuals of all snapshots and a Lambda-orthonormal basis of W_n (Gram-Schmidt with
+// one re-orthogonalization), so extend() costs O(R_hf P) and evaluate() O(R_hf P).
+// Borrows `snapshots` (R_hf x P), which must outlive the object.
+class AngleGreedyProblem final : public GreedyProblem {
+ public:
+  explicit AngleGreedyProblem(const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights = {});
+  int training_size() const override { return static_cast<int>(residuals_.cols()); }
+  Eigen::VectorXd evaluate() override;
+  void extend(int index) override;
+  Eigen::VectorXd reference_norms() const override { return norms_; }
+
+  const std::vector<int>& selected() const { return selected_; }
+  const Eigen::MatrixXd& generators() const { return generators_; }
+
+ private:
+  const Eigen::MatrixXd& snapshots_;
+  Eigen::VectorXd weights_;    // empty: identity
+  Eigen::MatrixXd residuals_;  // lambda(mu) - Pi_{W_n} lambda(mu), one column per snapshot
+  Eigen::MatrixXd basis_;      // Lambda-orthonormal basis of W_n
+  Eigen::MatrixXd generators_;
+  Eigen::VectorXd norms_;
+  std::vector<int> selected_;
+};
+
+// The angle-greedy from the empty space. errors (true cone errors) are filled when
+// settings.cone_history; linear_errors always.
+DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {});
+
+}  // namespace contactrb::rb

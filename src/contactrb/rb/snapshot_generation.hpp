@@ -1,0 +1,83 @@
+#pragma once
+// High-fidelity snapshots over a parameter set, in parallel (DESIGN.md data flow: "snapshot
+// store over the training set (parallel over mu)").
+//
+// J worker threads take parameter indices from one shared atomic counter; each builds its
+// own problem and HFSolver, and writes its result to the slot of that index. The HF solver
+// holds no shared mutable state, so the stored data do not depend on J (only the timings
+// do). A failed solve (not converged, or an exception while building or solving) is
+// recorded with its status and message, never dropped.
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/hf/contact_problem.hpp"
+#include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+
+namespace contactrb::rb {
+
+// Builds the HF problem at mu. Called concurrently from the worker threads: it must not
+// modify shared state (capture immutable data only).
+using ProblemFactory = std::function<hf::ContactProblem(double mu)>;
+
+// What to compute, and the metadata the snapshot file records about it.
+struct SnapshotRequest {
+  std::string case_name;
+  std::string case_kind = "builtin";  // "builtin" | "toml"
+  std::string case_spec;              // the case name (builtin) or the TOML text
+  int level = 0;
+  std::string parameter_name;
+  double parameter_min = 0.0;
+  double parameter_max = 0.0;
+  std::string set_name;
+  std::vector<double> mu;  // the parameter values, in the order of the output
+  ProblemFactory make_problem;
+  hf::HFSettings settings;
+};
+
+// A request for a case specification over one of its named sets (or over `values` when
+// given, recorded as set "custom"). The reference mesh is generated once, here, and mapped
+// per mu by the factory (Gmsh is serialized and slow; mapping is cheap).
+// Throws contactrb::Error for an unknown set or a value outside the parameter domain.
+SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
+                                      std::optional<contact::Discretization> constraint = std::nullopt,
+                                      const std::optional<std::vector<double>>& values = std::nullopt);
+
+enum class ProgressMode {
+  Automatic,  // Terminal when the stream is stderr and stderr is a terminal, else Lines
+  Terminal,   // one status line rewritten with '\r'
+  Lines,      // one line per finished parameter value
+  None,
+};
+
+struct SnapshotRunOptions {
+  int jobs = 1;  // worker threads (>= 1; more than the number of values is capped)
+  ProgressMode progress = ProgressMode::None;
+  std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
+};
+
+// Runs the HF solves of `request` and returns the snapshot set (one Snapshot per value of
+// request.mu, in order). Throws contactrb::Error for jobs < 1, an empty set, a missing
+// factory, or solvers that disagree on the discretization (different DOF maps or contact
+// chains at different mu: the snapshots would not live in one space).
+io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const SnapshotRunOptions& options = {});
+
+// Summary figures of a snapshot set (for the command line and the bench). Iteration
+// figures are over the converged solves (0 when none converged).
+struct SnapshotSummary {
+  int solves = 0;
+  int failures = 0;
+  int iterations_min = 0;
+  double iterations_median = 0.0;
+  int iterations_max = 0;
+  double time_total_s = 0.0;      // sum of the per-solve wall times (problem, HF setup, solve)
+  double cpu_time_total_s = 0.0;  // sum of the per-solve CPU times
+};
+SnapshotSummary summarize(const io::SnapshotSet& set);
+
+}  // namespace contactrb::rb

@@ -1,0 +1,89 @@
+#pragma once
+// Helpers of the snapshot tests: bitwise comparison of snapshot sets, temporary directories.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "contactrb/io/snapshot_file.hpp"
+
+namespace contactrb::test {
+
+// Same shape and the same bytes (so -0.0 != 0.0 and NaN == NaN with the same payload).
+template <typename Derived>
+bool same_bits(const Eigen::DenseBase<Derived>& a, const Eigen::DenseBase<Derived>& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  const typename Derived::PlainObject pa = a, pb = b;
+  return pa.size() == 0 || std::memcmp(pa.data(), pb.data(), sizeof(double) * static_cast<std::size_t>(pa.size())) == 0;
+}
+
+// Every array, status and count; timings only when `with_timings`.
+inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b, bool with_timings) {
+  EXPECT_EQ(a.case_name, b.case_name);
+  EXPECT_EQ(a.case_kind, b.case_kind);
+  EXPECT_EQ(a.case_spec, b.case_spec);
+  EXPECT_EQ(a.level, b.level);
+  EXPECT_EQ(a.constraint, b.constraint);
+  EXPECT_EQ(a.parameter_name, b.parameter_name);
+  EXPECT_EQ(a.parameter_min, b.parameter_min);
+  EXPECT_EQ(a.parameter_max, b.parameter_max);
+  EXPECT_EQ(a.set_name, b.set_name);
+  EXPECT_EQ(a.kacanov_alpha, b.kacanov_alpha);
+  EXPECT_EQ(a.kacanov_tolerance, b.kacanov_tolerance);
+  EXPECT_EQ(a.kacanov_max_iterations, b.kacanov_max_iterations);
+  EXPECT_EQ(a.num_dofs, b.num_dofs);
+  EXPECT_EQ(a.free_dofs, b.free_dofs);
+  EXPECT_EQ(a.contact_dofs, b.contact_dofs);
+  EXPECT_EQ(a.slave, b.slave);
+  EXPECT_EQ(a.master, b.master);
+  ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
+  for (std::size_t i = 0; i < a.snapshots.size(); ++i) {
+    const io::Snapshot& x = a.snapshots[i];
+    const io::Snapshot& y = b.snapshots[i];
+    SCOPED_TRACE("snapshot " + std::to_string(i));
+    EXPECT_EQ(std::memcmp(&x.mu, &y.mu, sizeof(double)), 0);
+    EXPECT_EQ(x.converged, y.converged);
+    EXPECT_EQ(x.status, y.status);
+    EXPECT_EQ(x.message, y.message);
+    EXPECT_EQ(x.iterations, y.iterations);
+    if (with_timings) {
+      EXPECT_EQ(x.time_s, y.time_s);
+      EXPECT_EQ(x.cpu_time_s, y.cpu_time_s);
+    }
+    EXPECT_TRUE(same_bits(x.u0, y.u0));
+    EXPECT_TRUE(same_bits(x.u, y.u));
+    EXPECT_TRUE(same_bits(x.lambda, y.lambda));
+    EXPECT_TRUE(same_bits(x.K, y.K));
+    EXPECT_TRUE(same_bits(x.g, y.g));
+    EXPECT_TRUE(same_bits(x.weight, y.weight));
+    EXPECT_TRUE(same_bits(x.gap_pointwise, y.gap_pointwise));
+  }
+}
+
+// A fresh temporary directory per test, removed at the end.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() /
+              ("contactrb_snapshots_" + name + "_" + std::to_string(static_cast<long>(::getpid())))) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace contactrb::test
