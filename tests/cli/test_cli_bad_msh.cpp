@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
-#include "test_dir.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli_runner.hpp"
-#include "test_dir.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;

@@ -37,50 +37,51 @@ TEST(ContactPatch, MatchingMeshesBothDiscretizationsExact) {
   }
 }
 
-TEST(ContactPatch, NonMatchingLacUniformPressure) {
-  hf::HFSolver solver(patch_problem(contact::Discretization::LAC, 8, 11));
+namespace {
+struct PatchResult {
+  hf::HFSolution solution;
+  double worst = 0.0;  // max_r |lambda_r - p| / p
+};
+// Solves the non-matching (8 / 11 cells) patch problem to round-off.
+PatchResult solve_non_matching(contact::Discretization d) {
+  hf::HFSolver solver(patch_problem(d, 8, 11));
   hf::HFSettings s;
   s.kacanov.alpha = 1.0;
   s.kacanov.tolerance = 1e-12;
-  const hf::HFSolution sol = solver.solve(s);
-  ASSERT_TRUE(sol.converged) << sol.message;
+  PatchResult r{solver.solve(s), 0.0};
   const double p = exact_pressure();
-  double worst = 0.0;
-  for (int r = 0; r < sol.lambda.size(); ++r) worst = std::max(worst, std::abs(sol.lambda(r) - p) / p);
-  RecordProperty("lac_max_relative_pressure_error", std::to_string(worst));
-  EXPECT_LT(worst, 1e-10);
-  EXPECT_NEAR(sol.contact_force, p * 1.0, 1e-10 * p);
-  EXPECT_LT(sol.gap_violation, 1e-12);
+  for (int i = 0; i < r.solution.lambda.size(); ++i) {
+    r.worst = std::max(r.worst, std::abs(r.solution.lambda(i) - p) / p);
+  }
+  return r;
+}
+}  // namespace
+
+TEST(ContactPatch, NonMatchingLacUniformPressure) {
+  const PatchResult r = solve_non_matching(contact::Discretization::LAC);
+  ASSERT_TRUE(r.solution.converged) << r.solution.message;
+  const double p = exact_pressure();
+  EXPECT_LT(r.worst, 1e-10);
+  EXPECT_NEAR(r.solution.contact_force, p * 1.0, 1e-10 * p);
+  EXPECT_LT(r.solution.gap_violation, 1e-12);
 }
 
 TEST(ContactPatch, NonMatchingCollocationReported) {
-  hf::HFSolver solver(patch_problem(contact::Discretization::Collocation, 8, 11));
-  hf::HFSettings s;
-  s.kacanov.alpha = 1.0;
-  s.kacanov.tolerance = 1e-12;
-  const hf::HFSolution sol = solver.solve(s);
-  ASSERT_TRUE(sol.converged) << sol.message;
-  const double p = exact_pressure();
-  double worst = 0.0;
-  for (int r = 0; r < sol.lambda.size(); ++r) worst = std::max(worst, std::abs(sol.lambda(r) - p) / p);
-  std::printf("[ report ] collocation, non-matching 8/11 cells: max relative pressure error %.3e\n", worst);
-  EXPECT_LT(sol.kkt.max(), 1e-10);
-  EXPECT_LT(sol.gap_violation, 1e-12);
+  const PatchResult r = solve_non_matching(contact::Discretization::Collocation);
+  ASSERT_TRUE(r.solution.converged) << r.solution.message;
+  std::printf("[ report ] collocation, non-matching 8/11 cells: max relative pressure error %.3e\n", r.worst);
+  EXPECT_GT(r.worst, 1e-3);  // not consistent on non-matching meshes (docs/contact.md)
+  EXPECT_LT(r.solution.kkt.max(), 1e-10);
+  EXPECT_LT(r.solution.gap_violation, 1e-12);
 }
 
 TEST(ContactPatch, NonMatchingLacSimpsonReported) {
-  // The paper's Simpson rule (62) on the slave nodes: nodal weights h/3, 4h/3 for a uniform
+  // The paper's Simpson rule (62) on the slave nodes: nodal weights 2h/3, 4h/3 for a uniform
   // pressure, master seen only at the slave nodes' projections; not consistent for P1.
-  hf::HFSolver solver(patch_problem(contact::Discretization::LACSimpson, 8, 11));
-  hf::HFSettings s;
-  s.kacanov.alpha = 1.0;
-  s.kacanov.tolerance = 1e-12;
-  const hf::HFSolution sol = solver.solve(s);
-  ASSERT_TRUE(sol.converged) << sol.message;
-  const double p = exact_pressure();
-  double worst = 0.0;
-  for (int r = 0; r < sol.lambda.size(); ++r) worst = std::max(worst, std::abs(sol.lambda(r) - p) / p);
+  const PatchResult r = solve_non_matching(contact::Discretization::LACSimpson);
+  ASSERT_TRUE(r.solution.converged) << r.solution.message;
   std::printf("[ report ] lac-simpson, non-matching 8/11 cells: max relative pressure error %.3e, "
-              "pointwise gap violation %.3e\n", worst, sol.gap_violation);
-  EXPECT_LT(sol.kkt.max(), 1e-10);
+              "pointwise gap violation %.3e\n", r.worst, r.solution.gap_violation);
+  EXPECT_GT(r.worst, 1e-3);
+  EXPECT_LT(r.solution.kkt.max(), 1e-10);
 }

@@ -11,7 +11,7 @@
 #include "contactrb/io/atomic_file.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
-#include "test_dir.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::Error;

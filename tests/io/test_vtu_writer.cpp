@@ -15,7 +15,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/vtu_writer.hpp"
 #include "contactrb/mesh/structured.hpp"
-#include "test_dir.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::Error;

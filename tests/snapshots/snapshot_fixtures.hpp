@@ -2,6 +2,8 @@
 // Helpers of the snapshot tests: bitwise comparison of snapshot sets, temporary directories.
 #include <gtest/gtest.h>
 
+#include "support/temp_dir.hpp"
+
 #include <Eigen/Core>
 #include <cstring>
 #include <filesystem>
@@ -64,26 +66,6 @@ inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b,
   }
 }
 
-// A fresh temporary directory per test, removed at the end.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("contactrb_snapshots_" + name + "_" + std::to_string(static_cast<long>(::getpid())))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  const std::filesystem::path& path() const { return path_; }
 
- private:
-  std::filesystem::path path_;
-};
 
 }  // namespace contactrb::test

@@ -1,7 +1,8 @@
 #pragma once
-// A fresh temporary directory per test, removed at the end.
+// A fresh temporary directory per test, removed at the end (shared by the test suites).
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <unistd.h>
 
 namespace contactrb::test {
@@ -21,6 +22,7 @@ class TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   const std::filesystem::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
 
  private:
   std::filesystem::path path_;
