@@ -147,6 +147,10 @@ TEST(DualCone, InvalidInputThrows) {
   s = {};
   s.greedy.tolerance = -1.0;
   EXPECT_THROW(build_cpg(MatrixXd::Ones(4, 3), s), contactrb::Error);
-  CPGProblem p(MatrixXd::Ones(4, 3));
+  const MatrixXd ones = MatrixXd::Ones(4, 3);
+  CPGProblem p(ones);
   EXPECT_THROW(p.extend(3), contactrb::Error);
+  EXPECT_THROW(p.extend(-1), contactrb::Error);
+  AngleGreedyProblem a(ones);
+  EXPECT_THROW(a.extend(3), contactrb::Error);
 }

@@ -18,6 +18,8 @@ namespace contactrb::rb {
 class AngleGreedyProblem final : public GreedyProblem {
  public:
   explicit AngleGreedyProblem(const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights = {});
+  // The snapshots are borrowed: a temporary would dangle.
+  AngleGreedyProblem(const Eigen::MatrixXd&& snapshots, const Eigen::VectorXd& weights = {}) = delete;
   int training_size() const override { return static_cast<int>(residuals_.cols()); }
   Eigen::VectorXd evaluate() override;
   void extend(int index) override;

@@ -19,6 +19,9 @@ class CPGProblem final : public GreedyProblem {
  public:
   CPGProblem(const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights = {},
              const solve::QPSettings& qp = {});
+  // The snapshots are borrowed: a temporary would dangle.
+  CPGProblem(const Eigen::MatrixXd&& snapshots, const Eigen::VectorXd& weights = {},
+             const solve::QPSettings& qp = {}) = delete;
   int training_size() const override { return static_cast<int>(snapshots_.cols()); }
   Eigen::VectorXd evaluate() override;
   void extend(int index) override;
