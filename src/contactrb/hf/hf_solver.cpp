@@ -26,12 +26,12 @@ struct HFSolver::Impl {
   contact::ContactQuadrature quadrature;
   Eigen::SparseMatrix<double> A;  // global
   Eigen::VectorXd f;              // global
+  Eigen::SparseMatrix<double> A00_matrix;  // A restricted to the free DOFs
   std::unique_ptr<ContactCondensation> A00;
   Eigen::VectorXd b;              // f_0 - (A u_D)_0
   Eigen::VectorXd z;              // A_00^-1 b
   std::vector<int> contact_free;  // free indices of contact-boundary DOFs
   std::vector<int> free_to_contact;  // free index -> position in contact_free or -1
-  Eigen::MatrixXd S;              // (A_00^-1)[contact_free, contact_free]
   Eigen::VectorXd z_c;
   double setup_time = 0.0;
 
@@ -41,8 +41,6 @@ struct HFSolver::Impl {
     g_lift = rows.g - rows.K * lift;
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(static_cast<std::size_t>(rows.K.nonZeros()));
-    const std::vector<int>& free = dofs.free_dofs();
-    (void)free;
     for (int r = 0; r < rows.K.outerSize(); ++r) {
       for (RowSparse::InnerIterator it(rows.K, r); it; ++it) {
         const int fi = global_to_free[static_cast<std::size_t>(it.col())];
@@ -106,8 +104,9 @@ HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
   }
   // S = (A_00^-1)[c, c] from the factorization with the contact DOFs ordered last.
   const int nc = static_cast<int>(m.contact_free.size());
-  m.A00 = std::make_unique<ContactCondensation>(m.dofs.restrict_matrix(m.A), m.contact_free);
-  m.S = m.A00->contact_inverse();
+  m.A00_matrix = m.dofs.restrict_matrix(m.A);
+  m.A00 = std::make_unique<ContactCondensation>(m.A00_matrix, m.contact_free);
+
   m.z = m.A00->solve(m.b);
   m.z_c.resize(nc);
   for (int i = 0; i < nc; ++i) m.z_c(i) = m.z(m.contact_free[static_cast<std::size_t>(i)]);
@@ -150,7 +149,7 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
     Eigen::VectorXd g_lift;
     m.restrict_rows(rows, Kc, g_lift);
     // Dual QP: min 1/2 l' Q l - c' l, Q = K_0 A_00^-1 K_0', c = K_0 A_00^-1 b - (g - K u_D).
-    const Eigen::MatrixXd KS = Kc * m.S;
+    const Eigen::MatrixXd KS = Kc * m.A00->contact_inverse();  // S = (A_00^-1)[c, c]
     Eigen::MatrixXd Q = KS * Kc.transpose();
     Q = 0.5 * (Q + Q.transpose());
     const Eigen::VectorXd c = Kc * m.z_c - g_lift;
@@ -196,12 +195,11 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   sol.rows = std::move(last_rows);
 
   // KKT residuals of (u_bar, lambda_bar) for the linearized problem it solved.
-  const fem::SparseMatrix A00 = m.dofs.restrict_matrix(m.A);
   Eigen::VectorXd Kt_lambda = Eigen::VectorXd::Zero(m.dofs.num_free());
   const Eigen::VectorXd Ktl_c = last_Kc.transpose() * sol.lambda;
   for (int i = 0; i < Ktl_c.size(); ++i) Kt_lambda(m.contact_free[static_cast<std::size_t>(i)]) = Ktl_c(i);
   const double force_scale = std::max({m.b.norm(), Kt_lambda.norm(), 1e-300});
-  sol.kkt.stationarity = (A00 * sol.u0 + Kt_lambda - m.b).norm() / force_scale;
+  sol.kkt.stationarity = (m.A00_matrix * sol.u0 + Kt_lambda - m.b).norm() / force_scale;
   Eigen::VectorXd u0_c(static_cast<Eigen::Index>(m.contact_free.size()));
   for (int i = 0; i < u0_c.size(); ++i) u0_c(i) = sol.u0(m.contact_free[static_cast<std::size_t>(i)]);
   const Eigen::VectorXd slack = last_g_lift - last_Kc * u0_c;  // >= 0 when feasible
