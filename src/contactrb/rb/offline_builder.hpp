@@ -1,0 +1,96 @@
+#pragma once
+// The offline stage (Construction, in rbOOmit's terms): from a snapshot set and its case
+// specification to a ReducedModel (paper Section 5: (T1) EIM of gamma and kappa, (T2) POD,
+// (T3) dual cone; then the reduced arrays (49), (54)-(55)). Reassembles what it needs (the
+// reference mesh, the affine terms) from the CaseSpec; the result holds nothing of HF size
+// except contact-surface rows. The HF-size data needed to reconstruct fields are returned
+// apart (ReducedReconstruction), for tests, VTU output and error indicators.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/rb/dual_cone.hpp"
+#include "contactrb/rb/reduced_model.hpp"
+
+namespace contactrb::rb {
+
+enum class InnerProduct { Energy, H1 };
+const char* to_string(InnerProduct p);  // "energy" | "h1"
+
+struct OfflineSettings {
+  // POD (T2): absolute threshold eps_POD on the singular values, or a fixed N (>= 1) when
+  // pod_modes >= 0 (capped at the numerical rank).
+  double eps_pod = 1e-3;
+  int pod_modes = -1;
+  InnerProduct inner_product = InnerProduct::Energy;  // energy: A(reference mu) on the free DOFs
+  // Dual cone (T3): eps_DU absolute in the L2(Gamma^c) norm (58); dual_size >= 0 fixes R.
+  DualConeMethod dual_method = DualConeMethod::CPG;
+  double eps_du = 1e-3;
+  int dual_size = -1;
+  // EIM (T1): absolute ell-infinity tolerances; -1 sizes: no limit but the training set.
+  double eps_eim_k = 1e-6;
+  double eps_eim_g = 1e-6;
+  int eim_k_size = -1;
+  int eim_g_size = -1;
+  bool compression = true;  // Remark 7: drop the constraints never active on the training set
+};
+// Throws contactrb::Error naming the first invalid setting.
+void check_settings(const OfflineSettings& settings);
+
+struct OfflineReport {
+  Eigen::VectorXd singular_values;  // POD, all P
+  int N = 0;
+  int R_hf = 0;       // constraints before compression
+  int R_kept = 0;     // after
+  int R = 0;
+  std::vector<double> dual_errors;           // max_mu |lambda - Pi_{K_R} lambda|_Lambda against R
+  std::vector<double> dual_relative_errors;
+  std::string dual_status;
+  double dual_condition_number = 0.0;        // of the generators in the Lambda norm
+  int Mk = 0;
+  int Mg = 0;
+  std::vector<double> eim_kappa_errors;  // against M
+  std::vector<double> eim_gamma_errors;
+  std::string eim_kappa_status;
+  std::string eim_gamma_status;
+  // Wall times (s) of each step.
+  double assembly_s = 0.0;
+  double pod_s = 0.0;
+  double dual_s = 0.0;
+  double eim_kappa_s = 0.0;
+  double eim_gamma_s = 0.0;
+  double reduction_s = 0.0;  // the reduced arrays (49), (54)-(55)
+  double total_s = 0.0;
+};
+
+// Offline-side data to map a reduced solution back to the HF mesh (HF size: never online).
+struct ReducedReconstruction {
+  int num_dofs = 0;
+  std::vector<int> free_dofs;
+  Eigen::MatrixXd Theta;            // n_free x N_max
+  std::vector<Eigen::VectorXd> lift;  // J^D global lift vectors lift_k (num_dofs)
+  cases::AffineThetas thetas;
+  std::vector<int> kept_rows;
+  int num_constraints = 0;
+  Eigen::MatrixXd Xi;               // R_kept x R_max
+};
+
+struct OfflineResult {
+  ReducedModel model;
+  ReducedReconstruction reconstruction;
+  OfflineReport report;
+};
+
+// Throws contactrb::Error for a set with a failed snapshot, a set that does not match the spec
+// (DOF counts), or invalid settings.
+OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
+                                  const OfflineSettings& settings = {});
+
+// u = u_D(mu) + Theta[:, :N] u_hat on the HF DOFs (num_dofs), N = u_hat.size().
+Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, double mu, const Eigen::VectorXd& u_hat);
+// lambda = Xi[:, :R] lambda_hat on the kept rows, 0 on the dropped ones (R_hf), R = lambda_hat.size().
+Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& lambda_hat);
+
+}  // namespace contactrb::rb

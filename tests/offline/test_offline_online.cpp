@@ -1,0 +1,394 @@
+// Offline builder and online solver (issue 6, item 1): with nothing truncated the online
+// solution at a training mu reproduces the HF snapshot; leading sub-blocks equal a model built
+// at those sizes; truncation errors fall as the sizes grow; the model holds no HF-size array.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/rb/offline_builder.hpp"
+#include "contactrb/rb/online_solver.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
+
+namespace {
+
+using contactrb::io::SnapshotSet;
+using contactrb::rb::OfflineResult;
+using contactrb::rb::OfflineSettings;
+using contactrb::rb::OnlineSettings;
+using contactrb::rb::OnlineSizes;
+using contactrb::rb::OnlineSolver;
+
+constexpr double kTightTolerance = 1e-10;  // Kacanov eps on both sides (alpha = 1)
+
+const std::map<std::string, std::vector<double>>& verification_values() {
+  static const std::map<std::string, std::vector<double>> values{{"hertz-a", {0.18, 0.30, 0.42}},
+                                                                  {"hertz-b", {0.925, 1.005, 1.085}}};
+  return values;
+}
+
+const std::map<std::string, std::vector<double>>& training_values() {
+  static const std::map<std::string, std::vector<double>> values{
+      {"hertz-a", {0.15, 0.21, 0.27, 0.33, 0.39, 0.45}},
+      {"hertz-b", {0.905, 0.945, 0.985, 1.025, 1.065, 1.105}}};
+  return values;
+}
+
+// Snapshots of a case, generated once per test binary run.
+const SnapshotSet& snapshots(const std::string& name, bool verification = false) {
+  static std::map<std::string, std::unique_ptr<SnapshotSet>> cache;
+  auto& slot = cache[name + (verification ? "/verification" : "/training")];
+  if (!slot) {
+    contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
+        contactrb::cases::builtin_case_spec(name), "training", 0, std::nullopt,
+        verification ? verification_values().at(name) : training_values().at(name));
+    r.settings.kacanov.alpha = 1.0;
+    r.settings.kacanov.tolerance = kTightTolerance;
+    r.settings.kacanov.max_iterations = 500;
+    contactrb::rb::SnapshotRunOptions options;
+    options.jobs = 2;
+    slot = std::make_unique<SnapshotSet>(contactrb::rb::generate_snapshots(r, options));
+  }
+  return *slot;
+}
+
+OfflineSettings untruncated(bool compression) {
+  OfflineSettings s;
+  s.pod_modes = 1000;  // capped at the numerical rank: N = P
+  s.eps_du = 0.0;      // CPG until every snapshot lies in the cone
+  s.eps_eim_k = 0.0;   // EIM until exhausted
+  s.eps_eim_g = 0.0;
+  s.compression = compression;
+  return s;
+}
+
+OnlineSettings tight_online() {
+  OnlineSettings s;
+  s.kacanov = contactrb::solve::KacanovSettings{1.0, kTightTolerance, 500};
+  return s;
+}
+
+struct Errors {
+  double u = 0.0;
+  double lambda = 0.0;
+};
+
+// Relative errors of the online solution against the HF snapshot p.
+Errors compare(const OfflineResult& off, OnlineSolver& solver, const SnapshotSet& set, std::size_t p,
+               const OnlineSettings& settings) {
+  const contactrb::io::Snapshot& snap = set.snapshots[p];
+  const contactrb::rb::OnlineSolution sol = solver.solve(snap.mu, settings);
+  EXPECT_TRUE(sol.converged()) << "mu = " << snap.mu << ": " << sol.message;
+  const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
+  const Eigen::VectorXd lambda = contactrb::rb::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+  EXPECT_GE(sol.lambda_hat.minCoeff(), 0.0);
+  return {(u - snap.u).norm() / snap.u.norm(), (lambda - snap.lambda).norm() / snap.lambda.norm()};
+}
+
+class OfflineOnline : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(OfflineOnline, UntruncatedModelReproducesTrainingSnapshots) {
+  const SnapshotSet& set = snapshots(GetParam());
+  ASSERT_EQ(set.num_failed(), 0);
+  const auto spec = contactrb::cases::builtin_case_spec(GetParam());
+  for (bool compression : {true, false}) {
+    SCOPED_TRACE(compression ? "compression on" : "compression off");
+    const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(compression));
+    const auto& m = off.model;
+    EXPECT_EQ(m.N_max, static_cast<int>(set.snapshots.size()));
+    if (compression) {
+      EXPECT_LT(m.R_kept(), m.surface.num_constraints);
+    } else {
+      EXPECT_EQ(m.R_kept(), m.surface.num_constraints);
+    }
+    OnlineSolver solver(m);
+    double worst_u = 0.0, worst_l = 0.0;
+    for (std::size_t p = 0; p < set.snapshots.size(); ++p) {
+      const Errors e = compare(off, solver, set, p, tight_online());
+      worst_u = std::max(worst_u, e.u);
+      worst_l = std::max(worst_l, e.lambda);
+    }
+    // The online energy (49) + lift terms against 1/2 u'A u - f'u of the HF snapshot.
+    {
+      const auto reference = contactrb::cases::reference_mesh(spec, set.level);
+      const auto terms = contactrb::cases::assemble_affine_terms(spec, reference);
+      const auto th = contactrb::cases::theta_functions(spec);
+      const auto& snap = set.snapshots[3];
+      const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, snap.mu));
+      const Eigen::VectorXd f =
+          contactrb::cases::combine(terms.f, contactrb::cases::evaluate(th.f, snap.mu), set.num_dofs);
+      const double hf_energy = 0.5 * snap.u.dot(A * snap.u) - f.dot(snap.u);
+      const auto sol = solver.solve(snap.mu, tight_online());
+      EXPECT_NEAR(sol.energy, hf_energy, 1e-8 * std::abs(hf_energy));
+      EXPECT_NEAR(sol.contact_force, snap.lambda.dot(snap.weight), 1e-6 * snap.lambda.dot(snap.weight));
+    }
+    std::printf("[ %s ] %s N=%d R=%d Mk=%d Mg=%d R_kept=%d/%d: max rel err u %.3e, lambda %.3e\n",
+                GetParam().c_str(), compression ? "compressed" : "uncompressed", m.N_max, m.R_max, m.Mk_max,
+                m.Mg_max, m.R_kept(), m.surface.num_constraints, worst_u, worst_l);
+    EXPECT_LT(worst_u, 1e-6);
+    EXPECT_LT(worst_l, 1e-6);
+  }
+}
+
+TEST_P(OfflineOnline, UntruncatedAngleGreedyModelReproducesTrainingSnapshots) {
+  const SnapshotSet& set = snapshots(GetParam());
+  OfflineSettings s = untruncated(true);
+  s.dual_method = contactrb::rb::DualConeMethod::AngleGreedy;
+  s.inner_product = contactrb::rb::InnerProduct::H1;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  OnlineSolver solver(off.model);
+  for (std::size_t p = 0; p < set.snapshots.size(); p += 2) {
+    const Errors e = compare(off, solver, set, p, tight_online());
+    EXPECT_LT(e.u, 1e-6);
+    EXPECT_LT(e.lambda, 1e-6);
+  }
+}
+
+// Two offline settings, tolerances relative to the data's own scales; errors at parameter
+// values outside the training set (HF solves at the verification values).
+TEST_P(OfflineOnline, ErrorsFallAsOfflineTolerancesTighten) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const SnapshotSet& check = snapshots(GetParam(), true);
+  const auto spec = contactrb::cases::builtin_case_spec(GetParam());
+  const OfflineResult probe = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const double sigma1 = probe.report.singular_values(0);
+  const double lambda_scale = probe.report.dual_errors.front();
+  const double k_scale = probe.report.eim_kappa_errors.front();
+  const double g_scale = probe.report.eim_gamma_errors.front();
+  std::vector<double> worst;
+  for (double rel : {1e-1, 1e-4}) {
+    OfflineSettings s;
+    s.eps_pod = rel * sigma1;
+    s.eps_du = rel * lambda_scale;
+    s.eps_eim_k = rel * k_scale;
+    s.eps_eim_g = rel * g_scale;
+    const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, s);
+    OnlineSolver solver(off.model);
+    OnlineSettings settings;
+    settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 1000};
+    double w = 0.0;
+    for (std::size_t p = 0; p < check.snapshots.size(); ++p) w = std::max(w, compare(off, solver, check, p, settings).u);
+    std::printf("[ %s ] tolerances %.0e x scale: N=%d R=%d Mk=%d Mg=%d, max rel err u (verification) %.3e\n",
+                GetParam().c_str(), rel, off.model.N_max, off.model.R_max, off.model.Mk_max, off.model.Mg_max, w);
+    worst.push_back(w);
+  }
+  EXPECT_LT(worst[1], worst[0]);
+}
+
+// The restricted magic-point evaluation (only the slave nodes under the magic rows) against
+// the full contact-surface rows.
+TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
+  const SnapshotSet& set = snapshots(GetParam());
+  OfflineSettings s;
+  s.eps_pod = 0.0;
+  s.dual_size = 3;
+  s.eim_k_size = 4;
+  s.eim_g_size = 4;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  OnlineSolver solver(off.model);
+  OnlineSettings full;
+  full.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-6, 500};
+  full.restricted_rows = false;
+  OnlineSettings restricted = full;
+  restricted.restricted_rows = true;
+  for (const double mu : verification_values().at(GetParam())) {
+    const auto a = solver.solve(mu, full);
+    const auto b = solver.solve(mu, restricted);
+    ASSERT_EQ(a.status, b.status);
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
+    EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+  }
+}
+
+TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const auto spec = contactrb::cases::builtin_case_spec(GetParam());
+  const OfflineResult full = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  OfflineSettings small = untruncated(true);
+  small.pod_modes = 3;
+  small.dual_size = 2;
+  small.eim_k_size = 3;
+  small.eim_g_size = 3;
+  const OfflineResult part = contactrb::rb::build_reduced_model(set, spec, small);
+  ASSERT_EQ(part.model.N_max, 3);
+  ASSERT_EQ(part.model.R_max, 2);
+  OnlineSolver from_blocks(full.model, OnlineSizes{3, 2, 3, 3});
+  OnlineSolver from_part(part.model);
+  OnlineSettings settings;
+  settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 500};
+  const double mu = set.snapshots[2].mu;
+  const auto a = from_blocks.solve(mu, settings);
+  const auto b = from_part.solve(mu, settings);
+  ASSERT_EQ(a.status, b.status);
+  // POD modes are defined up to sign: compare the reconstructions.
+  const Eigen::VectorXd ua = contactrb::rb::reconstruct_displacement(full.reconstruction, mu, a.u_hat);
+  const Eigen::VectorXd ub = contactrb::rb::reconstruct_displacement(part.reconstruction, mu, b.u_hat);
+  EXPECT_LT((ua - ub).norm(), 1e-8 * ub.norm());
+  EXPECT_NEAR(a.energy, b.energy, 1e-8 * std::abs(b.energy));
+}
+
+TEST_P(OfflineOnline, ErrorsFallAsSizesGrow) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const auto spec = contactrb::cases::builtin_case_spec(GetParam());
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const auto& m = off.model;
+  OnlineSettings settings;
+  settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 1000};
+  std::vector<OnlineSizes> levels{{2, 1, std::min(2, m.Mk_max), std::min(2, m.Mg_max)},
+                                  {m.N_max, m.R_max, m.Mk_max, m.Mg_max}};
+  std::vector<double> worst;
+  for (const OnlineSizes& s : levels) {
+    OnlineSolver solver(m, s);
+    double w = 0.0;
+    // Odd training points, so the loose model is not exact by construction.
+    for (std::size_t p = 1; p < set.snapshots.size(); p += 2) w = std::max(w, compare(off, solver, set, p, settings).u);
+    std::printf("[ %s ] N=%d R=%d Mk=%d Mg=%d: max rel err u %.3e\n", GetParam().c_str(), s.N, s.R, s.Mk, s.Mg, w);
+    worst.push_back(w);
+  }
+  EXPECT_GT(worst[0], 10.0 * worst[1]);
+}
+
+TEST_P(OfflineOnline, ReportHoldsTheHistoriesAndTimes) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const OfflineResult off =
+      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), untruncated(true));
+  const auto& rep = off.report;
+  const auto& m = off.model;
+  EXPECT_EQ(rep.singular_values.size(), static_cast<Eigen::Index>(set.snapshots.size()));
+  EXPECT_EQ(rep.N, m.N_max);
+  EXPECT_EQ(rep.R, m.R_max);
+  EXPECT_EQ(rep.Mk, m.Mk_max);
+  EXPECT_EQ(rep.Mg, m.Mg_max);
+  ASSERT_EQ(rep.dual_errors.size(), static_cast<std::size_t>(rep.R + 1));
+  for (std::size_t i = 1; i < rep.dual_errors.size(); ++i) EXPECT_LE(rep.dual_errors[i], rep.dual_errors[i - 1]);
+  EXPECT_LE(rep.dual_errors.back(), 1e-10 * rep.dual_errors.front());
+  EXPECT_EQ(rep.eim_kappa_errors.size(), static_cast<std::size_t>(rep.Mk + 1));
+  EXPECT_EQ(rep.eim_gamma_errors.size(), static_cast<std::size_t>(rep.Mg + 1));
+  EXPECT_GE(rep.dual_condition_number, 1.0);
+  EXPECT_EQ(rep.R_kept, m.R_kept());
+  EXPECT_EQ(rep.R_hf, m.surface.num_constraints);
+  for (double t : {rep.assembly_s, rep.pod_s, rep.dual_s, rep.eim_kappa_s, rep.eim_gamma_s, rep.reduction_s}) {
+    EXPECT_GE(t, 0.0);
+    EXPECT_LE(t, rep.total_s);
+  }
+  std::printf("[ %s ] offline %.3f s (assembly %.3f, POD %.4f, dual %.4f, EIM k %.4f, EIM g %.4f, reduction %.4f)\n",
+              GetParam().c_str(), rep.total_s, rep.assembly_s, rep.pod_s, rep.dual_s, rep.eim_kappa_s, rep.eim_gamma_s,
+              rep.reduction_s);
+}
+
+TEST_P(OfflineOnline, ModelHoldsNoHighFidelitySizeArray) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const auto spec = contactrb::cases::builtin_case_spec(GetParam());
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const auto& m = off.model;
+  const int n_free = static_cast<int>(set.free_dofs.size());
+  const int n_c = static_cast<int>(set.contact_dofs.size());
+  ASSERT_LT(n_c, n_free / 4);  // the contact surface is a small part of the mesh
+  EXPECT_EQ(m.Theta_c.rows(), n_c);
+  EXPECT_EQ(m.lift_c.rows(), n_c);
+  EXPECT_EQ(m.Xi.rows(), m.R_kept());
+  EXPECT_LE(m.R_kept(), m.surface.num_constraints);
+  for (const auto& A : m.A_hat) EXPECT_EQ(A.rows(), m.N_max);
+  for (const auto& C : m.C_kappa) EXPECT_EQ(C.rows(), m.R_max);
+  EXPECT_EQ(m.surface.num_dofs(), n_c);
+  // Every array together is smaller than one HF displacement per reduced dimension.
+  EXPECT_LT(contactrb::rb::model_doubles(m), static_cast<long long>(n_c) * (m.N_max + m.R_max + m.J_lift() + 4) +
+                                                 50LL * (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1) *
+                                                     (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1));
+  std::printf("[ %s ] model: %lld doubles; HF: %d DOFs, %d free, %d contact DOFs\n", GetParam().c_str(),
+              contactrb::rb::model_doubles(m), set.num_dofs, n_free, n_c);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, OfflineOnline, ::testing::Values("hertz-a", "hertz-b"),
+                         [](const auto& info) { return info.param == "hertz-a" ? "HertzA" : "HertzB"; });
+
+TEST(OnlineSolver, RejectsSizesAboveTheMaximaAndMuOutsideTheDomain) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  const OfflineResult off =
+      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-a"), untruncated(true));
+  EXPECT_THROW(OnlineSolver(off.model, OnlineSizes{off.model.N_max + 1, -1, -1, -1}), contactrb::Error);
+  EXPECT_THROW(OnlineSolver(off.model, OnlineSizes{0, -1, -1, -1}), contactrb::Error);
+  OnlineSolver solver(off.model);
+  EXPECT_THROW(solver.solve(10.0), contactrb::Error);
+  contactrb::rb::ReducedModel broken = off.model;
+  broken.C_kappa.pop_back();
+  EXPECT_THROW(OnlineSolver{broken}, contactrb::Error);
+}
+
+TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
+  SnapshotSet set = snapshots("hertz-a");
+  const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
+  OfflineSettings bad;
+  bad.eps_pod = -1.0;
+  EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec, bad), contactrb::Error);
+  set.snapshots[1].converged = false;
+  EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec), contactrb::Error);
+}
+
+}  // namespace
+
+namespace {
+
+// LAC rows (exactly integrated, lac_integration.hpp) on the triangle-free contact-surface mesh,
+// a mapped slave body (ring radius): the untruncated model reproduces the training snapshots.
+TEST(OfflineOnlineRingBlock, UntruncatedLACModelReproducesTrainingSnapshots) {
+  const auto spec = contactrb::cases::builtin_case_spec("ring-block");
+  contactrb::rb::SnapshotRequest r =
+      contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::vector<double>{0.95, 1.0, 1.05, 1.1, 1.15});
+  r.settings.kacanov.alpha = 1.0;
+  r.settings.kacanov.tolerance = kTightTolerance;
+  contactrb::rb::SnapshotRunOptions options;
+  options.jobs = 2;
+  const SnapshotSet set = contactrb::rb::generate_snapshots(r, options);
+  ASSERT_EQ(set.num_failed(), 0) << set.snapshots[0].message;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  OnlineSolver solver(off.model);
+  double worst_u = 0.0, worst_l = 0.0;
+  for (std::size_t p = 0; p < set.snapshots.size(); ++p) {
+    const Errors e = compare(off, solver, set, p, tight_online());
+    worst_u = std::max(worst_u, e.u);
+    worst_l = std::max(worst_l, e.lambda);
+  }
+  std::printf("[ ring-block ] N=%d R=%d Mk=%d Mg=%d: max rel err u %.3e, lambda %.3e\n", off.model.N_max,
+              off.model.R_max, off.model.Mk_max, off.model.Mg_max, worst_u, worst_l);
+  EXPECT_LT(worst_u, 1e-6);
+  EXPECT_LT(worst_l, 1e-6);
+}
+
+// Dual cone by NMF (fixed R: truncated NMF) builds and solves; the time of one online query
+// at the paper's Kacanov settings is printed (no assertion on time: shared machines).
+TEST(OfflineOnlineNMF, TruncatedNMFModelSolves) {
+  const SnapshotSet& set = snapshots("hertz-b");
+  OfflineSettings s = untruncated(true);
+  s.dual_method = contactrb::rb::DualConeMethod::NMF;
+  s.dual_size = 3;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), s);
+  EXPECT_EQ(off.model.R_max, 3);
+  EXPECT_GE(off.model.Xi.minCoeff(), 0.0);
+  OnlineSolver solver(off.model);
+  OnlineSettings paper;
+  paper.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-3, 500};
+  std::vector<double> times;
+  for (int rep = 0; rep < 20; ++rep) {
+    const auto sol = solver.solve(set.snapshots[3].mu, paper);
+    ASSERT_TRUE(sol.converged()) << sol.message;
+    times.push_back(sol.time_s);
+  }
+  std::sort(times.begin(), times.end());
+  const Errors e = compare(off, solver, set, 3, paper);
+  std::printf("[ hertz-b NMF R=3 ] rel err u %.3e, lambda %.3e; online median %.1f us, %d Kacanov iterations\n",
+              e.u, e.lambda, 1e6 * times[times.size() / 2], solver.solve(set.snapshots[3].mu, paper).iterations);
+  EXPECT_LT(e.u, 5e-2);
+}
+
+}  // namespace

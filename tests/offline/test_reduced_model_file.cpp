@@ -1,0 +1,149 @@
+// Reduced model files: round trip (every array bit for bit, same online answer); a missing
+// file, a non-HDF5 file, a truncated file, a wrong version and a checksum mismatch each give a
+// clear error naming the file.
+#include <gtest/gtest.h>
+
+#include "support/temp_dir.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/reduced_model_file.hpp"
+#include "contactrb/rb/offline_builder.hpp"
+#include "contactrb/rb/online_solver.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
+
+namespace {
+
+using contactrb::rb::ReducedModel;
+
+const contactrb::rb::OfflineResult& built() {
+  static std::unique_ptr<contactrb::rb::OfflineResult> result;
+  if (!result) {
+    const auto spec = contactrb::cases::builtin_case_spec("hertz-b");
+    const auto request = contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt,
+                                                              std::vector<double>{0.905, 1.005, 1.105});
+    const auto set = contactrb::rb::generate_snapshots(request);
+    contactrb::rb::OfflineSettings s;
+    s.eps_pod = 0.0;
+    s.eps_du = 0.0;
+    s.eps_eim_k = 0.0;
+    s.eps_eim_g = 0.0;
+    result = std::make_unique<contactrb::rb::OfflineResult>(contactrb::rb::build_reduced_model(set, spec, s));
+  }
+  return *result;
+}
+
+std::vector<char> bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void put(const std::string& path, const std::vector<char>& data) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+}
+
+// The error message of read_reduced_model_file(path), or "" if it did not throw.
+std::string read_error(const std::string& path) {
+  try {
+    (void)contactrb::io::read_reduced_model_file(path);
+  } catch (const contactrb::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool same(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0);
+}
+
+TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
+  contactrb::test::TempDir dir("reduced_model_round_trip");
+  const ReducedModel& m = built().model;
+  const std::string path = dir.file("model.h5");
+  contactrb::io::write_reduced_model_file(m, path);
+  const ReducedModel r = contactrb::io::read_reduced_model_file(path);
+  EXPECT_NO_THROW(contactrb::rb::check_model(r));
+  EXPECT_EQ(r.case_name, m.case_name);
+  EXPECT_EQ(r.case_spec, m.case_spec);
+  EXPECT_EQ(r.parameter.kind, m.parameter.kind);
+  EXPECT_EQ(r.parameter.reference, m.parameter.reference);
+  EXPECT_EQ(r.parameter.center, m.parameter.center);
+  EXPECT_EQ(r.thetas.f.size(), m.thetas.f.size());
+  EXPECT_EQ(r.N_max, m.N_max);
+  EXPECT_EQ(r.R_max, m.R_max);
+  EXPECT_EQ(r.Mk_max, m.Mk_max);
+  EXPECT_EQ(r.Mg_max, m.Mg_max);
+  EXPECT_EQ(r.kept_rows, m.kept_rows);
+  EXPECT_EQ(r.kappa_row, m.kappa_row);
+  EXPECT_EQ(r.kappa_dof, m.kappa_dof);
+  EXPECT_EQ(r.gamma_row, m.gamma_row);
+  EXPECT_EQ(r.surface.slave, m.surface.slave);
+  EXPECT_EQ(r.surface.master, m.surface.master);
+  EXPECT_EQ(r.surface.discretization, m.surface.discretization);
+  EXPECT_EQ(r.lift_AA, m.lift_AA);
+  ASSERT_EQ(r.C_kappa.size(), m.C_kappa.size());
+  for (std::size_t j = 0; j < m.C_kappa.size(); ++j) EXPECT_TRUE(same(r.C_kappa[j], m.C_kappa[j]));
+  EXPECT_TRUE(same(r.Xi, m.Xi));
+  EXPECT_TRUE(same(r.XiQ_gamma, m.XiQ_gamma));
+  EXPECT_TRUE(same(r.Theta_c, m.Theta_c));
+  EXPECT_TRUE(same(r.A_hat[0], m.A_hat[0]));
+  contactrb::rb::OnlineSolver a(m), b(r);
+  const auto sa = a.solve(1.0), sb = b.solve(1.0);
+  ASSERT_TRUE(sa.converged());
+  EXPECT_TRUE(same(sa.u_hat, sb.u_hat));
+  EXPECT_TRUE(same(sa.lambda_hat, sb.lambda_hat));
+}
+
+TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
+  contactrb::test::TempDir dir("reduced_model_damaged");
+  const ReducedModel& m = built().model;
+  const std::string good = dir.file("model.h5");
+  contactrb::io::write_reduced_model_file(m, good);
+  const std::vector<char> data = bytes(good);
+
+  const std::string missing = dir.file("missing.h5");
+  EXPECT_NE(read_error(missing).find("no such file"), std::string::npos) << read_error(missing);
+
+  const std::string text = dir.file("text.h5");
+  put(text, std::vector<char>{'h', 'e', 'l', 'l', 'o'});
+  EXPECT_NE(read_error(text).find("not an HDF5 file"), std::string::npos) << read_error(text);
+
+  const std::string truncated = dir.file("truncated.h5");
+  put(truncated, std::vector<char>(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(data.size() / 2)));
+  const std::string t = read_error(truncated);
+  EXPECT_FALSE(t.empty());
+  EXPECT_NE(t.find(truncated), std::string::npos) << t;
+
+  ReducedModel future = m;
+  future.format_version = contactrb::rb::kReducedModelFormatVersion + 1;
+  const std::string newer = dir.file("newer.h5");
+  contactrb::io::write_reduced_model_file(future, newer);
+  EXPECT_NE(read_error(newer).find("format version"), std::string::npos) << read_error(newer);
+
+  // Change one stored double (the first entry of Theta_c that is not 0) in the file's bytes.
+  double target = 0.0;
+  for (Eigen::Index i = 0; i < m.Theta_c.size() && target == 0.0; ++i) target = m.Theta_c.data()[i];
+  ASSERT_NE(target, 0.0);
+  std::vector<char> damaged = data;
+  char pattern[sizeof(double)];
+  std::memcpy(pattern, &target, sizeof target);
+  auto it = std::search(damaged.begin(), damaged.end(), pattern, pattern + sizeof pattern);
+  ASSERT_NE(it, damaged.end());
+  const double changed = target * (1.0 + 1e-12);
+  std::memcpy(&*it, &changed, sizeof changed);
+  const std::string flipped = dir.file("flipped.h5");
+  put(flipped, damaged);
+  EXPECT_NE(read_error(flipped).find("checksum mismatch"), std::string::npos) << read_error(flipped);
+  for (const std::string& f : {missing, text, truncated, newer, flipped}) std::printf("  %s\n", read_error(f).c_str());
+}
+
+}  // namespace
