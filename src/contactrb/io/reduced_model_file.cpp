@@ -11,56 +11,16 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/hdf5_handle.hpp"
 
 namespace contactrb::io {
 
 namespace {
 
-struct H5Failure {
-  std::string what;
-};
-
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// An HDF5 identifier closed on destruction.
-class Id {
- public:
-  Id(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw H5Failure{what};
-  }
-  ~Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  Id(const Id&) = delete;
-  Id& operator=(const Id&) = delete;
-  hid_t get() const { return id_; }
-  void close(const std::string& what) {
-    const herr_t s = close_(id_);
-    id_ = -1;
-    if (s < 0) throw H5Failure{what};
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw H5Failure{what};
-}
+using hdf5::check;
+using Id = hdf5::Handle;
+using H5Failure = hdf5::Failure;
+using QuietHdf5 = hdf5::Quiet;
 
 // FNV-1a, 64 bit.
 class Checksum {

@@ -11,6 +11,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/version.hpp"
+#include "contactrb/io/hdf5_handle.hpp"
 
 namespace contactrb::io {
 
@@ -24,86 +25,10 @@ namespace {
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Failures inside this file carry the object path only; the public functions prefix the
-// file name.
-struct H5Failure {
-  std::string what;
-};
-
-// Silences HDF5's automatic error printing for the lifetime of the object (errors become
-// exceptions with messages here) and restores the previous handler.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// The innermost description on HDF5's error stack (e.g. "truncated file: eof = ...").
-std::string hdf5_reason() {
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
-        auto* r = static_cast<std::string*>(out);
-        if (n == 0 && e->desc != nullptr) *r = e->desc;
-        return 0;
-      },
-      &reason);
-  return reason;
-}
-
-// An HDF5 identifier closed by `close` on destruction.
-class Handle {
- public:
-  Handle() = default;
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) {
-      const std::string reason = hdf5_reason();
-      throw H5Failure{what + (reason.empty() ? "" : " (" + reason + ")")};
-    }
-  }
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      if (id_ >= 0) close_(id_);
-      id_ = std::exchange(o.id_, -1);
-      close_ = o.close_;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  // Closes now and reports a failure (H5Fclose flushes: its status matters).
-  void close(const std::string& what) {
-    const herr_t status = close_(id_);
-    id_ = -1;
-    if (status < 0) throw H5Failure{what};
-  }
-
- private:
-  hid_t id_ = -1;
-  herr_t (*close_)(hid_t) = nullptr;
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) {
-    const std::string reason = hdf5_reason();
-    throw H5Failure{what + (reason.empty() ? "" : " (" + reason + ")")};
-  }
-}
+using hdf5::check;
+using hdf5::Handle;
+using H5Failure = hdf5::Failure;
+using QuietHdf5 = hdf5::Quiet;
 
 bool exists(hid_t loc, const std::string& name) {
   // H5Lexists on a path checks one link; our names are single components.
@@ -504,7 +429,7 @@ SnapshotSet read_snapshot_file(const std::string& path) {
   const QuietHdf5 quiet;
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 == 0) throw Error(name + " is not an HDF5 file (expected a file written by `contactrb snapshots`)");
-  if (is_hdf5 < 0) throw Error(name + " cannot be read (" + hdf5_reason() + ")");
+  if (is_hdf5 < 0) throw Error(name + " cannot be read (" + hdf5::reason() + ")");
   try {
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create file access properties");
     check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "cannot set the close degree");

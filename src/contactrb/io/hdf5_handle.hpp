@@ -1,0 +1,92 @@
+#pragma once
+// HDF5 C API support shared by the io/ readers and writers (snapshot and reduced-model
+// files): failures become exceptions carrying HDF5's own reason, identifiers are closed by
+// RAII, and HDF5's automatic error printing is silenced while a file is handled.
+// Internal to io/: include only from io/*.cpp (io links HDF5 privately).
+#include <hdf5.h>
+
+#include <string>
+#include <utility>
+
+namespace contactrb::io::hdf5 {
+
+// A failure inside a reader or writer; the public functions prefix the file name.
+struct Failure {
+  std::string what;
+};
+
+// Silences HDF5's automatic error printing for the lifetime of the object and restores the
+// previous handler.
+class Quiet {
+ public:
+  Quiet() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~Quiet() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  Quiet(const Quiet&) = delete;
+  Quiet& operator=(const Quiet&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// The innermost description on HDF5's error stack (e.g. "truncated file: eof = ...").
+inline std::string reason() {
+  std::string out;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+        auto* r = static_cast<std::string*>(data);
+        if (n == 0 && e->desc != nullptr) *r = e->desc;
+        return 0;
+      },
+      &out);
+  return out;
+}
+
+inline Failure failure(const std::string& what) {
+  const std::string r = reason();
+  return Failure{what + (r.empty() ? "" : " (" + r + ")")};
+}
+
+inline void check(herr_t status, const std::string& what) {
+  if (status < 0) throw failure(what);
+}
+
+// An HDF5 identifier closed by `close` on destruction.
+class Handle {
+ public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw failure(what);
+  }
+  ~Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      if (id_ >= 0) close_(id_);
+      id_ = std::exchange(o.id_, -1);
+      close_ = o.close_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  // Closes now and reports a failure (H5Fclose flushes: its status matters).
+  void close(const std::string& what) {
+    const herr_t status = close_(id_);
+    id_ = -1;
+    if (status < 0) throw Failure{what};
+  }
+
+ private:
+  hid_t id_ = -1;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+}  // namespace contactrb::io::hdf5
