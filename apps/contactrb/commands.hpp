@@ -19,6 +19,8 @@ Command add_cases_command(CLI::App& app);
 Command add_mesh_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
 Command add_snapshots_command(CLI::App& app);
+Command add_offline_command(CLI::App& app);
+Command add_online_command(CLI::App& app);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.

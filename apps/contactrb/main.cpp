@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
       contactrb::app::add_mesh_command(app),
       contactrb::app::add_solve_command(app),
       contactrb::app::add_snapshots_command(app),
+      contactrb::app::add_offline_command(app),
+      contactrb::app::add_online_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -11,6 +11,11 @@
 namespace contactrb::rb {
 
 namespace {
+// |D|_F below this fraction of its cancellation-free bound: the reduced constraints are blind.
+constexpr double kBlindContactTolerance = 1e-10;
+}  // namespace
+
+namespace {
 using Clock = std::chrono::steady_clock;
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using WRow = RowSparse::InnerIterator;  // rows of the quadrature W (R x S, row-major)
@@ -214,9 +219,21 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
     }
     // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat.
     D.setZero();
+    double d_scale = 0.0;
     if (Mk_ > 0) {
       const Eigen::VectorXd phi = B_kappa_lu_.solve(kappa_hat);
       for (int j = 0; j < Mk_; ++j) D += phi(j) * C_[sz(j)];
+      // Upper bound of |D|_F without cancellation: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
+      d_scale = Xi_.norm() * Theta_c_.norm() * phi.cwiseAbs().sum();
+    }
+    // When the primal basis does not see the contact (K Theta = 0, e.g. the only POD mode
+    // of a patch test has no interface jump), D vanishes and the reduced multipliers are
+    // not determined by (53): the QP would return round-off over round-off. Fail instead.
+    if (R_ > 0 && D.norm() <= kBlindContactTolerance * d_scale) {
+      message = "the reduced contact operator D^kappa vanishes (|D| = " + std::to_string(D.norm()) +
+                "): the primal basis does not see the contact constraints, so the reduced multipliers "
+                "are undetermined; rebuild the model with a larger N";
+      return false;
     }
     Eigen::VectorXd dg = Eigen::VectorXd::Zero(R_);
     if (Mg_ > 0) dg = XiQ_gamma_ * B_gamma_lu_.solve(gamma_hat);

@@ -1,0 +1,202 @@
+// contactrb offline / online: a small hertz-a snapshot file made with the CLI, an untruncated
+// model, online answers against `contactrb solve` at a training value, batch mode (n lines in,
+// n JSON lines out, bad lines answered by error lines) and the user errors. The snapshot file
+// and the model are made once for the suite.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::test::CliResult;
+using contactrb::test::field_value;
+using contactrb::test::run_cli;
+using contactrb::test::shell_quote;
+using nlohmann::json;
+
+namespace {
+
+void expect_user_error(const CliResult& r, const std::string& words) {
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
+}
+
+// Training values: 0.3 is one of them. Tight Kacanov settings so that the untruncated model
+// reproduces the HF solutions to solver tolerance.
+constexpr const char* kValues = "0.15,0.225,0.3,0.375,0.45";
+constexpr const char* kTight = " --alpha 1 --tol 1e-10";
+
+class CliOfflineOnline : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<contactrb::test::TempDir>("offline_online");
+    snapshots_ = dir_->file("s.h5");
+    model_ = dir_->file("model.h5");
+    const CliResult s = run_cli(std::string("snapshots --case hertz-a --values ") + kValues + kTight +
+                                " -j 2 -q --out " + shell_quote(snapshots_));
+    ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
+    offline_ = run_cli("offline --snapshots " + shell_quote(snapshots_) +
+                       " --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model_));
+    ASSERT_EQ(offline_.exit_code, 0) << offline_.out << offline_.err;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  // contact_force of the HF solve at mu (with extra options).
+  static double hf_contact_force(double mu, const std::string& extra) {
+    const std::string out = dir_->file("hf");
+    const CliResult r =
+        run_cli("solve --case hertz-a --mu " + std::to_string(mu) + extra + " --out " + shell_quote(out));
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::ifstream in(out + "/solution.json");
+    return json::parse(in).at("contact_force").get<double>();
+  }
+
+  static std::unique_ptr<contactrb::test::TempDir> dir_;
+  static std::string snapshots_, model_;
+  static CliResult offline_;
+};
+std::unique_ptr<contactrb::test::TempDir> CliOfflineOnline::dir_;
+std::string CliOfflineOnline::snapshots_, CliOfflineOnline::model_;
+CliResult CliOfflineOnline::offline_;
+
+}  // namespace
+
+TEST_F(CliOfflineOnline, OfflineWritesTheModelTheReportAndASummary) {
+  EXPECT_EQ(field_value(offline_.out, "sizes").rfind("N 5, R ", 0), 0u) << offline_.out;
+  EXPECT_NE(offline_.out.find("wrote " + model_), std::string::npos) << offline_.out;
+  ASSERT_TRUE(fs::exists(dir_->file("offline.json")));
+  std::ifstream in(dir_->file("offline.json"));
+  const json j = json::parse(in);
+  EXPECT_EQ(j.at("case"), "hertz-a");
+  EXPECT_EQ(j.at("sizes").at("N"), 5);
+  EXPECT_EQ(j.at("pod").at("singular_values").size(), 5u);
+  const int R = j.at("sizes").at("R").get<int>();
+  EXPECT_GE(R, 1);
+  EXPECT_EQ(j.at("dual").at("errors").size(), static_cast<std::size_t>(R + 1));
+  EXPECT_EQ(j.at("eim_kappa").at("M"), j.at("sizes").at("Mk"));
+  EXPECT_GE(j.at("eim_gamma").at("errors").size(), 1u);
+  EXPECT_LT(j.at("compression").at("kept").get<int>(), j.at("compression").at("constraints").get<int>());
+  for (const char* key : {"read", "pod", "dual", "eim_kappa", "eim_gamma", "reduction", "write", "total"}) {
+    EXPECT_GE(j.at("times_s").at(key).get<double>(), 0.0) << key;
+  }
+}
+
+TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
+  // Default online tolerances (those of the snapshots: tight here) against the default HF solve.
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --mu 0.3");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j.at("converged").get<bool>());
+  EXPECT_EQ(j.at("u_hat").size(), 5u);
+  EXPECT_GE(j.at("iterations").get<int>(), 1);
+  for (const char* key : {"lambda_hat", "energy", "time_s"}) EXPECT_TRUE(j.contains(key)) << key;
+  const double hf_default = hf_contact_force(0.3, "");
+  EXPECT_NEAR(j.at("contact_force").get<double>(), hf_default, 1e-3 * std::abs(hf_default));
+  // Tight on both sides.
+  const double hf_tight = hf_contact_force(0.3, kTight);
+  const CliResult t = run_cli("online --model " + shell_quote(model_) + " --mu 0.3" + kTight);
+  ASSERT_EQ(t.exit_code, 0) << t.out << t.err;
+  EXPECT_NEAR(json::parse(t.out).at("contact_force").get<double>(), hf_tight, 1e-6 * std::abs(hf_tight));
+  // Leading sub-blocks.
+  const CliResult small = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --n 2 --r 1 --mk 1 --mg 1");
+  ASSERT_EQ(small.exit_code, 0) << small.out << small.err;
+  EXPECT_EQ(json::parse(small.out).at("u_hat").size(), 2u);
+  EXPECT_EQ(json::parse(small.out).at("lambda_hat").size(), 1u);
+}
+
+TEST_F(CliOfflineOnline, BatchAnswersEveryLineInOrder) {
+  const std::string batch = dir_->file("batch.txt");
+  {
+    std::ofstream out(batch);
+    out << "0.2\n  0.3 \nabc\n0.9\nnan\n0.4\n";
+  }
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(batch));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("contactrb: error: 3 of 6 batch lines"), std::string::npos) << r.err;
+  const auto lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 6u) << r.out;
+  const std::vector<bool> good{true, true, false, false, false, true};
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const json j = json::parse(lines[k]);
+    EXPECT_EQ(j.at("line").get<std::size_t>(), k + 1);
+    EXPECT_EQ(j.contains("error"), !good[k]) << lines[k];
+    if (good[k]) {
+      EXPECT_TRUE(j.at("converged").get<bool>()) << lines[k];
+    }
+  }
+  EXPECT_NE(lines[2].find("not a number"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[3].find("outside the domain"), std::string::npos) << lines[3];
+  EXPECT_DOUBLE_EQ(json::parse(lines[1]).at("mu").get<double>(), 0.3);
+
+  // stdin, all good: exit 0.
+  const std::string good_batch = dir_->file("good.txt");
+  {
+    std::ofstream out(good_batch);
+    out << "0.25\n0.35\n";
+  }
+  const CliResult piped = run_cli("online --model " + shell_quote(model_) + " --batch - < " + shell_quote(good_batch));
+  EXPECT_EQ(piped.exit_code, 0) << piped.out << piped.err;
+  EXPECT_EQ(lines_of(piped.out).size(), 2u) << piped.out;
+}
+
+TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
+  const std::string m = " --model " + shell_quote(model_);
+  expect_user_error(run_cli("online --model " + shell_quote(dir_->file("none.h5")) + " --mu 0.3"), "none.h5");
+  expect_user_error(run_cli("online --model " + shell_quote(snapshots_) + " --mu 0.3"), "s.h5");
+  expect_user_error(run_cli("online" + m + " --mu 0.9"), "outside the domain");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --n 6"), "--n = 6 is above the maximum 5");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --mk 1000"), "--mk = 1000");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --alpha 2"), "alpha");
+  expect_user_error(run_cli("online" + m + " --batch " + shell_quote(dir_->file("none.txt"))), "none.txt");
+  expect_user_error(run_cli("online" + m + " --batch ''"), "--batch needs a file name");
+  // Usage errors (CLI11): neither or both of --mu and --batch.
+  EXPECT_NE(run_cli("online" + m).exit_code, 0);
+  EXPECT_NE(run_cli("online" + m + " --mu 0.3 --batch -").exit_code, 0);
+
+  const std::string out = " --out " + shell_quote(dir_->file("bad.h5"));
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(model_) + out), "model.h5");
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual svd" + out), "--dual");
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --inner-product l2" + out),
+                    "--inner-product");
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " +
+                            shell_quote(dir_->file("no/dir/m.h5"))),
+                    "does not exist");
+  EXPECT_NE(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n 3 --eps-pod 1e-3" + out).exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir_->file("bad.h5")));
+}
+
+// A model whose primal basis cannot see the contact (the patch test: its single POD mode has
+// no interface jump, so D^kappa = 0) must fail with a clear message, never answer with
+// undetermined multipliers.
+TEST(CliOnlineBlindBasis, PatchModelIsRefusedWithAClearMessage) {
+  contactrb::test::TempDir dir("online_blind");
+  const std::string d = contactrb::test::shell_quote(dir.path().string());
+  const std::string toml = contactrb::test::shell_quote(std::string(CONTACTRB_SOURCE_DIR) +
+                                                        "/examples/two-block-patch/case.toml");
+  ASSERT_EQ(contactrb::test::run_cli("snapshots -q --case-file " + toml + " --set verification --out " + d + "/s.h5")
+                .exit_code,
+            0);
+  ASSERT_EQ(contactrb::test::run_cli("offline --snapshots " + d + "/s.h5 --n 10 --out " + d + "/m.h5").exit_code, 0);
+  const contactrb::test::CliResult r = contactrb::test::run_cli("online --model " + d + "/m.h5 --mu 0.02");
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("does not see the contact"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("e+16"), std::string::npos) << r.out;
+}
