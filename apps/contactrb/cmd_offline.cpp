@@ -42,18 +42,6 @@ struct OfflineOptions {
   std::string out;
 };
 
-// The directory of `path` must exist and be writable before the offline work is spent.
-void check_model_path(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path p(path);
-  require(!p.filename().empty(), "--out '" + path + "' names a directory, not a file");
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  std::error_code ec;
-  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' does not exist");
-  require(::access(dir.c_str(), W_OK) == 0, "the directory of --out '" + path + "' is not writable");
-  require(!fs::is_directory(p, ec), "--out '" + path + "' is a directory");
-}
-
 std::string report_path(const std::string& model_path) {
   const std::filesystem::path dir = std::filesystem::path(model_path).parent_path();
   return (dir / "offline.json").string();
@@ -110,7 +98,7 @@ int run_offline(const OfflineOptions& opt) {
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   const rb::OfflineSettings settings = settings_from(opt);
-  check_model_path(opt.out);
+  check_output_file(opt.out);
   const std::string json_path = report_path(opt.out);
 
   const auto t0 = Clock::now();

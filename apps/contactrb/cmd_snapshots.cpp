@@ -43,18 +43,6 @@ struct SnapshotsOptions {
   std::string out;
 };
 
-// The directory of `path` must exist and be writable before hours of solves are spent.
-void check_output_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path p(path);
-  require(!p.filename().empty(), "--out '" + path + "' names a directory, not a file");
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  std::error_code ec;
-  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' does not exist");
-  require(::access(dir.c_str(), W_OK) == 0, "the directory of --out '" + path + "' is not writable");
-  require(!fs::is_directory(p, ec), "--out '" + path + "' is a directory");
-}
-
 int run_snapshots(const SnapshotsOptions& opt) {
   // Cheap checks first.
   const cases::CaseSpec spec =

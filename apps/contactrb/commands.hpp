@@ -26,4 +26,8 @@ Command add_online_command(CLI::App& app);
 // fails or when it exists and is not a directory.
 void ensure_output_directory(const std::string& dir);
 
+// `path` names an output FILE whose directory exists and is writable (checked before long
+// work starts); throws contactrb::Error naming --out otherwise.
+void check_output_file(const std::string& path);
+
 }  // namespace contactrb::app

@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <unistd.h>
 #include <system_error>
 
 #include "commands.hpp"
@@ -16,6 +17,17 @@ void ensure_output_directory(const std::string& dir) {
   }
   fs::create_directories(dir, ec);
   if (ec) throw Error("cannot create output directory '" + dir + "': " + ec.message());
+}
+
+void check_output_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  require(!p.filename().empty(), "--out '" + path + "' names a directory, not a file");
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' does not exist");
+  require(::access(dir.c_str(), W_OK) == 0, "the directory of --out '" + path + "' is not writable");
+  require(!fs::is_directory(p, ec), "--out '" + path + "' is a directory");
 }
 
 }  // namespace contactrb::app
