@@ -220,9 +220,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.parameter = spec.parameter;
   m.thetas = thetas;
   m.inner_product = to_string(settings.inner_product);
-  m.dual_method = settings.dual_method == DualConeMethod::CPG           ? "cpg"
-                  : settings.dual_method == DualConeMethod::AngleGreedy ? "angle"
-                                                                        : "nmf";
+  m.dual_method = to_string(settings.dual_method);
   m.eps_pod = settings.eps_pod;
   m.eps_du = settings.eps_du;
   m.eps_eim_k = settings.eps_eim_k;
