@@ -1,6 +1,8 @@
-// Counterparts of the paper's Tables 3-5 and of the EIM convergence of Figs. 12 and 20,
-// computed from HF snapshots of the built-in cases on their training sets (paper settings:
-// alpha = 0.3, eps_KA = 1e-3). Prints markdown tables (docs/benchmarks.md, "Paper tables").
+// Counterparts of the paper's Tables 3-5, of the dual-cone histories of Figs. 9, 11 and 19
+// and of the EIM convergence of Figs. 12 and 20, computed from HF snapshots of the built-in
+// cases on their training sets (paper settings: alpha = 0.3, eps_KA = 1e-3), and the time of
+// each offline step at the paper's tolerances. Prints markdown tables (docs/benchmarks.md,
+// "Paper tables").
 //   build/bench/paper_tables            (about a minute on 2 cores)
 #include <chrono>
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include "contactrb/rb/eim.hpp"
 #include "contactrb/rb/eim_flatten.hpp"
 #include "contactrb/rb/nmf.hpp"
+#include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/pod.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
 
@@ -23,6 +26,7 @@ using namespace contactrb;
 namespace {
 
 struct CaseData {
+  cases::CaseSpec spec;
   io::SnapshotSet set;
   Eigen::MatrixXd U0;       // free displacement snapshots (n_free x P)
   Eigen::MatrixXd L;        // multiplier snapshots (R_hf x P)
@@ -33,7 +37,8 @@ struct CaseData {
 
 CaseData load(const std::string& name) {
   CaseData d;
-  const cases::CaseSpec spec = cases::builtin_case_spec(name);
+  d.spec = cases::builtin_case_spec(name);
+  const cases::CaseSpec& spec = d.spec;
   const auto t0 = std::chrono::steady_clock::now();
   rb::SnapshotRunOptions options;
   options.jobs = 2;
@@ -138,6 +143,33 @@ void eim_table(const char* title, const CaseData& d) {
   }
 }
 
+void singular_values(const char* title, const CaseData& d) {
+  const rb::PODResult p = rb::pod(d.U0, d.energy, rb::PODSettings{});
+  std::printf("\n%s: POD singular values, energy norm\n\n", title);
+  for (int i = 0; i < p.singular_values.size(); ++i) std::printf(" %.3g", p.singular_values(i));
+  std::printf("\n");
+}
+
+// The offline builder at the given settings: sizes and the wall time of each step.
+void offline_times(const char* title, const CaseData& d, const rb::OfflineSettings& settings) {
+  const rb::OfflineResult r = rb::build_reduced_model(d.set, d.spec, settings);
+  const rb::OfflineReport& t = r.report;
+  const double steps = t.assembly_s + t.pod_s + t.dual_s + t.eim_kappa_s + t.eim_gamma_s + t.reduction_s;
+  std::printf("| %s | %d | %d | %d | %d | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f%% |\n", title,
+              t.N, t.R, t.Mk, t.Mg, d.hf_seconds * 1e3, t.assembly_s * 1e3, t.pod_s * 1e3, t.dual_s * 1e3,
+              t.eim_kappa_s * 1e3, t.eim_gamma_s * 1e3, t.reduction_s * 1e3, t.total_s * 1e3,
+              100.0 * t.dual_s / (steps + d.hf_seconds));
+}
+
+rb::OfflineSettings paper_settings(double eps_pod, double eps_du, double eps_k, double eps_g) {
+  rb::OfflineSettings s;
+  s.eps_pod = eps_pod;
+  s.eps_du = eps_du;
+  s.eps_eim_k = eps_k;
+  s.eps_eim_g = eps_g;
+  return s;
+}
+
 }  // namespace
 
 int main() {
@@ -169,5 +201,21 @@ int main() {
              {5e-2, 1e-2, 5e-3, 1e-3});
   history("Fig. 11 right (hertz-b)", b);
   eim_table("Fig. 12 (hertz-b)", b);
+
+  const CaseData c = load("ring-block");
+  std::printf("\nring-block: %zu HF solves in %.2f s (2 jobs)\n", c.set.snapshots.size(), c.hf_seconds);
+  singular_values("Fig. 19 left (ring-block)", c);
+  history("Fig. 19 right (ring-block)", c);
+  eim_table("Fig. 20 (ring-block)", c);
+
+  std::printf(
+      "\nOffline steps at the paper's online tolerances (ms, wall clock; snapshots with 2 jobs; the last column is "
+      "the dual cone's share of snapshots + offline)\n\n"
+      "| case | N | R | Mk | Mg | snapshots | assembly | POD | dual (CPG) | EIM kappa | EIM gamma | reduced arrays | "
+      "builder total | dual share |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+      "---: | ---: | ---: |\n");
+  offline_times("hertz-a (Fig. 10)", a, paper_settings(1e-2, 1e-1, 1e-2, 1e-3));
+  offline_times("hertz-b (Fig. 13)", b, paper_settings(1e-5, 1e-4, 1e-2, 1e-3));
+  offline_times("ring-block (Fig. 21)", c, paper_settings(1.0, 1e-2, 1.0, 1e-5));
   return 0;
 }

@@ -1,8 +1,9 @@
 // `contactrb offline`: the offline stage from a snapshot file (docs/user-guide.md, "offline"):
 // POD, compression, dual cone, EIM of kappa and gamma, the reduced arrays. Writes the reduced
 // model (HDF5, io/reduced_model_file.hpp) and, in the same directory, offline.json (the
-// histories of each step and their times). `--case NAME` (snapshots and offline in one run)
-// is not implemented: run `contactrb snapshots` first.
+// histories of each step and their times). With --case/--case-file instead of --snapshots,
+// the training snapshots are computed first (as `contactrb snapshots` would) and kept next to
+// the model as snapshots.h5.
 #include <unistd.h>
 
 #include <chrono>
@@ -11,10 +12,13 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "contactrb/cases/case_record.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
@@ -23,13 +27,29 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/reduced_model.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
 
 namespace contactrb::app {
 
 namespace {
 
+// Exit code when some snapshot solve failed (as `contactrb snapshots`).
+constexpr int kExitSolveFailed = 3;
+
 struct OfflineOptions {
   std::string snapshots;
+  // Snapshots computed here (--case / --case-file).
+  std::string case_name;
+  std::string case_file;
+  std::string set_name = "training";
+  std::vector<double> values;
+  int level = 0;
+  std::string constraint;
+  int jobs = 1;
+  double alpha = solve::KacanovSettings{}.alpha;
+  double tolerance = solve::KacanovSettings{}.tolerance;
+  int max_iterations = solve::KacanovSettings{}.max_iterations;
+  bool quiet = false;
   double eps_pod = rb::OfflineSettings{}.eps_pod;
   int n = -1;
   std::string inner_product = "energy";
@@ -42,9 +62,43 @@ struct OfflineOptions {
   std::string out;
 };
 
-std::string report_path(const std::string& model_path) {
+std::string sibling_path(const std::string& model_path, const char* name) {
   const std::filesystem::path dir = std::filesystem::path(model_path).parent_path();
-  return (dir / "offline.json").string();
+  return (dir / name).string();
+}
+
+// --case/--case-file: the HF snapshots of the set, written to snapshots.h5 next to the model.
+io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path) {
+  const cases::CaseSpec spec =
+      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
+  require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  std::optional<contact::Discretization> constraint;
+  if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
+  std::optional<std::vector<double>> values;
+  if (!opt.values.empty()) values = opt.values;
+  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  request.settings.kacanov.alpha = opt.alpha;
+  request.settings.kacanov.tolerance = opt.tolerance;
+  request.settings.kacanov.max_iterations = opt.max_iterations;
+  solve::check_settings(request.settings.kacanov);
+  rb::SnapshotRunOptions run;
+  run.jobs = opt.jobs;
+  run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  io::SnapshotSet set = rb::generate_snapshots(request, run);
+  io::write_snapshot_file(set, path);
+  return set;
+}
+
+// The failed solves of a set, one per line after a summary line.
+std::string failure_report(const io::SnapshotSet& set, const std::string& path) {
+  std::ostringstream os;
+  os << set.num_failed() << " of " << set.snapshots.size() << " snapshot solves failed (recorded in " << path
+     << "); no model written:";
+  for (const io::Snapshot& snap : set.snapshots) {
+    if (!snap.converged) os << "\n  mu = " << snap.mu << ": " << snap.status << ": " << snap.message;
+  }
+  return os.str();
 }
 
 rb::OfflineSettings settings_from(const OfflineOptions& opt) {
@@ -83,9 +137,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
 }
 
 cases::CaseSpec spec_of(const io::SnapshotSet& set, const std::string& path) {
-  if (set.case_kind == "builtin") return cases::builtin_case_spec(set.case_spec);
-  require(set.case_kind == "toml", "snapshot file '" + path + "' has an unknown case kind '" + set.case_kind + "'");
-  return cases::case_from_toml_string(set.case_spec, path);
+  return cases::case_from_record(set.case_kind, set.case_spec, path);
 }
 
 nlohmann::json to_json(const Eigen::VectorXd& v) {
@@ -99,11 +151,17 @@ int run_offline(const OfflineOptions& opt) {
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   const rb::OfflineSettings settings = settings_from(opt);
   check_output_file(opt.out);
-  const std::string json_path = report_path(opt.out);
+  const std::string json_path = sibling_path(opt.out, "offline.json");
+  const bool compute = opt.snapshots.empty();
+  const std::string snapshots_path = compute ? sibling_path(opt.out, "snapshots.h5") : opt.snapshots;
 
   const auto t0 = Clock::now();
-  const io::SnapshotSet set = io::read_snapshot_file(opt.snapshots);
-  const cases::CaseSpec spec = spec_of(set, opt.snapshots);
+  const io::SnapshotSet set = compute ? compute_snapshots(opt, snapshots_path) : io::read_snapshot_file(snapshots_path);
+  if (set.num_failed() > 0) {
+    std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
+    return kExitSolveFailed;
+  }
+  const cases::CaseSpec spec = spec_of(set, snapshots_path);
   const auto t1 = Clock::now();
   const rb::OfflineResult result = rb::build_reduced_model(set, spec, settings);
   const auto t2 = Clock::now();
@@ -113,7 +171,8 @@ int run_offline(const OfflineOptions& opt) {
   const rb::ReducedModel& m = result.model;
 
   nlohmann::json j;
-  j["snapshots"] = opt.snapshots;
+  j["snapshots"] = snapshots_path;
+  j["snapshots_computed"] = compute;
   j["model"] = opt.out;
   j["case"] = set.case_name;
   j["case_kind"] = set.case_kind;
@@ -150,7 +209,7 @@ int run_offline(const OfflineOptions& opt) {
   j["eim_kappa"] = {{"M", rep.Mk}, {"errors", rep.eim_kappa_errors}, {"status", rep.eim_kappa_status}};
   j["eim_gamma"] = {{"M", rep.Mg}, {"errors", rep.eim_gamma_errors}, {"status", rep.eim_gamma_status}};
   j["model_doubles"] = rb::model_doubles(m);
-  j["times_s"] = {{"read", seconds(t0, t1)},        {"assembly", rep.assembly_s},   {"pod", rep.pod_s},
+  j["times_s"] = {{compute ? "snapshots" : "read", seconds(t0, t1)},        {"assembly", rep.assembly_s},   {"pod", rep.pod_s},
                   {"dual", rep.dual_s},             {"eim_kappa", rep.eim_kappa_s}, {"eim_gamma", rep.eim_gamma_s},
                   {"reduction", rep.reduction_s},   {"build", rep.total_s},         {"write", seconds(t2, t3)},
                   {"total", seconds(t0, Clock::now())}};
@@ -172,9 +231,10 @@ int run_offline(const OfflineOptions& opt) {
             << ")\n"
             << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (pod " << rep.pod_s
             << ", dual " << rep.dual_s << ", eim " << rep.eim_kappa_s + rep.eim_gamma_s << ", other "
-            << rep.total_s - rep.pod_s - rep.dual_s - rep.eim_kappa_s - rep.eim_gamma_s << ", io "
-            << seconds(t0, t1) + seconds(t2, t3) << ")\n"
-            << std::defaultfloat << "wrote " << opt.out << "\nwrote " << json_path << "\n";
+            << rep.total_s - rep.pod_s - rep.dual_s - rep.eim_kappa_s - rep.eim_gamma_s << (compute ? ", snapshots " : ", read ")
+            << seconds(t0, t1) << ", write " << seconds(t2, t3) << ")\n"
+            << std::defaultfloat << (compute ? "wrote " + snapshots_path + "\n" : std::string()) << "wrote " << opt.out
+            << "\nwrote " << json_path << "\n";
   return 0;
 }
 
@@ -184,9 +244,38 @@ Command add_offline_command(CLI::App& app) {
   auto opt = std::make_shared<OfflineOptions>();
   CLI::App* sub = app.add_subcommand(
       "offline",
-      "Offline stage: a reduced model (HDF5) and offline.json from a snapshot file (`contactrb snapshots` first; "
-      "--case is not supported)");
-  sub->add_option("--snapshots", opt->snapshots, "Snapshot file written by `contactrb snapshots`")->required();
+      "Offline stage: a reduced model (HDF5) and offline.json from a snapshot file, or from a case whose training "
+      "snapshots are computed first (kept as snapshots.h5 next to the model)");
+  // Exactly one source of snapshots (a usage error otherwise).
+  CLI::Option_group* input = sub->add_option_group("snapshots", "Snapshot source (exactly one)");
+  CLI::Option* snapshots_opt =
+      input->add_option("--snapshots", opt->snapshots, "Snapshot file written by `contactrb snapshots`");
+  input->add_option("--case", opt->case_name, "Built-in case: compute its snapshots first (see `contactrb cases`)");
+  input->add_option("--case-file", opt->case_file, "TOML case file: compute its snapshots first (docs/cases.md)");
+  input->require_option(1);
+  CLI::Option* set_opt = sub->add_option("--set", opt->set_name, "With --case: the parameter set of the snapshots")
+                             ->capture_default_str();
+  CLI::Option* values_opt =
+      sub->add_option("--values", opt->values, "With --case: explicit parameter values (comma-separated)")
+          ->delimiter(',');
+  CLI::Option* level_opt =
+      sub->add_option("--level", opt->level, "With --case: mesh refinement level (0: the paper's mesh)")
+          ->capture_default_str();
+  CLI::Option* constraint_opt =
+      sub->add_option("--constraint", opt->constraint, "With --case: collocation | lac | lac-simpson");
+  CLI::Option* jobs_opt =
+      sub->add_option("--jobs,-j", opt->jobs, "With --case: worker threads for the snapshots")->capture_default_str();
+  CLI::Option* alpha_opt =
+      sub->add_option("--alpha", opt->alpha, "With --case: Kacanov relaxation in (0, 1]")->capture_default_str();
+  CLI::Option* tol_opt =
+      sub->add_option("--tol", opt->tolerance, "With --case: Kacanov tolerance eps_KA of (63)")->capture_default_str();
+  CLI::Option* iterations_opt =
+      sub->add_option("--max-iterations", opt->max_iterations, "With --case: Kacanov iteration limit")
+          ->capture_default_str();
+  CLI::Option* quiet_opt = sub->add_flag("--quiet,-q", opt->quiet, "With --case: no progress report on stderr");
+  for (CLI::Option* o : {set_opt, values_opt, level_opt, constraint_opt, jobs_opt, alpha_opt, tol_opt, iterations_opt, quiet_opt}) {
+    o->excludes(snapshots_opt);
+  }
   CLI::Option* eps_pod =
       sub->add_option("--eps-pod", opt->eps_pod, "POD: absolute threshold on the singular values")->capture_default_str();
   CLI::Option* n = sub->add_option("--n", opt->n, "POD: a fixed N instead of --eps-pod (capped at the rank)");

@@ -122,6 +122,38 @@ TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   EXPECT_EQ(json::parse(small.out).at("lambda_hat").size(), 1u);
 }
 
+TEST_F(CliOfflineOnline, OfflineFromACaseEqualsSnapshotsThenOffline) {
+  // The same values and settings through `offline --case`: the snapshots are deterministic, so
+  // the model answers exactly as the one built from the snapshot file.
+  const std::string sub = dir_->file("from_case");
+  fs::create_directories(sub);
+  const std::string model = sub + "/model.h5";
+  const CliResult r = run_cli(std::string("offline --case hertz-a --values ") + kValues + kTight +
+                              " -j 2 -q --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(fs::exists(sub + "/snapshots.h5"));
+  EXPECT_NE(r.out.find("wrote " + sub + "/snapshots.h5"), std::string::npos) << r.out;
+  EXPECT_EQ(field_value(r.out, "sizes"), field_value(offline_.out, "sizes"));
+  std::ifstream in(sub + "/offline.json");
+  const json j = json::parse(in);
+  EXPECT_TRUE(j.at("snapshots_computed").get<bool>());
+  EXPECT_EQ(j.at("training").at("count"), 5);
+  EXPECT_GT(j.at("times_s").at("snapshots").get<double>(), 0.0);
+  const CliResult a = run_cli("online --model " + shell_quote(model) + " --mu 0.33");
+  const CliResult b = run_cli("online --model " + shell_quote(model_) + " --mu 0.33");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(json::parse(a.out).at("u_hat"), json::parse(b.out).at("u_hat"));
+  // Snapshot options without --case, and two sources, are usage errors.
+  const CliResult both = run_cli("offline --case hertz-a --snapshots " + shell_quote(snapshots_) + " --out " +
+                                 shell_quote(model));
+  EXPECT_NE(both.exit_code, 0);
+  const CliResult jobs = run_cli("offline --snapshots " + shell_quote(snapshots_) + " -j 2 --out " + shell_quote(model));
+  EXPECT_NE(jobs.exit_code, 0);
+  // A value outside the domain: one clear error before any solve.
+  expect_user_error(run_cli("offline --case hertz-a --values 0.1 --out " + shell_quote(model)), "outside the domain");
+}
+
 TEST_F(CliOfflineOnline, BatchAnswersEveryLineInOrder) {
   const std::string batch = dir_->file("batch.txt");
   {

@@ -12,6 +12,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/dual_cone.hpp"
+#include "contactrb/rb/reconstruction.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 
 namespace contactrb::rb {
@@ -65,18 +66,6 @@ struct OfflineReport {
   double total_s = 0.0;
 };
 
-// Offline-side data to map a reduced solution back to the HF mesh (HF size: never online).
-struct ReducedReconstruction {
-  int num_dofs = 0;
-  std::vector<int> free_dofs;
-  Eigen::MatrixXd Theta;            // n_free x N_max
-  std::vector<Eigen::VectorXd> lift;  // J^D global lift vectors lift_k (num_dofs)
-  cases::AffineThetas thetas;
-  std::vector<int> kept_rows;
-  int num_constraints = 0;
-  Eigen::MatrixXd Xi;               // R_kept x R_max
-};
-
 struct OfflineResult {
   ReducedModel model;
   ReducedReconstruction reconstruction;
@@ -87,10 +76,5 @@ struct OfflineResult {
 // (DOF counts), or invalid settings.
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {});
-
-// u = u_D(mu) + Theta[:, :N] u_hat on the HF DOFs (num_dofs), N = u_hat.size().
-Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, double mu, const Eigen::VectorXd& u_hat);
-// lambda = Xi[:, :R] lambda_hat on the kept rows, 0 on the dropped ones (R_hf), R = lambda_hat.size().
-Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& lambda_hat);
 
 }  // namespace contactrb::rb
