@@ -200,14 +200,102 @@ TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
   full.restricted_rows = false;
   OnlineSettings restricted = full;
   restricted.restricted_rows = true;
-  for (const double mu : verification_values().at(GetParam())) {
-    const auto a = solver.solve(mu, full);
-    const auto b = solver.solve(mu, restricted);
-    ASSERT_EQ(a.status, b.status);
-    EXPECT_EQ(a.iterations, b.iterations);
-    EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
-    EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+  for (const auto iteration : {contactrb::rb::OnlineIteration::Relaxed, contactrb::rb::OnlineIteration::Accelerated}) {
+    full.iteration = restricted.iteration = iteration;
+    for (const double mu : verification_values().at(GetParam())) {
+      const auto a = solver.solve(mu, full);
+      const auto b = solver.solve(mu, restricted);
+      ASSERT_EQ(a.status, b.status);
+      EXPECT_EQ(a.iterations, b.iterations);
+      EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
+      EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+    }
   }
+}
+
+// The accelerated iteration (OnlineIteration::Accelerated: undamped, Anderson-mixed,
+// safeguarded) reaches the fixed point of the relaxed iteration (paper (12), alpha = 0.3)
+// within the Kacanov tolerance, in fewer steps; at the verification values, truncated model.
+TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
+  const SnapshotSet& set = snapshots(GetParam());
+  OfflineSettings s;
+  s.eps_pod = 0.0;
+  s.pod_modes = 4;
+  s.dual_size = 4;
+  s.eim_k_size = 4;
+  s.eim_g_size = 3;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  OnlineSolver solver(off.model);
+  constexpr double kEps = 1e-3;  // the paper's eps_KA
+  OnlineSettings fixed_point;
+  fixed_point.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
+  fixed_point.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  OnlineSettings relaxed;
+  relaxed.kacanov = contactrb::solve::KacanovSettings{0.3, kEps, 500};
+  relaxed.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  for (const double mu : verification_values().at(GetParam())) {
+    const auto ref = solver.solve(mu, fixed_point);
+    ASSERT_TRUE(ref.converged()) << ref.message;
+    const auto r = solver.solve(mu, relaxed);
+    ASSERT_TRUE(r.converged()) << r.message;
+    for (int depth : {0, 1, 3}) {
+      OnlineSettings accelerated = relaxed;
+      accelerated.iteration = contactrb::rb::OnlineIteration::Accelerated;
+      accelerated.anderson_depth = depth;
+      const auto a = solver.solve(mu, accelerated);
+      ASSERT_TRUE(a.converged()) << "mu = " << mu << ", depth " << depth << ": " << a.message;
+      // Residual test at alpha = 1: |G(u) - u| <= eps |u|, and G contracts; the relaxed
+      // iterate's distance to the fixed point is of the same order.
+      const double du = (a.u_hat - ref.u_hat).norm() / ref.u_hat.norm();
+      const double dl = (a.lambda_hat - ref.lambda_hat).norm() / ref.lambda_hat.norm();
+      std::printf("[ %s ] mu = %.4f depth %d: %d steps (relaxed %d); |u - u*|/|u*| %.2e (relaxed %.2e), lambda %.2e\n",
+                  GetParam().c_str(), mu, depth, a.iterations, r.iterations, du,
+                  (r.u_hat - ref.u_hat).norm() / ref.u_hat.norm(), dl);
+      EXPECT_LT(du, kEps);
+      EXPECT_LT(dl, 10 * kEps);
+      EXPECT_LT(a.iterations, r.iterations);
+      EXPECT_NEAR(a.energy, ref.energy, kEps * std::abs(ref.energy));
+    }
+    // Tight tolerance: the same fixed point to round-off.
+    OnlineSettings tight = fixed_point;
+    tight.iteration = contactrb::rb::OnlineIteration::Accelerated;
+    tight.kacanov->tolerance = 1e-10;
+    const auto t = solver.solve(mu, tight);
+    ASSERT_TRUE(t.converged()) << t.message;
+    EXPECT_LT((t.u_hat - ref.u_hat).norm(), 1e-8 * ref.u_hat.norm());
+    EXPECT_LT((t.lambda_hat - ref.lambda_hat).norm(), 1e-7 * ref.lambda_hat.norm());
+  }
+}
+
+// Automatic: accelerated without explicit Kacanov settings, relaxed (the given alpha) with them.
+TEST(OnlineSolver, AutomaticIterationHonoursAnExplicitAlpha) {
+  const SnapshotSet& set = snapshots("hertz-b");
+  const OfflineResult off =
+      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), untruncated(true));
+  OnlineSolver solver(off.model);
+  const double mu = verification_values().at("hertz-b")[1];
+  OnlineSettings given;
+  given.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-6, 500};
+  OnlineSettings relaxed = given;
+  relaxed.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  OnlineSettings accelerated = given;
+  accelerated.iteration = contactrb::rb::OnlineIteration::Accelerated;
+  const auto a = solver.solve(mu, given);
+  const auto b = solver.solve(mu, relaxed);
+  const auto c = solver.solve(mu, accelerated);
+  ASSERT_TRUE(a.converged() && b.converged() && c.converged());
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.u_hat, b.u_hat);
+  EXPECT_LT(c.iterations, b.iterations);
+  // Default settings: the model's (snapshot) tolerance 1e-10, accelerated.
+  const auto d = solver.solve(mu);
+  ASSERT_TRUE(d.converged()) << d.message;
+  EXPECT_LT((d.u_hat - b.u_hat).norm(), 1e-5 * b.u_hat.norm());
+  OnlineSettings bad;
+  bad.anderson_depth = 9;
+  EXPECT_THROW(solver.solve(mu, bad), contactrb::Error);
+  bad.anderson_depth = -1;
+  EXPECT_THROW(solver.solve(mu, bad), contactrb::Error);
 }
 
 TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {

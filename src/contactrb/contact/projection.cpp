@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/master_polyline.hpp"
+#include "contactrb/contact/segment_hit.hpp"
 
 namespace contactrb::contact {
 
@@ -29,36 +30,8 @@ Vec2 position(const mesh::Mesh& mesh, const Eigen::VectorXd& w, int node) {
   return mesh.nodes[static_cast<std::size_t>(node)] + w.segment<2>(2 * node);
 }
 
-// Closest point of x on segment k, clamped into the segment's bounding box so that the
-// computed squared distance is never below the computed distance to any box holding the
-// segment (this makes tree pruning exact in floating point, not only in exact arithmetic).
-struct SegmentHit {
-  double d2 = std::numeric_limits<double>::infinity();
-  int segment = -1;
-  double t_raw = 0.0;  // unclamped projection parameter on the segment's line
-  double xi = 0.0;     // in [0, 1]
-};
-
 SegmentHit closest_on_segment(const MasterPolyline& m, int k, const Vec2& x) {
-  const Vec2& a = m.y[static_cast<std::size_t>(k)];
-  const Vec2& b = m.y[static_cast<std::size_t>(k + 1)];
-  const Vec2 e = b - a;
-  SegmentHit h;
-  h.segment = k;
-  h.t_raw = (x - a).dot(e) / e.squaredNorm();
-  Vec2 p;
-  if (h.t_raw <= 0.0) {
-    h.xi = 0.0;
-    p = a;
-  } else if (h.t_raw >= 1.0) {
-    h.xi = 1.0;
-    p = b;
-  } else {
-    h.xi = h.t_raw;
-    p = (a + h.xi * e).cwiseMax(a.cwiseMin(b)).cwiseMin(a.cwiseMax(b));
-  }
-  h.d2 = (x - p).squaredNorm();
-  return h;
+  return contact::closest_on_segment(m.y[static_cast<std::size_t>(k)], m.y[static_cast<std::size_t>(k + 1)], k, x);
 }
 
 // Lexicographic order on (squared distance, segment index): the answer of every search.

@@ -18,7 +18,6 @@ constexpr double kBlindContactTolerance = 1e-10;
 namespace {
 using Clock = std::chrono::steady_clock;
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-using WRow = RowSparse::InnerIterator;  // rows of the quadrature W (R x S, row-major)
 inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
 int resolve(int requested, int maximum, int minimum, const char* name) {
@@ -53,7 +52,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   for (const auto& f : model.A_lift_hat) A_lift_hat_.push_back(f.head(N_));
   lift_AA_ = model.lift_AA;
   lift_f_ = model.lift_f;
-  for (int j = 0; j < Mk_; ++j) C_.push_back(model.C_kappa[sz(j)].topLeftCorner(R_, N_));
+  for (int j = 0; j < Mk_; ++j) Ct_.push_back(model.C_kappa[sz(j)].topLeftCorner(R_, N_).transpose());
   // The leading M x M block of B is the B of the first M EIM functions (B is lower triangular).
   if (Mk_ > 0) B_kappa_lu_.compute(model.B_kappa.topLeftCorner(Mk_, Mk_));
   if (Mg_ > 0) B_gamma_lu_.compute(model.B_gamma.topLeftCorner(Mg_, Mg_));
@@ -81,61 +80,30 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   mesh_.boundaries[mesh::kMasterBoundary] = edges(surface_.master);
   pair_.slave = surface_.slave;
   pair_.master = surface_.master;
-  needed_rows_ = kappa_row_;
-  needed_rows_.insert(needed_rows_.end(), gamma_row_.begin(), gamma_row_.end());
-  std::sort(needed_rows_.begin(), needed_rows_.end());
-  needed_rows_.erase(std::unique(needed_rows_.begin(), needed_rows_.end()), needed_rows_.end());
-}
+  magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
+  // Upper bound of |D|_F without cancellation per unit |phi|_1: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
+  d_bound_ = Xi_.norm() * Theta_c_.norm();
 
-void OnlineSolver::prepare_restriction() {
-  // Slave positions s with W(r, s) != 0 for a needed row r (the pattern of W; its values
-  // depend on mu through the edge lengths).
-  std::vector<int> slave_positions;
-  for (int r : needed_rows_) {
-    for (WRow it(quadrature_.W, r); it; ++it) {
-      slave_positions.push_back(static_cast<int>(it.col()));
-    }
-  }
-  std::sort(slave_positions.begin(), slave_positions.end());
-  slave_positions.erase(std::unique(slave_positions.begin(), slave_positions.end()), slave_positions.end());
-  restricted_pair_.master = pair_.master;
-  restricted_pair_.slave.clear();
-  restricted_slave_position_ = slave_positions;
-  for (int s : slave_positions) restricted_pair_.slave.push_back(pair_.slave[sz(s)]);
-}
-
-void OnlineSolver::evaluate_magic_restricted(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c,
-                                             Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const {
-  // Few slave nodes: all-pairs search beats building the segment tree every iteration (both
-  // return the same projection, projection.hpp).
-  contact::ProjectionOptions options;
-  options.search = contact::SearchMethod::AllPairs;
-  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, restricted_pair_, w, options);
-  // Position of each slave chain entry in the restricted pair.
-  auto local = [&](int s) {
-    const auto it = std::lower_bound(restricted_slave_position_.begin(), restricted_slave_position_.end(), s);
-    return static_cast<int>(it - restricted_slave_position_.begin());
-  };
-  // K[r, dof] = sum_s W(r, s) K_pt[s, dof] (collocation and LAC-Simpson rows, (10)-(11)).
-  auto K_entry = [&](int r, int dof) {
-    double v = 0.0;
-    for (WRow it(quadrature_.W, r); it; ++it) {
-      v += it.value() * pw.K.coeff(local(static_cast<int>(it.col())), dof);
-    }
-    return v;
-  };
-  kappa_hat.resize(Mk_);
-  for (int i = 0; i < Mk_; ++i) kappa_hat(i) = K_entry(kappa_row_[sz(i)], kappa_dof_[sz(i)]);
-  gamma_hat.resize(Mg_);
-  for (int i = 0; i < Mg_; ++i) {
-    const int r = gamma_row_[sz(i)];
-    double g = 0.0;
-    for (WRow it(quadrature_.W, r); it; ++it) {
-      const int l = local(static_cast<int>(it.col()));
-      g += it.value() * (pw.g(l) - row_dot(pw.K, l, lift_c));
-    }
-    gamma_hat(i) = g;
-  }
+  // Workspaces (see the header).
+  const Eigen::Index n_c = Theta_c_.rows();
+  A_.resize(N_, N_);
+  f_.resize(N_);
+  z_.resize(N_);
+  lift_mu_.resize(n_c);
+  w_.resize(n_c);
+  kappa_hat_.resize(Mk_);
+  gamma_hat_.resize(Mg_);
+  phi_.resize(Mk_);
+  phi_gamma_.resize(Mg_);
+  dg_.resize(R_);
+  c_.resize(R_);
+  t_.resize(N_);
+  Et_.resize(N_, R_);
+  Dt_.resize(N_, R_);
+  Q_.resize(R_, R_);
+  warm_.reserve(sz(R_));
+  for (Eigen::VectorXd* v : {&u_, &u_prev_, &r_, &r_prev_}) v->resize(N_);
+  lambda_prev_.resize(R_);
 }
 
 void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, Eigen::VectorXd& kappa_hat,
@@ -155,15 +123,7 @@ void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorX
   }
 }
 
-OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
-  const auto t0 = Clock::now();
-  parameter_.check(mu, "reduced model online solve");
-  const solve::KacanovSettings ks =
-      settings.kacanov ? *settings.kacanov
-                       : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};
-  solve::check_settings(ks);
-  qp_.set_settings(settings.qp);
-
+bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
   // Omega(mu) on the contact surface: h_body(mu) applied to the reference chain nodes.
   const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameter_, mu);
   for (std::size_t i = 0; i < mesh_.nodes.size(); ++i) {
@@ -173,89 +133,225 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   require(quadrature_.W.rows() == surface_.num_constraints,
           "OnlineSolver: the contact surface gives " + std::to_string(quadrature_.W.rows()) +
               " constraints, the model " + std::to_string(surface_.num_constraints));
-  const bool restricted = settings.restricted_rows && surface_.discretization != contact::Discretization::LAC;
-  if (restricted) prepare_restriction();
-
+  restricted_ = restricted;
   // (49)
   const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
   const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
   const Eigen::VectorXd tl = cases::evaluate(thetas_.lift, mu);
   const int Ja = static_cast<int>(A_hat_.size()), Jf = static_cast<int>(f_hat_.size());
   const int JD = static_cast<int>(tl.size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(N_, N_);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(N_);
-  double E_D = 0.0;
+  A_.setZero();
+  f_.setZero();
+  E_D_ = 0.0;
   for (int j = 0; j < Ja; ++j) {
-    A += ta(j) * A_hat_[sz(j)];
+    A_ += ta(j) * A_hat_[sz(j)];
     for (int k = 0; k < JD; ++k) {
-      f -= ta(j) * tl(k) * A_lift_hat_[sz(j * JD + k)];
-      for (int l = 0; l < JD; ++l) E_D += 0.5 * ta(j) * tl(k) * tl(l) * lift_AA_[sz((j * JD + k) * JD + l)];
+      f_ -= ta(j) * tl(k) * A_lift_hat_[sz(j * JD + k)];
+      for (int l = 0; l < JD; ++l) E_D_ += 0.5 * ta(j) * tl(k) * tl(l) * lift_AA_[sz((j * JD + k) * JD + l)];
     }
   }
   for (int j = 0; j < Jf; ++j) {
-    f += tf(j) * f_hat_[sz(j)];
-    for (int k = 0; k < JD; ++k) E_D -= tf(j) * tl(k) * lift_f_[sz(j * JD + k)];
+    f_ += tf(j) * f_hat_[sz(j)];
+    for (int k = 0; k < JD; ++k) E_D_ -= tf(j) * tl(k) * lift_f_[sz(j * JD + k)];
   }
-  const Eigen::LLT<Eigen::MatrixXd> llt(A);
+  // Once per query: the Cholesky factor of A_hat(mu) serves every step.
+  llt_.compute(A_);
+  if (llt_.info() != Eigen::Success) {
+    message = "A_hat(mu) is not positive definite";
+    return false;
+  }
+  z_ = llt_.solve(f_);  // A_hat^-1 f_hat
+  if (JD > 0) {
+    lift_mu_.noalias() = lift_c_ * tl;
+  } else {
+    lift_mu_.setZero();
+  }
+  if (restricted) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  warm_.clear();
+  return true;
+}
+
+bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+                        std::string& message) {
+  if (restricted_) {
+    magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
+  } else {
+    w_ = lift_mu_;
+    w_.noalias() += Theta_c_ * u_hat;
+    evaluate_magic(w_, lift_mu_, kappa_hat_, gamma_hat_);
+  }
+  // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat; assembled transposed (N x R).
+  Dt_.setZero();
+  double d_scale = 0.0;
+  if (Mk_ > 0) {
+    phi_ = B_kappa_lu_.solve(kappa_hat_);
+    for (int j = 0; j < Mk_; ++j) Dt_ += phi_(j) * Ct_[sz(j)];
+    d_scale = d_bound_ * phi_.cwiseAbs().sum();
+  }
+  // When the primal basis does not see the contact (K Theta = 0, e.g. the only POD mode
+  // of a patch test has no interface jump), D vanishes and the reduced multipliers are
+  // not determined by (53): the QP would return round-off over round-off. Fail instead.
+  const double d_norm = Dt_.norm();
+  if (R_ > 0 && d_norm <= kBlindContactTolerance * d_scale) {
+    message = "the reduced contact operator D^kappa vanishes (|D| = " + std::to_string(d_norm) +
+              "): the primal basis does not see the contact constraints, so the reduced multipliers "
+              "are undetermined; rebuild the model with a larger N";
+    return false;
+  }
+  if (Mg_ > 0) {
+    phi_gamma_ = B_gamma_lu_.solve(gamma_hat_);
+    dg_.noalias() = XiQ_gamma_ * phi_gamma_;
+  } else {
+    dg_.setZero();
+  }
+  // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y symmetrized,
+  // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
+  // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
+  // multipliers, whose QP is ill-conditioned there.)
+  Et_ = Dt_;
+  llt_.matrixL().solveInPlace(Et_);
+  llt_.matrixU().solveInPlace(Et_);
+  for (int j = 0; j < R_; ++j) {
+    for (int i = 0; i < R_; ++i) Q_(i, j) = Dt_.col(i).dot(Et_.col(j));
+  }
+  for (int j = 0; j < R_; ++j) {
+    for (int i = j + 1; i < R_; ++i) Q_(i, j) = Q_(j, i) = 0.5 * (Q_(i, j) + Q_(j, i));
+  }
+  c_.noalias() = Dt_.transpose() * z_;
+  c_ -= dg_;
+  const solve::QPResult& qp = qp_.solve(Q_, c_, warm_);
+  inner = qp.iterations;
+  if (qp.status != solve::QPStatus::Solved) {
+    message = std::string("reduced contact QP ") + solve::to_string(qp.status) + ": " + qp.message;
+    return false;
+  }
+  warm_ = qp.passive;
+  lambda_bar = qp.x;
+  // u_bar = A^-1 (f - D' lambda) = z - Y lambda.
+  u_bar = z_;
+  u_bar.noalias() -= Et_ * lambda_bar;
+  return true;
+}
+
+solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSettings& ks, int depth) {
+  solve::KacanovResult result;
+  if (dU_.cols() < depth) {
+    dU_.resize(N_, depth);
+    dR_.resize(N_, depth);
+    dL_.resize(R_, depth);
+  }
+  // Safeguard floor: the damping the HF snapshots needed.
+  const double beta_min = std::min(1.0, kacanov_alpha_);
+  double beta = 1.0;
+  int m = 0;     // history columns in use
+  int next = 0;  // circular position of the next column
+  double r_prev_norm = 0.0;
+  u_.setZero();
+  lambda_prev_.setZero();
+  result.u_bar.resize(N_);
+  result.lambda_bar.resize(R_);
+  for (int k = 1; k <= ks.max_iterations; ++k) {
+    solve::KacanovIteration it;
+    std::string message;
+    if (!step(u_, result.u_bar, result.lambda_bar, it.step_iterations, message)) {
+      result.status = solve::KacanovStatus::StepFailed;
+      result.iterations = k;
+      result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
+      return result;
+    }
+    r_ = result.u_bar - u_;
+    const double r_norm = r_.norm();
+    // (63) at alpha = 1 (see OnlineIteration::Accelerated).
+    it.du = solve::relative_increment(result.u_bar, u_);
+    it.dlambda = solve::relative_increment(result.lambda_bar, lambda_prev_);
+    result.history.push_back(it);
+    if (std::max(it.du, it.dlambda) <= ks.tolerance) {
+      result.status = solve::KacanovStatus::Converged;
+      result.iterations = k;
+      result.u = result.u_bar;
+      result.lambda = result.lambda_bar;
+      return result;
+    }
+    if (k > 1) {
+      if (r_norm >= r_prev_norm) {
+        // Safeguard: no decrease of the residual. Forget the history, damp more.
+        m = 0;
+        next = 0;
+        beta = std::max(0.5 * beta, beta_min);
+      } else if (depth > 0) {
+        dU_.col(next) = u_ - u_prev_;
+        dR_.col(next) = r_ - r_prev_;
+        dL_.col(next) = result.lambda_bar - lambda_prev_;
+        next = (next + 1) % depth;
+        m = std::min(m + 1, depth);
+      }
+    }
+    u_prev_ = u_;
+    r_prev_ = r_;
+    r_prev_norm = r_norm;
+    lambda_prev_ = result.lambda_bar;
+    // Anderson (type II): gamma = argmin |r - dR gamma|, u <- u + beta r - (dU + beta dR) gamma.
+    u_ += beta * r_;
+    if (m > 0) {
+      using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 8>;
+      using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1>;
+      Small G(m, m);
+      SmallVec b(m);
+      for (int i = 0; i < m; ++i) {
+        b(i) = dR_.col(i).dot(r_);
+        for (int j = 0; j <= i; ++j) G(i, j) = G(j, i) = dR_.col(i).dot(dR_.col(j));
+      }
+      // Normal equations of at most 8 columns; a relative ridge keeps a nearly dependent
+      // history harmless (its columns then get small coefficients).
+      G.diagonal().array() += 1e-12 * G.diagonal().maxCoeff();
+      const Eigen::LLT<Small> small(G);
+      if (small.info() == Eigen::Success) {
+        const SmallVec gamma = small.solve(b);
+        for (int i = 0; i < m; ++i) u_ -= gamma(i) * (dU_.col(i) + beta * dR_.col(i));
+      }
+    }
+  }
+  result.status = solve::KacanovStatus::MaxIterations;
+  result.iterations = ks.max_iterations;
+  const solve::KacanovIteration& last = result.history.back();
+  result.message = "Kacanov (accelerated) did not converge in " + std::to_string(ks.max_iterations) +
+                   " iterations (last relative residuals: displacement " + std::to_string(last.du) +
+                   ", multipliers " + std::to_string(last.dlambda) + ", tolerance " + std::to_string(ks.tolerance) + ")";
+  return result;
+}
+
+OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
+  const auto t0 = Clock::now();
+  parameter_.check(mu, "reduced model online solve");
+  const solve::KacanovSettings ks =
+      settings.kacanov ? *settings.kacanov
+                       : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};
+  solve::check_settings(ks);
+  require(settings.anderson_depth >= 0 && settings.anderson_depth <= 8,
+          "OnlineSettings::anderson_depth must be in [0, 8] (got " + std::to_string(settings.anderson_depth) + ")");
+  const bool accelerated = settings.iteration == OnlineIteration::Accelerated ||
+                           (settings.iteration == OnlineIteration::Automatic && !settings.kacanov);
+  qp_.set_settings(settings.qp);
+
   OnlineSolution sol;
-  if (llt.info() != Eigen::Success) {
-    sol.message = "A_hat(mu) is not positive definite";
+  const bool restricted = settings.restricted_rows && surface_.discretization != contact::Discretization::LAC;
+  if (!prepare(mu, restricted, sol.message)) {
     sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return sol;
   }
-  const Eigen::VectorXd z = llt.solve(f);  // A_hat^-1 f_hat
-  const Eigen::VectorXd lift_c = JD > 0 ? Eigen::VectorXd(lift_c_ * tl) : Eigen::VectorXd::Zero(lift_c_.rows());
 
-  std::vector<int> warm;
-  Eigen::VectorXd kappa_hat, gamma_hat, w;
-  Eigen::MatrixXd D(R_, N_), Y, Q;
-  solve::KacanovStep step = [&](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&, Eigen::VectorXd& u_bar,
-                                Eigen::VectorXd& lambda_bar, int& inner, std::string& message) {
-    w = lift_c + Theta_c_ * u_hat;
-    if (restricted) {
-      evaluate_magic_restricted(w, lift_c, kappa_hat, gamma_hat);
-    } else {
-      evaluate_magic(w, lift_c, kappa_hat, gamma_hat);
-    }
-    // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat.
-    D.setZero();
-    double d_scale = 0.0;
-    if (Mk_ > 0) {
-      const Eigen::VectorXd phi = B_kappa_lu_.solve(kappa_hat);
-      for (int j = 0; j < Mk_; ++j) D += phi(j) * C_[sz(j)];
-      // Upper bound of |D|_F without cancellation: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
-      d_scale = Xi_.norm() * Theta_c_.norm() * phi.cwiseAbs().sum();
-    }
-    // When the primal basis does not see the contact (K Theta = 0, e.g. the only POD mode
-    // of a patch test has no interface jump), D vanishes and the reduced multipliers are
-    // not determined by (53): the QP would return round-off over round-off. Fail instead.
-    if (R_ > 0 && D.norm() <= kBlindContactTolerance * d_scale) {
-      message = "the reduced contact operator D^kappa vanishes (|D| = " + std::to_string(D.norm()) +
-                "): the primal basis does not see the contact constraints, so the reduced multipliers "
-                "are undetermined; rebuild the model with a larger N";
-      return false;
-    }
-    Eigen::VectorXd dg = Eigen::VectorXd::Zero(R_);
-    if (Mg_ > 0) dg = XiQ_gamma_ * B_gamma_lu_.solve(gamma_hat);
-    // Reduced dual QP: Q = D A^-1 D', c = D A^-1 f - D^gamma gamma_hat.
-    Y = llt.solve(D.transpose());
-    Q = D * Y;
-    Q = 0.5 * (Q + Q.transpose()).eval();
-    const Eigen::VectorXd c = D * z - dg;
-    const solve::QPResult& qp = qp_.solve(Q, c, warm);
-    inner = qp.iterations;
-    if (qp.status != solve::QPStatus::Solved) {
-      message = std::string("reduced contact QP ") + solve::to_string(qp.status) + ": " + qp.message;
-      return false;
-    }
-    warm = qp.passive;
-    lambda_bar = qp.x;
-    u_bar = z - Y * lambda_bar;
-    return true;
-  };
   solve::KacanovResult kr;
   try {
-    kr = solve::kacanov(step, Eigen::VectorXd::Zero(N_), Eigen::VectorXd::Zero(R_), ks);
+    if (accelerated) {
+      kr = iterate_accelerated(ks, settings.anderson_depth);
+    } else {
+      const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
+                                                Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+                                                std::string& message) {
+        return step(u_hat, u_bar, lambda_bar, inner, message);
+      };
+      kr = solve::kacanov(step_fn, Eigen::VectorXd::Zero(N_), Eigen::VectorXd::Zero(R_), ks);
+    }
   } catch (const Error& e) {  // e.g. a degenerate deformed master segment
     kr.status = solve::KacanovStatus::StepFailed;
     kr.message = e.what();
@@ -265,10 +361,12 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   sol.iterations = kr.iterations;
   sol.u_hat = kr.u_bar.size() == N_ ? kr.u_bar : Eigen::VectorXd::Zero(N_);
   sol.lambda_hat = kr.lambda_bar.size() == R_ ? kr.lambda_bar : Eigen::VectorXd::Zero(R_);
-  sol.energy = 0.5 * sol.u_hat.dot(A * sol.u_hat) - f.dot(sol.u_hat) + E_D;
-  Eigen::VectorXd w_kept(static_cast<Eigen::Index>(kept_rows_.size()));
-  for (std::size_t i = 0; i < kept_rows_.size(); ++i) w_kept(static_cast<Eigen::Index>(i)) = quadrature_.weight(kept_rows_[i]);
-  sol.contact_force = (Xi_.transpose() * w_kept).dot(sol.lambda_hat);
+  sol.energy = 0.5 * sol.u_hat.dot(A_ * sol.u_hat) - f_.dot(sol.u_hat) + E_D_;
+  double force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i) {
+    force += quadrature_.weight(kept_rows_[i]) * Xi_.row(static_cast<Eigen::Index>(i)).dot(sol.lambda_hat);
+  }
+  sol.contact_force = force;
   sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   return sol;
 }

@@ -9,9 +9,14 @@
 //
 // Magic-point evaluation: collocation and LAC-Simpson rows are weighted sums of pointwise rows
 // of a few slave nodes, so only the slave nodes under the magic rows are projected (the
-// "restricted operator"; the deformed master polyline is still built whole, O(master nodes)).
-// Exactly integrated LAC rows need the whole slave chain: every row of the contact-surface
-// mesh is recomputed and the magic entries are picked (docs/offline-online.md).
+// "restricted operator", online_magic.hpp; the deformed master chain positions are still
+// computed whole, O(master nodes)). Exactly integrated LAC rows need the whole slave chain:
+// every row of the contact-surface mesh is recomputed and the magic entries are picked
+// (docs/offline-online.md).
+//
+// Cost per query (docs/online-performance.md): A_hat(mu) and its Cholesky factor once; per
+// step the magic points, D' (N x R) assembled and solved against A, Q = D A^-1 D', the QP warm
+// started from the previous step's passive set; no allocation of size N or R per step.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -21,6 +26,7 @@
 
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/mesh/mesh.hpp"
+#include "contactrb/rb/online_magic.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
@@ -35,12 +41,35 @@ struct OnlineSizes {
   int Mg = -1;
 };
 
+// How the reduced Kacanov fixed point u_hat = G(u_hat) (G: one linearized step (53)) is reached.
+// The fixed point is the same; only the path and the number of steps differ.
+enum class OnlineIteration {
+  // Accelerated when OnlineSettings::kacanov is empty (the default), Relaxed when it is set
+  // (an explicit alpha is honoured, e.g. `contactrb online --alpha`).
+  Automatic,
+  // Paper (12): u^k = alpha u_bar + (1 - alpha) u^{k-1}, stopping test (63) (solve::kacanov, the
+  // HF snapshots' iteration).
+  Relaxed,
+  // alpha is not used: undamped steps (alpha = 1) with Anderson mixing of depth anderson_depth,
+  // safeguarded (a step whose residual |G(u) - u| does not decrease clears the history and
+  // halves the damping, down to the model's alpha). Stopping test (63) on the fixed-point
+  // residual: |G(u^k) - u^k| <= eps_KA |u^k| and |lambda_bar^k - lambda_bar^{k-1}| <= eps_KA
+  // |lambda_bar^{k-1}|, i.e. (63) at alpha = 1, which is 1/alpha times tighter than the
+  // relaxed test. Measured (bench_online, docs/online-performance.md): 4-8 steps instead of
+  // 18-30 at alpha = 0.3, same solution within eps_KA.
+  Accelerated,
+};
+
 struct OnlineSettings {
-  // Empty: the Kacanov settings of the HF snapshots the model was built from.
+  // Empty: the tolerance and iteration cap of the HF snapshots the model was built from (and
+  // their alpha, for the Relaxed iteration).
   std::optional<solve::KacanovSettings> kacanov;
   solve::QPSettings qp;
   // false: recompute every row of the contact-surface mesh (the reference path of the tests).
   bool restricted_rows = true;
+  OnlineIteration iteration = OnlineIteration::Automatic;
+  // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
+  int anderson_depth = 3;
 };
 
 struct OnlineSolution {
@@ -71,14 +100,19 @@ class OnlineSolver {
   int Mg() const { return Mg_; }
 
  private:
+  // Per mu: A_hat(mu) (49) and its Cholesky factor, z = A_hat^-1 f_hat(mu), the lift on the contact
+  // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
+  bool prepare(double mu, bool restricted, std::string& message);
+  // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
+  bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+            std::string& message);
+  // The Accelerated iteration from u_hat = 0 (see OnlineIteration).
+  solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth);
+
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
   void evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, Eigen::VectorXd& kappa_hat,
                       Eigen::VectorXd& gamma_hat) const;
-  void evaluate_magic_restricted(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, Eigen::VectorXd& kappa_hat,
-                                 Eigen::VectorXd& gamma_hat) const;
-  // For the restricted evaluation at the current mu: the slave nodes under the magic rows.
-  void prepare_restriction();
 
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::ParameterSpec parameter_;
@@ -88,10 +122,11 @@ class OnlineSolver {
   std::vector<Eigen::MatrixXd> A_hat_;
   std::vector<Eigen::VectorXd> f_hat_, A_lift_hat_;
   std::vector<double> lift_AA_, lift_f_;
-  std::vector<Eigen::MatrixXd> C_;       // Mk of R x N
+  std::vector<Eigen::MatrixXd> Ct_;      // Mk of N x R: C_j' (D' = sum_j phi_j C_j')
   Eigen::PartialPivLU<Eigen::MatrixXd> B_kappa_lu_, B_gamma_lu_;  // leading blocks (Remark 4)
   Eigen::MatrixXd XiQ_gamma_;            // R x Mg
   Eigen::MatrixXd Xi_;                   // R_kept x R
+  double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
   std::vector<int> kept_rows_;
   std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
   ContactSurface surface_;
@@ -100,10 +135,25 @@ class OnlineSolver {
   mesh::Mesh mesh_;                      // contact nodes in Omega(mu) (positions set per solve)
   contact::ContactPair pair_;
   contact::ContactQuadrature quadrature_;
-  std::vector<int> needed_rows_;          // union of the magic rows (R_hf numbering), increasing
-  contact::ContactPair restricted_pair_;  // slave = the slave nodes those rows weigh, master = all
-  std::vector<int> restricted_slave_position_;  // positions in the slave chain, increasing
+  MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
   solve::NonnegativeQPSolver qp_;
+
+  // Workspaces, sized in the constructor: a query allocates nothing of size N, R per step
+  // (the contact-surface projection and the QP's message aside).
+  Eigen::MatrixXd A_;                    // A_hat(mu)
+  Eigen::LLT<Eigen::MatrixXd> llt_;      // A_hat(mu) = L L'
+  Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
+  double E_D_ = 0.0;
+  bool restricted_ = true;
+  Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
+  Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
+  Eigen::MatrixXd Dt_;                   // N x R: D'
+  Eigen::MatrixXd Et_;                   // N x R: Y = A^-1 D'
+  Eigen::MatrixXd Q_;                    // R x R: D A^-1 D'
+  std::vector<int> warm_;                // the previous step's QP passive set
+  // Accelerated iteration: current and previous iterates, residuals, history columns.
+  Eigen::VectorXd u_, u_prev_, r_, r_prev_, lambda_prev_;
+  Eigen::MatrixXd dU_, dR_, dL_;         // differences of u, of r = G(u) - u, of lambda_bar
 };
 
 }  // namespace contactrb::rb

@@ -537,27 +537,35 @@ void validate(const Eigen::MatrixXd& Q, const Eigen::VectorXd& c, const QPSettin
     throw Error(std::string(who) + "settings.symmetry_tolerance must be >= 0, got " +
                 std::to_string(settings.symmetry_tolerance));
   const Eigen::Index n = Q.rows();
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (!(std::isfinite(c[i])))
-      throw Error(std::string(who) + "c(" + std::to_string(i) + ") is not finite (size " + std::to_string(n) +
-                  ")");
-  if (!Q.allFinite()) {
+  // Vectorized passes first; the offending index is searched only on failure (this runs on
+  // every online QP: its cost matters next to the small active-set solve).
+  // x * 0 is 0 for finite x and NaN otherwise: one vectorized sum (allFinite() is an
+  // element-by-element loop with an early exit).
+  const auto has_non_finite = [](const auto& a) { return !std::isfinite((a.array() * 0.0).sum()); };
+  if (has_non_finite(c)) {
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!(std::isfinite(c[i])))
+        throw Error(std::string(who) + "c(" + std::to_string(i) + ") is not finite (size " + std::to_string(n) +
+                    ")");
+  }
+  if (has_non_finite(Q)) {
     for (Eigen::Index j = 0; j < n; ++j)
       for (Eigen::Index i = 0; i < n; ++i)
         if (!std::isfinite(Q(i, j)))
           throw Error(std::string(who) + "Q(" + std::to_string(i) + ", " + std::to_string(j) +
                       ") is not finite (Q is " + dims(Q) + ")");
   }
-  for (Eigen::Index j = 0; j < n; ++j)
-    if (Q(j, j) < 0.0)
-      throw Error(std::string(who) + "Q(" + std::to_string(j) + ", " + std::to_string(j) +
-                  ") < 0: Q is not positive semidefinite (Q is " + dims(Q) + ")");
+  if (n > 0 && Q.diagonal().minCoeff() < 0.0) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (Q(j, j) < 0.0)
+        throw Error(std::string(who) + "Q(" + std::to_string(j) + ", " + std::to_string(j) +
+                    ") < 0: Q is not positive semidefinite (Q is " + dims(Q) + ")");
+  }
   q_norm = n > 0 ? Q.cwiseAbs().colwise().sum().maxCoeff() : 0.0;  // = max row sum (Q symmetric)
   const double max_abs = n > 0 ? Q.cwiseAbs().maxCoeff() : 0.0;
   // max |Q_ij - Q_ji| over tiles, so that the transposed reads stay in cache.
   constexpr Eigen::Index kTile = 32;
   double asym = 0.0;
-  Eigen::Index ai = 0, aj = 0;
   for (Eigen::Index j0 = 0; j0 < n; j0 += kTile) {
     const Eigen::Index j1 = std::min(n, j0 + kTile);
     for (Eigen::Index i0 = 0; i0 <= j0; i0 += kTile) {
@@ -565,11 +573,25 @@ void validate(const Eigen::MatrixXd& Q, const Eigen::VectorXd& c, const QPSettin
       for (Eigen::Index j = j0; j < j1; ++j)
         for (Eigen::Index i = i0; i < std::min(i1, j); ++i) {
           const double a = std::abs(Q(i, j) - Q(j, i));
-          if (a > asym) asym = a, ai = i, aj = j;
+          asym = a > asym ? a : asym;  // a value, not std::max's reference: stays in a register
         }
     }
   }
   if (asym > settings.symmetry_tolerance * max_abs) {
+    // The first (in tile order) entry with the largest asymmetry, as reported before.
+    Eigen::Index ai = 0, aj = 0;
+    double worst = 0.0;
+    for (Eigen::Index j0 = 0; j0 < n; j0 += kTile) {
+      const Eigen::Index j1 = std::min(n, j0 + kTile);
+      for (Eigen::Index i0 = 0; i0 <= j0; i0 += kTile) {
+        const Eigen::Index i1 = std::min(n, i0 + kTile);
+        for (Eigen::Index j = j0; j < j1; ++j)
+          for (Eigen::Index i = i0; i < std::min(i1, j); ++i) {
+            const double a = std::abs(Q(i, j) - Q(j, i));
+            if (a > worst) worst = a, ai = i, aj = j;
+          }
+      }
+    }
     std::ostringstream m;
     m << who << "Q (" << dims(Q) << ") is not symmetric: |Q(" << ai << ", " << aj << ") - Q(" << aj << ", "
       << ai << ")| = " << asym

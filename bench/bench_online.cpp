@@ -1,0 +1,177 @@
+// Online query time (issue 6 bench target: median < 100 us per query on hertz-b).
+// Per case (hertz-a, hertz-b, ring-block): HF snapshots on the training and verification sets
+// (HF settings: the paper's alpha = 0.3, eps_KA = 1e-3), a reduced model at the paper's
+// tolerances (eps_POD 1e-5, eps_DU 1e-4, eps_EIM^k 1e-2, eps_EIM^g 1e-3, CPG; "/paper") and
+// one at the default OfflineSettings ("/default"), then online queries over the verification set. Reported counters:
+//   median_us      median over the verification set of the per-mu median CPU time of one
+//                  query (CLOCK_THREAD_CPUTIME_ID: the machine is shared; repeated queries)
+//   kacanov_it     median reduced Kacanov iterations per query
+//   err_u, err_l   max over the verification set of |u_RB - u_HF| / |u_HF| (and lambda)
+//   dev_u          max over the verification set of |u_hat - u_hat*| / |u_hat*|, u_hat* the
+//                  reduced fixed point (relaxed iteration to eps_KA = 1e-10): the Kacanov error
+//   N, R, Mk, Mg   the model's sizes
+// Variants: reference:0 the default OnlineSettings (accelerated iteration), reference:1 the
+// relaxed iteration at the HF snapshots' alpha (OnlineIteration::Relaxed, the paper's (12)).
+// Snapshots take about a minute per case on 2 cores; set CONTACTRB_BENCH_CACHE=<dir> to keep
+// them as snapshot files between runs.
+//   build/bench/bench_online [--benchmark_filter=hertz-b]
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/rb/offline_builder.hpp"
+#include "contactrb/rb/online_solver.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
+
+namespace {
+
+using namespace contactrb;
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+io::SnapshotSet snapshots(const std::string& name, const std::string& set_name) {
+  const char* cache = std::getenv("CONTACTRB_BENCH_CACHE");
+  std::string path;
+  if (cache != nullptr && *cache != '\0') {
+    path = std::string(cache) + "/" + name + "-" + set_name + ".h5";
+    if (std::filesystem::exists(path)) return io::read_snapshot_file(path);
+  }
+  rb::SnapshotRunOptions options;
+  options.jobs = 2;
+  io::SnapshotSet set = rb::generate_snapshots(rb::make_snapshot_request(cases::builtin_case_spec(name), set_name), options);
+  if (!path.empty()) {
+    std::filesystem::create_directories(cache);
+    io::write_snapshot_file(set, path);
+  }
+  return set;
+}
+
+struct CaseData {
+  io::SnapshotSet verification;
+  rb::OfflineResult offline;
+};
+
+// paper: the paper's tolerances; otherwise the default OfflineSettings.
+const CaseData& case_data(const std::string& name, bool paper) {
+  static std::map<std::string, std::unique_ptr<CaseData>> cache;
+  static std::map<std::string, io::SnapshotSet> training;
+  auto& slot = cache[name + (paper ? "/paper" : "/default")];
+  if (!slot) {
+    slot = std::make_unique<CaseData>();
+    if (training.count(name) == 0) training[name] = snapshots(name, "training");
+    slot->verification = snapshots(name, "verification");
+    rb::OfflineSettings s;
+    if (paper) {
+      s.eps_pod = 1e-5;
+      s.eps_du = 1e-4;
+      s.eps_eim_k = 1e-2;
+      s.eps_eim_g = 1e-3;
+      s.dual_method = rb::DualConeMethod::CPG;
+    }
+    slot->offline = rb::build_reduced_model(training[name], cases::builtin_case_spec(name), s);
+  }
+  return *slot;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper) {
+  const CaseData& d = case_data(name, paper);
+  const rb::ReducedModel& m = d.offline.model;
+  rb::OnlineSolver solver(m);
+  rb::OnlineSettings settings;
+  if (state.range(0) == 1) {
+    settings.kacanov = solve::KacanovSettings{m.kacanov_alpha, m.kacanov_tolerance, m.kacanov_max_iterations};
+    settings.iteration = rb::OnlineIteration::Relaxed;
+  }
+  const auto& snaps = d.verification.snapshots;
+  const std::size_t P = snaps.size();
+  std::vector<std::vector<double>> times(P);
+  std::vector<double> iterations(P, 0.0);
+  double err_u = 0.0, err_l = 0.0, dev_u = 0.0;
+  int failures = 0;
+  // The fixed point itself: the relaxed iteration at the HF alpha to eps_KA = 1e-10.
+  rb::OnlineSettings tight;
+  tight.kacanov = solve::KacanovSettings{m.kacanov_alpha, 1e-10, 10000};
+  tight.iteration = rb::OnlineIteration::Relaxed;
+  // Accuracy against HF, once per mu (outside the timed loop).
+  for (std::size_t p = 0; p < P; ++p) {
+    const rb::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
+    if (!sol.converged()) ++failures;
+    iterations[p] = sol.iterations;
+    const rb::OnlineSolution fixed_point = solver.solve(snaps[p].mu, tight);
+    dev_u = std::max(dev_u, (sol.u_hat - fixed_point.u_hat).norm() / fixed_point.u_hat.norm());
+    const Eigen::VectorXd u = rb::reconstruct_displacement(d.offline.reconstruction, snaps[p].mu, sol.u_hat);
+    const Eigen::VectorXd l = rb::reconstruct_multipliers(d.offline.reconstruction, sol.lambda_hat);
+    err_u = std::max(err_u, (u - snaps[p].u).norm() / snaps[p].u.norm());
+    err_l = std::max(err_l, (l - snaps[p].lambda).norm() / snaps[p].lambda.norm());
+  }
+  std::size_t q = 0;
+  for (auto _ : state) {
+    const std::size_t p = q++ % P;
+    const double t0 = thread_cpu_seconds();
+    const rb::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
+    const double t1 = thread_cpu_seconds();
+    benchmark::DoNotOptimize(sol.u_hat.data());
+    times[p].push_back(t1 - t0);
+  }
+  std::vector<double> per_mu;
+  for (const auto& t : times) {
+    if (!t.empty()) per_mu.push_back(median(t));
+  }
+  state.counters["median_us"] = 1e6 * median(per_mu);
+  state.counters["kacanov_it"] = median(iterations);
+  state.counters["err_u"] = err_u;
+  state.counters["err_l"] = err_l;
+  state.counters["dev_u"] = dev_u;
+  state.counters["failures"] = failures;
+  state.counters["N"] = solver.N();
+  state.counters["R"] = solver.R();
+  state.counters["Mk"] = solver.Mk();
+  state.counters["Mg"] = solver.Mg();
+}
+
+void register_all() {
+  for (const char* name : {"hertz-a", "hertz-b", "ring-block"}) {
+    for (const bool paper : {true, false}) {
+    benchmark::RegisterBenchmark((std::string("BM_OnlineQuery/") + name + (paper ? "/paper" : "/default")).c_str(),
+                                 [name, paper](benchmark::State& s) { BM_OnlineQuery(s, name, paper); })
+        ->ArgName("reference")
+        ->Arg(0)
+        ->Arg(1)
+        ->MeasureProcessCPUTime()
+        ->Unit(benchmark::kMicrosecond)
+        ->MinTime(1.0);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
