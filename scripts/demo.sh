@@ -14,9 +14,10 @@ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build_dir" -j "$(contactrb_jobs)" --target contactrb
 
 "$build_dir/apps/contactrb/contactrb" --version
-"$build_dir/apps/contactrb/contactrb" cases
-"$build_dir/apps/contactrb/contactrb" mesh --case hertz-b --out out/demo
-# One high-fidelity contact solve of the default case (a later issue replaces this job
-# with `contactrb demo`: snapshots, offline, online).
-"$build_dir/apps/contactrb/contactrb" solve --case hertz-b --mu 1.05 --out out/demo
-echo "contactrb: demo outputs in out/demo/ (open out/demo/solution.vtu in ParaView)"
+# The main job: hertz-b end to end (training snapshots, offline with CPG, evaluation of the
+# reduced model against the HF solver on the verification set), then one reduced solve with
+# its fields reconstructed on the HF mesh for ParaView.
+"$build_dir/apps/contactrb/contactrb" demo --out out/demo
+mkdir -p out/demo/online
+"$build_dir/apps/contactrb/contactrb" online --model out/demo/model.h5 --mu 1.05 --out out/demo/online > out/demo/online/solution.json
+echo "contactrb: demo outputs in out/demo/ (evaluation.csv; open out/demo/online/solution.vtu in ParaView)"

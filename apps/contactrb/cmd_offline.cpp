@@ -165,7 +165,7 @@ int run_offline(const OfflineOptions& opt) {
   const auto t1 = Clock::now();
   const rb::OfflineResult result = rb::build_reduced_model(set, spec, settings);
   const auto t2 = Clock::now();
-  io::write_reduced_model_file(result.model, opt.out);
+  io::write_reduced_model_file(result.model, result.reconstruction, opt.out);
   const auto t3 = Clock::now();
   const rb::OfflineReport& rep = result.report;
   const rb::ReducedModel& m = result.model;

@@ -3,11 +3,11 @@
 // --batch FILE (or - for stdin): one mu per line, one JSON line per input line, in order; a bad
 // line (not a number, outside the domain) is answered by {"line": k, "error": "..."} and the
 // others are still answered. The model is loaded and the solver set up once.
+// --out DIR (with --mu): also the reconstructed solution on the HF mesh Omega(mu), from the
+// model file's reconstruction data (rb/solution_fields.hpp): DIR/solution.vtu,
+// DIR/solution_deformed.vtu, DIR/multipliers.csv; their paths are listed in the JSON ("files").
 // Exit codes: 0 all answered and converged; 1 a user error (or, in batch mode, some bad line);
 // 3 some solve did not converge (and, in batch mode, no bad line).
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -16,10 +16,13 @@
 #include <string>
 
 #include "commands.hpp"
+#include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/online_solver.hpp"
+#include "contactrb/rb/reconstruction.hpp"
 #include "contactrb/rb/reduced_model.hpp"
+#include "contactrb/rb/solution_fields.hpp"
 
 namespace contactrb::app {
 
@@ -34,6 +37,7 @@ struct OnlineOptions {
   int n = -1, r = -1, mk = -1, mg = -1;
   std::optional<double> alpha;
   std::optional<double> tolerance;
+  std::string out;  // --out DIR: reconstructed fields (single --mu only)
 };
 
 nlohmann::json to_json(const Eigen::VectorXd& v) {
@@ -58,20 +62,6 @@ nlohmann::json solution_json(double mu, const rb::OnlineSolver& solver, const rb
   return j;
 }
 
-// A batch line as a number: surrounding blanks allowed, nothing else. Throws Error.
-double parse_mu(const std::string& line) {
-  const auto first = line.find_first_not_of(" \t\r");
-  require(first != std::string::npos, "empty line (expected one parameter value)");
-  const auto last = line.find_last_not_of(" \t\r");
-  const std::string text = line.substr(first, last - first + 1);
-  errno = 0;
-  char* end = nullptr;
-  const double mu = std::strtod(text.c_str(), &end);
-  require(end != text.c_str() && *end == '\0' && errno != ERANGE, "'" + text + "' is not a number");
-  require(!std::isnan(mu), "'" + text + "' is not a number (NaN)");
-  return mu;
-}
-
 int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::OnlineSettings& settings) {
   std::ifstream file;
   std::istream* in = &std::cin;
@@ -86,7 +76,7 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
     ++k;
     nlohmann::json j;
     try {
-      const double mu = parse_mu(line);
+      const double mu = parse_mu_line(line);
       const rb::OnlineSolution s = solver.solve(mu, settings);
       j = {{"line", k}};
       j.update(solution_json(mu, solver, s));
@@ -109,19 +99,13 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
 }
 
 int run_online(const OnlineOptions& opt) {
-  require(opt.n == -1 || opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n) + ")");
-  require(opt.r == -1 || opt.r >= 0, "--r must be >= 0 (got " + std::to_string(opt.r) + ")");
-  require(opt.mk == -1 || opt.mk >= 0, "--mk must be >= 0 (got " + std::to_string(opt.mk) + ")");
-  require(opt.mg == -1 || opt.mg >= 0, "--mg must be >= 0 (got " + std::to_string(opt.mg) + ")");
+  const rb::OnlineSizes sizes{opt.n, opt.r, opt.mk, opt.mg};
+  check_size_flags(sizes);
+  require(opt.out.empty() || opt.mu.has_value(),
+          "--out is not available with --batch (one output directory per --mu: run one online --mu per value, "
+          "or `contactrb evaluate`)");
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
-  const auto above = [&opt](const char* flag, int value, int max) {
-    require(value <= max, std::string(flag) + " = " + std::to_string(value) + " is above the maximum " +
-                              std::to_string(max) + " stored in '" + opt.model + "'");
-  };
-  above("--n", opt.n, model.N_max);
-  above("--r", opt.r, model.R_max);
-  above("--mk", opt.mk, model.Mk_max);
-  above("--mg", opt.mg, model.Mg_max);
+  check_sizes_against(sizes, model, opt.model);
   rb::OnlineSettings settings;
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
@@ -130,14 +114,33 @@ int run_online(const OnlineOptions& opt) {
     solve::check_settings(k);
     settings.kacanov = k;
   }
-  rb::OnlineSolver solver(model, rb::OnlineSizes{opt.n, opt.r, opt.mk, opt.mg});
+  rb::OnlineSolver solver(model, sizes);
   if (!opt.mu) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
     return run_batch(opt, solver, settings);
   }
 
+  // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
+  std::optional<rb::ReducedReconstruction> rec;
+  std::optional<cases::CaseSpec> spec;
+  std::optional<mesh::Mesh> reference;
+  if (!opt.out.empty()) {
+    ensure_output_directory(opt.out);
+    rec = io::read_reconstruction(opt.model);
+    rb::check_reconstruction(model, *rec);
+    spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
+    reference = rb::model_reference_mesh(*spec, model, *rec);
+  }
+
   const rb::OnlineSolution s = solver.solve(*opt.mu, settings);
-  std::cout << solution_json(*opt.mu, solver, s).dump() << "\n";
+  nlohmann::json j = solution_json(*opt.mu, solver, s);
+  if (rec) {
+    const rb::SolutionFiles files = rb::write_solution_fields(
+        *spec, *reference, *opt.mu, model.surface.discretization, rb::reconstruct_displacement(*rec, *opt.mu, s.u_hat),
+        rb::reconstruct_multipliers(*rec, s.lambda_hat), opt.out);
+    j["files"] = {{"vtu", files.vtu}, {"deformed_vtu", files.deformed_vtu}, {"multipliers", files.multipliers}};
+  }
+  std::cout << j.dump() << "\n";
   if (!s.converged()) {
     std::cerr << "contactrb: error: " << s.message << "\n";
     return kExitNotConverged;
@@ -161,6 +164,9 @@ Command add_online_command(CLI::App& app) {
   sub->add_option("--mg", opt->mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1] (default: the snapshots')");
   sub->add_option("--tol", opt->tolerance, "Kacanov tolerance eps_KA, > 0 (default: the snapshots')");
+  sub->add_option("--out", opt->out,
+                  "Directory for the reconstructed solution on the HF mesh (solution.vtu, solution_deformed.vtu, "
+                  "multipliers.csv); --mu only");
   return {sub, [opt] { return run_online(*opt); }};
 }
 

@@ -8,6 +8,11 @@
 #include <functional>
 #include <string>
 
+namespace contactrb::rb {
+struct OnlineSizes;
+struct ReducedModel;
+}  // namespace contactrb::rb
+
 namespace contactrb::app {
 
 struct Command {
@@ -21,6 +26,9 @@ Command add_solve_command(CLI::App& app);
 Command add_snapshots_command(CLI::App& app);
 Command add_offline_command(CLI::App& app);
 Command add_online_command(CLI::App& app);
+Command add_evaluate_command(CLI::App& app);
+Command add_report_command(CLI::App& app);
+Command add_demo_command(CLI::App& app);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.
@@ -29,5 +37,14 @@ void ensure_output_directory(const std::string& dir);
 // `path` names an output FILE whose directory exists and is writable (checked before long
 // work starts); throws contactrb::Error naming --out otherwise.
 void check_output_file(const std::string& path);
+
+// One parameter value per line (online --batch, evaluate --set FILE): a number with optional
+// surrounding blanks, nothing else. Throws contactrb::Error saying what is wrong.
+double parse_mu_line(const std::string& line);
+
+// --n, --r, --mk, --mg (online_sizes.cpp): signs first (-1: the model's maximum), then the
+// maxima stored in the model read from `path`. Throw contactrb::Error naming the flag.
+void check_size_flags(const rb::OnlineSizes& sizes);
+void check_sizes_against(const rb::OnlineSizes& sizes, const rb::ReducedModel& model, const std::string& path);
 
 }  // namespace contactrb::app

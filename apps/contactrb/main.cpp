@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
       contactrb::app::add_snapshots_command(app),
       contactrb::app::add_offline_command(app),
       contactrb::app::add_online_command(app),
+      contactrb::app::add_evaluate_command(app),
+      contactrb::app::add_report_command(app),
+      contactrb::app::add_demo_command(app),
   };
   try {
     app.parse(argc, argv);

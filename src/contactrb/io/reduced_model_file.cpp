@@ -298,7 +298,43 @@ std::uint64_t read_u64(hid_t file, const std::string& name) {
 
 }  // namespace
 
-void write_reduced_model_file(const rb::ReducedModel& model, const std::string& path) {
+namespace {
+
+constexpr const char* kReconstructionGroup = "reconstruction";
+
+// The reconstruction's fields, in its checksum's order, names relative to the file root.
+template <typename V>
+void visit_reconstruction(V& v, rb::ReducedReconstruction& r) {
+  const std::string g = std::string(kReconstructionGroup) + "/";
+  v.integer(g + "num_dofs", r.num_dofs);
+  v.ivec(g + "free_dofs", r.free_dofs);
+  v.mat(g + "Theta", r.Theta);
+  vecs(v, g + "lift", r.lift);
+  thetas(v, g + "theta_a", r.thetas.a);
+  thetas(v, g + "theta_f", r.thetas.f);
+  thetas(v, g + "theta_lift", r.thetas.lift);
+  v.ivec(g + "kept_rows", r.kept_rows);
+  v.integer(g + "num_constraints", r.num_constraints);
+  v.mat(g + "Xi", r.Xi);
+}
+
+void write_reconstruction_group(hid_t file, const rb::ReducedReconstruction& reconstruction) {
+  Id group(H5Gcreate2(file, kReconstructionGroup, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+           "cannot create the group 'reconstruction'");
+  Writer w(file);
+  const std::string g = std::string(kReconstructionGroup) + "/";
+  int version = kReconstructionFormatVersion;
+  w.integer(g + "format_version", version);
+  rb::ReducedReconstruction copy = reconstruction;  // the visitor takes references
+  visit_reconstruction(w, copy);
+  write_u64(file, g + "checksum", w.checksum().value());
+  int complete = 1;
+  const hsize_t dims[1] = {1};
+  write_raw(file, g + "complete", &complete, 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
+}
+
+void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction* reconstruction,
+                      const std::string& path) {
   QuietHdf5 quiet;
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   try {
@@ -311,6 +347,7 @@ void write_reduced_model_file(const rb::ReducedModel& model, const std::string& 
       w.integer("format_version", version);
       rb::ReducedModel copy = model;  // the visitor takes references
       visit(w, copy);
+      if (reconstruction != nullptr) write_reconstruction_group(file.get(), *reconstruction);
       write_u64(file.get(), "checksum", w.checksum().value());
       int complete = 1;
       const hsize_t dims[1] = {1};
@@ -329,6 +366,27 @@ void write_reduced_model_file(const rb::ReducedModel& model, const std::string& 
     std::filesystem::remove(tmp, ignored);
     throw Error("reduced model file '" + path + "': " + e.what());
   }
+}
+
+// The cheap checks before opening a file (as read_reduced_model_file).
+void check_model_path(const std::string& path, const std::string& where) {
+  require(std::filesystem::exists(path), where + "no such file");
+  require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
+}
+Id open_model_file(const std::string& path) {
+  return Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+            "cannot open the file (truncated or damaged)");
+}
+
+}  // namespace
+
+void write_reduced_model_file(const rb::ReducedModel& model, const std::string& path) {
+  write_model_file(model, nullptr, path);
+}
+
+void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction& reconstruction,
+                              const std::string& path) {
+  write_model_file(model, &reconstruction, path);
 }
 
 rb::ReducedModel read_reduced_model_file(const std::string& path) {
@@ -356,6 +414,59 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
     const std::uint64_t stored = read_u64(file.get(), "checksum");
     if (stored != r.checksum().value()) throw H5Failure{"checksum mismatch: the file was modified or damaged"};
     return m;
+  } catch (const H5Failure& e) {
+    throw Error(where + e.what);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+}
+
+bool has_reconstruction(const std::string& path) {
+  QuietHdf5 quiet;
+  const std::string where = "reduced model file '" + path + "': ";
+  check_model_path(path, where);
+  try {
+    Id file = open_model_file(path);
+    return H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) > 0;
+  } catch (const H5Failure& e) {
+    throw Error(where + e.what);
+  }
+}
+
+rb::ReducedReconstruction read_reconstruction(const std::string& path) {
+  QuietHdf5 quiet;
+  const std::string where = "reduced model file '" + path + "': ";
+  check_model_path(path, where);
+  try {
+    Id file = open_model_file(path);
+    if (H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) <= 0) {
+      throw H5Failure{"no reconstruction data (a model written without them; rerun `contactrb offline` to get "
+                      "them)"};
+    }
+    const std::string g = std::string(kReconstructionGroup) + "/";
+    if (H5Lexists(file.get(), (g + "complete").c_str(), H5P_DEFAULT) <= 0) {
+      throw H5Failure{"incomplete reconstruction data (the write was interrupted)"};
+    }
+    Reader r(file.get());
+    int version = 0;
+    r.integer(g + "format_version", version);
+    if (version != kReconstructionFormatVersion) {
+      throw H5Failure{"reconstruction format version " + std::to_string(version) + ", this build reads version " +
+                      std::to_string(kReconstructionFormatVersion)};
+    }
+    rb::ReducedReconstruction rec;
+    visit_reconstruction(r, rec);
+    const std::uint64_t stored = read_u64(file.get(), g + "checksum");
+    if (stored != r.checksum().value()) {
+      throw H5Failure{"reconstruction checksum mismatch: the file was modified or damaged"};
+    }
+    // Sizes only (the model-dependent checks are rb::check_reconstruction's).
+    require(rec.num_dofs > 0 && rec.Theta.rows() == static_cast<Eigen::Index>(rec.free_dofs.size()) &&
+                rec.Xi.rows() == static_cast<Eigen::Index>(rec.kept_rows.size()) &&
+                rec.lift.size() == rec.thetas.lift.size(),
+            "reconstruction data with inconsistent array sizes");
+    for (const Eigen::VectorXd& l : rec.lift) require(l.size() == rec.num_dofs, "reconstruction lift of the wrong size");
+    return rec;
   } catch (const H5Failure& e) {
     throw Error(where + e.what);
   } catch (const Error& e) {

@@ -9,8 +9,15 @@
 // only the plain struct is used, no rb function (rb links io, not the other way round). The
 // semantic check of the loaded arrays is rb::check_model, which OnlineSolver runs.
 // Not stored: the parameter's named sets (ParameterSpec::sets; not needed online).
+//
+// Optional group "reconstruction" (rb::ReducedReconstruction: the HF-size basis, lift and dual
+// basis that map a reduced solution back to the HF mesh). It has its own format version,
+// FNV-1a checksum and `complete` mark, inside the group. read_reduced_model_file never opens
+// it (the online model holds nothing of HF size); files without it (written before it
+// existed, or by the model-only overload) stay valid model files of the same format version.
 #include <string>
 
+#include "contactrb/rb/reconstruction.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 
 namespace contactrb::io {
@@ -19,10 +26,24 @@ inline constexpr const char* kReducedModelFormatName = "contactrb-reduced-model"
 
 // Throws contactrb::Error naming `path` when the file cannot be written.
 void write_reduced_model_file(const rb::ReducedModel& model, const std::string& path);
+// Same, with the reconstruction data in the group "reconstruction".
+void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction& reconstruction,
+                              const std::string& path);
 
 // Throws contactrb::Error naming `path` for a missing file, a file that is not HDF5, another
 // format, another format version, a truncated or damaged file, an incomplete one, or a
 // checksum mismatch.
 rb::ReducedModel read_reduced_model_file(const std::string& path);
+
+inline constexpr int kReconstructionFormatVersion = 1;
+
+// Whether the model file holds the group "reconstruction". Throws contactrb::Error naming
+// `path` for a missing file or a file that is not HDF5 (same messages as the reader).
+bool has_reconstruction(const std::string& path);
+
+// The reconstruction data of a model file. Throws contactrb::Error naming `path` when the
+// file has none (a model written without them: rerun `contactrb offline`), or when the group
+// is damaged, incomplete, of another version, or fails its checksum or size checks.
+rb::ReducedReconstruction read_reconstruction(const std::string& path);
 
 }  // namespace contactrb::io

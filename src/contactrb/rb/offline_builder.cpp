@@ -322,26 +322,4 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   return out;
 }
 
-Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, double mu, const Eigen::VectorXd& u_hat) {
-  require(u_hat.size() <= rec.Theta.cols(), "reconstruct_displacement: u_hat has size " +
-                                                 std::to_string(u_hat.size()) + ", the basis " +
-                                                 std::to_string(rec.Theta.cols()) + " modes");
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(rec.num_dofs);
-  const Eigen::VectorXd th = cases::evaluate(rec.thetas.lift, mu);
-  for (std::size_t k = 0; k < rec.lift.size(); ++k) u += th(ix(k)) * rec.lift[k];
-  const Eigen::VectorXd u0 = rec.Theta.leftCols(u_hat.size()) * u_hat;
-  for (std::size_t i = 0; i < rec.free_dofs.size(); ++i) u(rec.free_dofs[i]) += u0(ix(i));
-  return u;
-}
-
-Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& lambda_hat) {
-  require(lambda_hat.size() <= rec.Xi.cols(), "reconstruct_multipliers: lambda_hat has size " +
-                                                  std::to_string(lambda_hat.size()) + ", the dual basis " +
-                                                  std::to_string(rec.Xi.cols()) + " vectors");
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rec.num_constraints);
-  const Eigen::VectorXd lk = rec.Xi.leftCols(lambda_hat.size()) * lambda_hat;
-  for (std::size_t i = 0; i < rec.kept_rows.size(); ++i) lambda(rec.kept_rows[i]) = lk(ix(i));
-  return lambda;
-}
-
 }  // namespace contactrb::rb

@@ -1,0 +1,206 @@
+// `contactrb evaluate`: errors and speed-ups of a reduced model against the HF solver over a
+// parameter set (paper Section 6.2.3, (64)-(66); rb/evaluation.hpp; docs/user-guide.md,
+// "evaluate"). Writes DIR/evaluation.csv (one line per mu), DIR/evaluation.json (summary, sizes,
+// model, set) and DIR/multipliers_mu<value>.csv for the --multipliers values, and prints a
+// table in which every speed-up has the errors of the same solve beside it.
+// Exit codes: 0 every solve converged; 1 a user error; 3 some HF or online solve did not
+// converge (the outputs are still written).
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "contactrb/cases/case_record.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/json_file.hpp"
+#include "contactrb/io/reduced_model_file.hpp"
+#include "contactrb/rb/evaluation.hpp"
+
+namespace contactrb::app {
+
+namespace {
+
+constexpr int kExitNotConverged = 3;
+
+struct EvaluateOptions {
+  std::string model;
+  std::string set = "verification";
+  std::string out;
+  int n = -1, r = -1, mk = -1, mg = -1;
+  int jobs = 1;
+  int repeats = 5;
+  std::vector<double> multipliers;
+  bool quiet = false;
+};
+
+// A named set of the case, or else a file with one mu per line (blank lines skipped).
+std::vector<double> parameter_values(const cases::CaseSpec& spec, const std::string& set) {
+  if (spec.parameter.has_set(set)) return spec.parameter.set(set);
+  std::string names;
+  for (const cases::ParameterSet& s : spec.parameter.sets) names += (names.empty() ? "" : ", ") + s.name;
+  std::error_code ec;
+  require(std::filesystem::is_regular_file(set, ec),
+          "--set '" + set + "' is neither a parameter set of case '" + spec.name + "' (" + names +
+              ") nor a file of parameter values");
+  std::ifstream in(set);
+  require(in.good(), "cannot open the parameter file '" + set + "'");
+  std::vector<double> values;
+  std::string line;
+  int k = 0;
+  while (std::getline(in, line)) {
+    ++k;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    try {
+      values.push_back(parse_mu_line(line));
+    } catch (const Error& e) {
+      throw Error("parameter file '" + set + "', line " + std::to_string(k) + ": " + e.what());
+    }
+  }
+  require(!values.empty(), "the parameter file '" + set + "' holds no value");
+  return values;
+}
+
+// The file-name form of a parameter value: the shortest decimal that reads back (0.925).
+std::string value_text(double mu) {
+  for (int p = 6; p <= 17; ++p) {
+    std::ostringstream os;
+    os << std::setprecision(p) << mu;
+    if (std::stod(os.str()) == mu) return os.str();
+  }
+  std::ostringstream os;
+  os << std::setprecision(17) << mu;
+  return os.str();
+}
+
+nlohmann::json summary_json(const rb::EvaluationSummary& s) {
+  return {{"count", s.count},
+          {"hf_failures", s.hf_failures},
+          {"rb_failures", s.rb_failures},
+          {"e_ener", {{"max", s.max_e_ener}, {"mean", s.mean_e_ener}}},
+          {"e_displ", {{"max", s.max_e_displ}, {"mean", s.mean_e_displ}}},
+          {"e_inter", {{"max", s.max_e_inter}, {"mean", s.mean_e_inter}}},
+          {"median_hf_time_s", s.median_hf_time_s},
+          {"median_online_time_s", s.median_online_time_s},
+          {"median_speedup", s.median_speedup}};
+}
+
+void print_table(const rb::Evaluation& e) {
+  std::cout << std::setw(10) << "mu" << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
+            << "e_inter" << std::setw(10) << "HF ms" << std::setw(12) << "online us" << std::setw(10) << "speed-up"
+            << "\n";
+  for (const rb::EvaluationRow& r : e.rows) {
+    std::cout << std::setw(10) << std::setprecision(6) << r.mu << std::scientific << std::setprecision(3)
+              << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::fixed
+              << std::setprecision(1) << std::setw(10) << r.hf_time_s * 1e3 << std::setw(12) << r.online_time_s * 1e6
+              << std::setprecision(0) << std::setw(10) << r.speedup << std::defaultfloat;
+    if (!r.hf_converged) std::cout << "  HF " << r.hf_status;
+    if (!r.rb_converged) std::cout << "  online " << r.rb_status;
+    std::cout << "\n";
+  }
+  const rb::EvaluationSummary& s = e.summary;
+  std::cout << std::setprecision(3) << std::scientific << "summary over " << s.count << " values"
+            << (s.hf_failures + s.rb_failures > 0 ? " (errors and times over the rows where both solves converged)"
+                                                  : "")
+            << ":\n"
+            << "  e_ener  max " << s.max_e_ener << ", mean " << s.mean_e_ener << "\n"
+            << "  e_displ max " << s.max_e_displ << ", mean " << s.mean_e_displ << "\n"
+            << "  e_inter max " << s.max_e_inter << ", mean " << s.mean_e_inter << "\n"
+            << std::fixed << std::setprecision(1) << "  median HF " << s.median_hf_time_s * 1e3 << " ms, online "
+            << s.median_online_time_s * 1e6 << " us, speed-up " << std::setprecision(0) << s.median_speedup
+            << std::defaultfloat << std::setprecision(6) << "\n";
+}
+
+int run_evaluate(const EvaluateOptions& opt) {
+  const rb::OnlineSizes sizes{opt.n, opt.r, opt.mk, opt.mg};
+  check_size_flags(sizes);
+  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
+  require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
+  const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
+  check_sizes_against(sizes, model, opt.model);
+  const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
+  const cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
+  const std::vector<double> mus = parameter_values(spec, opt.set);
+  ensure_output_directory(opt.out);
+
+  rb::EvaluationOptions options;
+  options.sizes = sizes;
+  options.online_repeats = opt.repeats;
+  options.jobs = opt.jobs;
+  options.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  options.multiplier_mus = opt.multipliers;
+  const rb::Evaluation e = rb::evaluate_model(model, rec, spec, mus, options);
+
+  const std::filesystem::path dir(opt.out);
+  const std::string csv_path = (dir / "evaluation.csv").string();
+  const std::string json_path = (dir / "evaluation.json").string();
+  rb::write_evaluation_csv(e, csv_path);
+  std::vector<std::string> written{csv_path, json_path};
+  nlohmann::json multiplier_files = nlohmann::json::array();
+  for (const rb::EvaluationRow& r : e.rows) {
+    if (r.multipliers.abscissa.empty()) continue;
+    const std::string path = (dir / ("multipliers_mu" + value_text(r.mu) + ".csv")).string();
+    rb::write_multiplier_csv(r.multipliers, path);
+    multiplier_files.push_back({{"mu", r.mu}, {"file", path}});
+    written.push_back(path);
+  }
+  nlohmann::json j;
+  j["model"] = opt.model;
+  j["case"] = model.case_name;
+  j["level"] = model.level;
+  j["set"] = opt.set;
+  j["values"] = mus;
+  j["sizes"] = {{"N", e.N}, {"R", e.R}, {"Mk", e.Mk}, {"Mg", e.Mg}};
+  j["max_sizes"] = {{"N", model.N_max}, {"R", model.R_max}, {"Mk", model.Mk_max}, {"Mg", model.Mg_max}};
+  j["kacanov"] = {{"alpha", model.kacanov_alpha},
+                  {"tolerance", model.kacanov_tolerance},
+                  {"max_iterations", model.kacanov_max_iterations}};
+  j["online_repeats"] = opt.repeats;
+  j["jobs"] = opt.jobs;
+  j["summary"] = summary_json(e.summary);
+  j["multipliers"] = multiplier_files;
+  io::write_json(j, json_path);
+
+  std::cout << "case " << model.case_name << ", set " << opt.set << " (" << mus.size() << " values), sizes N "
+            << e.N << ", R " << e.R << ", Mk " << e.Mk << ", Mg " << e.Mg << "\n";
+  print_table(e);
+  for (const std::string& p : written) std::cout << "wrote " << p << "\n";
+  if (e.summary.hf_failures + e.summary.rb_failures > 0) {
+    std::cerr << "contactrb: error: " << e.summary.hf_failures << " HF and " << e.summary.rb_failures << " online of "
+              << e.summary.count << " solves did not converge (see " << csv_path << ")\n";
+    return kExitNotConverged;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_evaluate_command(CLI::App& app) {
+  auto opt = std::make_shared<EvaluateOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "evaluate", "Errors (64)-(66) and speed-ups of a reduced model against HF solves over a parameter set");
+  sub->add_option("--model", opt->model, "Reduced model file written by `contactrb offline`")->required();
+  sub->add_option("--set", opt->set, "training | verification (the case's sets) | FILE (one value per line)")
+      ->capture_default_str();
+  sub->add_option("--out", opt->out, "Output directory (evaluation.csv, evaluation.json, multipliers_mu*.csv)")
+      ->required();
+  sub->add_option("--n", opt->n, "Primal size N (default: the model's N_max)");
+  sub->add_option("--r", opt->r, "Dual size R (default: R_max)");
+  sub->add_option("--mk", opt->mk, "EIM size of kappa (default: Mk_max)");
+  sub->add_option("--mg", opt->mg, "EIM size of gamma (default: Mg_max)");
+  sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
+  sub->add_option("--repeats", opt->repeats, "Online solves per value (the time is their median)")
+      ->capture_default_str();
+  sub->add_option("--multipliers", opt->multipliers,
+                  "Values of the set whose HF and RB multipliers are written (comma-separated)")
+      ->delimiter(',');
+  sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
+  return {sub, [opt] { return run_evaluate(*opt); }};
+}
+
+}  // namespace contactrb::app

@@ -1,0 +1,241 @@
+// `contactrb report`: the paper's Section 6 study of one case in one command
+// (docs/user-guide.md, "report"): training snapshots, offline stages with CPG, angle-greedy,
+// NMF and truncated NMF, evaluation on the training and verification sets (rb/study.hpp);
+// writes the CSV data and study.json, plots the figures with scripts/plot_report.py and
+// writes report.md (tables and links to the figures).
+//
+// The plotting script is looked up in: $CONTACTRB_SCRIPTS (a directory; an error if it does
+// not hold plot_report.py), <binary dir>/../share/contactrb (installed), then the source tree
+// (CONTACTRB_SCRIPTS_DIR, set by CMake; else derived from this file's path). The interpreter
+// is $CONTACTRB_PYTHON, else /usr/bin/python3 (Debian's python3-matplotlib and python3-numpy).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/case_toml.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/atomic_file.hpp"
+#include "contactrb/rb/study.hpp"
+
+namespace contactrb::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Exit code of plot_report.py when matplotlib / numpy cannot be imported.
+constexpr int kPlotMissingModules = 2;
+
+struct ReportOptions {
+  std::string case_name;
+  std::string case_file;
+  int level = 0;
+  std::string constraint;
+  std::string out;
+  int jobs = 1;
+  bool quiet = false;
+  bool no_plots = false;
+  int max_training = -1;
+  int max_verification = -1;
+  std::vector<double> training_values;
+  std::vector<double> verification_values;
+  std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
+  int history_r = rb::StudySettings{}.history_max_R;
+  int profiles = rb::StudySettings{}.multiplier_profiles;
+  int repeats = rb::StudySettings{}.online_repeats;
+};
+
+fs::path source_scripts_dir() {
+#ifdef CONTACTRB_SCRIPTS_DIR
+  return fs::path(CONTACTRB_SCRIPTS_DIR);
+#else
+  return fs::path(__FILE__).parent_path().parent_path().parent_path() / "scripts";
+#endif
+}
+
+// The plotting script; throws contactrb::Error listing the places tried.
+fs::path find_plot_script() {
+  const char* name = "plot_report.py";
+  if (const char* env = std::getenv("CONTACTRB_SCRIPTS"); env != nullptr && *env != '\0') {
+    const fs::path p = fs::path(env) / name;
+    require(fs::is_regular_file(p), "CONTACTRB_SCRIPTS is set to '" + std::string(env) + "', which has no " + name);
+    return p;
+  }
+  std::vector<fs::path> tried;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+  tried.push_back(source_scripts_dir() / name);
+  std::string list;
+  for (const fs::path& p : tried) {
+    if (fs::is_regular_file(p)) return p;
+    list += (list.empty() ? "" : ", ") + p.string();
+  }
+  throw Error(std::string("cannot find the plotting script ") + name + " (tried " + list +
+              "); set CONTACTRB_SCRIPTS to the directory that holds it, or use --no-plots");
+}
+
+// Runs `python script dir` (no shell); returns its exit code (-1: killed by a signal).
+int run_plot_script(const std::string& python, const fs::path& script, const std::string& dir, bool quiet) {
+  std::cout.flush();
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  require(pid >= 0, std::string("cannot start the plotting script: fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    if (quiet) {
+      if (FILE* null = std::freopen("/dev/null", "w", stdout); null == nullptr) ::_exit(127);
+    }
+    const std::string s = script.string();
+    std::vector<char*> argv{const_cast<char*>(python.c_str()), const_cast<char*>(s.c_str()),
+                            const_cast<char*>(dir.c_str()), nullptr};
+    ::execv(python.c_str(), argv.data());
+    ::_exit(127);  // exec failed: no interpreter
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    require(errno == EINTR, std::string("waiting for the plotting script failed: ") + std::strerror(errno));
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+std::string g3(double v) {
+  std::ostringstream os;
+  os << std::setprecision(3) << v;
+  return os.str();
+}
+
+int run_report(const ReportOptions& opt) {
+  const cases::CaseSpec spec =
+      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+  rb::StudySettings s;
+  s.level = opt.level;
+  if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);
+  s.tolerances = rb::default_study_tolerances(spec.name);
+  if (opt.eps_pod) s.tolerances.eps_pod = *opt.eps_pod;
+  if (opt.eps_du) s.tolerances.eps_du = *opt.eps_du;
+  if (opt.eps_eim_k) s.tolerances.eps_eim_k = *opt.eps_eim_k;
+  if (opt.eps_eim_g) s.tolerances.eps_eim_g = *opt.eps_eim_g;
+  s.max_training = opt.max_training;
+  s.max_verification = opt.max_verification;
+  if (!opt.training_values.empty()) s.training_values = opt.training_values;
+  if (!opt.verification_values.empty()) s.verification_values = opt.verification_values;
+  s.history_max_R = opt.history_r;
+  s.multiplier_profiles = opt.profiles;
+  s.online_repeats = opt.repeats;
+  s.jobs = opt.jobs;
+  s.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  rb::check_settings(s);
+  const std::string out = opt.out.empty() ? "out/report-" + spec.name : opt.out;
+  ensure_output_directory(out);
+  require(::access(out.c_str(), W_OK) == 0, "output directory '" + out + "' is not writable");
+  // Find the plotter before the long work, so that a broken installation fails at once.
+  fs::path script;
+  if (!opt.no_plots) script = find_plot_script();
+
+  const rb::StudyResult r = rb::run_study(spec, s);
+  const std::vector<std::string> files = rb::write_study_files(r, out);
+  const std::string report_md = (fs::path(out) / "report.md").string();
+  write_text(report_md, rb::study_markdown(r, {}));  // without figures until they exist
+
+  std::cout << "case " << r.case_name << ": " << r.training_mus.size() << " training values, "
+            << r.verification_mus.size() << " verification values, " << r.constraint << "\n"
+            << "| method | N | R | Mk | Mg | max e_displ (train) | max e_inter (train) | max e_displ (verif) | "
+               "median speed-up |\n";
+  for (const rb::StudyModel& m : r.models) {
+    const rb::EvaluationSummary& t = m.training.summary;
+    std::cout << "| " << m.label << " | " << m.N << " | " << m.R << " | " << m.Mk << " | " << m.Mg << " | "
+              << g3(t.max_e_displ) << " | " << g3(t.max_e_inter) << " | "
+              << (m.verification ? g3(m.verification->summary.max_e_displ) : std::string("-")) << " | "
+              << g3(t.median_speedup) << " |\n";
+  }
+  for (const std::string& f : files) std::cout << "wrote " << (fs::path(out) / f).string() << "\n";
+
+  if (opt.no_plots) {
+    std::cout << "wrote " << report_md << " (no figures: --no-plots)\n";
+    return 0;
+  }
+  const char* py_env = std::getenv("CONTACTRB_PYTHON");
+  const std::string python = (py_env != nullptr && *py_env != '\0') ? py_env : "/usr/bin/python3";
+  const int code = run_plot_script(python, script, out, opt.quiet);
+  if (code == 127) {
+    throw Error("cannot run the Python interpreter '" + python + "' for the figures (set CONTACTRB_PYTHON, or use " +
+                "--no-plots); the CSV files and report.md (without figures) are in " + out);
+  }
+  if (code == kPlotMissingModules) {
+    throw Error("the figures need matplotlib and numpy for " + python +
+                " (Debian: apt-get install python3-matplotlib python3-numpy); the CSV files and report.md "
+                "(without figures) are in " +
+                out);
+  }
+  require(code == 0, "the plotting script " + script.string() + " failed (exit code " + std::to_string(code) +
+                         "); the CSV files and report.md (without figures) are in " + out);
+  std::vector<std::string> figures{"pod_singular_values.png", "dual_cone_error.png", "eim_error.png",
+                                   "errors_training.png"};
+  if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");
+  figures.push_back("multipliers.png");
+  for (const std::string& f : figures) {
+    require(fs::is_regular_file(fs::path(out) / f), "the plotting script did not write " + f);
+  }
+  write_text(report_md, rb::study_markdown(r, figures));
+  std::cout << "wrote " << report_md << "\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_report_command(CLI::App& app) {
+  auto opt = std::make_shared<ReportOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "report", "The paper's Section 6 study of one case: CPG / angle-greedy / NMF models, errors, speed-ups, "
+                "figures (PNG via scripts/plot_report.py) and report.md");
+  CLI::Option_group* input = sub->add_option_group("case", "Case (exactly one)");
+  input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
+  input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");
+  input->require_option(1);
+  sub->add_option("--level", opt->level, "Mesh refinement level (0: the paper's mesh)")->capture_default_str();
+  sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
+  sub->add_option("--out", opt->out, "Output directory (default: out/report-<case>)");
+  sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
+  sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr, no plotting messages");
+  sub->add_flag("--no-plots", opt->no_plots, "Write the CSV files and report.md only (no Python needed)");
+  sub->add_option("--max-training", opt->max_training,
+                  "Use at most this many training values, evenly spaced (>= 2; default: the whole set)");
+  sub->add_option("--max-verification", opt->max_verification,
+                  "Use at most this many verification values, evenly spaced (0: none; default: the whole set)");
+  sub->add_option("--training-values", opt->training_values, "Explicit training values (comma-separated)")
+      ->delimiter(',');
+  sub->add_option("--verification-values", opt->verification_values,
+                  "Explicit verification values (comma-separated)")
+      ->delimiter(',');
+  sub->add_option("--eps-pod", opt->eps_pod, "POD tolerance (default: the case's, docs/user-guide.md)");
+  sub->add_option("--eps-du", opt->eps_du, "Dual cone tolerance eps_DU (default: the case's)");
+  sub->add_option("--eps-eim-k", opt->eps_eim_k, "EIM tolerance of kappa (default: the case's)");
+  sub->add_option("--eps-eim-g", opt->eps_eim_g, "EIM tolerance of gamma (default: the case's)");
+  sub->add_option("--history-r", opt->history_r, "Dual cone histories up to this R (capped at P and the rows)")
+      ->capture_default_str();
+  sub->add_option("--profiles", opt->profiles, "Multiplier profiles for this many mu (0: none)")
+      ->capture_default_str();
+  sub->add_option("--repeats", opt->repeats, "Online solves per mu (the time is their median)")
+      ->capture_default_str();
+  return {sub, [opt] { return run_report(*opt); }};
+}
+
+}  // namespace contactrb::app

@@ -1,0 +1,268 @@
+// contactrb report / demo: a small hertz-a study (6 training values, 3 verification values)
+// that must produce every figure, the CSV data, study.json and report.md with its tables; the
+// plotting script's own input checks; a missing Python interpreter (a clear error, the CSV
+// files still written); the demo's table. The study is run once for the suite.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+#include <tuple>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::test::CliResult;
+using contactrb::test::run_cli;
+using contactrb::test::shell_quote;
+using nlohmann::json;
+
+namespace {
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string first_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// Rows (after the header) of a CSV file whose first cell is `key`, as numbers from column `col`.
+std::vector<double> csv_column_where(const fs::path& p, const std::string& key, int col) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> out;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (!cells.empty() && cells[0] == key && static_cast<int>(cells.size()) > col) out.push_back(std::stod(cells[col]));
+  }
+  return out;
+}
+
+class CliReport : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<contactrb::test::TempDir>("cli_report");
+    out_ = dir_->file("report");
+    result_ = run_cli("report --case hertz-a --max-training 6 --max-verification 3 --history-r 6 --profiles 2 "
+                      "--repeats 1 -j 2 -q --out " +
+                      shell_quote(out_));
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+  static std::unique_ptr<contactrb::test::TempDir> dir_;
+  static std::string out_;
+  static CliResult result_;
+};
+std::unique_ptr<contactrb::test::TempDir> CliReport::dir_;
+std::string CliReport::out_;
+CliResult CliReport::result_;
+
+TEST_F(CliReport, WritesEveryFigureNonEmpty) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
+  for (const char* png : {"pod_singular_values.png", "dual_cone_error.png", "eim_error.png", "errors_training.png",
+                          "errors_verification.png", "multipliers.png"}) {
+    const fs::path p = fs::path(out_) / png;
+    ASSERT_TRUE(fs::is_regular_file(p)) << png;
+    EXPECT_GT(fs::file_size(p), 5000u) << png;  // a real plot, not an empty canvas
+    EXPECT_EQ(read_text(p).substr(1, 3), "PNG") << png;
+  }
+}
+
+TEST_F(CliReport, ReportMarkdownHasTheTablesAndLinks) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
+  const std::string md = read_text(fs::path(out_) / "report.md");
+  for (const char* s : {"# contactrb report: hertz-a", "## Sizes per method", "| CPG |", "| angle-greedy |",
+                        "| NMF |", "| NMF (R = R_CPG) |", "verification set", "median speed-up",
+                        "## Offline step times", "| eps_DU | 0.1 | 0.01 | 0.005 |", "| CPG R |", "| NMF R |",
+                        "| eps_POD |", "![dual_cone_error.png](dual_cone_error.png)",
+                        "![errors_verification.png](errors_verification.png)", "![multipliers.png](multipliers.png)"}) {
+    EXPECT_NE(md.find(s), std::string::npos) << "report.md lacks: " << s << "\n" << md;
+  }
+  EXPECT_NE(result_.out.find("wrote " + (fs::path(out_) / "report.md").string()), std::string::npos) << result_.out;
+}
+
+TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
+  std::ifstream in(fs::path(out_) / "study.json");
+  const json j = json::parse(in);
+  EXPECT_EQ(j.at("case"), "hertz-a");
+  EXPECT_EQ(j.at("training").size(), 6u);
+  EXPECT_DOUBLE_EQ(j.at("training").front().get<double>(), 0.15);  // both ends of the set kept
+  EXPECT_DOUBLE_EQ(j.at("training").back().get<double>(), 0.45);
+  EXPECT_EQ(j.at("verification").size(), 3u);
+  ASSERT_EQ(j.at("models").size(), 4u);
+  const json& cpg = j.at("models").at(0);
+  EXPECT_EQ(cpg.at("key"), "cpg");
+  EXPECT_GE(cpg.at("N").get<int>(), 1);
+  EXPECT_GE(cpg.at("R").get<int>(), 1);
+  EXPECT_LE(cpg.at("R").get<int>(), 6);
+  // The truncated NMF has the CPG's R (unless the NMF ran out of ranks first).
+  EXPECT_LE(j.at("models").at(3).at("R").get<int>(), cpg.at("R").get<int>());
+  for (const json& m : j.at("models")) {
+    for (const char* set : {"training", "verification"}) {
+      const json& s = m.at(set);
+      EXPECT_EQ(s.at("hf_failures").get<int>(), 0) << m.at("key") << " " << set;
+      const double e = s.at("max_e_displ").get<double>();
+      EXPECT_TRUE(std::isfinite(e)) << m.at("key") << " " << set;
+      EXPECT_GE(e, 0.0);
+      EXPECT_GT(s.at("median_hf_time_s").get<double>(), 0.0);
+      EXPECT_GT(s.at("median_online_time_s").get<double>(), 0.0);
+    }
+  }
+  // The CPG model reproduces the training solutions to a few percent in H1 (eps_DU = 0.1).
+  EXPECT_LT(cpg.at("training").at("max_e_displ").get<double>(), 0.05);
+
+  // Every CSV has its header row.
+  EXPECT_EQ(first_line(fs::path(out_) / "dual_cone_error.csv"), "method,R,error");
+  EXPECT_EQ(first_line(fs::path(out_) / "eim_error.csv"), "function,M,error");
+  EXPECT_EQ(first_line(fs::path(out_) / "pod_singular_values.csv"), "index,sigma");
+  EXPECT_EQ(first_line(fs::path(out_) / "multipliers.csv"), "mu,abscissa,lambda_hf,lambda_rb");
+  EXPECT_EQ(first_line(fs::path(out_) / "errors_training.csv").rfind("model,mu,", 0), 0u);
+  // Dual histories: errors[0] = max |lambda| is the same for every method; the CPG error never
+  // increases (nested cones) and reaches 0 once every snapshot is in the cone (R <= P = 6).
+  const fs::path dual = fs::path(out_) / "dual_cone_error.csv";
+  const std::vector<double> c = csv_column_where(dual, "cpg", 2);
+  const std::vector<double> n = csv_column_where(dual, "nmf", 2);
+  const std::vector<double> a = csv_column_where(dual, "angle_cone", 2);
+  ASSERT_GE(c.size(), 2u);
+  ASSERT_GE(n.size(), 2u);
+  ASSERT_GE(a.size(), 2u);
+  EXPECT_GT(c[0], 0.0);
+  EXPECT_NEAR(n[0], c[0], 1e-12 * c[0]);
+  EXPECT_NEAR(a[0], c[0], 1e-12 * c[0]);
+  for (std::size_t k = 1; k < c.size(); ++k) EXPECT_LE(c[k], c[k - 1] * (1 + 1e-12)) << k;
+  EXPECT_LT(c.back(), 1e-6 * c[0]);
+  // Two multiplier profiles, one value per constraint row, HF multipliers >= 0.
+  const fs::path mult = fs::path(out_) / "multipliers.csv";
+  const std::vector<double> mus = j.at("multiplier_profiles").at("mu").get<std::vector<double>>();
+  ASSERT_EQ(mus.size(), 2u);
+  std::ifstream min(mult);
+  std::string line;
+  std::getline(min, line);
+  int rows = 0, negative = 0, positive = 0;
+  while (std::getline(min, line)) {
+    ++rows;
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<double> v;
+    while (std::getline(ss, cell, ',')) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 4u) << line;
+    negative += v[2] < -1e-12 ? 1 : 0;
+    positive += v[2] > 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(rows % 2, 0);
+  EXPECT_GT(rows, 20);  // every constraint row of both profiles
+  EXPECT_EQ(negative, 0);
+  EXPECT_GT(positive, 0);  // some contact
+}
+
+TEST(CliReportErrors, MissingPythonIsAClearErrorAndKeepsTheCsv) {
+  contactrb::test::TempDir dir("cli_report_nopython");
+  ::setenv("CONTACTRB_PYTHON", "/nonexistent/python3", 1);
+  const CliResult r = run_cli("report --case hertz-a --training-values 0.2,0.4 --max-verification 0 --profiles 0 "
+                              "--repeats 1 -q --out " +
+                              shell_quote(dir.file("r")));
+  ::unsetenv("CONTACTRB_PYTHON");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/python3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--no-plots"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir.file("r/errors_training.csv")));
+  EXPECT_TRUE(fs::is_regular_file(dir.file("r/report.md")));
+  EXPECT_FALSE(fs::exists(dir.file("r/errors_verification.csv")));  // no verification set asked for
+}
+
+TEST(CliReportErrors, PlotScriptRejectsAMissingInput) {
+  contactrb::test::TempDir dir("cli_report_plot");
+  const std::string script = std::string(CONTACTRB_SOURCE_DIR) + "/scripts/plot_report.py";
+  const auto run = [&](const std::string& args) {
+    const std::string cmd = "/usr/bin/python3 " + shell_quote(script) + " " + args + " 2>&1";
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[512];
+    std::size_t k = 0;
+    while ((k = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, k);
+    const int status = ::pclose(pipe);
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, out);
+  };
+  auto [code, out] = run(shell_quote(dir.path().string()));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("plot_report: error: missing input file"), std::string::npos) << out;
+  EXPECT_NE(out.find("study.json"), std::string::npos) << out;
+  // study.json names a CSV file that is not there.
+  std::ofstream(dir.file("study.json"))
+      << R"({"case": "x", "parameter": "p", "tolerances": {}, "models": [], "files": ["sizes.csv"]})";
+  std::tie(code, out) = run(shell_quote(dir.path().string()));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("sizes.csv"), std::string::npos) << out;
+}
+
+TEST(CliReportErrors, UserErrors) {
+  const CliResult unknown = run_cli("report --case no-such-case --no-plots -q --out /tmp");
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.err;
+  EXPECT_NE(unknown.err.find("no-such-case"), std::string::npos) << unknown.err;
+  const CliResult small = run_cli("report --case hertz-a --max-training 1 --no-plots -q --out /tmp");
+  EXPECT_EQ(small.exit_code, 1) << small.err;
+  EXPECT_NE(small.err.find("training"), std::string::npos) << small.err;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CliDemo, RunsHertzBEndToEndAndPrintsThePaperTable) {
+  contactrb::test::TempDir dir("cli_demo");
+  const CliResult r = run_cli("demo -j 2 -q --out " + shell_quote(dir.file("demo")));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // -q: no progress
+  // The row after the header separator: N, R, M^k, M^g, max e_displ, max e_inter, ...
+  std::istringstream in(r.out);
+  std::string line;
+  std::vector<std::string> cells;
+  while (std::getline(in, line)) {
+    if (line.rfind("| -: |", 0) == 0) {
+      ASSERT_TRUE(std::getline(in, line)) << r.out;
+      std::stringstream ss(line);
+      std::string cell;
+      while (std::getline(ss, cell, '|')) cells.push_back(cell);
+      break;
+    }
+  }
+  ASSERT_EQ(cells.size(), 11u) << r.out;  // leading empty cell + 10 columns
+  EXPECT_EQ(std::stoi(cells[1]), 11);    // N: the numerical rank of the 22 snapshots at eps_POD 1e-5
+  const int R = std::stoi(cells[2]);
+  EXPECT_GE(R, 3);
+  EXPECT_LE(R, 22);
+  EXPECT_GE(std::stoi(cells[3]), 1);
+  EXPECT_GE(std::stoi(cells[4]), 1);
+  const double e_displ = std::stod(cells[5]);
+  EXPECT_GT(e_displ, 0.0);
+  EXPECT_LT(e_displ, 5e-3);  // measured 8.2e-4 (the Kacanov tolerance level)
+  EXPECT_LT(std::stod(cells[6]), 1e-3);  // e_inter, measured 5.5e-5
+  EXPECT_GT(std::stod(cells[10]), 1.0);  // a speed-up (no timing bound)
+  EXPECT_TRUE(fs::is_regular_file(dir.file("demo/model.h5")));
+  std::ifstream csv(dir.file("demo/evaluation.csv"));
+  int rows = -1;  // the header
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 21);  // the hertz-b verification set
+}
+
+}  // namespace
