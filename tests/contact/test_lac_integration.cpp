@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "contact/contact_fixtures.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
 
 using namespace contactrb;
@@ -245,3 +247,41 @@ TEST(LacIntegration, ClosedMasterMatchesTheOpenTop) {
     EXPECT_NEAR((rc.g - ro.g).cwiseAbs().maxCoeff(), 0.0, 1e-15);
   }
 }
+
+namespace {
+
+// The restricted evaluation (online magic rows): rows integrated from the projections of their
+// own slave nodes only equal the same rows of the full evaluation; the other rows are zero.
+TEST(LacIntegration, RowSubsetFromItsSlaveNodesEqualsTheFullRows) {
+  // Non-matching, overhanging, displaced: 11 slave edges (6 rows, the last one single-edge).
+  const Mesh m = flat_blocks(-0.3, 1.2, 0.02, 11, 0.0, 1.0, 7);
+  const ContactPair pair = make_contact_pair(m);
+  const Eigen::VectorXd w = random_vector(m.num_dofs(), 7, 0.01);
+  const ContactQuadrature q = make_quadrature(m, pair, Discretization::LAC);
+  const ConstraintRows full = constraint_rows(m, pair, q, project_slave_nodes(m, pair, w), w);
+  const int S = static_cast<int>(pair.slave.size());
+  ASSERT_EQ(full.K.rows(), 6);
+  const std::vector<int> rows = {5, 0, 3, 3};
+  const std::vector<int> positions = lac_slave_positions(rows, S);
+  EXPECT_EQ(positions, (std::vector<int>{0, 1, 2, 6, 7, 8, 10, 11}));
+  const PointwiseContact pw = project_slave_nodes(m, pair, w, positions);
+  for (int s = 0; s < S; ++s) {
+    const bool projected = std::find(positions.begin(), positions.end(), s) != positions.end();
+    EXPECT_EQ(pw.projection[static_cast<std::size_t>(s)].segment >= 0, projected) << "slave position " << s;
+  }
+  const ConstraintRows sub = integrate_lac_rows(m, pair, q, pw, w, rows);
+  const Eigen::MatrixXd Kf(full.K), Ks(sub.K);
+  for (int r = 0; r < 6; ++r) {
+    const bool listed = std::find(rows.begin(), rows.end(), r) != rows.end();
+    const double scale = listed ? 1.0 : 0.0;
+    EXPECT_LE((Ks.row(r) - scale * Kf.row(r)).cwiseAbs().maxCoeff(), 1e-15) << "row " << r;
+    EXPECT_NEAR(sub.g(r), scale * full.g(r), 1e-15) << "row " << r;
+  }
+  EXPECT_GT(Kf.row(3).cwiseAbs().maxCoeff(), 0.0);  // a row in contact, not a trivial zero
+  // A row whose slave nodes were not projected, and a row outside [0, R), are refused.
+  EXPECT_THROW(integrate_lac_rows(m, pair, q, pw, w, std::vector<int>{1}), Error);
+  EXPECT_THROW(integrate_lac_rows(m, pair, q, pw, w, std::vector<int>{6}), Error);
+  EXPECT_THROW(project_slave_nodes(m, pair, w, std::vector<int>{S}), Error);
+}
+
+}  // namespace

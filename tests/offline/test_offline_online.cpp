@@ -429,15 +429,23 @@ namespace {
 
 // LAC rows (exactly integrated, lac_integration.hpp) on the triangle-free contact-surface mesh,
 // a mapped slave body (ring radius): the untruncated model reproduces the training snapshots.
+const SnapshotSet& ring_block_snapshots() {
+  static const SnapshotSet set = [] {
+    contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
+        contactrb::cases::builtin_case_spec("ring-block"), "training", 0, std::nullopt,
+        std::vector<double>{0.95, 1.0, 1.05, 1.1, 1.15});
+    r.settings.kacanov.alpha = 1.0;
+    r.settings.kacanov.tolerance = kTightTolerance;
+    contactrb::rb::SnapshotRunOptions options;
+    options.jobs = 2;
+    return contactrb::rb::generate_snapshots(r, options);
+  }();
+  return set;
+}
+
 TEST(OfflineOnlineRingBlock, UntruncatedLACModelReproducesTrainingSnapshots) {
   const auto spec = contactrb::cases::builtin_case_spec("ring-block");
-  contactrb::rb::SnapshotRequest r =
-      contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::vector<double>{0.95, 1.0, 1.05, 1.1, 1.15});
-  r.settings.kacanov.alpha = 1.0;
-  r.settings.kacanov.tolerance = kTightTolerance;
-  contactrb::rb::SnapshotRunOptions options;
-  options.jobs = 2;
-  const SnapshotSet set = contactrb::rb::generate_snapshots(r, options);
+  const SnapshotSet& set = ring_block_snapshots();
   ASSERT_EQ(set.num_failed(), 0) << set.snapshots[0].message;
   const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
   OnlineSolver solver(off.model);
@@ -451,6 +459,35 @@ TEST(OfflineOnlineRingBlock, UntruncatedLACModelReproducesTrainingSnapshots) {
               off.model.R_max, off.model.Mk_max, off.model.Mg_max, worst_u, worst_l);
   EXPECT_LT(worst_u, 1e-6);
   EXPECT_LT(worst_l, 1e-6);
+}
+
+// Exactly integrated LAC: the restricted evaluation (the magic rows integrated from their own
+// slave nodes, contact::integrate_lac_rows with a row list) against every row of the contact
+// surface; same steps, same answer, at values between the training ones.
+TEST(OfflineOnlineRingBlock, RestrictedLACRowsEqualFullRows) {
+  const SnapshotSet& set = ring_block_snapshots();
+  ASSERT_EQ(set.num_failed(), 0) << set.snapshots[0].message;
+  OfflineSettings s;
+  s.eps_pod = 0.0;
+  s.dual_size = 3;
+  s.eim_k_size = 4;
+  s.eim_g_size = 3;
+  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("ring-block"), s);
+  ASSERT_EQ(off.model.Mk_max, 4);
+  OnlineSolver solver(off.model);
+  OnlineSettings full;
+  full.restricted_rows = false;
+  OnlineSettings restricted = full;
+  restricted.restricted_rows = true;
+  for (const double mu : {0.975, 1.075, 1.125}) {
+    const auto a = solver.solve(mu, full);
+    const auto b = solver.solve(mu, restricted);
+    ASSERT_TRUE(a.converged()) << a.message;
+    ASSERT_EQ(a.status, b.status);
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-12 * a.u_hat.norm());
+    EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-12 * std::max(1.0, a.lambda_hat.norm()));
+  }
 }
 
 // Dual cone by NMF (fixed R: truncated NMF) builds and solves; the time of one online query

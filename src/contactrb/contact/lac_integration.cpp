@@ -126,6 +126,14 @@ void integrate_edge(const mesh::Mesh& mesh, const ContactPair& pair, const Maste
 
 ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                                   const PointwiseContact& pointwise, const Eigen::VectorXd& w) {
+  std::vector<int> all(static_cast<std::size_t>(quadrature.W.rows()));
+  for (std::size_t r = 0; r < all.size(); ++r) all[r] = static_cast<int>(r);
+  return integrate_lac_rows(mesh, pair, quadrature, pointwise, w, all);
+}
+
+ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                                  const PointwiseContact& pointwise, const Eigen::VectorXd& w,
+                                  std::span<const int> rows) {
   const int S = static_cast<int>(pair.slave.size());
   const int E = S - 1;
   const int R = (E + 1) / 2;
@@ -140,15 +148,39 @@ ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pai
                                            " but the mesh has " + std::to_string(mesh.num_dofs()) + " DOFs");
   const MasterPolyline m = deformed_master(mesh, pair.master, w);
   RowAssembler K;
-  K.entries.reserve(static_cast<std::size_t>(E) * 32);
-  ConstraintRows rows;
-  rows.g = Eigen::VectorXd::Zero(R);
-  for (int e = 0; e < E; ++e) integrate_edge(mesh, pair, m, pointwise, w, e, e / 2, K, rows.g);
-  rows.K.resize(R, mesh.num_dofs());
-  rows.K.setFromTriplets(K.entries.begin(), K.entries.end());
-  rows.K.prune(0.0);
-  rows.K.makeCompressed();
-  return rows;
+  K.entries.reserve(rows.size() * 64);
+  ConstraintRows out;
+  out.g = Eigen::VectorXd::Zero(R);
+  std::vector<char> done(static_cast<std::size_t>(R), 0);
+  for (const int r : rows) {
+    if (r < 0 || r >= R) {
+      throw Error("integrate_lac_rows: row " + std::to_string(r) + " outside [0, " + std::to_string(R) + ")");
+    }
+    if (done[static_cast<std::size_t>(r)] != 0) continue;  // a repeated row
+    done[static_cast<std::size_t>(r)] = 1;
+    for (int s = 2 * r; s <= std::min(2 * r + 2, S - 1); ++s) {
+      if (pointwise.projection[static_cast<std::size_t>(s)].segment < 0) {
+        throw Error("integrate_lac_rows: row " + std::to_string(r) + " needs slave position " + std::to_string(s) +
+                    ", which was not projected");
+      }
+    }
+    for (int e = 2 * r; e < std::min(2 * r + 2, E); ++e) integrate_edge(mesh, pair, m, pointwise, w, e, r, K, out.g);
+  }
+  out.K.resize(R, mesh.num_dofs());
+  out.K.setFromTriplets(K.entries.begin(), K.entries.end());
+  out.K.prune(0.0);
+  out.K.makeCompressed();
+  return out;
+}
+
+std::vector<int> lac_slave_positions(std::span<const int> rows, int num_slave) {
+  std::vector<int> positions;
+  for (const int r : rows) {
+    for (int s = 2 * r; s <= std::min(2 * r + 2, num_slave - 1); ++s) positions.push_back(s);
+  }
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+  return positions;
 }
 
 }  // namespace contactrb::contact

@@ -23,6 +23,8 @@
 // as in the pointwise rule. Slave and master chains may run in either direction (S may
 // decrease along the edge). On a closed master S is taken modulo the master length.
 #include <Eigen/Core>
+#include <span>
+#include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/projection.hpp"
@@ -35,5 +37,16 @@ namespace contactrb::contact {
 // Throws contactrb::Error on size mismatch.
 ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                                   const PointwiseContact& pointwise, const Eigen::VectorXd& w);
+
+// Rows `rows` only (a restricted evaluation: the EIM magic rows online); the other rows are
+// zero. `pointwise` needs the projections of the slave nodes of those macro-segments only
+// (lac_slave_positions). Throws contactrb::Error for a row outside [0, R).
+ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                                  const PointwiseContact& pointwise, const Eigen::VectorXd& w,
+                                  std::span<const int> rows);
+
+// The slave chain positions that the macro-segments `rows` integrate over (sorted, unique):
+// 2r, 2r + 1, 2r + 2 (fewer for a single-edge last row), for a chain of num_slave nodes.
+std::vector<int> lac_slave_positions(std::span<const int> rows, int num_slave);
 
 }  // namespace contactrb::contact

@@ -167,6 +167,13 @@ void check_node(const mesh::Mesh& mesh, int v, const char* role) {
 
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& w,
                                      const ProjectionOptions& options) {
+  std::vector<int> all(pair.slave.size());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = static_cast<int>(s);
+  return project_slave_nodes(mesh, pair, w, all, options);
+}
+
+PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& w,
+                                     std::span<const int> positions, const ProjectionOptions& options) {
   require(w.size() == mesh.num_dofs(), "project_slave_nodes: displacement has size " + std::to_string(w.size()) +
                                            " but the mesh has " + std::to_string(mesh.num_dofs()) + " DOFs (" +
                                            std::to_string(mesh.num_nodes()) + " nodes)");
@@ -194,12 +201,16 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
   const int S = static_cast<int>(pair.slave.size());
   PointwiseContact out;
   out.projection.resize(static_cast<std::size_t>(S));
-  out.g.resize(S);
+  out.g.setZero(S);
   // Rows are filled in order with at most 6 entries each: reserve and insert directly
   // (no triplet sort, no O(num_dofs) transposition).
   out.K.resize(S, mesh.num_dofs());
   out.K.reserve(Eigen::VectorXi::Constant(S, 6));
-  for (int s = 0; s < S; ++s) {
+  for (const int s : positions) {
+    if (s < 0 || s >= S) {
+      throw Error("project_slave_nodes: slave position " + std::to_string(s) + " outside [0, " + std::to_string(S) + ")");
+    }
+    if (out.projection[static_cast<std::size_t>(s)].segment >= 0) continue;  // a repeated position
     const int node = pair.slave[static_cast<std::size_t>(s)];
     const Vec2 x = position(mesh, w, node);
     const SegmentHit h = use_tree ? tree->nearest(x, stack) : search_all_pairs(m, x);

@@ -29,6 +29,7 @@
 // their projection record (segment, xi, normal, rho, distance) is still filled.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <span>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -77,6 +78,12 @@ struct ProjectionOptions {
 // deformed master segment of zero length (its normal is undefined).
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair,
                                      const Eigen::VectorXd& w, const ProjectionOptions& options = {});
+
+// The same, for the slave chain positions `positions` only (a restricted evaluation: the EIM
+// magic rows online need a few slave nodes). The entries of the other slave nodes keep their
+// defaults: segment -1, empty K row, g = 0. Positions must lie in [0, S); repeats are harmless.
+PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& w,
+                                     std::span<const int> positions, const ProjectionOptions& options = {});
 
 // The constraint rows of a discretization (paper (10)-(11)): row r = int_{I_r} k(w; .) psi_r
 // and int_{I_r} g(w) psi_r.

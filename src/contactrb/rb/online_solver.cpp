@@ -6,6 +6,7 @@
 
 #include "contactrb/cases/geometric_map.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
 
 namespace contactrb::rb {
@@ -81,6 +82,11 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   pair_.slave = surface_.slave;
   pair_.master = surface_.master;
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
+  lac_rows_ = kappa_row_;
+  lac_rows_.insert(lac_rows_.end(), gamma_row_.begin(), gamma_row_.end());
+  std::sort(lac_rows_.begin(), lac_rows_.end());
+  lac_rows_.erase(std::unique(lac_rows_.begin(), lac_rows_.end()), lac_rows_.end());
+  lac_positions_ = contact::lac_slave_positions(lac_rows_, static_cast<int>(surface_.slave.size()));
   // Upper bound of |D|_F without cancellation per unit |phi|_1: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
   d_bound_ = Xi_.norm() * Theta_c_.norm();
 
@@ -106,10 +112,14 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   lambda_prev_.resize(R_);
 }
 
-void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, Eigen::VectorXd& kappa_hat,
-                                  Eigen::VectorXd& gamma_hat) const {
-  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w);
-  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w);
+void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, bool restricted,
+                                  Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const {
+  const bool lac_subset = restricted && surface_.discretization == contact::Discretization::LAC;
+  const contact::PointwiseContact pw = lac_subset ? contact::project_slave_nodes(mesh_, pair_, w, lac_positions_)
+                                                  : contact::project_slave_nodes(mesh_, pair_, w);
+  const contact::ConstraintRows rows = lac_subset
+                                           ? contact::integrate_lac_rows(mesh_, pair_, quadrature_, pw, w, lac_rows_)
+                                           : contact::constraint_rows(mesh_, pair_, quadrature_, pw, w);
   require(rows.K.rows() == surface_.num_constraints,
           "OnlineSolver: the contact surface gives " + std::to_string(rows.K.rows()) + " constraints, the model " +
               std::to_string(surface_.num_constraints));
@@ -166,19 +176,21 @@ bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
   } else {
     lift_mu_.setZero();
   }
-  if (restricted) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  if (restricted && surface_.discretization != contact::Discretization::LAC) {
+    magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  }
   warm_.clear();
   return true;
 }
 
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                         std::string& message) {
-  if (restricted_) {
+  if (restricted_ && surface_.discretization != contact::Discretization::LAC) {
     magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
   } else {
     w_ = lift_mu_;
     w_.noalias() += Theta_c_ * u_hat;
-    evaluate_magic(w_, lift_mu_, kappa_hat_, gamma_hat_);
+    evaluate_magic(w_, lift_mu_, restricted_, kappa_hat_, gamma_hat_);
   }
   // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat; assembled transposed (N x R).
   Dt_.setZero();
@@ -334,8 +346,7 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   qp_.set_settings(settings.qp);
 
   OnlineSolution sol;
-  const bool restricted = settings.restricted_rows && surface_.discretization != contact::Discretization::LAC;
-  if (!prepare(mu, restricted, sol.message)) {
+  if (!prepare(mu, settings.restricted_rows, sol.message)) {
     sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return sol;
   }

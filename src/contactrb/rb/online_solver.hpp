@@ -10,8 +10,10 @@
 // Magic-point evaluation: collocation and LAC-Simpson rows are weighted sums of pointwise rows
 // of a few slave nodes, so only the slave nodes under the magic rows are projected (the
 // "restricted operator", online_magic.hpp; the deformed master chain positions are still
-// computed whole, O(master nodes)). Exactly integrated LAC rows need the whole slave chain:
-// every row of the contact-surface mesh is recomputed and the magic entries are picked
+// computed whole, O(master nodes)). Exactly integrated LAC rows integrate over their
+// macro-segment against the deformed master: only the slave nodes of the magic rows'
+// macro-segments are projected and only those rows are integrated
+// (contact::integrate_lac_rows with a row list), then the magic entries are picked
 // (docs/offline-online.md).
 //
 // Cost per query (docs/online-performance.md): A_hat(mu) and its Cholesky factor once; per
@@ -66,6 +68,7 @@ struct OnlineSettings {
   std::optional<solve::KacanovSettings> kacanov;
   solve::QPSettings qp;
   // false: recompute every row of the contact-surface mesh (the reference path of the tests).
+  // true: only the magic rows (from the slave nodes under them).
   bool restricted_rows = true;
   OnlineIteration iteration = OnlineIteration::Automatic;
   // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
@@ -111,8 +114,9 @@ class OnlineSolver {
 
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
-  void evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, Eigen::VectorXd& kappa_hat,
-                      Eigen::VectorXd& gamma_hat) const;
+  // restricted: only the magic rows (LAC: lac_rows_ from the slave nodes lac_positions_).
+  void evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, bool restricted,
+                      Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const;
 
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::ParameterSpec parameter_;
@@ -129,6 +133,7 @@ class OnlineSolver {
   double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
   std::vector<int> kept_rows_;
   std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
+  std::vector<int> lac_rows_, lac_positions_;           // LAC: the magic rows, their slave chain positions
   ContactSurface surface_;
   Eigen::MatrixXd Theta_c_;              // n_c x N
   Eigen::MatrixXd lift_c_;               // n_c x J^D
