@@ -137,6 +137,34 @@ Vec2 MagicPointEvaluator::vertex_normal(int j) const {
   return segment_normal(j == 0 ? 0 : M - 1);
 }
 
+// The lexicographic minimum of (squared distance, segment index) over every master segment, as
+// the all-pairs search of project_slave_nodes, visiting only the blocks whose box is not
+// farther than the best hit so far. The box bound is exact in floating point
+// (closest_on_segment clamps into the segment's box), so the answer is the all-pairs one.
+contact::SegmentHit MagicPointEvaluator::nearest_segment(const Vec2& x) {
+  const int M = static_cast<int>(master_.size()) - 1;
+  const int num_blocks = static_cast<int>(block_min_.size());
+  int first = 0;
+  for (int b = 0; b < num_blocks; ++b) {
+    const Vec2 c = x.cwiseMax(block_min_[sz(b)]).cwiseMin(block_max_[sz(b)]);
+    block_bound_[sz(b)] = (x - c).squaredNorm();
+    if (block_bound_[sz(b)] < block_bound_[sz(first)]) first = b;
+  }
+  Hit best;
+  auto scan = [&](int b) {
+    const int k1 = std::min(M, (b + 1) * kBlockSegments);
+    for (int k = b * kBlockSegments; k < k1; ++k) {
+      const Hit h = closest_on_segment(y_[sz(k)], y_[sz(k + 1)], k, x);
+      if (h.d2 < best.d2 || (h.d2 == best.d2 && h.segment < best.segment)) best = h;
+    }
+  };
+  scan(first);
+  for (int b = 0; b < num_blocks; ++b) {
+    if (b != first && block_bound_[sz(b)] <= best.d2) scan(b);
+  }
+  return best;
+}
+
 double MagicPointEvaluator::k_entry(const Projection& p, int slave_node, int dof) const {
   // (27): k(w; v)_s = ((1 - xi) v_a + xi v_b - v_s) . n2; zero row for a non-candidate.
   if (!p.candidate) return 0.0;
@@ -165,16 +193,26 @@ void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd
                   ") has zero length; its normal is undefined");
     }
   }
+  // Bounding boxes of the blocks of kBlockSegments consecutive deformed master segments.
+  const int num_blocks = (M + kBlockSegments - 1) / kBlockSegments;
+  block_min_.resize(sz(num_blocks));
+  block_max_.resize(sz(num_blocks));
+  block_bound_.resize(sz(num_blocks));
+  for (int b = 0; b < num_blocks; ++b) {
+    const int k1 = std::min(M, (b + 1) * kBlockSegments);
+    Vec2 mn = y_[sz(b * kBlockSegments)], mx = mn;
+    for (int j = b * kBlockSegments + 1; j <= k1; ++j) {
+      mn = mn.cwiseMin(y_[sz(j)]);
+      mx = mx.cwiseMax(y_[sz(j)]);
+    }
+    block_min_[sz(b)] = mn;
+    block_max_[sz(b)] = mx;
+  }
   for (std::size_t l = 0; l < slave_node_.size(); ++l) {
     const int slot = node_slot_[sz(slave_node_[l])];
     const Vec2& X = X_[sz(slot)];
     const Vec2 x = X + w_r_.segment<2>(2 * slot);
-    Hit best;
-    for (int k = 0; k < M; ++k) {
-      const Hit h = closest_on_segment(y_[sz(k)], y_[sz(k + 1)], k, x);
-      // Lexicographic (squared distance, segment index): the first minimum wins.
-      if (h.d2 < best.d2) best = h;
-    }
+    const Hit best = nearest_segment(x);
     Projection& p = projection_[l];
     const int k = best.segment;
     p.a = master_[sz(k)];

@@ -6,7 +6,8 @@
 // Internal to OnlineSolver (no stable API).
 //
 // The pointwise rows follow contact::project_slave_nodes exactly (projection.hpp): closest point
-// on the deformed master polyline by all pairs with ties to the lowest segment index, the
+// on the deformed master polyline (the all-pairs answer, found by bounding boxes of
+// segment blocks) with ties to the lowest segment index, the
 // continuous normal field n2 (vertex normals = normalized average of the adjacent segment
 // normals), the end-of-open-chain candidate rule, a zero K row and g = distance for
 // non-candidates, contactrb::Error for a zero-length deformed master segment or a non-finite
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/segment_hit.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 
 namespace contactrb::rb {
@@ -55,6 +57,11 @@ class MagicPointEvaluator {
   Eigen::Vector2d segment_normal(int k) const;
   Eigen::Vector2d vertex_normal(int j) const;
   double k_entry(const Projection& p, int slave_node, int dof) const;  // K_pt[s, dof]
+  contact::SegmentHit nearest_segment(const Eigen::Vector2d& x);     // closest deformed master segment
+
+  // Master segments per bounding box of the closest-segment search (the search visits the
+  // nearest block and the blocks not farther than the best hit: a few instead of all).
+  static constexpr int kBlockSegments = 8;
 
   // Setup.
   std::vector<int> master_;                 // master chain (local node indices)
@@ -78,6 +85,8 @@ class MagicPointEvaluator {
   Eigen::VectorXd w_r_;                     // displacement of the used nodes
   std::vector<Eigen::Vector2d> y_;          // deformed master chain
   std::vector<Projection> projection_;      // one per restricted slave node
+  std::vector<Eigen::Vector2d> block_min_, block_max_;  // boxes of the deformed master blocks
+  std::vector<double> block_bound_;         // squared distance of the current slave node to each box
 };
 
 }  // namespace contactrb::rb
