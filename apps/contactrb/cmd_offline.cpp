@@ -55,6 +55,7 @@ struct OfflineOptions {
   std::string inner_product = "energy";
   std::string dual = "cpg";
   double eps_du = rb::OfflineSettings{}.eps_du;
+  bool eps_du_relative = false;
   int r = -1;
   double eps_eim_k = rb::OfflineSettings{}.eps_eim_k;
   double eps_eim_g = rb::OfflineSettings{}.eps_eim_g;
@@ -128,6 +129,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   require(opt.eps_eim_k >= 0.0, "--eps-eim-k must be >= 0");
   require(opt.eps_eim_g >= 0.0, "--eps-eim-g must be >= 0");
   s.eps_du = opt.eps_du;
+  s.eps_du_relative = opt.eps_du_relative;
   s.dual_size = opt.r;
   s.eps_eim_k = opt.eps_eim_k;
   s.eps_eim_g = opt.eps_eim_g;
@@ -190,6 +192,7 @@ int run_offline(const OfflineOptions& opt) {
                    {"inner_product", rb::to_string(settings.inner_product)},
                    {"dual", opt.dual},
                    {"eps_du", settings.eps_du},
+                   {"eps_du_relative", settings.eps_du_relative},
                    {"r", settings.dual_size >= 1 ? nlohmann::json(settings.dual_size) : nlohmann::json(nullptr)},
                    {"eps_eim_k", settings.eps_eim_k},
                    {"eps_eim_g", settings.eps_eim_g},
@@ -223,8 +226,9 @@ int run_offline(const OfflineOptions& opt) {
             << rep.singular_values.size() << " (eps_pod " << settings.eps_pod << ")\n"
             << "compression: " << rep.R_kept << " of " << rep.R_hf << " constraints kept"
             << (settings.compression ? "" : " (off)") << "\n"
-            << "dual: " << opt.dual << ", R " << rep.R << ", error " << last(rep.dual_errors) << " (eps_du "
-            << settings.eps_du << ", " << rep.dual_status << ")\n"
+            << "dual: " << opt.dual << ", R " << rep.R << ", error "
+            << last(settings.eps_du_relative ? rep.dual_relative_errors : rep.dual_errors) << " (eps_du "
+            << settings.eps_du << (settings.eps_du_relative ? " relative" : "") << ", " << rep.dual_status << ")\n"
             << "eim kappa: Mk " << rep.Mk << ", error " << last(rep.eim_kappa_errors) << " (" << rep.eim_kappa_status
             << ")\n"
             << "eim gamma: Mg " << rep.Mg << ", error " << last(rep.eim_gamma_errors) << " (" << rep.eim_gamma_status
@@ -284,6 +288,8 @@ Command add_offline_command(CLI::App& app) {
   sub->add_option("--dual", opt->dual, "Dual cone: cpg | angle | nmf")->capture_default_str();
   sub->add_option("--eps-du", opt->eps_du, "Dual cone: absolute tolerance eps_DU (L2(Gamma^c) norm)")
       ->capture_default_str();
+  sub->add_flag("--eps-du-relative", opt->eps_du_relative,
+                "Dual cone: --eps-du is relative (each mu's error divided by |lambda(mu)|)");
   sub->add_option("--r", opt->r, "Dual cone: a fixed R (NMF rank, or a greedy size limit)");
   sub->add_option("--eps-eim-k", opt->eps_eim_k, "EIM of the contact map kappa: ell-infinity tolerance")
       ->capture_default_str();

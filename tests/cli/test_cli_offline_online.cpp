@@ -99,6 +99,30 @@ TEST_F(CliOfflineOnline, OfflineWritesTheModelTheReportAndASummary) {
   }
 }
 
+// --eps-du-relative: CPG stops at the first R whose largest relative error (each mu's (58)
+// divided by its |lambda(mu)|) is within eps_DU; the absolute history is not what stops it.
+TEST_F(CliOfflineOnline, RelativeDualToleranceStopsOnTheRelativeHistory) {
+  const std::string out = dir_->file("relative");
+  fs::create_directories(out);
+  const double eps = 0.05;
+  const CliResult r = run_cli("offline --snapshots " + shell_quote(snapshots_) +
+                              " --n 100 --eps-du 0.05 --eps-du-relative --out " + shell_quote(out + "/model.h5"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(field_value(r.out, "dual").find("relative"), std::string::npos) << r.out;
+  std::ifstream in(out + "/offline.json");
+  const json j = json::parse(in);
+  EXPECT_TRUE(j.at("settings").at("eps_du_relative").get<bool>());
+  const auto rel = j.at("dual").at("relative_errors").get<std::vector<double>>();
+  const auto abs = j.at("dual").at("errors").get<std::vector<double>>();
+  const int R = j.at("sizes").at("R").get<int>();
+  ASSERT_EQ(rel.size(), static_cast<std::size_t>(R + 1));
+  ASSERT_GE(R, 2);
+  EXPECT_LE(rel[static_cast<std::size_t>(R)], eps);
+  EXPECT_GT(rel[static_cast<std::size_t>(R - 1)], eps);
+  EXPECT_NEAR(rel[0], 1.0, 1e-12);  // nothing selected: every multiplier is its own error
+  EXPECT_GT(abs[0], 1.0);           // the absolute history is on another scale (pressures ~ 1-10)
+}
+
 TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   // Default online tolerances (those of the snapshots: tight here) against the default HF solve.
   const CliResult r = run_cli("online --model " + shell_quote(model_) + " --mu 0.3");

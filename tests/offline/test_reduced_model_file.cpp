@@ -72,6 +72,12 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   contactrb::io::write_reduced_model_file(m, path);
   const ReducedModel r = contactrb::io::read_reduced_model_file(path);
   EXPECT_NO_THROW(contactrb::rb::check_model(r));
+  EXPECT_EQ(r.eps_du, m.eps_du);
+  EXPECT_EQ(r.eps_du_relative, m.eps_du_relative);
+  ReducedModel relative = m;  // the flag survives the file in both states
+  relative.eps_du_relative = !m.eps_du_relative;
+  contactrb::io::write_reduced_model_file(relative, dir.file("relative.h5"));
+  EXPECT_EQ(contactrb::io::read_reduced_model_file(dir.file("relative.h5")).eps_du_relative, relative.eps_du_relative);
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_spec, m.case_spec);
   EXPECT_EQ(r.parameter.kind, m.parameter.kind);

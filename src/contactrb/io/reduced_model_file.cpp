@@ -241,6 +241,9 @@ void visit(V& v, rb::ReducedModel& m) {
   v.str("dual_method", m.dual_method);
   v.num("eps_pod", m.eps_pod);
   v.num("eps_du", m.eps_du);
+  int eps_du_relative = m.eps_du_relative ? 1 : 0;
+  v.integer("eps_du_relative", eps_du_relative);
+  m.eps_du_relative = eps_du_relative != 0;
   v.num("eps_eim_k", m.eps_eim_k);
   v.num("eps_eim_g", m.eps_eim_g);
   int compression = m.compression ? 1 : 0;
@@ -405,7 +408,7 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
     r.integer("format_version", m.format_version);
     if (m.format_version != rb::kReducedModelFormatVersion) {
       throw H5Failure{"format version " + std::to_string(m.format_version) + ", this build reads version " +
-                      std::to_string(rb::kReducedModelFormatVersion)};
+                      std::to_string(rb::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)"};
     }
     if (H5Lexists(file.get(), "complete", H5P_DEFAULT) <= 0) {
       throw H5Failure{"incomplete file (the write was interrupted)"};

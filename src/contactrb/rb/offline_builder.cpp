@@ -153,6 +153,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   const Eigen::MatrixXd Lambda_k = restrict_rows(Lambda, kept);
   DualConeSettings ds;
   ds.greedy.tolerance = settings.eps_du;
+  ds.greedy.relative = settings.eps_du_relative;
   ds.greedy.max_size = settings.dual_size;
   ds.weights = restrict_rows(weights, kept);
   // The snapshot multipliers are >= 0 up to the QP's round-off: clip tiny negatives.
@@ -223,6 +224,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.dual_method = to_string(settings.dual_method);
   m.eps_pod = settings.eps_pod;
   m.eps_du = settings.eps_du;
+  m.eps_du_relative = settings.eps_du_relative;
   m.eps_eim_k = settings.eps_eim_k;
   m.eps_eim_g = settings.eps_eim_g;
   m.compression = settings.compression;

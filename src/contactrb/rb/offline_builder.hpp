@@ -29,6 +29,7 @@ struct OfflineSettings {
   // Dual cone (T3): eps_DU absolute in the L2(Gamma^c) norm (58); dual_size >= 0 fixes R.
   DualConeMethod dual_method = DualConeMethod::CPG;
   double eps_du = 1e-3;
+  bool eps_du_relative = false;  // eps_DU relative: (58) divided by |lambda(mu)|_Lambda, per mu
   int dual_size = -1;
   // EIM (T1): absolute ell-infinity tolerances; -1 sizes: no limit but the training set.
   double eps_eim_k = 1e-6;

@@ -21,7 +21,7 @@
 
 namespace contactrb::rb {
 
-inline constexpr int kReducedModelFormatVersion = 1;
+inline constexpr int kReducedModelFormatVersion = 2;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -52,6 +52,7 @@ struct ReducedModel {
   std::string dual_method;    // "cpg" | "angle" | "nmf"
   double eps_pod = 0.0;
   double eps_du = 0.0;
+  bool eps_du_relative = false;  // eps_du divides each mu's error by |lambda(mu)| (format 2)
   double eps_eim_k = 0.0;
   double eps_eim_g = 0.0;
   bool compression = true;
