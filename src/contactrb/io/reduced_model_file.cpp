@@ -257,6 +257,9 @@ void visit(V& v, rb::ReducedModel& m) {
   v.integer("Mk_max", m.Mk_max);
   v.integer("Mg_max", m.Mg_max);
   vec(v, "singular_values", m.singular_values);
+  dvec(v, "training_mu", m.training_mu);
+  v.mat("training_u_hat", m.training_u_hat);
+  v.mat("training_lambda_hat", m.training_lambda_hat);
   mats(v, "A_hat", m.A_hat);
   vecs(v, "f_hat", m.f_hat);
   vecs(v, "A_lift_hat", m.A_lift_hat);

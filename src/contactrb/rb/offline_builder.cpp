@@ -18,6 +18,7 @@
 #include "contactrb/rb/eim.hpp"
 #include "contactrb/rb/eim_flatten.hpp"
 #include "contactrb/rb/nmf.hpp"
+#include "contactrb/rb/online_solver.hpp"
 #include "contactrb/rb/pod.hpp"
 
 namespace contactrb::rb {
@@ -236,6 +237,11 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.Mk_max = eim_k.size();
   m.Mg_max = eim_g.size();
   m.singular_values = pod_result.singular_values;
+  // Theta is M-orthonormal: the projection coefficients are Theta' M u_0 (the initial guess where
+  // the reduced solve below does not converge).
+  m.training_u_hat = Theta.transpose() * (inner * U0);
+  m.training_lambda_hat = Eigen::MatrixXd::Zero(R, P);
+  for (int p = 0; p < P; ++p) m.training_mu.push_back(set.snapshots[sz(p)].mu);
 
   // (49)
   const int Ja = static_cast<int>(terms.A.size());
@@ -309,8 +315,20 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.B_gamma = eim_g.B;
   m.XiQ_gamma = Xi.transpose() * eim_g.Q;
   m.eim_gamma_errors = eim_g.errors;
-  rep.reduction_s = seconds_since(t0);
   check_model(m);
+  // The online initial guess: the reduced solutions at the training values (P online solves).
+  {
+    OnlineSolver solver(m);
+    OnlineSettings cold;
+    cold.initial_guess = InitialGuess::Zero;
+    for (int p = 0; p < P; ++p) {
+      const OnlineSolution sol = solver.solve(m.training_mu[sz(p)], cold);
+      if (!sol.converged()) continue;
+      m.training_u_hat.col(p) = sol.u_hat;
+      m.training_lambda_hat.col(p) = sol.lambda_hat;
+    }
+  }
+  rep.reduction_s = seconds_since(t0);
 
   rec.num_dofs = set.num_dofs;
   rec.free_dofs = set.free_dofs;

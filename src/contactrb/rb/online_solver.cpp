@@ -44,6 +44,18 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   Mk_ = resolve(sizes.Mk, model.Mk_max, model.Mk_max > 0 ? 1 : 0, "Mk");
   Mg_ = resolve(sizes.Mg, model.Mg_max, model.Mg_max > 0 ? 1 : 0, "Mg");
   parameter_ = model.parameter;
+  {
+    std::vector<int> order(model.training_mu.size());
+    for (std::size_t p = 0; p < order.size(); ++p) order[p] = static_cast<int>(p);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return model.training_mu[sz(a)] < model.training_mu[sz(b)]; });
+    guess_.resize(N_ + R_, static_cast<Eigen::Index>(order.size()));
+    for (std::size_t p = 0; p < order.size(); ++p) {
+      guess_mu_.push_back(model.training_mu[sz(order[p])]);
+      guess_.col(static_cast<Eigen::Index>(p)) << model.training_u_hat.col(order[p]).head(N_),
+          model.training_lambda_hat.col(order[p]).head(R_);
+    }
+  }
   thetas_ = model.thetas;
   kacanov_alpha_ = model.kacanov_alpha;
   kacanov_tolerance_ = model.kacanov_tolerance;
@@ -53,7 +65,11 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   for (const auto& f : model.A_lift_hat) A_lift_hat_.push_back(f.head(N_));
   lift_AA_ = model.lift_AA;
   lift_f_ = model.lift_f;
-  for (int j = 0; j < Mk_; ++j) Ct_.push_back(model.C_kappa[sz(j)].topLeftCorner(R_, N_).transpose());
+  // Column j = C_j' (N x R) stored column-major: D' = sum_j phi_j C_j' is one matrix-vector product.
+  Ct_.resize(static_cast<Eigen::Index>(N_) * R_, Mk_);
+  for (int j = 0; j < Mk_; ++j) {
+    Eigen::Map<Eigen::MatrixXd>(Ct_.col(j).data(), N_, R_) = model.C_kappa[sz(j)].topLeftCorner(R_, N_).transpose();
+  }
   // The leading M x M block of B is the B of the first M EIM functions (B is lower triangular).
   if (Mk_ > 0) B_kappa_lu_.compute(model.B_kappa.topLeftCorner(Mk_, Mk_));
   if (Mg_ > 0) B_gamma_lu_.compute(model.B_gamma.topLeftCorner(Mg_, Mg_));
@@ -193,12 +209,13 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
     evaluate_magic(w_, lift_mu_, restricted_, kappa_hat_, gamma_hat_);
   }
   // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat; assembled transposed (N x R).
-  Dt_.setZero();
   double d_scale = 0.0;
   if (Mk_ > 0) {
     phi_ = B_kappa_lu_.solve(kappa_hat_);
-    for (int j = 0; j < Mk_; ++j) Dt_ += phi_(j) * Ct_[sz(j)];
+    Eigen::Map<Eigen::VectorXd>(Dt_.data(), Dt_.size()).noalias() = Ct_ * phi_;
     d_scale = d_bound_ * phi_.cwiseAbs().sum();
+  } else {
+    Dt_.setZero();
   }
   // When the primal basis does not see the contact (K Theta = 0, e.g. the only POD mode
   // of a patch test has no interface jump), D vanishes and the reduced multipliers are
@@ -223,9 +240,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   Et_ = Dt_;
   llt_.matrixL().solveInPlace(Et_);
   llt_.matrixU().solveInPlace(Et_);
-  for (int j = 0; j < R_; ++j) {
-    for (int i = 0; i < R_; ++i) Q_(i, j) = Dt_.col(i).dot(Et_.col(j));
-  }
+  Q_.noalias() = Dt_.transpose() * Et_;
   for (int j = 0; j < R_; ++j) {
     for (int i = j + 1; i < R_; ++i) Q_(i, j) = Q_(j, i) = 0.5 * (Q_(i, j) + Q_(j, i));
   }
@@ -245,7 +260,20 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   return true;
 }
 
-solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSettings& ks, int depth) {
+Eigen::VectorXd OnlineSolver::interpolated_guess(double mu) const {
+  const auto P = static_cast<Eigen::Index>(guess_mu_.size());
+  if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
+  const auto hi = static_cast<Eigen::Index>(std::upper_bound(guess_mu_.begin(), guess_mu_.end(), mu) - guess_mu_.begin());
+  if (hi == 0) return guess_.col(0);
+  if (hi == P) return guess_.col(P - 1);
+  const double a = guess_mu_[sz(static_cast<int>(hi - 1))], b = guess_mu_[sz(static_cast<int>(hi))];
+  const double t = b > a ? (mu - a) / (b - a) : 0.0;
+  return (1.0 - t) * guess_.col(hi - 1) + t * guess_.col(hi);
+}
+
+solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSettings& ks, int depth,
+                                                       const Eigen::VectorXd& u_start,
+                                                       const Eigen::VectorXd& lambda_start) {
   solve::KacanovResult result;
   if (dU_.cols() < depth) {
     dU_.resize(N_, depth);
@@ -258,8 +286,8 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
   int m = 0;     // history columns in use
   int next = 0;  // circular position of the next column
   double r_prev_norm = 0.0;
-  u_.setZero();
-  lambda_prev_.setZero();
+  u_ = u_start;
+  lambda_prev_ = lambda_start;
   result.u_bar.resize(N_);
   result.lambda_bar.resize(R_);
   for (int k = 1; k <= ks.max_iterations; ++k) {
@@ -351,17 +379,21 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
     return sol;
   }
 
+  // [u_hat; lambda_hat] to start from; lambda only enters the first stopping test.
+  const Eigen::VectorXd start =
+      settings.initial_guess == InitialGuess::Interpolated ? interpolated_guess(mu) : Eigen::VectorXd::Zero(N_ + R_);
+  const Eigen::VectorXd u_start = start.head(N_), lambda_start = start.tail(R_);
   solve::KacanovResult kr;
   try {
     if (accelerated) {
-      kr = iterate_accelerated(ks, settings.anderson_depth);
+      kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start);
     } else {
       const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
                                                 Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                                                 std::string& message) {
         return step(u_hat, u_bar, lambda_bar, inner, message);
       };
-      kr = solve::kacanov(step_fn, Eigen::VectorXd::Zero(N_), Eigen::VectorXd::Zero(R_), ks);
+      kr = solve::kacanov(step_fn, u_start, lambda_start, ks);
     }
   } catch (const Error& e) {  // e.g. a degenerate deformed master segment
     kr.status = solve::KacanovStatus::StepFailed;

@@ -62,6 +62,17 @@ enum class OnlineIteration {
   Accelerated,
 };
 
+// Where the reduced Kacanov iteration starts. The fixed point and the stopping test are the same;
+// a start near the answer needs fewer steps.
+enum class InitialGuess {
+  // The reduced solutions at the training values (ReducedModel::training_u_hat and
+  // training_lambda_hat, their leading N and R entries), interpolated linearly in mu between the
+  // two nearest training values (the nearest one outside their range). Reduced-size data only.
+  Interpolated,
+  // u_hat = 0 (the paper's Algorithm 1).
+  Zero,
+};
+
 struct OnlineSettings {
   // Empty: the tolerance and iteration cap of the HF snapshots the model was built from (and
   // their alpha, for the Relaxed iteration).
@@ -73,6 +84,7 @@ struct OnlineSettings {
   OnlineIteration iteration = OnlineIteration::Automatic;
   // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
   int anderson_depth = 3;
+  InitialGuess initial_guess = InitialGuess::Interpolated;
 };
 
 struct OnlineSolution {
@@ -109,8 +121,12 @@ class OnlineSolver {
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
-  // The Accelerated iteration from u_hat = 0 (see OnlineIteration).
-  solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth);
+  // The Accelerated iteration from u_start (see OnlineIteration).
+  solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
+                                           const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
+  // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
+  // training values).
+  Eigen::VectorXd interpolated_guess(double mu) const;
 
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
@@ -120,13 +136,15 @@ class OnlineSolver {
 
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::ParameterSpec parameter_;
+  std::vector<double> guess_mu_;  // training values, increasing
+  Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
   cases::AffineThetas thetas_;
   double kacanov_alpha_ = 0.3, kacanov_tolerance_ = 1e-3;
   int kacanov_max_iterations_ = 500;
   std::vector<Eigen::MatrixXd> A_hat_;
   std::vector<Eigen::VectorXd> f_hat_, A_lift_hat_;
   std::vector<double> lift_AA_, lift_f_;
-  std::vector<Eigen::MatrixXd> Ct_;      // Mk of N x R: C_j' (D' = sum_j phi_j C_j')
+  Eigen::MatrixXd Ct_;                   // (N R) x Mk: column j = C_j' (N x R, column-major); vec(D') = Ct_ phi
   Eigen::PartialPivLU<Eigen::MatrixXd> B_kappa_lu_, B_gamma_lu_;  // leading blocks (Remark 4)
   Eigen::MatrixXd XiQ_gamma_;            // R x Mg
   Eigen::MatrixXd Xi_;                   // R_kept x R

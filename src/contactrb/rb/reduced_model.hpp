@@ -65,6 +65,13 @@ struct ReducedModel {
   int Mk_max = 0;
   int Mg_max = 0;
   Eigen::VectorXd singular_values;  // POD, all P values
+  // The online initial guess, interpolated in mu (OnlineSettings::initial_guess): at each training
+  // value the reduced solution at the maximal sizes (u_hat, lambda_hat), or, where that reduced
+  // solve did not converge, the M-orthogonal projection of u_0(mu_p) on the POD basis and
+  // lambda_hat = 0.
+  std::vector<double> training_mu;     // P values, as in the snapshot set
+  Eigen::MatrixXd training_u_hat;      // N_max x P
+  Eigen::MatrixXd training_lambda_hat; // R_max x P
 
   // (49): A_hat(mu) = sum_j theta^a_j A_hat[j];
   // f_hat(mu) = sum_j theta^f_j f_hat[j] - sum_{j,k} theta^a_j theta^lift_k A_lift_hat[j * J^D + k].
