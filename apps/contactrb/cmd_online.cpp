@@ -37,6 +37,7 @@ struct OnlineOptions {
   int n = -1, r = -1, mk = -1, mg = -1;
   std::optional<double> alpha;
   std::optional<double> tolerance;
+  std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
   std::string out;  // --out DIR: reconstructed fields (single --mu only)
 };
 
@@ -107,6 +108,11 @@ int run_online(const OnlineOptions& opt) {
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
   rb::OnlineSettings settings;
+  if (opt.start == "zero") {
+    settings.initial_guess = rb::InitialGuess::Zero;
+  } else if (opt.start != "interpolated") {
+    throw Error("--start must be 'interpolated' or 'zero', got '" + opt.start + "'");
+  }
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (opt.alpha) k.alpha = *opt.alpha;
@@ -164,6 +170,10 @@ Command add_online_command(CLI::App& app) {
   sub->add_option("--mg", opt->mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1] (default: the snapshots')");
   sub->add_option("--tol", opt->tolerance, "Kacanov tolerance eps_KA, > 0 (default: the snapshots')");
+  sub->add_option("--start", opt->start,
+                  "Initial guess: interpolated (the reduced solutions at the training values, linear in mu) | "
+                  "zero (the paper's)")
+      ->capture_default_str();
   sub->add_option("--out", opt->out,
                   "Directory for the reconstructed solution on the HF mesh (solution.vtu, solution_deformed.vtu, "
                   "multipliers.csv); --mu only");

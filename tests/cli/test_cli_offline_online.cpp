@@ -139,6 +139,11 @@ TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   const CliResult t = run_cli("online --model " + shell_quote(model_) + " --mu 0.3" + kTight);
   ASSERT_EQ(t.exit_code, 0) << t.out << t.err;
   EXPECT_NEAR(json::parse(t.out).at("contact_force").get<double>(), hf_tight, 1e-6 * std::abs(hf_tight));
+  // The paper's zero start: the same answer, and no fewer steps than the interpolated start.
+  const CliResult z = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --start zero" + kTight);
+  ASSERT_EQ(z.exit_code, 0) << z.out << z.err;
+  EXPECT_NEAR(json::parse(z.out).at("contact_force").get<double>(), hf_tight, 1e-6 * std::abs(hf_tight));
+  EXPECT_GE(json::parse(z.out).at("iterations").get<int>(), json::parse(t.out).at("iterations").get<int>());
   // Leading sub-blocks.
   const CliResult small = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --n 2 --r 1 --mk 1 --mg 1");
   ASSERT_EQ(small.exit_code, 0) << small.out << small.err;
@@ -220,6 +225,7 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("online" + m + " --mu 0.9"), "outside the domain");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --n 6"), "--n = 6 is above the maximum 5");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --mk 1000"), "--mk = 1000");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --start warm"), "--start must be 'interpolated' or 'zero'");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --alpha 2"), "alpha");
   expect_user_error(run_cli("online" + m + " --batch " + shell_quote(dir_->file("none.txt"))), "none.txt");
   expect_user_error(run_cli("online" + m + " --batch ''"), "--batch needs a file name");
