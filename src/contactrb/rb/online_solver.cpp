@@ -155,7 +155,17 @@ bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
   for (std::size_t i = 0; i < mesh_.nodes.size(); ++i) {
     mesh_.nodes[i] = maps[sz(surface_.body[i])](surface_.reference_nodes[i]);
   }
-  quadrature_ = contact::make_quadrature(mesh_, pair_, surface_.discretization);
+  // The quadrature reads the slave chain only: rebuilt when the slave nodes moved (a mapped slave
+  // body), kept otherwise (a mapped master body, an imposed displacement).
+  bool slave_moved = quadrature_slave_.size() != surface_.slave.size();
+  for (std::size_t k = 0; k < surface_.slave.size() && !slave_moved; ++k) {
+    slave_moved = quadrature_slave_[k] != mesh_.nodes[sz(surface_.slave[k])];
+  }
+  if (slave_moved) {
+    quadrature_ = contact::make_quadrature(mesh_, pair_, surface_.discretization);
+    quadrature_slave_.clear();
+    for (int v : surface_.slave) quadrature_slave_.push_back(mesh_.nodes[sz(v)]);
+  }
   require(quadrature_.W.rows() == surface_.num_constraints,
           "OnlineSolver: the contact surface gives " + std::to_string(quadrature_.W.rows()) +
               " constraints, the model " + std::to_string(surface_.num_constraints));

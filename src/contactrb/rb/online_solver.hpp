@@ -158,6 +158,7 @@ class OnlineSolver {
   mesh::Mesh mesh_;                      // contact nodes in Omega(mu) (positions set per solve)
   contact::ContactPair pair_;
   contact::ContactQuadrature quadrature_;
+  std::vector<Eigen::Vector2d> quadrature_slave_;  // the slave node positions quadrature_ was built at
   MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
   solve::NonnegativeQPSolver qp_;
 
