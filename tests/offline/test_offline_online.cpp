@@ -94,6 +94,26 @@ Errors compare(const OfflineResult& off, OnlineSolver& solver, const SnapshotSet
   return {(u - snap.u).norm() / snap.u.norm(), (lambda - snap.lambda).norm() / snap.lambda.norm()};
 }
 
+// A truncated model (N 4, R 4, Mk 4, Mg 3) of a case's test snapshots.
+OfflineResult truncated_model(const SnapshotSet& set, const std::string& name) {
+  OfflineSettings s;
+  s.eps_pod = 0.0;
+  s.pod_modes = 4;
+  s.dual_size = 4;
+  s.eim_k_size = 4;
+  s.eim_g_size = 3;
+  return contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(name), s);
+}
+
+// The reduced fixed point to 1e-12: the paper's relaxed iteration (alpha 0.3) from u_hat = 0.
+OnlineSettings reduced_fixed_point() {
+  OnlineSettings s;
+  s.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
+  s.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  s.initial_guess = contactrb::rb::InitialGuess::Zero;
+  return s;
+}
+
 class OfflineOnline : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(OfflineOnline, UntruncatedModelReproducesTrainingSnapshots) {
@@ -218,20 +238,11 @@ TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
 // and in one step at a training value, where it is the fixed point itself.
 TEST_P(OfflineOnline, InterpolatedInitialGuessSavesStepsAndKeepsTheFixedPoint) {
   const SnapshotSet& set = snapshots(GetParam());
-  OfflineSettings s;
-  s.eps_pod = 0.0;
-  s.pod_modes = 4;
-  s.dual_size = 4;
-  s.eim_k_size = 4;
-  s.eim_g_size = 3;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  const OfflineResult off = truncated_model(set, GetParam());
   ASSERT_EQ(off.model.training_mu.size(), set.snapshots.size());
   OnlineSolver solver(off.model);
   constexpr double kEps = 1e-3;
-  OnlineSettings fixed_point;  // as in AcceleratedIterationReachesTheRelaxedFixedPoint
-  fixed_point.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
-  fixed_point.iteration = contactrb::rb::OnlineIteration::Relaxed;
-  fixed_point.initial_guess = contactrb::rb::InitialGuess::Zero;
+  const OnlineSettings fixed_point = reduced_fixed_point();
   OnlineSettings cold;
   cold.kacanov = contactrb::solve::KacanovSettings{1.0, kEps, 500};
   cold.iteration = contactrb::rb::OnlineIteration::Accelerated;
@@ -268,18 +279,10 @@ TEST_P(OfflineOnline, InterpolatedInitialGuessSavesStepsAndKeepsTheFixedPoint) {
 // within the Kacanov tolerance, in fewer steps; at the verification values, truncated model.
 TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
   const SnapshotSet& set = snapshots(GetParam());
-  OfflineSettings s;
-  s.eps_pod = 0.0;
-  s.pod_modes = 4;
-  s.dual_size = 4;
-  s.eim_k_size = 4;
-  s.eim_g_size = 3;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  const OfflineResult off = truncated_model(set, GetParam());
   OnlineSolver solver(off.model);
   constexpr double kEps = 1e-3;  // the paper's eps_KA
-  OnlineSettings fixed_point;
-  fixed_point.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
-  fixed_point.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  const OnlineSettings fixed_point = reduced_fixed_point();
   OnlineSettings relaxed;
   relaxed.kacanov = contactrb::solve::KacanovSettings{0.3, kEps, 500};
   relaxed.iteration = contactrb::rb::OnlineIteration::Relaxed;
