@@ -443,6 +443,10 @@ TEST_P(OfflineOnline, ModelHoldsNoHighFidelitySizeArray) {
   for (const auto& A : m.A_hat) EXPECT_EQ(A.rows(), m.N_max);
   for (const auto& C : m.C_kappa) EXPECT_EQ(C.rows(), m.R_max);
   EXPECT_EQ(m.surface.num_dofs(), n_c);
+  // The initial-guess data: reduced coordinates per training value.
+  EXPECT_EQ(m.training_u_hat.rows(), m.N_max);
+  EXPECT_EQ(m.training_lambda_hat.rows(), m.R_max);
+  EXPECT_EQ(m.training_u_hat.cols(), static_cast<Eigen::Index>(set.snapshots.size()));
   // Every array together is smaller than one HF displacement per reduced dimension.
   EXPECT_LT(contactrb::rb::model_doubles(m), static_cast<long long>(n_c) * (m.N_max + m.R_max + m.J_lift() + 4) +
                                                  50LL * (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1) *
