@@ -393,6 +393,10 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   const Eigen::VectorXd start =
       settings.initial_guess == InitialGuess::Interpolated ? interpolated_guess(mu) : Eigen::VectorXd::Zero(N_ + R_);
   const Eigen::VectorXd u_start = start.head(N_), lambda_start = start.tail(R_);
+  // The first reduced QP starts from the guess's support (the QP is exact from any start).
+  for (int i = 0; i < R_; ++i) {
+    if (lambda_start(i) > 0.0) warm_.push_back(i);
+  }
   solve::KacanovResult kr;
   try {
     if (accelerated) {
