@@ -170,6 +170,8 @@ bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
           "OnlineSolver: the contact surface gives " + std::to_string(quadrature_.W.rows()) +
               " constraints, the model " + std::to_string(surface_.num_constraints));
   restricted_ = restricted;
+  // Collocation and LAC-Simpson rows: the allocation-free evaluator (online_magic.hpp).
+  pointwise_magic_ = restricted && surface_.discretization != contact::Discretization::LAC;
   // (49)
   const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
   const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
@@ -202,16 +204,14 @@ bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
   } else {
     lift_mu_.setZero();
   }
-  if (restricted && surface_.discretization != contact::Discretization::LAC) {
-    magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
-  }
+  if (pointwise_magic_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
   warm_.clear();
   return true;
 }
 
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                         std::string& message) {
-  if (restricted_ && surface_.discretization != contact::Discretization::LAC) {
+  if (pointwise_magic_) {
     magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
   } else {
     w_ = lift_mu_;

@@ -169,6 +169,7 @@ class OnlineSolver {
   Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
   double E_D_ = 0.0;
   bool restricted_ = true;
+  bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
   Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
   Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
   Eigen::MatrixXd Dt_;                   // N x R: D'
