@@ -39,6 +39,9 @@ int locate(const MasterPolyline& m, double s) {
   return std::clamp(k, 0, m.num_segments() - 1);
 }
 
+// Last slave chain position of macro-segment r: 2r + 2, or 2r + 1 for a single-edge last row.
+int last_slave_of_row(int r, int num_slave) { return std::min(2 * r + 2, num_slave - 1); }
+
 struct RowAssembler {
   std::vector<Eigen::Triplet<double>> entries;
   void add(int row, int node, double c, const Vec2& n) {
@@ -158,7 +161,7 @@ ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pai
     }
     if (done[static_cast<std::size_t>(r)] != 0) continue;  // a repeated row
     done[static_cast<std::size_t>(r)] = 1;
-    for (int s = 2 * r; s <= std::min(2 * r + 2, S - 1); ++s) {
+    for (int s = 2 * r; s <= last_slave_of_row(r, S); ++s) {
       if (pointwise.projection[static_cast<std::size_t>(s)].segment < 0) {
         throw Error("integrate_lac_rows: row " + std::to_string(r) + " needs slave position " + std::to_string(s) +
                     ", which was not projected");
@@ -176,7 +179,7 @@ ConstraintRows integrate_lac_rows(const mesh::Mesh& mesh, const ContactPair& pai
 std::vector<int> lac_slave_positions(std::span<const int> rows, int num_slave) {
   std::vector<int> positions;
   for (const int r : rows) {
-    for (int s = 2 * r; s <= std::min(2 * r + 2, num_slave - 1); ++s) positions.push_back(s);
+    for (int s = 2 * r; s <= last_slave_of_row(r, num_slave); ++s) positions.push_back(s);
   }
   std::sort(positions.begin(), positions.end());
   positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
