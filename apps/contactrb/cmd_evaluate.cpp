@@ -85,6 +85,10 @@ nlohmann::json summary_json(const rb::EvaluationSummary& s) {
           {"e_ener", {{"max", s.max_e_ener}, {"mean", s.mean_e_ener}}},
           {"e_displ", {{"max", s.max_e_displ}, {"mean", s.mean_e_displ}}},
           {"e_inter", {{"max", s.max_e_inter}, {"mean", s.mean_e_inter}}},
+          {"e_press", {{"max", s.max_e_press}, {"mean", s.mean_e_press}}},
+          {"e_force", {{"max", s.max_e_force}, {"mean", s.mean_e_force}}},
+          {"e_peak", {{"max", s.max_e_peak}, {"mean", s.mean_e_peak}}},
+          {"e_press_cone", {{"max", s.max_e_press_cone}}},
           {"median_hf_time_s", s.median_hf_time_s},
           {"median_online_time_s", s.median_online_time_s},
           {"median_speedup", s.median_speedup}};
@@ -92,11 +96,11 @@ nlohmann::json summary_json(const rb::EvaluationSummary& s) {
 
 void print_table(const rb::Evaluation& e) {
   std::cout << std::setw(10) << "mu" << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
-            << "e_inter" << std::setw(10) << "HF ms" << std::setw(12) << "online us" << std::setw(10) << "speed-up"
+            << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms" << std::setw(12) << "online us" << std::setw(10) << "speed-up"
             << "\n";
   for (const rb::EvaluationRow& r : e.rows) {
     std::cout << std::setw(10) << std::setprecision(6) << r.mu << std::scientific << std::setprecision(3)
-              << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::fixed
+              << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::setw(12) << r.e_press << std::setw(12) << r.e_force << std::fixed
               << std::setprecision(1) << std::setw(10) << r.hf_time_s * 1e3 << std::setw(12) << r.online_time_s * 1e6
               << std::setprecision(0) << std::setw(10) << r.speedup << std::defaultfloat;
     if (!r.hf_converged) std::cout << "  HF " << r.hf_status;
@@ -111,6 +115,10 @@ void print_table(const rb::Evaluation& e) {
             << "  e_ener  max " << s.max_e_ener << ", mean " << s.mean_e_ener << "\n"
             << "  e_displ max " << s.max_e_displ << ", mean " << s.mean_e_displ << "\n"
             << "  e_inter max " << s.max_e_inter << ", mean " << s.mean_e_inter << "\n"
+            << "  e_press max " << s.max_e_press << ", mean " << s.mean_e_press << " (contact pressure, relative L2)\n"
+            << "  e_force max " << s.max_e_force << ", mean " << s.mean_e_force << " (total contact force, relative)\n"
+            << "  e_peak  max " << s.max_e_peak << ", mean " << s.mean_e_peak << " (peak pressure, relative)\n"
+            << "  best pressure in the model's cone: max " << s.max_e_press_cone << " (e_press cannot go below it)\n"
             << std::fixed << std::setprecision(1) << "  median HF " << s.median_hf_time_s * 1e3 << " ms, online "
             << s.median_online_time_s * 1e6 << " us, speed-up " << std::setprecision(0) << s.median_speedup
             << std::defaultfloat << std::setprecision(6) << "\n";

@@ -60,6 +60,7 @@ struct OfflineOptions {
   double eps_eim_k = rb::OfflineSettings{}.eps_eim_k;
   double eps_eim_g = rb::OfflineSettings{}.eps_eim_g;
   bool no_compression = false;
+  bool no_supremizers = false;
   std::string out;
 };
 
@@ -134,6 +135,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   s.eps_eim_k = opt.eps_eim_k;
   s.eps_eim_g = opt.eps_eim_g;
   s.compression = !opt.no_compression;
+  s.supremizers = !opt.no_supremizers;
   rb::check_settings(s);
   return s;
 }
@@ -196,9 +198,11 @@ int run_offline(const OfflineOptions& opt) {
                    {"r", settings.dual_size >= 1 ? nlohmann::json(settings.dual_size) : nlohmann::json(nullptr)},
                    {"eps_eim_k", settings.eps_eim_k},
                    {"eps_eim_g", settings.eps_eim_g},
-                   {"compression", settings.compression}};
+                   {"compression", settings.compression},
+                   {"supremizers", settings.supremizers}};
   j["sizes"] = {{"N", m.N_max}, {"R", m.R_max}, {"Mk", m.Mk_max}, {"Mg", m.Mg_max}};
-  j["pod"] = {{"singular_values", to_json(rep.singular_values)}, {"N", rep.N}};
+  j["pod"] = {{"singular_values", to_json(rep.singular_values)}, {"N", rep.N_pod}};
+  j["supremizers"] = {{"enabled", settings.supremizers}, {"count", rep.N_supremizers}, {"time_s", rep.supremizer_s}};
   j["compression"] = {{"enabled", settings.compression},
                       {"constraints", rep.R_hf},
                       {"kept", rep.R_kept},
@@ -222,8 +226,10 @@ int run_offline(const OfflineOptions& opt) {
   std::cout << "case " << set.case_name << ", " << set.snapshots.size() << " snapshots (set " << set.set_name << "), "
             << set.constraint << "\n"
             << "sizes: N " << m.N_max << ", R " << m.R_max << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
-            << "pod: " << rb::to_string(settings.inner_product) << " product, N " << rep.N << " of "
-            << rep.singular_values.size() << " (eps_pod " << settings.eps_pod << ")\n"
+            << "pod: " << rb::to_string(settings.inner_product) << " product, N " << rep.N_pod << " of "
+            << rep.singular_values.size() << " (eps_pod " << settings.eps_pod << ")"
+            << (settings.supremizers ? ", + " + std::to_string(rep.N_supremizers) + " supremizers" : std::string())
+            << "\n"
             << "compression: " << rep.R_kept << " of " << rep.R_hf << " constraints kept"
             << (settings.compression ? "" : " (off)") << "\n"
             << "dual: " << opt.dual << ", R " << rep.R << ", error "
@@ -295,6 +301,9 @@ Command add_offline_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--eps-eim-g", opt->eps_eim_g, "EIM of the gap gamma: ell-infinity tolerance")->capture_default_str();
   sub->add_flag("--no-compression", opt->no_compression, "Keep the constraints never active on the training set");
+  sub->add_flag("--no-supremizers", opt->no_supremizers,
+                "Primal basis: the POD modes only (no supremizer per dual generator; lambda_hat may then be "
+                "undetermined when R > N)");
   sub->add_option("--out", opt->out, "Output model file (HDF5); offline.json goes to the same directory")
       ->required();
   return {sub, [opt] { return run_offline(*opt); }};

@@ -64,7 +64,7 @@ void expect_user_error(const CliResult& r, const std::string& words) {
 
 constexpr const char* kHeader =
     "mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"
-    "e_displ,e_inter,energy_hf,energy_rb";
+    "e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,peak_hf,peak_rb,energy_hf,energy_rb";
 
 class CliEvaluate : public ::testing::Test {
  protected:
@@ -118,6 +118,11 @@ TEST_F(CliEvaluate, SetFileGivesOneCsvLinePerValueAndASummary) {
   EXPECT_NE(r.out.find("e_ener"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("speed-up"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("e_displ max"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("e_press max"), std::string::npos) << r.out;
+  const double ep = j.at("summary").at("e_press").at("max").get<double>();
+  EXPECT_GE(ep, j.at("summary").at("e_press_cone").at("max").get<double>() * (1.0 - 1e-12));
+  EXPECT_GT(ep, 0.0);
+  EXPECT_LT(ep, 1.0);  // three training values: the pressure is coarse (0.29), but not unrelated
 
   // One multiplier line per constraint row (offline.json: compression.constraints).
   std::ifstream off(dir_->file("offline.json"));

@@ -80,13 +80,22 @@ CliResult CliOfflineOnline::offline_;
 }  // namespace
 
 TEST_F(CliOfflineOnline, OfflineWritesTheModelTheReportAndASummary) {
-  EXPECT_EQ(field_value(offline_.out, "sizes").rfind("N 5, R ", 0), 0u) << offline_.out;
   EXPECT_NE(offline_.out.find("wrote " + model_), std::string::npos) << offline_.out;
   ASSERT_TRUE(fs::exists(dir_->file("offline.json")));
   std::ifstream in(dir_->file("offline.json"));
   const json j = json::parse(in);
   EXPECT_EQ(j.at("case"), "hertz-a");
-  EXPECT_EQ(j.at("sizes").at("N"), 5);
+  // Every POD mode of the 5 snapshots, then one supremizer per dual generator (those that add a
+  // direction): N = 5 + supremizers, R of them at most.
+  EXPECT_EQ(j.at("pod").at("N"), 5);
+  EXPECT_TRUE(j.at("supremizers").at("enabled").get<bool>());
+  const int sup = j.at("supremizers").at("count").get<int>();
+  EXPECT_GE(sup, 1);
+  EXPECT_LE(sup, j.at("sizes").at("R").get<int>());
+  EXPECT_EQ(j.at("sizes").at("N"), 5 + sup);
+  EXPECT_EQ(field_value(offline_.out, "sizes").rfind("N " + std::to_string(5 + sup) + ", R ", 0), 0u) << offline_.out;
+  EXPECT_NE(field_value(offline_.out, "pod").find("+ " + std::to_string(sup) + " supremizers"), std::string::npos)
+      << offline_.out;
   EXPECT_EQ(j.at("pod").at("singular_values").size(), 5u);
   const int R = j.at("sizes").at("R").get<int>();
   EXPECT_GE(R, 1);
@@ -129,7 +138,8 @@ TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const json j = json::parse(r.out);
   EXPECT_TRUE(j.at("converged").get<bool>());
-  EXPECT_EQ(j.at("u_hat").size(), 5u);
+  std::ifstream in(dir_->file("offline.json"));
+  EXPECT_EQ(j.at("u_hat").size(), json::parse(in).at("sizes").at("N").get<std::size_t>());
   EXPECT_GE(j.at("iterations").get<int>(), 1);
   for (const char* key : {"lambda_hat", "energy", "time_s"}) EXPECT_TRUE(j.contains(key)) << key;
   const double hf_default = hf_contact_force(0.3, "");
@@ -223,7 +233,7 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("online --model " + shell_quote(dir_->file("none.h5")) + " --mu 0.3"), "none.h5");
   expect_user_error(run_cli("online --model " + shell_quote(snapshots_) + " --mu 0.3"), "s.h5");
   expect_user_error(run_cli("online" + m + " --mu 0.9"), "outside the domain");
-  expect_user_error(run_cli("online" + m + " --mu 0.3 --n 6"), "--n = 6 is above the maximum 5");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --n 100"), "--n = 100 is above the maximum");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --mk 1000"), "--mk = 1000");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --start warm"), "--start must be 'interpolated' or 'zero'");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --alpha 2"), "alpha");
@@ -245,9 +255,10 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   EXPECT_FALSE(fs::exists(dir_->file("bad.h5")));
 }
 
-// A model whose primal basis cannot see the contact (the patch test: its single POD mode has
-// no interface jump, so D^kappa = 0) must fail with a clear message, never answer with
-// undetermined multipliers.
+// A model whose primal basis cannot see the contact (the patch test's single POD mode has no
+// interface jump, so D^kappa = 0 without supremizers) must fail with a clear message, never answer
+// with undetermined multipliers. With the supremizer (the default) the basis sees the contact and
+// the reduced model reproduces the HF patch solution (uniform pressure) to round-off.
 TEST(CliOnlineBlindBasis, PatchModelIsRefusedWithAClearMessage) {
   contactrb::test::TempDir dir("online_blind");
   const std::string d = contactrb::test::shell_quote(dir.path().string());
@@ -256,9 +267,24 @@ TEST(CliOnlineBlindBasis, PatchModelIsRefusedWithAClearMessage) {
   ASSERT_EQ(contactrb::test::run_cli("snapshots -q --case-file " + toml + " --set verification --out " + d + "/s.h5")
                 .exit_code,
             0);
-  ASSERT_EQ(contactrb::test::run_cli("offline --snapshots " + d + "/s.h5 --n 10 --out " + d + "/m.h5").exit_code, 0);
+  ASSERT_EQ(
+      contactrb::test::run_cli("offline --snapshots " + d + "/s.h5 --n 10 --no-supremizers --out " + d + "/m.h5")
+          .exit_code,
+      0);
   const contactrb::test::CliResult r = contactrb::test::run_cli("online --model " + d + "/m.h5 --mu 0.02");
   EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
   EXPECT_NE(r.err.find("does not see the contact"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("e+16"), std::string::npos) << r.out;
+
+  ASSERT_EQ(contactrb::test::run_cli("offline --snapshots " + d + "/s.h5 --n 10 --out " + d + "/ms.h5").exit_code, 0);
+  const contactrb::test::CliResult ok = contactrb::test::run_cli("online --model " + d + "/ms.h5 --mu 0.02");
+  ASSERT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  ASSERT_EQ(contactrb::test::run_cli("solve --case-file " + toml + " --mu 0.02 --out " + d + "/hf").exit_code, 0);
+  std::ifstream in(dir.path() / "hf" / "solution.json");
+  const json hf = json::parse(in);
+  const json rb = json::parse(ok.out);
+  EXPECT_EQ(rb.at("sizes").at("N"), 2);  // the POD mode and the supremizer
+  EXPECT_NEAR(rb.at("contact_force").get<double>(), hf.at("contact_force").get<double>(),
+              1e-10 * hf.at("contact_force").get<double>());
+  EXPECT_NEAR(rb.at("energy").get<double>(), hf.at("energy").get<double>(), 1e-10 * hf.at("energy").get<double>());
 }

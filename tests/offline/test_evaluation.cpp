@@ -65,6 +65,7 @@ const OfflineResult& model(bool truncated) {
   if (!slot) {
     OfflineSettings s;
     if (truncated) {
+      s.supremizers = false;  // N = 1: the independent computation below uses the single POD mode
       s.pod_modes = 1;
       s.dual_size = 1;
       s.eim_k_size = 1;
@@ -94,7 +95,7 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
   o.multiplier_mus = {0.35};
   const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTraining, o);
   ASSERT_EQ(e.rows.size(), kTraining.size());
-  EXPECT_EQ(e.N, static_cast<int>(kTraining.size()));
+  EXPECT_EQ(e.N - off.model.N_supremizers, static_cast<int>(kTraining.size()));
   EXPECT_EQ(e.R, off.model.R_max);
   for (std::size_t i = 0; i < e.rows.size(); ++i) {
     const auto& r = e.rows[i];
@@ -158,6 +159,25 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     const double e_displ = std::sqrt(d.dot(H1 * d) / uh.dot(H1 * uh));
     EXPECT_NEAR(r.e_displ, e_displ, 1e-8 * e_displ);
     EXPECT_GT(r.e_displ, 1e-4);  // one mode cannot represent four Hertz solutions
+    // Pressure measures from the snapshot's multipliers and weights |I_r| (same HF solve).
+    const auto& snap = snapshots().snapshots[i];
+    const Eigen::VectorXd lr = contactrb::rb::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+    const Eigen::VectorXd& lh = snap.lambda;
+    const Eigen::VectorXd& w = snap.weight;
+    const double e_press = std::sqrt(w.dot((lr - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
+    EXPECT_NEAR(r.e_press, e_press, 1e-8 * e_press);
+    EXPECT_NEAR(r.force_hf, w.dot(lh), 1e-9 * w.dot(lh));
+    EXPECT_NEAR(r.e_force, std::abs(w.dot(lr) - w.dot(lh)) / w.dot(lh), 1e-8);
+    EXPECT_NEAR(r.e_peak, std::abs(lr.maxCoeff() - lh.maxCoeff()) / lh.maxCoeff(), 1e-8);
+    // One generator xi (on the kept rows): the cone's best is max(0, <xi, l>_w / <xi, xi>_w) xi.
+    Eigen::VectorXd xi = Eigen::VectorXd::Zero(lh.size());
+    for (std::size_t k = 0; k < off.reconstruction.kept_rows.size(); ++k) {
+      xi(off.reconstruction.kept_rows[k]) = off.reconstruction.Xi(static_cast<Eigen::Index>(k), 0);
+    }
+    const double c = std::max(0.0, w.dot(xi.cwiseProduct(lh)) / w.dot(xi.cwiseAbs2()));
+    const double best = std::sqrt(w.dot((c * xi - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
+    EXPECT_NEAR(r.e_press_cone, best, 1e-8 * best);
+    EXPECT_GE(r.e_press, r.e_press_cone * (1.0 - 1e-12));
     std::printf("  mu %.2f: online %s (%d iterations), e_ener %.3e, e_displ %.3e, e_inter %.3e\n", mu,
                 r.rb_status.c_str(), r.rb_iterations, r.e_ener, r.e_displ, r.e_inter);
     worst = std::max(worst, r.e_displ);

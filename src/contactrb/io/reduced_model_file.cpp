@@ -253,6 +253,7 @@ void visit(V& v, rb::ReducedModel& m) {
   v.num("kacanov_tolerance", m.kacanov_tolerance);
   v.integer("kacanov_max_iterations", m.kacanov_max_iterations);
   v.integer("N_max", m.N_max);
+  v.integer("N_supremizers", m.N_supremizers);
   v.integer("R_max", m.R_max);
   v.integer("Mk_max", m.Mk_max);
   v.integer("Mg_max", m.Mg_max);

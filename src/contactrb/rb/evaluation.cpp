@@ -21,6 +21,7 @@
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
+#include "contactrb/rb/cone_projection.hpp"
 
 namespace contactrb::rb {
 
@@ -135,10 +136,43 @@ void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, c
     row.e_inter = std::numeric_limits<double>::infinity();
   }
 
+  // Contact pressure: the L2(Gamma^c) norm of the P0 multipliers is sum_r |I_r| lambda_r^2.
+  const Eigen::VectorXd lambda = reconstruct_multipliers(rec, s.lambda_hat);
+  const contact::ContactQuadrature& q = solver.quadrature();
+  {
+    const Eigen::VectorXd& lh = hf_solution.lambda;
+    const Eigen::VectorXd& w = q.weight;
+    require(lh.size() == lambda.size() && w.size() == lambda.size(),
+            at + "the HF multipliers (" + std::to_string(lh.size()) + ") and the reconstructed ones (" +
+                std::to_string(lambda.size()) + ") differ in size");
+    const double norm_hf = std::sqrt(w.dot(lh.cwiseAbs2()));
+    const double norm_d = std::sqrt(w.dot((lambda - lh).cwiseAbs2()));
+    row.e_press = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;
+    row.force_hf = w.dot(lh);
+    row.force_rb = w.dot(lambda);
+    row.e_force = row.force_hf != 0.0 ? std::abs(row.force_rb - row.force_hf) / std::abs(row.force_hf)
+                                      : std::abs(row.force_rb);
+    row.peak_hf = lh.size() > 0 ? lh.maxCoeff() : 0.0;
+    row.peak_rb = lambda.size() > 0 ? lambda.maxCoeff() : 0.0;
+    row.e_peak = row.peak_hf > 0.0 ? std::abs(row.peak_rb - row.peak_hf) / row.peak_hf : std::abs(row.peak_rb);
+    // Best approximation in the cone of the R generators used online.
+    const Eigen::Index R = s.lambda_hat.size();
+    Eigen::VectorXd lk(static_cast<Eigen::Index>(rec.kept_rows.size())), wk(lk.size());
+    double dropped = 0.0;
+    Eigen::VectorXd on_kept = Eigen::VectorXd::Zero(lh.size());
+    for (std::size_t i = 0; i < rec.kept_rows.size(); ++i) {
+      lk(static_cast<Eigen::Index>(i)) = lh(rec.kept_rows[i]);
+      wk(static_cast<Eigen::Index>(i)) = w(rec.kept_rows[i]);
+      on_kept(rec.kept_rows[i]) = 1.0;
+    }
+    for (Eigen::Index r = 0; r < lh.size(); ++r) dropped += (1.0 - on_kept(r)) * w(r) * lh(r) * lh(r);
+    const double cone_err = R > 0 ? project_onto_cone(rec.Xi.leftCols(R), lk, wk).error : weighted_norm(lk, wk);
+    const double best = std::sqrt(cone_err * cone_err + dropped);
+    row.e_press_cone = norm_hf > 0.0 ? best / norm_hf : best;
+  }
+
   for (double mu : multiplier_mus) {
     if (!same_value(mu, row.mu)) continue;
-    const Eigen::VectorXd lambda = reconstruct_multipliers(rec, s.lambda_hat);
-    const contact::ContactQuadrature& q = solver.quadrature();
     MultiplierProfile& p = row.multipliers;
     for (Eigen::Index r = 0; r < lambda.size(); ++r) {
       p.abscissa.push_back(reference.nodes[static_cast<std::size_t>(q.center_node[static_cast<std::size_t>(r)])].x());
@@ -165,6 +199,13 @@ EvaluationSummary summarize(const std::vector<EvaluationRow>& rows) {
     s.mean_e_ener += r.e_ener;
     s.mean_e_displ += r.e_displ;
     s.mean_e_inter += r.e_inter;
+    s.max_e_press = std::max(s.max_e_press, r.e_press);
+    s.max_e_force = std::max(s.max_e_force, r.e_force);
+    s.max_e_peak = std::max(s.max_e_peak, r.e_peak);
+    s.max_e_press_cone = std::max(s.max_e_press_cone, r.e_press_cone);
+    s.mean_e_press += r.e_press;
+    s.mean_e_force += r.e_force;
+    s.mean_e_peak += r.e_peak;
     hf_times.push_back(r.hf_time_s);
     online_times.push_back(r.online_time_s);
     speedups.push_back(r.speedup);
@@ -173,6 +214,9 @@ EvaluationSummary summarize(const std::vector<EvaluationRow>& rows) {
     s.mean_e_ener /= both;
     s.mean_e_displ /= both;
     s.mean_e_inter /= both;
+    s.mean_e_press /= both;
+    s.mean_e_force /= both;
+    s.mean_e_peak /= both;
   }
   s.median_hf_time_s = median(hf_times);
   s.median_online_time_s = median(online_times);
@@ -267,11 +311,13 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
 
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path) {
   io::CsvWriter csv({"mu", "hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
-                     "online_time_s", "speedup", "e_ener", "e_displ", "e_inter", "energy_hf", "energy_rb"});
+                     "online_time_s", "speedup", "e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak",
+                     "e_press_cone", "force_hf", "force_rb", "peak_hf", "peak_rb", "energy_hf", "energy_rb"});
   for (const EvaluationRow& r : evaluation.rows) {
     csv.add_row({r.mu, static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
                  static_cast<long long>(r.rb_converged), r.rb_status, static_cast<long long>(r.rb_iterations),
-                 r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.energy_hf, r.energy_rb});
+                 r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.e_press, r.e_force, r.e_peak, r.e_press_cone, r.force_hf,
+                 r.force_rb, r.peak_hf, r.peak_rb, r.energy_hf, r.energy_rb});
   }
   csv.write(path);
 }

@@ -53,6 +53,17 @@ struct EvaluationRow {
   double e_inter = 0.0;        // (66): sqrt(sum over slave nodes of min(0, gap(u_rb))^2), the
                                // pointwise normal gap g(u_rb) - k(u_rb; u_rb) of the deformed
                                // configuration (inf if the deformed master degenerates)
+  // Contact pressure (ours, docs/offline-online.md), lambda_rb = Xi lambda_hat on the HF rows,
+  // weights |I_r|(mu) of the HF quadrature (the L2(Gamma^c) norm of the P0 pressure):
+  double e_press = 0.0;        // |lambda_rb - lambda_hf|_Lambda / |lambda_hf|_Lambda
+  double e_force = 0.0;        // |F_rb - F_hf| / |F_hf|, F = sum_r |I_r| lambda_r (total contact force)
+  double e_peak = 0.0;         // |max lambda_rb - max lambda_hf| / max lambda_hf (peak pressure)
+  // The best the model's dual cone can do: min_{c >= 0} |Xi c - lambda_hf|_Lambda / |lambda_hf|_Lambda
+  // (kept rows; the dropped rows' HF multipliers count in full). e_press >= e_press_cone always;
+  // their gap is what the reduced saddle point (53) loses (docs/offline-online.md).
+  double e_press_cone = 0.0;
+  double force_hf = 0.0, force_rb = 0.0;
+  double peak_hf = 0.0, peak_rb = 0.0;
   double energy_hf = 0.0;      // 1/2 a(u, u) - f(u), u = u_hf
   double energy_rb = 0.0;      // same for u = u_rb (so e_ener != |energy_rb - energy_hf| in general)
   MultiplierProfile multipliers;  // filled only for EvaluationOptions::multiplier_mus
@@ -67,6 +78,10 @@ struct EvaluationSummary {
   double max_e_ener = 0.0, mean_e_ener = 0.0;
   double max_e_displ = 0.0, mean_e_displ = 0.0;
   double max_e_inter = 0.0, mean_e_inter = 0.0;
+  double max_e_press = 0.0, mean_e_press = 0.0;
+  double max_e_force = 0.0, mean_e_force = 0.0;
+  double max_e_peak = 0.0, mean_e_peak = 0.0;
+  double max_e_press_cone = 0.0;
   double median_hf_time_s = 0.0;
   double median_online_time_s = 0.0;
   double median_speedup = 0.0;
@@ -87,7 +102,8 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
                           const EvaluationOptions& options = {});
 
 // CSV (one line per row: mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
-// rb_iterations,online_time_s,speedup,e_ener,e_displ,e_inter,energy_hf,energy_rb) and
+// rb_iterations,online_time_s,speedup,e_ener,e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,
+// peak_hf,peak_rb,energy_hf,energy_rb) and
 // multiplier profile CSVs (abscissa,lambda_hf,lambda_rb), both written atomically.
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path);
 void write_multiplier_csv(const MultiplierProfile& profile, const std::string& path);

@@ -10,6 +10,7 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/fem/cholesky.hpp"
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/rb/angle_greedy.hpp"
 #include "contactrb/rb/compression.hpp"
@@ -54,6 +55,73 @@ Eigen::VectorXd lift_at(const Eigen::MatrixXd& lift_c, const cases::AffineThetas
 }
 
 const char* eim_status(const EIMResult& r) { return to_string(r.status); }
+
+// Linear dependence threshold of the enrichment: a supremizer whose M-norm drops below this
+// fraction of its own norm when orthogonalized against the basis adds nothing (round-off).
+constexpr double kSupremizerDependence = 1e-10;
+
+// The snapshot a dual generator stands for: the greedies' own pick, otherwise (NMF) the snapshot
+// closest in angle in the Lambda norm.
+int generator_snapshot(const DualConeResult& dual, const Eigen::MatrixXd& Lambda, const Eigen::VectorXd& w, int r) {
+  if (sz(r) < dual.selected.size()) return dual.selected[sz(r)];
+  const Eigen::VectorXd xi = dual.generators.col(r);
+  int best = 0;
+  double best_cos = -1.0;
+  for (Index p = 0; p < Lambda.cols(); ++p) {
+    const double nl = std::sqrt(w.dot(Lambda.col(p).cwiseAbs2())), nx = std::sqrt(w.dot(xi.cwiseAbs2()));
+    if (nl <= 0.0 || nx <= 0.0) continue;
+    const double c = w.dot(Lambda.col(p).cwiseProduct(xi)) / (nl * nx);
+    if (c > best_cos) {
+      best_cos = c;
+      best = static_cast<int>(p);
+    }
+  }
+  return best;
+}
+
+// Supremizer enrichment: appends M^-1 (K_r' xi_r) (free DOFs), M-orthonormalized against the
+// basis (Gram-Schmidt twice), dependent ones dropped. Returns the number appended.
+int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<double>& M, const io::SnapshotSet& set,
+                            const std::vector<int>& kept, const DualConeResult& dual, const Eigen::MatrixXd& Lambda,
+                            const Eigen::VectorXd& weights, const std::vector<int>& global_to_free) {
+  fem::SparseCholesky chol;
+  require(chol.compute(M) == fem::FactorStatus::Success,
+          "offline: the inner-product matrix is not positive definite (supremizers)");
+  const Index R = dual.generators.cols();
+  const Index n_free = Theta.rows();
+  Eigen::MatrixXd S(n_free, R);
+  for (Index r = 0; r < R; ++r) {
+    const io::Snapshot& snap = set.snapshots[sz(generator_snapshot(dual, Lambda, weights, static_cast<int>(r)))];
+    Eigen::VectorXd lambda_full = Eigen::VectorXd::Zero(snap.K.rows());
+    for (std::size_t i = 0; i < kept.size(); ++i) lambda_full(kept[i]) = dual.generators(ix(i), r);
+    const Eigen::VectorXd t = snap.K.transpose() * lambda_full;  // contact DOFs
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_free);
+    for (Index i = 0; i < t.size(); ++i) {
+      const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
+      if (fi >= 0) b(fi) += t(i);
+    }
+    S.col(r) = chol.solve(b);
+  }
+  int added = 0;
+  Eigen::MatrixXd out(n_free, Theta.cols() + R);
+  out.leftCols(Theta.cols()) = Theta;
+  Index n = Theta.cols();
+  for (Index r = 0; r < R; ++r) {
+    Eigen::VectorXd v = S.col(r);
+    const double norm0 = std::sqrt(std::max(0.0, v.dot(M * v)));
+    if (norm0 <= 0.0) continue;
+    for (int pass = 0; pass < 2; ++pass) {
+      const Eigen::VectorXd Mv = M * v;
+      v -= out.leftCols(n) * (out.leftCols(n).transpose() * Mv);
+    }
+    const double norm = std::sqrt(std::max(0.0, v.dot(M * v)));
+    if (norm <= kSupremizerDependence * norm0) continue;
+    out.col(n++) = v / norm;
+    ++added;
+  }
+  Theta = out.leftCols(n);
+  return added;
+}
 
 }  // namespace
 
@@ -130,11 +198,12 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
                                  " above every singular value, largest " +
                                  std::to_string(pod_result.singular_values.size() ? pod_result.singular_values(0) : 0.0) +
                                  ")");
-  const Eigen::MatrixXd& Theta = pod_result.basis;
-  const int N = pod_result.N;
+  Eigen::MatrixXd Theta = pod_result.basis;
   rep.singular_values = pod_result.singular_values;
-  rep.N = N;
+  rep.N_pod = pod_result.N;
   rep.pod_s = pod_result.seconds;
+  std::vector<int> global_to_free(sz(set.num_dofs), -1);
+  for (std::size_t i = 0; i < set.free_dofs.size(); ++i) global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
 
   // --- Compression (Remark 7) and (T3) the dual cone on the kept rows.
   t0 = Clock::now();
@@ -176,6 +245,14 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   rep.dual_status = to_string(dual.status);
   rep.dual_condition_number = generator_condition_number(Xi, ds.weights);
   rep.dual_s = seconds_since(t0);
+
+  if (settings.supremizers) {
+    t0 = Clock::now();
+    rep.N_supremizers = enrich_with_supremizers(Theta, inner, set, kept, dual, Lambda_pos, ds.weights, global_to_free);
+    rep.supremizer_s = seconds_since(t0);
+  }
+  const int N = static_cast<int>(Theta.cols());
+  rep.N = N;
 
   // Lift on the contact DOFs, per term.
   const int JD = static_cast<int>(terms.lift.size());
@@ -233,6 +310,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.kacanov_tolerance = set.kacanov_tolerance;
   m.kacanov_max_iterations = set.kacanov_max_iterations;
   m.N_max = N;
+  m.N_supremizers = rep.N_supremizers;
   m.R_max = R;
   m.Mk_max = eim_k.size();
   m.Mg_max = eim_g.size();
@@ -289,8 +367,6 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   surf.discretization = contact::discretization_from_string(set.constraint);
   surf.num_constraints = R_hf;
 
-  std::vector<int> global_to_free(sz(set.num_dofs), -1);
-  for (std::size_t i = 0; i < set.free_dofs.size(); ++i) global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
   m.Theta_c = Eigen::MatrixXd::Zero(n_c, N);
   for (int i = 0; i < n_c; ++i) {
     const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];

@@ -37,13 +37,21 @@ struct OfflineSettings {
   int eim_k_size = -1;
   int eim_g_size = -1;
   bool compression = true;  // Remark 7: drop the constraints never active on the training set
+  // Supremizer enrichment of the primal basis (Niakh, Ehrlacher, Ern 2022; docs/offline-online.md):
+  // after the POD modes, one vector s_r = M^-1 K(u(mu_r))' xi_r per dual generator xi_r (M the
+  // inner product above, mu_r the snapshot the generator comes from), M-orthonormalized. Without
+  // it the reduced saddle point (53) is not inf-sup stable when R > N and lambda_hat is not
+  // determined by the reduced problem.
+  bool supremizers = true;
 };
 // Throws contactrb::Error naming the first invalid setting.
 void check_settings(const OfflineSettings& settings);
 
 struct OfflineReport {
   Eigen::VectorXd singular_values;  // POD, all P
-  int N = 0;
+  int N = 0;          // primal basis size: N_pod + supremizers
+  int N_pod = 0;      // POD modes
+  int N_supremizers = 0;
   int R_hf = 0;       // constraints before compression
   int R_kept = 0;     // after
   int R = 0;
@@ -60,6 +68,7 @@ struct OfflineReport {
   // Wall times (s) of each step.
   double assembly_s = 0.0;
   double pod_s = 0.0;
+  double supremizer_s = 0.0;
   double dual_s = 0.0;
   double eim_kappa_s = 0.0;
   double eim_gamma_s = 0.0;

@@ -34,6 +34,9 @@ void check_model(const ReducedModel& m) {
   require(m.N_max >= 1 && m.R_max >= 0 && m.Mk_max >= 0 && m.Mg_max >= 0,
           "reduced model: invalid maxima N_max = " + std::to_string(m.N_max) + ", R_max = " + std::to_string(m.R_max) +
               ", Mk_max = " + std::to_string(m.Mk_max) + ", Mg_max = " + std::to_string(m.Mg_max));
+  require(m.N_supremizers >= 0 && m.N_supremizers < m.N_max,
+          "reduced model: " + std::to_string(m.N_supremizers) + " supremizers in a basis of " +
+              std::to_string(m.N_max) + " (at least one POD mode comes first)");
   const std::size_t Ja = m.thetas.a.size(), Jf = m.thetas.f.size(), JD = m.thetas.lift.size();
   require(m.A_hat.size() == Ja && Ja >= 1, "reduced model: " + std::to_string(m.A_hat.size()) +
                                                " matrices A_hat for " + std::to_string(Ja) + " theta^a");

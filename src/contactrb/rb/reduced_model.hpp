@@ -21,7 +21,7 @@
 
 namespace contactrb::rb {
 
-inline constexpr int kReducedModelFormatVersion = 2;
+inline constexpr int kReducedModelFormatVersion = 3;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -61,6 +61,7 @@ struct ReducedModel {
   int kacanov_max_iterations = 500;
 
   int N_max = 0;
+  int N_supremizers = 0;  // the last N_supremizers of the N_max basis vectors are supremizers (format 3)
   int R_max = 0;
   int Mk_max = 0;
   int Mg_max = 0;
