@@ -1,0 +1,109 @@
+// Contact-pressure accuracy of the reduced model (issue [A], items 1-2) on the three paper cases
+// at the default OfflineSettings, their training sets and verification sets (HF settings of the
+// snapshots: the paper's alpha = 0.3, eps_KA = 1e-3).
+//
+// The independent reference for "how good can the pressure be": e_press_cone, the best
+// approximation of the HF pressure in the model's own dual cone (a non-negative least-squares
+// problem). The reduced multiplier lies in that cone, so e_press >= e_press_cone always.
+//  - Without supremizers the reduced saddle point is not inf-sup stable (R > N on hertz-a:
+//    Q = D A_hat^-1 D' is singular) and e_press is far above the cone's best (0.30 on hertz-a).
+//  - With them (the default) e_press stays within a small factor of the cone's best, and
+//    hertz-b and ring-block meet the issue's target (1e-2 pressure, 1e-3 force). hertz-a does not
+//    where the cone itself cannot (a slave node enters the contact between two training values:
+//    e_press_cone = 2.2e-2 at mu = 0.175), see docs/offline-online.md.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/rb/evaluation.hpp"
+#include "contactrb/rb/offline_builder.hpp"
+#include "contactrb/rb/snapshot_generation.hpp"
+
+namespace {
+
+using contactrb::rb::Evaluation;
+using contactrb::rb::OfflineResult;
+using contactrb::rb::OfflineSettings;
+
+const contactrb::io::SnapshotSet& training(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<contactrb::io::SnapshotSet>> cache;
+  auto& slot = cache[name];
+  if (!slot) {
+    contactrb::rb::SnapshotRunOptions options;
+    options.jobs = 2;
+    slot = std::make_unique<contactrb::io::SnapshotSet>(contactrb::rb::generate_snapshots(
+        contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec(name), "training"), options));
+  }
+  return *slot;
+}
+
+Evaluation evaluate(const std::string& name, bool supremizers) {
+  const auto spec = contactrb::cases::builtin_case_spec(name);
+  OfflineSettings s;
+  s.supremizers = supremizers;
+  const OfflineResult off = contactrb::rb::build_reduced_model(training(name), spec, s);
+  contactrb::rb::EvaluationOptions o;
+  o.jobs = 2;
+  o.online_repeats = 1;
+  const Evaluation e =
+      contactrb::rb::evaluate_model(off.model, off.reconstruction, spec, spec.parameter.set("verification"), o);
+  EXPECT_EQ(e.summary.hf_failures + e.summary.rb_failures, 0);
+  std::printf("[ %s supremizers %s ] N %d R %d Mk %d Mg %d: max e_press %.3e (cone's best %.3e), e_force %.3e, "
+              "e_peak %.3e, e_displ %.3e\n",
+              name.c_str(), supremizers ? "on" : "off", e.N, e.R, e.Mk, e.Mg, e.summary.max_e_press,
+              e.summary.max_e_press_cone, e.summary.max_e_force, e.summary.max_e_peak, e.summary.max_e_displ);
+  for (const auto& r : e.rows) EXPECT_GE(r.e_press, r.e_press_cone * (1.0 - 1e-9)) << "mu = " << r.mu;
+  return e;
+}
+
+// With supremizers the reduced pressure is near the best the cone holds: within 30% of it, up to
+// an absolute floor set by the Kacanov stopping test (63) of the HF reference and of the online
+// solve, eps_KA / alpha each (1e-3 / 0.3; measured: e_press 5.2e-3 against a cone's best of 4.3e-4
+// on hertz-b, 1.1e-3 against 9.8e-4 with HF snapshots at eps_KA = 1e-8).
+void expect_near_cone_best(const Evaluation& e) {
+  constexpr double kKacanovFloor = 2.0 * 1e-3 / 0.3;
+  for (const auto& r : e.rows) {
+    EXPECT_LE(r.e_press, 1.3 * r.e_press_cone + kKacanovFloor)
+        << "mu = " << r.mu << ": e_press " << r.e_press << ", cone's best " << r.e_press_cone;
+  }
+}
+
+TEST(PressureAccuracy, HertzBMeetsTheTargetOnlyWithSupremizers) {
+  const Evaluation on = evaluate("hertz-b", true);
+  EXPECT_LE(on.summary.max_e_press, 1e-2);
+  EXPECT_LE(on.summary.max_e_force, 1e-3);
+  expect_near_cone_best(on);
+  const Evaluation off = evaluate("hertz-b", false);
+  EXPECT_GT(off.summary.max_e_force, 5e-3);  // measured 1.5e-2
+  EXPECT_GT(off.summary.max_e_press, 2.0 * on.summary.max_e_press);
+}
+
+TEST(PressureAccuracy, RingBlockMeetsTheTargetOnlyWithSupremizers) {
+  const Evaluation on = evaluate("ring-block", true);
+  EXPECT_LE(on.summary.max_e_press, 1e-2);
+  EXPECT_LE(on.summary.max_e_force, 1e-3);
+  expect_near_cone_best(on);
+  const Evaluation off = evaluate("ring-block", false);
+  EXPECT_GT(off.summary.max_e_press, 0.1);  // measured 0.32: R = 3 generators, N = 4 POD modes
+}
+
+TEST(PressureAccuracy, HertzAIsAtTheConesBestWithSupremizers) {
+  const Evaluation on = evaluate("hertz-a", true);
+  expect_near_cone_best(on);
+  // Where the cone holds the pressure to 5e-3, so does the reduced model to 1e-2.
+  for (const auto& r : on.rows) {
+    if (r.e_press_cone <= 5e-3) {
+      EXPECT_LE(r.e_press, 1e-2) << "mu = " << r.mu;
+    }
+  }
+  const Evaluation off = evaluate("hertz-a", false);
+  EXPECT_GT(off.summary.max_e_press, 0.1);  // measured 0.30 (R 14 > N 10: lambda_hat not determined)
+  EXPECT_GT(off.summary.max_e_press, 5.0 * off.summary.max_e_press_cone);
+}
+
+}  // namespace
