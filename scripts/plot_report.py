@@ -10,7 +10,8 @@ the PNG figures next to them, the counterparts of the paper's figures:
   dual_cone_error.png       dual cone error against R: CPG, angle-greedy (true cone error and
                             the linear error that steers it), NMF (Figs. 9, 11 right, 19 right)
   eim_error.png             EIM l-infinity error against M for gamma and kappa (Figs. 12, 20)
-  errors_training.png       e_ener, e_displ, e_inter against mu, training set (Figs. 10, 13-16, 21)
+  errors_training.png       e_ener, e_displ, e_inter against mu, training set (Figs. 10, 13-16, 21),
+                            and e_press (relative L2(Gamma^c) contact-pressure error, ours)
   errors_verification.png   the same on the verification set (Fig. 22), when there is one
   multipliers.png           HF and RB multipliers against the abscissa (Figs. 8, 18)
 
@@ -149,9 +150,9 @@ def plot_errors(directory, study, set_name):
     path = "errors_%s.csv" % set_name
     rows = read_csv(directory, path)
     sizes = {m["key"]: m for m in study["models"]}
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    fig, axes = plt.subplots(1, 4, figsize=(18, 4))
     for ax, key, name in ((axes[0], "e_ener", "e_ener (64)"), (axes[1], "e_displ", "e_displ (65)"),
-                          (axes[2], "e_inter", "e_inter (66)")):
+                          (axes[2], "e_inter", "e_inter (66)"), (axes[3], "e_press", "e_press (pressure)")):
         for model, label, color, marker, style in MODELS:
             sel = [r for r in rows if r.get("model") == model and r.get("rb_converged") == "1"
                    and r.get("hf_converged") == "1"]

@@ -112,13 +112,14 @@ int run_demo(const DemoOptions& opt) {
             << fmt("%.1f", seconds(t_start)) << " s, " << opt.jobs << " job(s)\n"
             << "tolerances: eps_POD " << settings.eps_pod << ", eps_DU " << settings.eps_du << ", eps_EIM^k "
             << settings.eps_eim_k << ", eps_EIM^g " << settings.eps_eim_g << " (CPG)\n\n"
-            << "|  N |  R | M^k | M^g | max e_displ | max e_inter | max e_ener | median HF time | median online time | "
-               "speed-up |\n"
-            << "| -: | -: | --: | --: | ----------: | ----------: | ---------: | -------------: | -----------------: | "
-               "-------: |\n"
+            << "|  N |  R | M^k | M^g | max e_displ | max e_inter | max e_ener | max e_press | max e_force | "
+               "median HF time | median online time | speed-up |\n"
+            << "| -: | -: | --: | --: | ----------: | ----------: | ---------: | ----------: | ----------: | "
+               "-------------: | -----------------: | -------: |\n"
             << "| " << fmt("%2d", ev.N) << " | " << fmt("%2d", ev.R) << " | " << fmt("%3d", ev.Mk) << " | "
             << fmt("%3d", ev.Mg) << " | " << fmt("%11.2e", su.max_e_displ) << " | " << fmt("%11.2e", su.max_e_inter)
-            << " | " << fmt("%10.2e", su.max_e_ener) << " | " << fmt("%12.2f ms", su.median_hf_time_s * 1e3)
+            << " | " << fmt("%10.2e", su.max_e_ener) << " | " << fmt("%11.2e", su.max_e_press) << " | "
+            << fmt("%11.2e", su.max_e_force) << " | " << fmt("%12.2f ms", su.median_hf_time_s * 1e3)
             << " | " << fmt("%15.3f ms", su.median_online_time_s * 1e3) << " | " << fmt("%8.0f", su.median_speedup)
             << " |\n\n";
   if (su.hf_failures + su.rb_failures > 0) {
@@ -126,6 +127,7 @@ int run_demo(const DemoOptions& opt) {
               << " online (errors over the values where both converged; see evaluation.csv)\n";
   }
   std::cout << "e_displ: relative H1 error (65); e_inter: interpenetration (66); e_ener: energy error (64);\n"
+            << "e_press: relative L2 error of the contact pressure; e_force: relative error of the contact force;\n"
             << "speed-up: median over mu of HF time / online time (HF: setup and solve; online: median of "
             << eo.online_repeats << " solves)\n"
             << "wrote " << model_path << "\nwrote " << csv_path << "\n";

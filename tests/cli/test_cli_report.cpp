@@ -136,6 +136,8 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   EXPECT_EQ(first_line(fs::path(out_) / "pod_singular_values.csv"), "index,sigma");
   EXPECT_EQ(first_line(fs::path(out_) / "multipliers.csv"), "mu,abscissa,lambda_hf,lambda_rb");
   EXPECT_EQ(first_line(fs::path(out_) / "errors_training.csv").rfind("model,mu,", 0), 0u);
+  EXPECT_NE(first_line(fs::path(out_) / "errors_training.csv").find(",e_press,e_force,e_peak,e_press_cone,"),
+            std::string::npos);
   // Dual histories: errors[0] = max |lambda| is the same for every method; the CPG error never
   // increases (nested cones) and reaches 0 once every snapshot is in the cone (R <= P = 6).
   const fs::path dual = fs::path(out_) / "dual_cone_error.csv";
@@ -246,7 +248,7 @@ TEST(CliDemo, RunsHertzBEndToEndAndPrintsThePaperTable) {
       break;
     }
   }
-  ASSERT_EQ(cells.size(), 11u) << r.out;  // leading empty cell + 10 columns
+  ASSERT_EQ(cells.size(), 13u) << r.out;  // leading empty cell + 12 columns
   // N: the numerical rank of the 22 snapshots at eps_POD 1e-5 (11), plus one supremizer per
   // dual generator (R).
   const int R = std::stoi(cells[2]);
@@ -259,7 +261,9 @@ TEST(CliDemo, RunsHertzBEndToEndAndPrintsThePaperTable) {
   EXPECT_GT(e_displ, 0.0);
   EXPECT_LT(e_displ, 5e-3);  // measured 8.2e-4 (the Kacanov tolerance level)
   EXPECT_LT(std::stod(cells[6]), 1e-3);  // e_inter, measured 5.5e-5
-  EXPECT_GT(std::stod(cells[10]), 1.0);  // a speed-up (no timing bound)
+  EXPECT_LT(std::stod(cells[8]), 1e-2);  // e_press, measured 3.5e-3 (supremizers)
+  EXPECT_LT(std::stod(cells[9]), 1e-3);  // e_force, measured 6.1e-5
+  EXPECT_GT(std::stod(cells[12]), 1.0);  // a speed-up (no timing bound)
   EXPECT_TRUE(fs::is_regular_file(dir.file("demo/model.h5")));
   std::ifstream csv(dir.file("demo/evaluation.csv"));
   int rows = -1;  // the header

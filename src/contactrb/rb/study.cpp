@@ -354,6 +354,11 @@ nlohmann::json summary_json(const EvaluationSummary& s) {
           {"mean_e_displ", s.mean_e_displ},
           {"max_e_inter", s.max_e_inter},
           {"mean_e_inter", s.mean_e_inter},
+          {"max_e_press", s.max_e_press},
+          {"mean_e_press", s.mean_e_press},
+          {"max_e_force", s.max_e_force},
+          {"max_e_peak", s.max_e_peak},
+          {"max_e_press_cone", s.max_e_press_cone},
           {"median_hf_time_s", s.median_hf_time_s},
           {"median_online_time_s", s.median_online_time_s},
           {"median_speedup", s.median_speedup}};
@@ -361,12 +366,13 @@ nlohmann::json summary_json(const EvaluationSummary& s) {
 
 void write_errors_csv(const StudyResult& r, bool verification, const std::string& path) {
   io::CsvWriter w({"model", "mu", "hf_converged", "rb_converged", "rb_status", "e_ener", "e_displ", "e_inter",
-                   "hf_time_s", "online_time_s", "speedup", "hf_iterations", "rb_iterations"});
+                   "e_press", "e_force", "e_peak", "e_press_cone", "hf_time_s", "online_time_s", "speedup", "hf_iterations", "rb_iterations"});
   for (const StudyModel& m : r.models) {
     const Evaluation& e = verification ? *m.verification : m.training;
     for (const EvaluationRow& row : e.rows) {
       w.add_row({m.key, row.mu, static_cast<long long>(row.hf_converged), static_cast<long long>(row.rb_converged),
-                 row.rb_status, row.e_ener, row.e_displ, row.e_inter, row.hf_time_s, row.online_time_s, row.speedup,
+                 row.rb_status, row.e_ener, row.e_displ, row.e_inter, row.e_press, row.e_force, row.e_peak,
+                 row.e_press_cone, row.hf_time_s, row.online_time_s, row.speedup,
                  static_cast<long long>(row.hf_iterations), static_cast<long long>(row.rb_iterations)});
     }
   }
@@ -516,14 +522,15 @@ std::string r_cell(const std::vector<double>& history, double eps) {
 
 void error_table(std::ostringstream& md, const StudyResult& r, bool verification) {
   md << "| method | N | R | M^k | M^g | max e_ener | mean e_ener | max e_displ | mean e_displ | max e_inter | "
-        "median HF time (s) | median online time (s) | median speed-up | failures (HF/RB) |\n"
-     << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        "max e_press | max e_force | median HF time (s) | median online time (s) | median speed-up | failures (HF/RB) |\n"
+     << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const StudyModel& m : r.models) {
     const Evaluation& e = verification ? *m.verification : m.training;
     const EvaluationSummary& s = e.summary;
     md << "| " << m.label << " | " << e.N << " | " << e.R << " | " << e.Mk << " | " << e.Mg << " | "
        << fmt(s.max_e_ener) << " | " << fmt(s.mean_e_ener) << " | " << fmt(s.max_e_displ) << " | "
-       << fmt(s.mean_e_displ) << " | " << fmt(s.max_e_inter) << " | " << fmt(s.median_hf_time_s) << " | "
+       << fmt(s.mean_e_displ) << " | " << fmt(s.max_e_inter) << " | " << fmt(s.max_e_press) << " | "
+       << fmt(s.max_e_force) << " | " << fmt(s.median_hf_time_s) << " | "
        << fmt(s.median_online_time_s) << " | " << fmt(s.median_speedup, "%.0f") << " | " << s.hf_failures << "/"
        << s.rb_failures << " |\n";
   }
@@ -557,8 +564,9 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
   }
 
   md << "\n## Errors, times and speed-ups: training set (paper Figs. 10, 13-16, 21)\n\n"
-     << "e_ener (64) absolute, e_displ (65) relative H1, e_inter (66); errors over the values where both solves "
-        "converged. HF time: problem setup and solve; online time: median of repeated solves.\n\n";
+     << "e_ener (64) absolute, e_displ (65) relative H1, e_inter (66); e_press the relative L2(Gamma^c) "
+        "contact-pressure error, e_force the relative error of the total contact force; errors over the values "
+        "where both solves converged. HF time: problem setup and solve; online time: median of repeated solves.\n\n";
   error_table(md, r, false);
   if (!r.verification_mus.empty()) {
     md << "\n## Errors, times and speed-ups: verification set (paper Fig. 22)\n\n";
