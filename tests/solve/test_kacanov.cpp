@@ -112,3 +112,20 @@ TEST(Kacanov, StepFailureIsAStatus) {
   EXPECT_EQ(r.iterations, 1);
   EXPECT_NE(r.message.find("no"), std::string::npos);
 }
+
+// A documented limit (docs/solvers.md): the contact lost at the solution (lambda_bar = 0) while
+// the relaxed lambda^{k-1} is not zero keeps the relative multiplier increment at exactly 1 for
+// alpha < 1; alpha = 1 reaches lambda = 0 in one step and converges at the next.
+TEST(Kacanov, LostContactNeedsAlphaOne) {
+  const KacanovStep step = constant_step(VectorXd::Constant(1, 1.0), VectorXd::Zero(1));
+  KacanovSettings s;
+  s.alpha = 0.5;
+  s.max_iterations = 40;
+  const KacanovResult relaxed = kacanov(step, VectorXd::Constant(1, 1.0), VectorXd::Constant(1, 2.0), s);
+  EXPECT_EQ(relaxed.status, KacanovStatus::MaxIterations);
+  EXPECT_DOUBLE_EQ(relaxed.history.back().dlambda, 1.0);
+  s.alpha = 1.0;
+  const KacanovResult undamped = kacanov(step, VectorXd::Constant(1, 1.0), VectorXd::Constant(1, 2.0), s);
+  EXPECT_EQ(undamped.status, KacanovStatus::Converged);
+  EXPECT_EQ(undamped.iterations, 2);
+}
