@@ -114,4 +114,7 @@ TEST(CliSolve, TinyRelaxationIsNotConvergedAfterOneIteration) {
   const nlohmann::json j = read_json(dir.path() / "solution.json");
   EXPECT_FALSE(j["converged"].get<bool>());
   EXPECT_EQ(j["iterations"].get<int>(), 500);
+  // The first multiplier increment is from lambda^0 = 0: infinite, written as null.
+  EXPECT_TRUE(j["increments"]["multipliers"][0].is_null());
+  EXPECT_GT(j["increments"]["displacement"][499].get<double>(), 1e-3);
 }
