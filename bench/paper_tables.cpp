@@ -12,7 +12,9 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/common/error.hpp"
 #include "contactrb/rb/angle_greedy.hpp"
+#include "contactrb/rb/compression.hpp"
 #include "contactrb/rb/cpg.hpp"
 #include "contactrb/rb/eim.hpp"
 #include "contactrb/rb/eim_flatten.hpp"
@@ -20,6 +22,7 @@
 #include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/pod.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/rb/study.hpp"
 
 using namespace contactrb;
 
@@ -29,9 +32,14 @@ struct CaseData {
   cases::CaseSpec spec;
   io::SnapshotSet set;
   Eigen::MatrixXd U0;       // free displacement snapshots (n_free x P)
-  Eigen::MatrixXd L;        // multiplier snapshots (R_hf x P)
-  Eigen::VectorXd weights;  // |I_r| (mean over the training set)
+  // Multiplier snapshots as `contactrb offline` hands them to the dual cone builders: rows never
+  // active dropped (Remark 7), round-off negatives clipped (R_kept x P), and the mean weights
+  // |I_r| of the training set on those rows. (NMF depends on the zero rows through its NNDSVDa
+  // fill, so the uncompressed matrix gave other NMF figures than `offline`.)
+  Eigen::MatrixXd L;
+  Eigen::VectorXd weights;
   Eigen::SparseMatrix<double> energy;  // A_00 at the reference mu
+  std::vector<int> kept;  // the kept constraint rows (Remark 7)
   double hf_seconds = 0.0;
 };
 
@@ -46,15 +54,20 @@ CaseData load(const std::string& name) {
   d.hf_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int P = static_cast<int>(d.set.snapshots.size());
   d.U0.resize(d.set.snapshots[0].u0.size(), P);
-  d.L.resize(d.set.snapshots[0].lambda.size(), P);
-  d.weights = Eigen::VectorXd::Zero(d.L.rows());
+  Eigen::MatrixXd L(d.set.snapshots[0].lambda.size(), P);
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(L.rows());
   for (int p = 0; p < P; ++p) {
     const io::Snapshot& s = d.set.snapshots[static_cast<std::size_t>(p)];
     if (!s.converged) std::printf("warning: %s mu = %g did not converge\n", name.c_str(), s.mu);
     d.U0.col(p) = s.u0;
-    d.L.col(p) = s.lambda;
-    d.weights += s.weight / P;
+    L.col(p) = s.lambda;
+    weights += s.weight;
   }
+  weights /= static_cast<double>(P);
+  const rb::Compression comp = rb::compress_constraints(L, rb::CompressionSettings{});
+  d.L = rb::restrict_rows(L, comp.kept).cwiseMax(0.0);
+  d.weights = rb::restrict_rows(weights, comp.kept);
+  d.kept = comp.kept;
   const hf::HFSolver solver(cases::make_problem(spec, spec.parameter.reference));
   d.energy = solver.dofs().restrict_matrix(solver.stiffness());
   return d;
@@ -67,7 +80,18 @@ rb::DualConeSettings dual_settings(const CaseData& d, double eps) {
   return s;
 }
 
-int cone_size(const rb::DualConeResult& r) { return static_cast<int>(r.generators.cols()); }
+std::string r_cell(const rb::DualConeResult& r, double eps) {
+  for (std::size_t k = 0; k < r.errors.size(); ++k) {
+    if (r.errors[k] <= eps) return std::to_string(k);
+  }
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < r.errors.size(); ++k)
+    if (r.errors[k] < r.errors[best]) best = k;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "not reached (best %.2g at R = %zu)", best < r.errors.size() ? r.errors[best] : 0.0,
+                best);
+  return buf;
+}
 
 void dual_table(const char* title, const CaseData& d, const std::vector<double>& eps) {
   std::printf("\n%s\n\n| eps_DU |", title);
@@ -81,15 +105,9 @@ void dual_table(const char* title, const CaseData& d, const std::vector<double>&
       rb::DualConeResult r = std::string(method) == "CPG"   ? rb::build_cpg(d.L, s)
                              : std::string(method) == "NMF" ? rb::build_nmf_cone(d.L, s)
                                                             : rb::build_angle_greedy(d.L, s);
-      // The greedies stop on their own criterion; report R where the true cone error <= eps.
-      int R = cone_size(r);
-      for (std::size_t k = 0; k < r.errors.size(); ++k) {
-        if (r.errors[k] <= e) {
-          R = static_cast<int>(k);
-          break;
-        }
-      }
-      std::printf(" %d |", R);
+      // The smallest R whose true cone error is <= eps; when no R tried reaches it, say so and
+      // give the best error seen (no fallback to the final size).
+      std::printf(" %s |", r_cell(r, e).c_str());
     }
   }
   std::printf("\n");
@@ -114,14 +132,16 @@ void history(const char* title, const CaseData& d) {
               angle.seconds * 1e3, cpg.seconds / angle.seconds, nmf.seconds * 1e3);
 }
 
-void eim_table(const char* title, const CaseData& d) {
+// The EIM inputs of `contactrb offline` restricted to the given constraint rows: K (flattened
+// per value) and gamma = g - K u_D (DESIGN.md: the lift's contact term moves into the gap).
+void eim_inputs(const CaseData& d, const std::vector<int>& rows, Eigen::MatrixXd& K_flat, Eigen::MatrixXd& gamma) {
   const int P = static_cast<int>(d.set.snapshots.size());
   std::vector<Eigen::MatrixXd> K;
-  Eigen::MatrixXd gamma(d.L.rows(), P);
+  gamma.resize(static_cast<Eigen::Index>(rows.size()), P);
   for (int p = 0; p < P; ++p) {
     const io::Snapshot& s = d.set.snapshots[static_cast<std::size_t>(p)];
-    K.push_back(s.K);
-    // gamma = g - K u_D: u_D on the contact DOFs is u minus its free part.
+    K.push_back(rb::restrict_rows(s.K, rows));
+    // u_D on the contact DOFs is u minus its free part.
     Eigen::VectorXd uD_c(static_cast<Eigen::Index>(d.set.contact_dofs.size()));
     Eigen::VectorXd u0_full = Eigen::VectorXd::Zero(d.set.num_dofs);
     for (std::size_t i = 0; i < d.set.free_dofs.size(); ++i) u0_full(d.set.free_dofs[i]) = s.u0(static_cast<Eigen::Index>(i));
@@ -129,17 +149,70 @@ void eim_table(const char* title, const CaseData& d) {
       const int g = d.set.contact_dofs[i];
       uD_c(static_cast<Eigen::Index>(i)) = s.u(g) - u0_full(g);
     }
-    gamma.col(p) = s.g - s.K * uD_c;
+    gamma.col(p) = rb::restrict_rows(Eigen::VectorXd(s.g - s.K * uD_c), rows);
   }
+  K_flat = rb::flatten_columns(K);
+}
+
+void eim_table(const char* title, const CaseData& d) {
+  Eigen::MatrixXd K, gamma;
+  eim_inputs(d, d.kept, K, gamma);  // the kept rows, as `contactrb offline`
   rb::EIMSettings es;
   es.tolerance = 0.0;
   const rb::EIMResult eg = rb::eim(gamma, es);
-  const rb::EIMResult ek = rb::eim(rb::flatten_columns(K), es);
+  const rb::EIMResult ek = rb::eim(K, es);
   std::printf("\n%s: EIM l-infinity training error against M\n\n| M | gamma | kappa |\n| ---: | ---: | ---: |\n", title);
   const std::size_t n = std::max(eg.errors.size(), ek.errors.size());
   for (std::size_t m = 0; m < n; m += (m < 10 ? 1 : 5)) {
     std::printf("| %zu | %s | %s |\n", m, m < eg.errors.size() ? std::to_string(eg.errors[m]).c_str() : "-",
                 m < ek.errors.size() ? std::to_string(ek.errors[m]).c_str() : "-");
+  }
+}
+
+// Table 6: reference abscissas of the slave nodes under the first EIM points (collocation: row r
+// is slave node r), with the constraint compression of Remark 7 (the rows `offline` keeps) and
+// without it (--no-compression), and where the training set's contact zones lie.
+void magic_points_table(const char* title, const CaseData& d) {
+  const mesh::Mesh ref = cases::reference_mesh(d.spec, d.set.level);
+  const auto x_of = [&](int row) { return ref.nodes[static_cast<std::size_t>(d.set.slave[static_cast<std::size_t>(row)])].x(); };
+  const int R_hf = static_cast<int>(d.set.snapshots.front().lambda.size());
+  const int n_c = static_cast<int>(d.set.contact_dofs.size());
+  // Rows in contact for every training value, and for at least one.
+  double always_lo = 1e300, always_hi = -1e300, some_lo = 1e300, some_hi = -1e300;
+  for (int r = 0; r < R_hf; ++r) {
+    int active = 0;
+    for (const io::Snapshot& s : d.set.snapshots) active += s.lambda(r) > 0.0 ? 1 : 0;
+    if (active == static_cast<int>(d.set.snapshots.size())) {
+      always_lo = std::min(always_lo, x_of(r));
+      always_hi = std::max(always_hi, x_of(r));
+    }
+    if (active > 0) {
+      some_lo = std::min(some_lo, x_of(r));
+      some_hi = std::max(some_hi, x_of(r));
+    }
+  }
+  std::printf("\n%s: reference abscissas of the first 10 EIM points (paper: x^kappa -1 -0.98 -0.74 0.98 ..., "
+              "x^gamma 1 0.99 -1 -0.98 ...)\n\nslave arc [%.4g, %.4g]; in contact for every training value: "
+              "[%.4g, %.4g]; for at least one (the %zu rows kept by the compression): [%.4g, %.4g]\n\n",
+              title, x_of(0), x_of(R_hf - 1), always_lo, always_hi, d.kept.size(), some_lo, some_hi);
+  std::vector<int> all(static_cast<std::size_t>(R_hf));
+  for (int r = 0; r < R_hf; ++r) all[static_cast<std::size_t>(r)] = r;
+  std::printf("| rows | map | x_1 .. x_10 |\n| --- | --- | --- |\n");
+  for (const bool compression : {true, false}) {
+    const std::vector<int>& rows = compression ? d.kept : all;
+    Eigen::MatrixXd K, gamma;
+    eim_inputs(d, rows, K, gamma);
+    rb::EIMSettings es;
+    es.tolerance = 0.0;
+    es.max_size = 10;
+    const rb::EIMResult ek = rb::eim(K, es);
+    const rb::EIMResult eg = rb::eim(gamma, es);
+    const char* label = compression ? "kept (default)" : "all (--no-compression)";
+    std::printf("| %s | kappa |", label);
+    for (int m : ek.magic_points) std::printf(" %.4g", x_of(rows[static_cast<std::size_t>(rb::unflatten_index(m, n_c).first)]));
+    std::printf(" |\n| %s | gamma |", label);
+    for (int m : eg.magic_points) std::printf(" %.4g", x_of(rows[static_cast<std::size_t>(m)]));
+    std::printf(" |\n");
   }
 }
 
@@ -152,13 +225,30 @@ void singular_values(const char* title, const CaseData& d) {
 
 // The offline builder at the given settings: sizes and the wall time of each step.
 void offline_times(const char* title, const CaseData& d, const rb::OfflineSettings& settings) {
-  const rb::OfflineResult r = rb::build_reduced_model(d.set, d.spec, settings);
+  rb::OfflineResult r;
+  try {
+    r = rb::build_reduced_model(d.set, d.spec, settings);
+  } catch (const Error& e) {  // e.g. an EIM tolerance above every value: M = 0 is refused
+    std::printf("| %s | refused: %s |\n", title, e.what());
+    return;
+  }
   const rb::OfflineReport& t = r.report;
   const double steps = t.assembly_s + t.pod_s + t.dual_s + t.eim_kappa_s + t.eim_gamma_s + t.reduction_s;
   std::printf("| %s | %d | %d | %d | %d | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f%% |\n", title,
               t.N, t.R, t.Mk, t.Mg, d.hf_seconds * 1e3, t.assembly_s * 1e3, t.pod_s * 1e3, t.dual_s * 1e3,
               t.eim_kappa_s * 1e3, t.eim_gamma_s * 1e3, t.reduction_s * 1e3, t.total_s * 1e3,
               100.0 * t.dual_s / (steps + d.hf_seconds));
+}
+
+// The tolerances `contactrb report` uses for a built-in case.
+rb::OfflineSettings report_settings(const std::string& name) {
+  const rb::StudyTolerances t = rb::default_study_tolerances(name);
+  rb::OfflineSettings s;
+  s.eps_pod = t.eps_pod;
+  s.eps_du = t.eps_du;
+  s.eps_eim_k = t.eps_eim_k;
+  s.eps_eim_g = t.eps_eim_g;
+  return s;
 }
 
 rb::OfflineSettings paper_settings(double eps_pod, double eps_du, double eps_k, double eps_g) {
@@ -201,6 +291,7 @@ int main() {
              {5e-2, 1e-2, 5e-3, 1e-3});
   history("Fig. 11 right (hertz-b)", b);
   eim_table("Fig. 12 (hertz-b)", b);
+  magic_points_table("Table 6 (hertz-b)", b);
 
   const CaseData c = load("ring-block");
   std::printf("\nring-block: %zu HF solves in %.2f s (2 jobs)\n", c.set.snapshots.size(), c.hf_seconds);
@@ -217,5 +308,8 @@ int main() {
   offline_times("hertz-a (Fig. 10)", a, paper_settings(1e-2, 1e-1, 1e-2, 1e-3));
   offline_times("hertz-b (Fig. 13)", b, paper_settings(1e-5, 1e-4, 1e-2, 1e-3));
   offline_times("ring-block (Fig. 21)", c, paper_settings(1.0, 1e-2, 1.0, 1e-5));
+  offline_times("hertz-a (report)", a, report_settings("hertz-a"));
+  offline_times("hertz-b (report)", b, report_settings("hertz-b"));
+  offline_times("ring-block (report)", c, report_settings("ring-block"));
   return 0;
 }

@@ -128,7 +128,9 @@ int run_report(const ReportOptions& opt) {
   rb::StudySettings s;
   s.level = opt.level;
   if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);
-  s.tolerances = rb::default_study_tolerances(spec.name);
+  // A case file gets `contactrb offline`'s defaults whatever its name (a user case named like a
+  // built-in one is not that case).
+  s.tolerances = opt.case_file.empty() ? rb::default_study_tolerances(spec.name) : rb::StudyTolerances{};
   if (opt.eps_pod) s.tolerances.eps_pod = *opt.eps_pod;
   if (opt.eps_du) s.tolerances.eps_du = *opt.eps_du;
   if (opt.eps_eim_k) s.tolerances.eps_eim_k = *opt.eps_eim_k;
@@ -167,6 +169,7 @@ int run_report(const ReportOptions& opt) {
               << g3(t.median_speedup) << " |\n";
   }
   for (const std::string& f : files) std::cout << "wrote " << (fs::path(out) / f).string() << "\n";
+  for (const std::string& w : rb::study_warnings(r)) std::cerr << "contactrb: warning: " << w << "\n";
 
   if (opt.no_plots) {
     std::cout << "wrote " << report_md << " (no figures: --no-plots)\n";

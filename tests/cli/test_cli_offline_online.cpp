@@ -110,6 +110,37 @@ TEST_F(CliOfflineOnline, OfflineWritesTheModelTheReportAndASummary) {
 
 // --eps-du-relative: CPG stops at the first R whose largest relative error (each mu's (58)
 // divided by its |lambda(mu)|) is within eps_DU; the absolute history is not what stops it.
+// Issue [A] items 5.2 and 5.4 at the command line: an eps_DU that no cone reaches is said so
+// (the NMF, exhausted, printed its last rank's error), and
+// an EIM tolerance above every value (M^k = 0 or M^g = 0) is refused before a model is written.
+TEST_F(CliOfflineOnline, UnreachedDualToleranceAndEmptyEIMAreReported) {
+  contactrb::test::TempDir own("offline_unreached");  // its own offline.json
+  const std::string m = own.file("unreached.h5");
+  // (The angle-greedy's case needs more snapshots than these 5, which it selects all:
+  // AngleGreedy.StopsOnTheTrueConeErrorNotTheLinearOne in tests/rb.)
+  for (const char* dual : {"nmf"}) {
+    const CliResult r = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual " + dual +
+                                " --eps-du 1e-9 --out " + shell_quote(m));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const std::string line = field_value(r.out, "dual");
+    EXPECT_NE(line.find("training set exhausted: eps_du NOT reached"), std::string::npos) << dual << ": " << r.out;
+    std::ifstream in(own.file("offline.json"));
+    const json j = json::parse(in);
+    const int R = j.at("sizes").at("R").get<int>();
+    EXPECT_GT(j.at("dual").at("errors").at(static_cast<std::size_t>(R)).get<double>(), 1e-9) << dual;
+  }
+  const std::string refused = own.file("refused.h5");
+  for (const char* option : {" --eps-eim-k 1e9", " --eps-eim-g 1e9"}) {
+    const CliResult r =
+        run_cli("offline --snapshots " + shell_quote(snapshots_) + option + " --out " + shell_quote(refused));
+    EXPECT_EQ(r.exit_code, 1) << option << ": " << r.out << r.err;
+    EXPECT_NE(r.err.find(std::string(option).find("-k") != std::string::npos ? "M^k = 0" : "M^g = 0"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(refused)) << option;
+  }
+}
+
 TEST_F(CliOfflineOnline, RelativeDualToleranceStopsOnTheRelativeHistory) {
   const std::string out = dir_->file("relative");
   fs::create_directories(out);

@@ -217,6 +217,40 @@ TEST(CliReportErrors, PlotScriptRejectsAMissingInput) {
   EXPECT_NE(out.find("sizes.csv"), std::string::npos) << out;
 }
 
+// Issue [A] item 5.6: `report --case-file` used eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 for a user
+// case (M^g = 1, e_displ 5% on this hertz-a copy; M^g = 0 on others) and said nothing. It now
+// uses `contactrb offline`'s defaults (eps_EIM 1e-6), and a model whose verification e_displ
+// exceeds 1e-2 is warned about on stderr and in report.md: exactly those models, no other.
+TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
+  contactrb::test::TempDir dir("report_case_file");
+  const std::string toml = shell_quote(std::string(CONTACTRB_SOURCE_DIR) + "/examples/hertz-a/case.toml");
+  const std::string common = " --max-training 16 --max-verification 3 --profiles 0 --no-plots -q --out ";
+  const CliResult ok = run_cli("report --case-file " + toml + common + shell_quote(dir.file("ok")));
+  ASSERT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  const json study = json::parse(read_text(fs::path(dir.file("ok")) / "study.json"));
+  const std::string md_ok = read_text(fs::path(dir.file("ok")) / "report.md");
+  EXPECT_NE(md_ok.find("eps_EIM^k = 1e-06, eps_EIM^g = 1e-06"), std::string::npos) << md_ok;
+  for (const json& m : study["models"]) {
+    EXPECT_GE(m["Mg"].get<int>(), 2) << m.dump();
+    const bool above = m["verification"]["max_e_displ"].get<double>() > 1e-2;
+    const std::string label = m["label"].get<std::string>();
+    const std::string line = "contactrb: warning: model " + label + ": max e_displ";
+    EXPECT_EQ(ok.err.find(line) != std::string::npos, above) << label << "\n" << ok.err;
+    if (m["key"] == "cpg") {
+      EXPECT_LE(m["verification"]["max_e_displ"].get<double>(), 1e-2) << m.dump();  // measured 8.1e-4
+    }
+  }
+
+  const CliResult loose =
+      run_cli("report --case-file " + toml + " --eps-eim-g 1e-3 --eps-eim-k 1e-2" + common + shell_quote(dir.file("loose")));
+  ASSERT_EQ(loose.exit_code, 0) << loose.out << loose.err;
+  EXPECT_NE(loose.err.find("contactrb: warning: model CPG: max e_displ on the verification set is"), std::string::npos)
+      << loose.err;
+  const std::string md = read_text(fs::path(dir.file("loose")) / "report.md");
+  EXPECT_NE(md.find("## Warnings"), std::string::npos) << md;
+  EXPECT_NE(md.find("- **Warning**: model CPG"), std::string::npos) << md;
+}
+
 TEST(CliReportErrors, UserErrors) {
   const CliResult unknown = run_cli("report --case no-such-case --no-plots -q --out /tmp");
   EXPECT_EQ(unknown.exit_code, 1) << unknown.err;

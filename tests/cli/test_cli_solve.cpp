@@ -101,3 +101,20 @@ TEST(CliSolve, NonConvergenceExitsThreeAndStillWritesTheJson) {
   EXPECT_FALSE(j["converged"].get<bool>());
   EXPECT_EQ(j["iterations"].get<int>(), 3);
 }
+
+// Issue [A] item 5.1, the command of the report: at alpha = 1e-4 it exited 0 with converged =
+// true after one iteration (force 1.398 instead of 1.4726). The stopping test now reads the
+// unrelaxed step: 500 iterations at alpha = 1e-4 do not reach eps_KA, and that is a status.
+TEST(CliSolve, TinyRelaxationIsNotConvergedAfterOneIteration) {
+  contactrb::test::TempDir dir("solve_tiny_alpha");
+  const CliResult r =
+      run_cli("solve --case hertz-a --mu 0.3 --alpha 1e-4 --out " + shell_quote(dir.path().string()));
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("did not converge in 500 iterations"), std::string::npos) << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_EQ(j["iterations"].get<int>(), 500);
+  // The first multiplier increment is from lambda^0 = 0: infinite, written as null.
+  EXPECT_TRUE(j["increments"]["multipliers"][0].is_null());
+  EXPECT_GT(j["increments"]["displacement"][499].get<double>(), 1e-3);
+}

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -474,6 +475,64 @@ TEST(OnlineSolver, RejectsSizesAboveTheMaximaAndMuOutsideTheDomain) {
   contactrb::rb::ReducedModel broken = off.model;
   broken.C_kappa.pop_back();
   EXPECT_THROW(OnlineSolver{broken}, contactrb::Error);
+}
+
+// Issue [A] item 5.2: huge EIM tolerances gave M^k = M^g = 0, the model was written, and
+// `contactrb online` printed lambda_hat and contact_force made of uninitialized memory.
+TEST(OfflineBuilder, RefusesAModelWithoutEIMFunctions) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
+  const auto expect_refused = [&](const OfflineSettings& s, const std::string& words) {
+    try {
+      contactrb::rb::build_reduced_model(set, spec, s);
+      ADD_FAILURE() << "no error for " << words;
+    } catch (const contactrb::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  OfflineSettings loose_k;
+  loose_k.eps_eim_k = 1e9;
+  expect_refused(loose_k, "M^k = 0");
+  OfflineSettings loose_g;
+  loose_g.eps_eim_g = 1e9;
+  expect_refused(loose_g, "M^g = 0");
+  OfflineSettings zero_g;
+  zero_g.eim_g_size = 0;
+  expect_refused(zero_g, "M^g = 0");
+}
+
+// Every failure path of the online solver returns defined outputs: a model stripped of its
+// kappa interpolation (M^k = 0, as an older build wrote) fails at the first step; u_hat and
+// lambda_hat are zero, energy and force those of u_hat = 0. Run twice on each iteration so that
+// a reused heap block would show up.
+TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  OfflineResult off = truncated_model(set, "hertz-a");
+  contactrb::rb::ReducedModel m = off.model;
+  m.Mk_max = 0;
+  m.kappa_row.clear();
+  m.kappa_dof.clear();
+  m.C_kappa.clear();
+  m.B_kappa.resize(0, 0);
+  OnlineSolver solver(m);
+  for (auto iteration : {contactrb::rb::OnlineIteration::Accelerated, contactrb::rb::OnlineIteration::Relaxed,
+                         contactrb::rb::OnlineIteration::Accelerated}) {
+    OnlineSettings s;
+    s.iteration = iteration;
+    if (iteration == contactrb::rb::OnlineIteration::Relaxed) s.kacanov = contactrb::solve::KacanovSettings{};
+    const contactrb::rb::OnlineSolution sol = solver.solve(0.3, s);
+    EXPECT_FALSE(sol.converged());
+    EXPECT_EQ(sol.status, contactrb::solve::KacanovStatus::StepFailed);
+    EXPECT_NE(sol.message.find("D^kappa vanishes"), std::string::npos) << sol.message;
+    ASSERT_EQ(sol.u_hat.size(), solver.N());
+    ASSERT_EQ(sol.lambda_hat.size(), solver.R());
+    EXPECT_EQ(sol.u_hat.cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(sol.lambda_hat.cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(sol.contact_force, 0.0);
+    EXPECT_TRUE(std::isfinite(sol.energy));
+    // The energy of u = u_D(mu) alone: hertz-a has no body load, so 1/2 u_D' A u_D > 0.
+    EXPECT_GT(sol.energy, 0.0);
+  }
 }
 
 TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {

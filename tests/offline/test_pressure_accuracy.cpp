@@ -63,10 +63,10 @@ Evaluation evaluate(const std::string& name, bool supremizers) {
 
 // With supremizers the reduced pressure is near the best the cone holds: within 30% of it, up to
 // an absolute floor set by the Kacanov stopping test (63) of the HF reference and of the online
-// solve, eps_KA / alpha each (1e-3 / 0.3; measured: e_press 5.2e-3 against a cone's best of 4.3e-4
-// on hertz-b, 1.1e-3 against 9.8e-4 with HF snapshots at eps_KA = 1e-8).
+// solve, eps_KA = 1e-3 each on the unrelaxed step (measured: e_press 3.1e-3 against a cone's best
+// of 6.9e-4 on hertz-b; 1.1e-3 against 9.8e-4 with HF snapshots at eps_KA = 1e-8).
 void expect_near_cone_best(const Evaluation& e) {
-  constexpr double kKacanovFloor = 2.0 * 1e-3 / 0.3;
+  constexpr double kKacanovFloor = 4e-3;  // a stopping test on the increment leaves a few eps_KA of error
   for (const auto& r : e.rows) {
     EXPECT_LE(r.e_press, 1.3 * r.e_press_cone + kKacanovFloor)
         << "mu = " << r.mu << ": e_press " << r.e_press << ", cone's best " << r.e_press_cone;
@@ -79,8 +79,8 @@ TEST(PressureAccuracy, HertzBMeetsTheTargetOnlyWithSupremizers) {
   EXPECT_LE(on.summary.max_e_force, 1e-3);
   expect_near_cone_best(on);
   const Evaluation off = evaluate("hertz-b", false);
-  EXPECT_GT(off.summary.max_e_force, 5e-3);  // measured 1.5e-2
-  EXPECT_GT(off.summary.max_e_press, 2.0 * on.summary.max_e_press);
+  EXPECT_GT(off.summary.max_e_force, 1e-3);  // measured 3.3e-3 (on: 6.0e-5)
+  EXPECT_GT(off.summary.max_e_press, 1.5 * on.summary.max_e_press);  // measured 6.8e-3 against 3.1e-3
 }
 
 TEST(PressureAccuracy, RingBlockMeetsTheTargetOnlyWithSupremizers) {
@@ -89,7 +89,7 @@ TEST(PressureAccuracy, RingBlockMeetsTheTargetOnlyWithSupremizers) {
   EXPECT_LE(on.summary.max_e_force, 1e-3);
   expect_near_cone_best(on);
   const Evaluation off = evaluate("ring-block", false);
-  EXPECT_GT(off.summary.max_e_press, 0.1);  // measured 0.32: R = 3 generators, N = 4 POD modes
+  EXPECT_GT(off.summary.max_e_press, 0.1);  // measured 0.30: R = 3 generators, N = 4 POD modes
 }
 
 TEST(PressureAccuracy, HertzAIsAtTheConesBestWithSupremizers) {

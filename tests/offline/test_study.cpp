@@ -3,6 +3,8 @@
 // from a hand-made result.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,64 @@ TEST(Study, DefaultTolerancesFollowThePaper) {
   EXPECT_DOUBLE_EQ(c.eps_eim_g, 1e-5);  // Fig. 21
   const rb::StudyTolerances other = rb::default_study_tolerances("my-case");
   EXPECT_DOUBLE_EQ(other.eps_du, rb::StudyTolerances{}.eps_du);
+}
+
+// Issue [A] item 5.6: a user case got eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 (M^g = 0, e_displ
+// 31-121%) instead of `contactrb offline`'s defaults.
+TEST(Study, UserCasesGetTheOfflineDefaults) {
+  const rb::StudyTolerances t = rb::default_study_tolerances("my-case");
+  const rb::OfflineSettings offline;
+  EXPECT_DOUBLE_EQ(t.eps_pod, offline.eps_pod);
+  EXPECT_DOUBLE_EQ(t.eps_du, offline.eps_du);
+  EXPECT_DOUBLE_EQ(t.eps_eim_k, offline.eps_eim_k);
+  EXPECT_DOUBLE_EQ(t.eps_eim_g, offline.eps_eim_g);
+  EXPECT_DOUBLE_EQ(t.eps_eim_k, 1e-6);  // the documented `offline` default (docs/user-guide.md)
+  EXPECT_DOUBLE_EQ(t.eps_eim_g, 1e-6);
+}
+
+TEST(Study, LargeVerificationErrorsAreWarnedInTheReport) {
+  rb::StudyResult r;
+  r.case_name = "my-case";
+  r.parameter_name = "p";
+  r.constraint = "collocation";
+  r.training_mus = {0.1, 0.2};
+  r.verification_mus = {0.15};
+  r.dual.R_max = 1;
+  const auto model = [](const char* key, const char* label, double train, std::optional<double> verif) {
+    rb::StudyModel m;
+    m.key = key;
+    m.label = label;
+    m.N = m.R = m.Mk = 1;
+    m.training.summary.max_e_displ = train;
+    if (verif) {
+      m.verification = m.training;
+      m.verification->summary.max_e_displ = *verif;
+    }
+    return m;
+  };
+  r.models.push_back(model("cpg", "CPG", 1e-4, 2e-3));    // fine
+  r.models.push_back(model("angle", "angle-greedy", 1e-4, 0.31));  // bad on the verification set only
+  r.models.push_back(model("nmf", "NMF", 1e-4, std::nan("")));  // no converged pair: not fine either
+  const std::vector<std::string> w = rb::study_warnings(r);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NE(w[0].find("angle-greedy"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("verification set is 0.31"), std::string::npos) << w[0];
+  EXPECT_NE(w[1].find("NMF"), std::string::npos) << w[1];
+  EXPECT_NE(w[1].find("nan"), std::string::npos) << w[1];
+  const std::string md = rb::study_markdown(r, {});
+  EXPECT_NE(md.find("## Warnings"), std::string::npos) << md;
+  EXPECT_NE(md.find("- **Warning**: model angle-greedy"), std::string::npos) << md;
+  EXPECT_EQ(md.find("model CPG"), std::string::npos) << md;
+  r.models.resize(1);
+  EXPECT_TRUE(rb::study_warnings(r).empty());
+  // Without a verification set the training errors are read.
+  r.verification_mus.clear();
+  r.models[0].verification.reset();
+  r.models[0].training.summary.max_e_displ = 0.05;
+  ASSERT_EQ(rb::study_warnings(r).size(), 1u);
+  EXPECT_NE(rb::study_warnings(r)[0].find("training set is 0.05"), std::string::npos);
+  r.models[0].training.summary.max_e_displ = 1e-4;
+  EXPECT_EQ(rb::study_markdown(r, {}).find("Warning"), std::string::npos);
 }
 
 TEST(Study, SettingsAreChecked) {

@@ -154,3 +154,81 @@ TEST(DualCone, InvalidInputThrows) {
   AngleGreedyProblem a(ones);
   EXPECT_THROW(a.extend(3), contactrb::Error);
 }
+
+// Issue [A] item 5.3: the angle-greedy stopped on its linear error ("tolerance reached") while
+// the cone it hands to the online stage was far from eps_DU. Here the linear error vanishes after
+// two picks ({(1,1), (1,0)} span R^2), but (0,1) is at distance sin(45 deg) = 0.7071 from
+// span+{(1,1), (1,0)} (its projection is on the ray of (1,1)).
+TEST(AngleGreedy, StopsOnTheTrueConeErrorNotTheLinearOne) {
+  MatrixXd S(2, 3);
+  S << 1.0, 1.0, 0.0,  //
+      1.0, 0.0, 1.0;
+  DualConeSettings s;
+  s.greedy.tolerance = 0.1;
+  const DualConeResult r = build_angle_greedy(S, s);
+  EXPECT_EQ(r.selected, (std::vector<int>{0, 1}));  // (56): the largest first; then the tie, index 1
+  EXPECT_NEAR(r.linear_errors.back(), 0.0, 1e-15);
+  ASSERT_EQ(r.errors.size(), 3u);
+  EXPECT_NEAR(r.errors.back(), std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(r.status, GreedyStatus::Exhausted);  // not ToleranceReached: eps_DU was not met
+  // Relative: the same (|(0,1)| = 1).
+  s.greedy.relative = true;
+  const DualConeResult rel = build_angle_greedy(S, s);
+  EXPECT_EQ(rel.status, GreedyStatus::Exhausted);
+  EXPECT_NEAR(rel.relative_errors.back(), std::sqrt(0.5), 1e-12);
+  // A tolerance above the cone error is reached, and then by the cone error.
+  s.greedy.relative = false;
+  s.greedy.tolerance = 0.75;
+  const DualConeResult ok = build_angle_greedy(S, s);
+  EXPECT_EQ(ok.status, GreedyStatus::ToleranceReached);
+  EXPECT_LE(ok.errors.back(), 0.75);
+  // Without the cone errors there is no true stopping test: refused unless tolerance 0.
+  s.cone_history = false;
+  EXPECT_THROW(build_angle_greedy(S, s), contactrb::Error);
+}
+
+// On the Hertz-like fixture, whenever the angle-greedy says ToleranceReached its cone error
+// (recomputed independently from its generators) is below eps_DU, and one step earlier it was not.
+TEST(AngleGreedy, ToleranceReachedMeansTheConeErrorReachedIt) {
+  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
+  const VectorXd w = rb_fixtures::collocation_weights();
+  for (double eps : {1e-1, 3e-2, 1e-2}) {
+    DualConeSettings s;
+    s.weights = w;
+    s.greedy.tolerance = eps;
+    const DualConeResult r = build_angle_greedy(S, s);
+    const Eigen::Index R = r.generators.cols();
+    const double cone = cone_projection_errors(S, r.generators, w).maxCoeff();
+    if (r.status == GreedyStatus::ToleranceReached) {
+      EXPECT_LE(cone, eps) << "eps " << eps;
+      const double before = cone_projection_errors(S, r.generators.leftCols(R - 1), w).maxCoeff();
+      EXPECT_GT(before, eps) << "eps " << eps;
+    } else {
+      EXPECT_EQ(r.status, GreedyStatus::Exhausted) << "eps " << eps;
+      EXPECT_GT(cone, eps) << "eps " << eps;
+    }
+    EXPECT_NEAR(r.errors.back(), cone, 1e-10) << "eps " << eps;
+  }
+}
+
+// Issue [A] item 5.5: in relative mode every relative error of the empty cone is 1 and the
+// first pick was index 0 (the smallest snapshot here); (56) picks argmax |lambda|.
+TEST(CPG, RelativeModeStartsAtTheLargestSnapshot) {
+  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
+  const VectorXd w = rb_fixtures::collocation_weights();
+  VectorXd norms(S.cols());
+  for (Eigen::Index p = 0; p < S.cols(); ++p) norms(p) = weighted_norm(S.col(p), w);
+  const Eigen::Index largest = argmax(norms);
+  ASSERT_NE(largest, 0);  // otherwise the test could not tell the two rules apart
+  DualConeSettings s;
+  s.weights = w;
+  s.greedy.relative = true;
+  s.greedy.tolerance = 1e-2;
+  const DualConeResult cpg = build_cpg(S, s);
+  ASSERT_FALSE(cpg.selected.empty());
+  EXPECT_EQ(cpg.selected[0], largest);
+  EXPECT_LE(cpg.relative_errors.back(), 1e-2);
+  const DualConeResult angle = build_angle_greedy(S, s);
+  ASSERT_FALSE(angle.selected.empty());
+  EXPECT_EQ(angle.selected[0], largest);
+}

@@ -1,10 +1,16 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/rb/nmf.hpp"
+#include "contactrb/rb/cone_projection.hpp"
 #include "rb_fixtures.hpp"
+
+namespace {
+constexpr int kExhaustedNmfIterations = 200;  // few enough that the ranks end at different local minima
+}  // namespace
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;
@@ -80,4 +86,35 @@ TEST(NMF, InvalidInputThrows) {
   s = {};
   s.max_iterations = 0;
   EXPECT_THROW(nmf(MatrixXd::Ones(3, 3), 1, s), contactrb::Error);
+}
+
+// Issue [A] item 5.4: each rank is a separate factorization, and a larger rank may give a worse
+// cone (hertz-a: R = 8 reached 0.0087, R = 15 only 0.070); an exhausted NMF returned the last
+// one. It must keep the best: the smallest cone error over the ranks tried (smallest R on ties),
+// recomputed here independently from the generators returned.
+TEST(NMF, ExhaustedKeepsTheBestRankNotTheLast) {
+  const MatrixXd T = rb_fixtures::hertz_like_snapshots(31, 12);
+  const VectorXd w = rb_fixtures::collocation_weights(31);
+  DualConeSettings s;
+  s.weights = w;
+  s.greedy.tolerance = 0.0;  // never reached: runs every rank up to min(31, 12)
+  NMFSettings ns;
+  ns.max_iterations = kExhaustedNmfIterations;
+  const DualConeResult r = build_nmf_cone(T, s, ns);
+  EXPECT_EQ(r.status, GreedyStatus::Exhausted);
+  ASSERT_EQ(r.errors.size(), 13u);
+  std::size_t best = 1;
+  for (std::size_t R = 2; R < r.errors.size(); ++R)
+    if (r.errors[R] < r.errors[best]) best = R;
+  std::printf("[ report ] NMF cone errors by rank:");
+  for (double e : r.errors) std::printf(" %.4g", e);
+  std::printf("; best R = %zu\n", best);
+  // The history is not monotone here, so the last and the best differ (else this test could not
+  // tell the two rules apart).
+  ASSERT_LT(best, r.errors.size() - 1);
+  EXPECT_EQ(r.generators.cols(), static_cast<Eigen::Index>(best));
+  EXPECT_NEAR(cone_projection_errors(T, r.generators, w).maxCoeff(), r.errors[best], 1e-12);
+  // A fixed rank (truncated NMF) is still that rank.
+  s.greedy.max_size = 12;
+  EXPECT_EQ(build_nmf_cone(T, s, ns).generators.cols(), 12);
 }

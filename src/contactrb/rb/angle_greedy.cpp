@@ -1,6 +1,8 @@
 #include "contactrb/rb/angle_greedy.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <string>
 
 #include "contactrb/common/error.hpp"
@@ -57,39 +59,99 @@ void AngleGreedyProblem::extend(int index) {
   residuals_.col(index).setZero();
 }
 
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Largest e(p) / norms(p) over the p with a nonzero norm (0 if none).
+double max_relative(const Eigen::VectorXd& e, const Eigen::VectorXd& norms) {
+  double rel = 0.0;
+  for (Eigen::Index p = 0; p < e.size(); ++p)
+    if (norms(p) > 0.0) rel = std::max(rel, e(p) / norms(p));
+  return rel;
+}
+
+// First index of the largest criterion value: e(p), or e(p) / norms(p) when relative.
+int argmax_criterion(const Eigen::VectorXd& e, const Eigen::VectorXd& norms, bool relative) {
+  int best = 0;
+  double best_value = -1.0;
+  for (Eigen::Index p = 0; p < e.size(); ++p) {
+    const double v = relative ? (norms(p) > 0.0 ? e(p) / norms(p) : 0.0) : e(p);
+    if (v > best_value) {
+      best_value = v;
+      best = static_cast<int>(p);
+    }
+  }
+  return best;
+}
+}  // namespace
+
 DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings) {
-  check_settings(settings.greedy);
-  const auto t0 = std::chrono::steady_clock::now();
-  AngleGreedyProblem problem(snapshots, settings.weights);
-  const GreedyResult g = run_greedy(problem, settings.greedy);
+  const GreedySettings& gs = settings.greedy;
+  check_settings(gs);
+  require(settings.cone_history || gs.tolerance == 0.0,
+          "angle-greedy: the stopping test (58) reads the true cone-projection errors, so cone_history = false "
+          "needs tolerance 0 (a fixed size), got tolerance " + std::to_string(gs.tolerance));
   DualConeResult out;
   out.method = DualConeMethod::AngleGreedy;
-  out.status = g.status;
-  out.selected = g.selected;
-  out.generators = problem.generators();
-  out.linear_errors = g.max_errors;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
+  auto t0 = Clock::now();
+  AngleGreedyProblem problem(snapshots, settings.weights);
+  const Eigen::VectorXd norms = problem.reference_norms();
+  const int P = problem.training_size();
+  Eigen::VectorXd linear = problem.evaluate();
+  out.seconds += since(t0);
+  const double initial = P > 0 ? linear.maxCoeff() : 0.0;
+  // The cone actually used online is span+ of the selection; (58) is about ITS error (the
+  // linear error only steers the selection and can be far below it, e.g. 0.01 against 0.037).
+  std::unique_ptr<CPGProblem> cone;
+  Eigen::VectorXd cone_errors;
+  const auto record_cone = [&] {
+    t0 = Clock::now();
+    cone_errors = cone->evaluate();
+    out.errors.push_back(P > 0 ? cone_errors.maxCoeff() : 0.0);
+    out.relative_errors.push_back(max_relative(cone_errors, norms));
+    out.history_seconds += since(t0);
+  };
   if (settings.cone_history) {
-    // True cone-projection errors of the same nested selection (Fig. 19, "real" curve).
-    const auto t1 = std::chrono::steady_clock::now();
-    CPGProblem cone(snapshots, settings.weights, settings.qp);
-    const Eigen::VectorXd norms = cone.reference_norms();
-    auto record = [&](const Eigen::VectorXd& e) {
-      double rel = 0.0;
-      for (Eigen::Index p = 0; p < e.size(); ++p)
-        if (norms(p) > 0.0) rel = std::max(rel, e(p) / norms(p));
-      out.errors.push_back(e.size() ? e.maxCoeff() : 0.0);
-      out.relative_errors.push_back(rel);
-    };
-    record(cone.evaluate());
-    for (int s : g.selected) {
-      cone.extend(s);
-      record(cone.evaluate());
-    }
-    out.qp_failures = cone.qp_failures();
-    out.history_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    t0 = Clock::now();
+    cone = std::make_unique<CPGProblem>(snapshots, settings.weights, settings.qp);
+    out.history_seconds += since(t0);
+    record_cone();
   }
+  while (true) {
+    out.linear_errors.push_back(P > 0 ? linear.maxCoeff() : 0.0);
+    const int n = static_cast<int>(out.selected.size());
+    if (cone && (gs.relative ? out.relative_errors.back() : out.errors.back()) <= gs.tolerance) {
+      out.status = GreedyStatus::ToleranceReached;
+      break;
+    }
+    if (gs.max_size >= 0 && n >= gs.max_size) {
+      out.status = GreedyStatus::MaxSize;
+      break;
+    }
+    // Nothing left to steer by: every snapshot lies in W_n (up to round-off). The cone error may
+    // still be above eps_DU; the status says that eps_DU was not reached.
+    if (P == 0 || n >= P || out.linear_errors.back() <= gs.exhaustion_tolerance * initial) {
+      out.status = GreedyStatus::Exhausted;
+      break;
+    }
+    // Line 5 of Algorithm 2 with the linear projection; the first pick is (56) in both modes
+    // (every relative error of the empty space is 1).
+    t0 = Clock::now();
+    const int next = argmax_criterion(linear, norms, gs.relative && n > 0);
+    problem.extend(next);
+    out.selected.push_back(next);
+    linear = problem.evaluate();
+    out.seconds += since(t0);
+    if (cone) {
+      t0 = Clock::now();
+      cone->extend(next);
+      out.history_seconds += since(t0);
+      record_cone();
+    }
+  }
+  out.generators = problem.generators();
+  if (cone) out.qp_failures = cone->qp_failures();
   return out;
 }
 

@@ -38,8 +38,14 @@ class AngleGreedyProblem final : public GreedyProblem {
   std::vector<int> selected_;
 };
 
-// The angle-greedy from the empty space. errors (true cone errors) are filled when
-// settings.cone_history; linear_errors always.
+// The angle-greedy from the empty space: the linear error steers the selection, the stopping
+// test (58) (absolute or relative) reads the TRUE cone-projection error of the selection
+// (errors / relative_errors), so ToleranceReached means that the cone used online reaches eps_DU.
+// When the linear errors are exhausted (every snapshot in W_n) first, the status is Exhausted and
+// errors.back() is the cone error actually reached. linear_errors are always filled;
+// settings.cone_history = false (timing the algorithm alone) skips the cone errors and is
+// allowed only with tolerance 0 (a fixed size or exhaustion); throws contactrb::Error otherwise.
+// seconds: the selection; history_seconds: the cone projections.
 DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {});
 
 }  // namespace contactrb::rb

@@ -15,13 +15,14 @@ const char* to_string(DualConeMethod method);
 
 struct DualConeSettings {
   // tolerance = eps_DU of (58) (absolute, or relative when greedy.relative), max_size = a fixed R
-  // (-1: none). For the greedies the criterion is their own error (CPG: cone projection, angle:
-  // linear projection); for NMF it is the cone projection error onto span+{W}.
+  // (-1: none). The criterion is always the cone projection error onto the cone built (CPG: its
+  // own; angle-greedy: of span+ of its selection, the linear error only steers it; NMF: span+{W}).
   GreedySettings greedy;
   Eigen::VectorXd weights;  // Lambda-norm weights (size R_hf, >= 0); empty: identity
   solve::QPSettings qp;     // for the cone projections
-  // Angle-greedy only: also compute the true cone-projection error history (Fig. 19); its cost
-  // is reported apart (history_seconds) and not counted in `seconds`.
+  // Angle-greedy only: compute the true cone-projection errors (Fig. 19), which its stopping
+  // test reads; their cost is reported apart (history_seconds) and not counted in `seconds`.
+  // false (timing only) requires greedy.tolerance = 0.
   bool cone_history = true;
 };
 
@@ -32,7 +33,9 @@ struct DualConeResult {
   std::vector<int> selected;   // greedies: snapshot indices in selection order; NMF: empty
   // errors[R] = max_mu |lambda(mu) - Pi_{K_R}(lambda(mu))|_Lambda for R = 0 .. (R of the generators),
   // K_R the cone of the first R selected snapshots (greedies) or of an NMF of rank R;
-  // errors[0] = max_mu |lambda(mu)|_Lambda. Angle-greedy: filled only when cone_history.
+  // errors[0] = max_mu |lambda(mu)|_Lambda. Angle-greedy: filled only when cone_history. NMF:
+  // every rank tried, which may go beyond the R kept (an exhausted NMF keeps its best rank):
+  // the error of the cone returned is errors[generators.cols()].
   std::vector<double> errors;
   std::vector<double> relative_errors;  // same, each mu's error divided by |lambda(mu)|_Lambda
   std::vector<double> linear_errors;    // angle-greedy: its steering linear-projection errors; else empty

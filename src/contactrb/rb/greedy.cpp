@@ -83,7 +83,9 @@ GreedyResult run_greedy(GreedyProblem& problem, const GreedySettings& settings) 
       result.status = GreedyStatus::Exhausted;
       break;
     }
-    const int next = static_cast<int>(argmax(criterion));
+    // In relative mode every error of the empty approximation is 1 (the argmax would be index 0):
+    // the first pick is argmax of the absolute error, (56) of Algorithm 2.
+    const int next = static_cast<int>(argmax(settings.relative && n == 0 ? errors : criterion));
     t0 = Clock::now();
     problem.extend(next);
     result.extend_seconds += since(t0);

@@ -53,8 +53,10 @@ struct GreedyResult {
   double seconds = 0.0;                      // total wall time of run_greedy
 };
 
-// Alternates evaluate / extend from the problem's current state. Ties in the argmax go to
-// the smallest index (deterministic).
+// Alternates evaluate / extend from the problem's current state. Extends by argmax of the
+// criterion, except the first extension of a relative run, which takes argmax of the absolute
+// error ((56): the relative errors of an empty approximation are all 1). Ties in the argmax go
+// to the smallest index (deterministic).
 GreedyResult run_greedy(GreedyProblem& problem, const GreedySettings& settings);
 
 }  // namespace contactrb::rb

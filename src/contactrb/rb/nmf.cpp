@@ -146,17 +146,22 @@ DualConeResult build_nmf_cone(const Eigen::MatrixXd& snapshots, const DualConeSe
   out.generators = Eigen::MatrixXd(snapshots.rows(), 0);
   double criterion = record(norms);
   const double initial = out.errors.front();
+  // The factorizations of different ranks are separate runs: a larger rank may fit worse (the
+  // multiplicative updates stop at a local minimum). The best one seen is kept for Exhausted.
+  Eigen::MatrixXd best = out.generators;
+  double best_criterion = criterion;
   for (int R = 0;; ++R) {
     if (criterion <= settings.greedy.tolerance) {
       out.status = GreedyStatus::ToleranceReached;
       break;
     }
     if (settings.greedy.max_size >= 0 && R >= settings.greedy.max_size) {
-      out.status = GreedyStatus::MaxSize;
+      out.status = GreedyStatus::MaxSize;  // the requested rank, even if a smaller one fit better
       break;
     }
     if (R >= limit || out.errors.back() <= settings.greedy.exhaustion_tolerance * initial) {
       out.status = GreedyStatus::Exhausted;
+      out.generators = std::move(best);
       break;
     }
     auto t0 = Clock::now();
@@ -168,6 +173,10 @@ DualConeResult build_nmf_cone(const Eigen::MatrixXd& snapshots, const DualConeSe
     out.history_seconds += since(t0);
     out.qp_failures += failures;
     out.generators = std::move(f.W);
+    if (criterion < best_criterion) {
+      best_criterion = criterion;
+      best = out.generators;
+    }
   }
   return out;
 }

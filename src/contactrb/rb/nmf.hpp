@@ -46,7 +46,10 @@ NMFResult nmf(const Eigen::MatrixXd& T, int R, const NMFSettings& settings = {})
 // procedure (67) takes R as input), recording errors[R] = max_mu |lambda - Pi_{span+ W_R} lambda|_Lambda;
 // stops as the greedies do: tolerance on that error (settings.greedy: absolute or relative),
 // max_size (a fixed R: "truncated NMF"; the runs R < max_size are still made, for the history)
-// or R = min(R_hf, P) (Exhausted). generators = W of the last run. Cost: one NMF per R.
+// or R = min(R_hf, P) (Exhausted). generators = W of the last run, except for Exhausted: then
+// the W with the smallest criterion over all ranks tried (smallest R on ties), since a larger
+// rank may fit worse (errors[] still lists every rank tried; the chosen R is generators.cols()).
+// Cost: one NMF per R.
 // qp settings and weights serve the cone projections only: the NMF itself is in the Frobenius
 // norm (69), as in the paper.
 DualConeResult build_nmf_cone(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {},

@@ -123,6 +123,10 @@ int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<do
   return added;
 }
 
+// A gap gamma below this fraction of the largest reference coordinate is round-off (M^g = 0 is
+// then exact up to it).
+constexpr double kGapRoundoff = 1e-12;
+
 }  // namespace
 
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
@@ -269,6 +273,12 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   ek.max_size = settings.eim_k_size;
   const EIMResult eim_k = eim(flatten_columns(Ks), ek);
   Ks.clear();
+  // M^k = 0 makes D^kappa (54) zero: every online solve would fail (the primal space would not
+  // see the contact). Refuse the model rather than write it.
+  require(eim_k.size() >= 1, "offline: the EIM of the contact map kappa kept no function (M^k = 0: eps_eim_k = " +
+                                 std::to_string(settings.eps_eim_k) + " is above max |kappa| = " +
+                                 std::to_string(eim_k.errors.empty() ? 0.0 : eim_k.errors.front()) +
+                                 " on the training set, or eim_k_size = 0); lower eps_eim_k");
   rep.Mk = eim_k.size();
   rep.eim_kappa_errors = eim_k.errors;
   rep.eim_kappa_status = eim_status(eim_k);
@@ -285,6 +295,15 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   eg.tolerance = settings.eps_eim_g;
   eg.max_size = settings.eim_g_size;
   const EIMResult eim_g = eim(G, eg);
+  // M^g = 0 replaces gamma by 0: accepted only when gamma vanishes on the whole training set up
+  // to the round-off of the geometry (e.g. a flat patch test, initially touching, 2e-33).
+  const double gamma_max = eim_g.errors.empty() ? 0.0 : eim_g.errors.front();
+  double extent = 0.0;  // largest reference coordinate
+  for (const auto& x : reference.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  require(eim_g.size() >= 1 || gamma_max <= kGapRoundoff * extent,
+          "offline: the EIM of the gap gamma kept no function (M^g = 0: eps_eim_g = " +
+              std::to_string(settings.eps_eim_g) + " is above max |gamma| = " + std::to_string(gamma_max) +
+              " on the training set, or eim_g_size = 0), so the reduced gap would be 0; lower eps_eim_g");
   rep.Mg = eim_g.size();
   rep.eim_gamma_errors = eim_g.errors;
   rep.eim_gamma_status = eim_status(eim_g);

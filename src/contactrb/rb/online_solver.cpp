@@ -298,8 +298,10 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
   double r_prev_norm = 0.0;
   u_ = u_start;
   lambda_prev_ = lambda_start;
-  result.u_bar.resize(N_);
-  result.lambda_bar.resize(R_);
+  // Zero, not uninitialized: a first step that fails leaves them as they are, and they are
+  // returned (a model with M^k = 0 printed heap garbage as lambda_hat and contact_force).
+  result.u_bar.setZero(N_);
+  result.lambda_bar.setZero(R_);
   for (int k = 1; k <= ks.max_iterations; ++k) {
     solve::KacanovIteration it;
     std::string message;
@@ -385,6 +387,9 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
 
   OnlineSolution sol;
   if (!prepare(mu, settings.restricted_rows, sol.message)) {
+    sol.u_hat = Eigen::VectorXd::Zero(N_);
+    sol.lambda_hat = Eigen::VectorXd::Zero(R_);
+    sol.energy = E_D_;  // of u_hat = 0 (prepare sets E_D_ before the factorization)
     sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return sol;
   }
@@ -416,8 +421,9 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   sol.status = kr.status;
   sol.message = kr.message;
   sol.iterations = kr.iterations;
-  sol.u_hat = kr.u_bar.size() == N_ ? kr.u_bar : Eigen::VectorXd::Zero(N_);
-  sol.lambda_hat = kr.lambda_bar.size() == R_ ? kr.lambda_bar : Eigen::VectorXd::Zero(R_);
+  sol.u_hat = kr.u_bar.size() == N_ && kr.u_bar.allFinite() ? kr.u_bar : Eigen::VectorXd::Zero(N_);
+  sol.lambda_hat =
+      kr.lambda_bar.size() == R_ && kr.lambda_bar.allFinite() ? kr.lambda_bar : Eigen::VectorXd::Zero(R_);
   sol.energy = 0.5 * sol.u_hat.dot(A_ * sol.u_hat) - f_.dot(sol.u_hat) + E_D_;
   double force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
   for (std::size_t i = 0; i < kept_rows_.size(); ++i) {

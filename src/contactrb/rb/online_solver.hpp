@@ -56,9 +56,10 @@ enum class OnlineIteration {
   // safeguarded (a step whose residual |G(u) - u| does not decrease clears the history and
   // halves the damping, down to the model's alpha). Stopping test (63) on the fixed-point
   // residual: |G(u^k) - u^k| <= eps_KA |u^k| and |lambda_bar^k - lambda_bar^{k-1}| <= eps_KA
-  // |lambda_bar^{k-1}|, i.e. (63) at alpha = 1, which is 1/alpha times tighter than the
-  // relaxed test. Measured (bench_online, docs/online-performance.md): 4-8 steps instead of
-  // 18-30 at alpha = 0.3, same solution within eps_KA.
+  // |lambda_bar^{k-1}|, i.e. (63) on the unrelaxed step as in the Relaxed iteration
+  // (solve/kacanov.hpp), so both stop at the same distance from the fixed point. Measured
+  // (bench_online, docs/online-performance.md): 4-8 steps instead of 18-30 for the relaxed
+  // iteration at alpha = 0.3 when the relaxed test still read the relaxed increment (more now).
   Accelerated,
 };
 
@@ -91,7 +92,10 @@ struct OnlineSolution {
   solve::KacanovStatus status = solve::KacanovStatus::StepFailed;
   std::string message;  // why it stopped, when not converged
   int iterations = 0;
-  Eigen::VectorXd u_hat;       // last linearized solution (as the HF solver returns)
+  // Last linearized solution (as the HF solver returns). Always sized N and R and finite: when
+  // no step succeeded (StepFailed at the first step, A_hat(mu) not SPD) they are zero, and
+  // energy and contact_force are those of that zero solution.
+  Eigen::VectorXd u_hat;
   Eigen::VectorXd lambda_hat;  // >= 0
   double energy = 0.0;         // 1/2 u'A(mu)u - f(mu)'u of u = u_D(mu) + Theta u_hat (exact: (49) + lift terms)
   double contact_force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r

@@ -236,8 +236,10 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
     m.R = off.model.R_max;
     m.Mk = off.model.Mk_max;
     m.Mg = off.model.Mg_max;
-    m.dual_error = off.report.dual_errors.empty() ? std::numeric_limits<double>::quiet_NaN()
-                                                  : off.report.dual_errors.back();
+    // The error of the cone kept: errors[R] (an exhausted NMF keeps its best rank, not its last).
+    const std::vector<double>& de = off.report.dual_errors;
+    m.dual_error = static_cast<int>(de.size()) > m.R ? de[static_cast<std::size_t>(m.R)]
+                                                     : std::numeric_limits<double>::quiet_NaN();
     log.line("  N " + std::to_string(m.N) + ", R " + std::to_string(m.R) + ", Mk " + std::to_string(m.Mk) + ", Mg " +
              std::to_string(m.Mg) + ", dual error " + fmt(m.dual_error) + " (" + fmt(off.report.total_s, "%.2f") +
              " s)");
@@ -538,6 +540,22 @@ void error_table(std::ostringstream& md, const StudyResult& r, bool verification
 
 }  // namespace
 
+std::vector<std::string> study_warnings(const StudyResult& r) {
+  std::vector<std::string> out;
+  for (const StudyModel& m : r.models) {
+    const bool verification = m.verification.has_value();
+    const EvaluationSummary& su = verification ? m.verification->summary : m.training.summary;
+    // NaN (no converged pair) is not "below the threshold" either.
+    if (!(su.max_e_displ <= kStudyErrorWarning)) {
+      out.push_back("model " + m.label + ": max e_displ on the " + (verification ? "verification" : "training") +
+                    " set is " + fmt(su.max_e_displ) + ", above " + fmt(kStudyErrorWarning) +
+                    " (N " + std::to_string(m.N) + ", R " + std::to_string(m.R) + ", M^k " + std::to_string(m.Mk) +
+                    ", M^g " + std::to_string(m.Mg) + "; tighten --eps-pod, --eps-du, --eps-eim-k, --eps-eim-g)");
+    }
+  }
+  return out;
+}
+
 std::string study_markdown(const StudyResult& r, const std::vector<std::string>& figures) {
   std::ostringstream md;
   const StudyModel& cpg = r.model("cpg");
@@ -554,6 +572,11 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
      << ". The NMF takes the smallest R whose cone error reaches eps_DU a posteriori; the truncated NMF takes "
         "R = R_CPG = "
      << cpg.R << ".\n\n";
+  if (const std::vector<std::string> warnings = study_warnings(r); !warnings.empty()) {
+    md << "## Warnings\n\n";
+    for (const std::string& w : warnings) md << "- **Warning**: " << w << ".\n";
+    md << "\n";
+  }
 
   md << "## Sizes per method\n\n"
      << "| method | N | R | M^k | M^g | dual cone error (training) | dual status | offline time (s) |\n"

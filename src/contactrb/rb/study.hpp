@@ -23,19 +23,26 @@ namespace contactrb::rb {
 
 // The offline tolerances of a study (absolute, as OfflineSettings) and the tolerance lists of
 // the Table 3/5-style rows (R reaching eps_DU) and of the Table 4-style row (N against eps_POD).
+// The defaults are `contactrb offline`'s (OfflineSettings): a user case gets the same models
+// from `report` as from `offline` (the earlier eps_EIM 1e-2 / 1e-3 gave M^g = 0 on user cases).
 struct StudyTolerances {
-  double eps_pod = 1e-3;
-  double eps_du = 1e-2;
-  double eps_eim_k = 1e-2;
-  double eps_eim_g = 1e-3;
+  double eps_pod = OfflineSettings{}.eps_pod;
+  double eps_du = OfflineSettings{}.eps_du;
+  double eps_eim_k = OfflineSettings{}.eps_eim_k;
+  double eps_eim_g = OfflineSettings{}.eps_eim_g;
   std::vector<double> table_eps_du{1e-1, 1e-2, 5e-3, 1e-3};
   std::vector<double> table_eps_pod{1e-2, 1e-3, 1e-4, 1e-5};
 };
 
-// The tolerances used for a case (the paper's where they make sense with our scalings;
+// The tolerances used for a built-in case (the paper's where they make sense with our scalings;
 // docs/user-guide.md, "report", lists them and why). Any other case name gets the defaults
-// of StudyTolerances.
+// of StudyTolerances (those of `contactrb offline`); so does a case file whatever its name
+// (`contactrb report --case-file` does not call this).
 StudyTolerances default_study_tolerances(const std::string& case_name);
+
+// A model whose largest e_displ (65) on the verification set (the training set when there is
+// none) is above this gets a warning (stderr and report.md).
+constexpr double kStudyErrorWarning = 1e-2;
 
 struct StudySettings {
   int level = 0;                                    // mesh refinement level (0: the paper's mesh)
@@ -131,6 +138,9 @@ int pod_size(const Eigen::VectorXd& singular_values, double eps);
 // verification set), multipliers.csv, dual_table.csv, pod_table.csv and study.json (which
 // lists them). Every file is written atomically with a header row. Returns the file names.
 std::vector<std::string> write_study_files(const StudyResult& result, const std::string& dir);
+
+// One sentence per model whose max e_displ exceeds kStudyErrorWarning (empty: none).
+std::vector<std::string> study_warnings(const StudyResult& result);
 
 // report.md: tables of sizes, errors, times and speed-ups, the offline step times and the
 // Table 3/4/5-style rows; `figures` (PNG file names, relative to the report) are linked.

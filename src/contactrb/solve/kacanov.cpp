@@ -29,7 +29,9 @@ double relative_increment(const Eigen::VectorXd& current, const Eigen::VectorXd&
   const double diff = (current - previous).norm();
   const double ref = previous.norm();
   if (diff == 0.0) return 0.0;
-  return ref > 0.0 ? diff / ref : diff;
+  // A change away from a zero vector is an infinite relative change: never "converged" (an
+  // absolute fallback would depend on the units, and on alpha through the relaxed iterate).
+  return ref > 0.0 ? diff / ref : INFINITY;
 }
 
 KacanovResult kacanov(const KacanovStep& step, Eigen::VectorXd u, Eigen::VectorXd lambda,
@@ -48,16 +50,18 @@ KacanovResult kacanov(const KacanovStep& step, Eigen::VectorXd u, Eigen::VectorX
       result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
       return result;
     }
-    Eigen::VectorXd u_new = a * result.u_bar + (1.0 - a) * u;
-    Eigen::VectorXd lambda_new =
-        lambda.size() == result.lambda_bar.size() ? Eigen::VectorXd(a * result.lambda_bar + (1.0 - a) * lambda)
-                                                  : Eigen::VectorXd(a * result.lambda_bar);
-    it.du = relative_increment(u_new, u);
-    it.dlambda = lambda.size() == lambda_new.size() ? relative_increment(lambda_new, lambda) : INFINITY;
+    // (63) on the UNRELAXED step: |u_bar^k - u^{k-1}| / |u^{k-1}| (same for lambda). The relaxed
+    // increment u^k - u^{k-1} = alpha (u_bar^k - u^{k-1}) is alpha times smaller, so testing it
+    // would make the test easier as alpha falls (at alpha = 1e-4 it stopped after one step).
+    const bool same_size = lambda.size() == result.lambda_bar.size();
+    it.du = relative_increment(result.u_bar, u);
+    it.dlambda = same_size ? relative_increment(result.lambda_bar, lambda) : INFINITY;
     result.history.push_back(it);
+    Eigen::VectorXd u_new = a * result.u_bar + (1.0 - a) * u;
+    Eigen::VectorXd lambda_new = same_size ? Eigen::VectorXd(a * result.lambda_bar + (1.0 - a) * lambda)
+                                           : Eigen::VectorXd(a * result.lambda_bar);
     u = std::move(u_new);
     lambda = std::move(lambda_new);
-    // (63): both relative increments below eps_KA.
     if (std::max(it.du, it.dlambda) <= settings.tolerance) {
       result.status = KacanovStatus::Converged;
       result.iterations = k;

@@ -22,9 +22,13 @@ void check_settings(const KacanovSettings& settings);
 enum class KacanovStatus { Converged, MaxIterations, StepFailed };
 const char* to_string(KacanovStatus status);
 
+// Stopping test (63), applied to the unrelaxed step so that it does not depend on alpha:
+// max(|u_bar^k - u^{k-1}| / |u^{k-1}|, |lambda_bar^k - lambda^{k-1}| / |lambda^{k-1}|) <= eps_KA,
+// with u_bar^k the linearized solution and u^{k-1} the previous relaxed iterate. At alpha = 1 it
+// is (63) exactly; for alpha < 1 it is 1/alpha times stricter than (63) on the relaxed iterates.
 struct KacanovIteration {
-  double du = 0.0;       // |u^k - u^{k-1}| / |u^{k-1}|
-  double dlambda = 0.0;  // |lambda^k - lambda^{k-1}| / |lambda^{k-1}|
+  double du = 0.0;       // |u_bar^k - u^{k-1}| / |u^{k-1}|
+  double dlambda = 0.0;  // |lambda_bar^k - lambda^{k-1}| / |lambda^{k-1}|
   int step_iterations = 0;  // iterations of the inner solver (QP)
 };
 
@@ -46,8 +50,8 @@ using KacanovStep = std::function<bool(const Eigen::VectorXd& u, const Eigen::Ve
                                        Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar,
                                        int& inner_iterations, std::string& message)>;
 
-// Relative increment of (63); 0 when both vectors vanish, the absolute increment when
-// only the previous one vanishes.
+// Relative increment of (63); 0 when both vectors vanish, +infinity when only the previous
+// one vanishes (a relative change from zero is unbounded: never counts as converged).
 double relative_increment(const Eigen::VectorXd& current, const Eigen::VectorXd& previous);
 
 KacanovResult kacanov(const KacanovStep& step, Eigen::VectorXd u0, Eigen::VectorXd lambda0,
