@@ -37,6 +37,7 @@ struct DemoOptions {
 // down to the level of the Kacanov tolerance of the HF snapshots (eps_KA = 1e-3).
 rb::OfflineSettings demo_settings() {
   rb::OfflineSettings s;
+  s.set_absolute();
   s.eps_pod = 1e-5;    // N = 11 of 22 (the numerical rank; paper Table 4 at 1e-5: 20)
   s.eps_du = 1e-3;     // R = 10 (paper Table 5: CPG R = 13 at 1e-3)
   s.eps_eim_k = 1e-4;  // the paper's 1e-2 / 1e-3 keep M^g = 1: e_displ 2.8%

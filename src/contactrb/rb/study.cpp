@@ -212,6 +212,7 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
   r.profile_mus =
       evenly_spaced_subset(r.verification_mus.empty() ? r.training_mus : r.verification_mus, s.multiplier_profiles);
   OfflineSettings base;
+  base.set_absolute();  // the paper's tolerances, read as absolute (the report says so)
   base.eps_pod = s.tolerances.eps_pod;
   base.inner_product = s.inner_product;
   base.eps_du = s.tolerances.eps_du;
