@@ -189,3 +189,28 @@ TEST(UnitScaling, AbsoluteTolerancesDependOnTheUnits) {
   EXPECT_GT(si_units[0], paper_units[0]);  // sigma_i x sqrt(1e9) in the energy norm
   EXPECT_GT(si_units[1], paper_units[1]);  // |lambda| x 1e9
 }
+
+// The POD reaches far below the former limit of the method of snapshots (eigenvalues of
+// S' M S above 1e-13 eig_1, i.e. sigma_i / sigma_1 above about 3e-7, which capped hertz-b at
+// N = 11 whatever eps_POD): on the paper's 22 hertz-b training snapshots, eps_POD = 1e-9
+// relative keeps more than 11 modes, each singular value kept above the threshold.
+TEST(OfflinePOD, HertzBGoesBeyondElevenModesAtATightTolerance) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-b");
+  rb::SnapshotRunOptions run;
+  run.jobs = 2;
+  const io::SnapshotSet set =
+      rb::generate_snapshots(rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt), run);
+  ASSERT_EQ(set.snapshots.size(), 22u);
+  rb::OfflineSettings s;
+  s.eps_pod = 1e-9;
+  const rb::OfflineResult off = rb::build_reduced_model(set, spec, s);
+  const Eigen::VectorXd& sigma = off.report.singular_values;
+  std::printf("[ hertz-b ] eps_POD 1e-9 relative: N %d, sigma_N / sigma_1 = %.2e\n", off.report.N,
+              sigma(off.report.N - 1) / sigma(0));
+  EXPECT_GT(off.report.N, 11);
+  EXPECT_LT(sigma(11) / sigma(0), 3e-7);  // the 12th mode lies below the former limit
+  for (int i = 0; i < off.report.N; ++i) EXPECT_GT(sigma(i), 1e-9 * sigma(0)) << i;
+  if (off.report.N < sigma.size()) {
+    EXPECT_LE(sigma(off.report.N), 1e-9 * sigma(0));
+  }
+}
