@@ -112,7 +112,7 @@ int run_demo(const DemoOptions& opt) {
             << verification.size() << " verification values (" << fmt("%.2f", evaluation_s) << " s), total "
             << fmt("%.1f", seconds(t_start)) << " s, " << opt.jobs << " job(s)\n"
             << "tolerances: eps_POD " << settings.eps_pod << ", eps_DU " << settings.eps_du << ", eps_EIM^k "
-            << settings.eps_eim_k << ", eps_EIM^g " << settings.eps_eim_g << " (CPG)\n\n"
+            << settings.eps_eim_k << ", eps_EIM^g " << settings.eps_eim_g << " (absolute, CPG)\n\n"
             << "|  N |  R | M^k | M^g | max e_displ | max e_inter | max e_ener | median HF time | median online time | "
                "speed-up |\n"
             << "| -: | -: | --: | --: | ----------: | ----------: | ---------: | -------------: | -----------------: | "

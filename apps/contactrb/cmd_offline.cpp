@@ -238,12 +238,19 @@ int run_offline(const OfflineOptions& opt) {
 
   const auto last = [](const std::vector<double>& v) { return v.empty() ? 0.0 : v.back(); };
   const auto mode = [](bool relative) { return relative ? " relative" : " absolute"; };
+  const auto pod_tolerance = [&](double eps, bool relative, double threshold) {
+    std::ostringstream os;
+    os << "eps_pod " << eps << mode(relative) << ", threshold " << threshold;
+    return os.str();
+  };
   std::cout << "case " << set.case_name << ", " << set.snapshots.size() << " snapshots (set " << set.set_name << "), "
             << set.constraint << "\n"
             << "sizes: N " << m.N_max << ", R " << m.R_max << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
             << "pod: " << rb::to_string(settings.inner_product) << " product, N " << rep.N << " of "
-            << rep.singular_values.size() << " (eps_pod " << settings.eps_pod << mode(settings.eps_pod_relative)
-            << ", threshold " << rep.pod_threshold << ")\n"
+            << rep.singular_values.size() << " ("
+            << (settings.pod_modes >= 1 ? "fixed N " + std::to_string(settings.pod_modes) + ", capped at the rank"
+                                        : pod_tolerance(settings.eps_pod, settings.eps_pod_relative, rep.pod_threshold))
+            << ")\n"
             << "compression: " << rep.R_kept << " of " << rep.R_hf << " constraints kept"
             << (settings.compression ? "" : " (off)") << "\n"
             << "dual: " << opt.dual << ", R " << rep.R << ", error "
