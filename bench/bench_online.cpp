@@ -82,6 +82,7 @@ const CaseData& case_data(const std::string& name, bool paper, bool supremizers)
     rb::OfflineSettings s;
     s.supremizers = supremizers;
     if (paper) {
+      s.set_absolute();  // the paper's tolerances, read as absolute
       s.eps_pod = 1e-5;
       s.eps_du = 1e-4;
       s.eps_eim_k = 1e-2;

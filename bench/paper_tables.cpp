@@ -253,6 +253,7 @@ rb::OfflineSettings report_settings(const std::string& name) {
 
 rb::OfflineSettings paper_settings(double eps_pod, double eps_du, double eps_k, double eps_g) {
   rb::OfflineSettings s;
+  s.set_absolute();  // the paper's tolerances, read as absolute
   s.eps_pod = eps_pod;
   s.eps_du = eps_du;
   s.eps_eim_k = eps_k;

@@ -55,10 +55,16 @@ struct OfflineOptions {
   std::string inner_product = "energy";
   std::string dual = "cpg";
   double eps_du = rb::OfflineSettings{}.eps_du;
-  bool eps_du_relative = false;
+  bool eps_du_relative = false;  // the default anyway; kept for scripts that pass it
   int r = -1;
   double eps_eim_k = rb::OfflineSettings{}.eps_eim_k;
   double eps_eim_g = rb::OfflineSettings{}.eps_eim_g;
+  // Tolerances are relative by default; these make all of them, or one, absolute.
+  bool absolute_tolerances = false;
+  bool eps_pod_absolute = false;
+  bool eps_du_absolute = false;
+  bool eps_eim_k_absolute = false;
+  bool eps_eim_g_absolute = false;
   bool no_compression = false;
   bool no_supremizers = false;
   std::string out;
@@ -130,7 +136,12 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   require(opt.eps_eim_k >= 0.0, "--eps-eim-k must be >= 0");
   require(opt.eps_eim_g >= 0.0, "--eps-eim-g must be >= 0");
   s.eps_du = opt.eps_du;
-  s.eps_du_relative = opt.eps_du_relative;
+  require(!(opt.eps_du_relative && (opt.eps_du_absolute || opt.absolute_tolerances)),
+          "--eps-du-relative contradicts --eps-du-absolute / --absolute-tolerances");
+  s.eps_pod_relative = !(opt.absolute_tolerances || opt.eps_pod_absolute);
+  s.eps_du_relative = !(opt.absolute_tolerances || opt.eps_du_absolute);
+  s.eps_eim_k_relative = !(opt.absolute_tolerances || opt.eps_eim_k_absolute);
+  s.eps_eim_g_relative = !(opt.absolute_tolerances || opt.eps_eim_g_absolute);
   s.dual_size = opt.r;
   s.eps_eim_k = opt.eps_eim_k;
   s.eps_eim_g = opt.eps_eim_g;
@@ -190,6 +201,7 @@ int run_offline(const OfflineOptions& opt) {
                            {"tolerance", set.kacanov_tolerance},
                            {"max_iterations", set.kacanov_max_iterations}};
   j["settings"] = {{"eps_pod", settings.eps_pod},
+                   {"eps_pod_relative", settings.eps_pod_relative},
                    {"n", settings.pod_modes >= 1 ? nlohmann::json(settings.pod_modes) : nlohmann::json(nullptr)},
                    {"inner_product", rb::to_string(settings.inner_product)},
                    {"dual", opt.dual},
@@ -197,9 +209,15 @@ int run_offline(const OfflineOptions& opt) {
                    {"eps_du_relative", settings.eps_du_relative},
                    {"r", settings.dual_size >= 1 ? nlohmann::json(settings.dual_size) : nlohmann::json(nullptr)},
                    {"eps_eim_k", settings.eps_eim_k},
+                   {"eps_eim_k_relative", settings.eps_eim_k_relative},
                    {"eps_eim_g", settings.eps_eim_g},
+                   {"eps_eim_g_relative", settings.eps_eim_g_relative},
                    {"compression", settings.compression},
                    {"supremizers", settings.supremizers}};
+  // The absolute thresholds the tolerances came to (null: a fixed size, no threshold).
+  j["thresholds"] = {{"pod", settings.pod_modes >= 1 ? nlohmann::json(nullptr) : nlohmann::json(rep.pod_threshold)},
+                     {"eim_kappa", rep.eim_kappa_threshold},
+                     {"eim_gamma", rep.eim_gamma_threshold}};
   j["sizes"] = {{"N", m.N_max}, {"R", m.R_max}, {"Mk", m.Mk_max}, {"Mg", m.Mg_max}};
   j["pod"] = {{"singular_values", to_json(rep.singular_values)}, {"N", rep.N_pod}};
   j["supremizers"] = {{"enabled", settings.supremizers}, {"count", rep.N_supremizers}, {"time_s", rep.supremizer_s}};
@@ -228,22 +246,32 @@ int run_offline(const OfflineOptions& opt) {
     return static_cast<int>(v.size()) > rep.R ? v[static_cast<std::size_t>(rep.R)] : last(v);
   };
   const double dual_error = at_R(settings.eps_du_relative ? rep.dual_relative_errors : rep.dual_errors);
+  const auto mode = [](bool relative) { return relative ? " relative" : " absolute"; };
+  const auto pod_tolerance = [&](double eps, bool relative, double threshold) {
+    std::ostringstream os;
+    os << "eps_pod " << eps << mode(relative) << ", threshold " << threshold;
+    return os.str();
+  };
   std::cout << "case " << set.case_name << ", " << set.snapshots.size() << " snapshots (set " << set.set_name << "), "
             << set.constraint << "\n"
             << "sizes: N " << m.N_max << ", R " << m.R_max << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
             << "pod: " << rb::to_string(settings.inner_product) << " product, N " << rep.N_pod << " of "
-            << rep.singular_values.size() << " (eps_pod " << settings.eps_pod << ")"
-            << (settings.supremizers ? ", + " + std::to_string(rep.N_supremizers) + " supremizers" : std::string())
+            << rep.singular_values.size() << " ("
+            << (settings.pod_modes >= 1 ? "fixed N " + std::to_string(settings.pod_modes) + ", capped at the rank"
+                                        : pod_tolerance(settings.eps_pod, settings.eps_pod_relative, rep.pod_threshold))
+            << ")" << (settings.supremizers ? ", + " + std::to_string(rep.N_supremizers) + " supremizers" : std::string())
             << "\n"
             << "compression: " << rep.R_kept << " of " << rep.R_hf << " constraints kept"
             << (settings.compression ? "" : " (off)") << "\n"
             << "dual: " << opt.dual << ", R " << rep.R << ", error " << dual_error << " (eps_du "
-            << settings.eps_du << (settings.eps_du_relative ? " relative" : "") << ", " << rep.dual_status
+            << settings.eps_du << mode(settings.eps_du_relative) << ", " << rep.dual_status
             << (dual_error > settings.eps_du ? ": eps_du NOT reached" : "") << ")\n"
-            << "eim kappa: Mk " << rep.Mk << ", error " << last(rep.eim_kappa_errors) << " (" << rep.eim_kappa_status
-            << ")\n"
-            << "eim gamma: Mg " << rep.Mg << ", error " << last(rep.eim_gamma_errors) << " (" << rep.eim_gamma_status
-            << ")\n"
+            << "eim kappa: Mk " << rep.Mk << ", error " << last(rep.eim_kappa_errors) << " (eps_eim_k "
+            << settings.eps_eim_k << mode(settings.eps_eim_k_relative) << ", threshold " << rep.eim_kappa_threshold
+            << ", " << rep.eim_kappa_status << ")\n"
+            << "eim gamma: Mg " << rep.Mg << ", error " << last(rep.eim_gamma_errors) << " (eps_eim_g "
+            << settings.eps_eim_g << mode(settings.eps_eim_g_relative) << ", threshold " << rep.eim_gamma_threshold
+            << ", " << rep.eim_gamma_status << ")\n"
             << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (pod " << rep.pod_s
             << ", dual " << rep.dual_s << ", eim " << rep.eim_kappa_s + rep.eim_gamma_s << ", other "
             << rep.total_s - rep.pod_s - rep.dual_s - rep.eim_kappa_s - rep.eim_gamma_s << (compute ? ", snapshots " : ", read ")
@@ -292,19 +320,33 @@ Command add_offline_command(CLI::App& app) {
     o->excludes(snapshots_opt);
   }
   CLI::Option* eps_pod =
-      sub->add_option("--eps-pod", opt->eps_pod, "POD: absolute threshold on the singular values")->capture_default_str();
+      sub->add_option("--eps-pod", opt->eps_pod,
+                      "POD: tolerance on the singular values, relative (keep sigma_i / sigma_1 > eps) unless absolute")
+          ->capture_default_str();
   CLI::Option* n = sub->add_option("--n", opt->n, "POD: a fixed N instead of --eps-pod (capped at the rank)");
   eps_pod->excludes(n);
   sub->add_option("--inner-product", opt->inner_product, "POD inner product: energy | h1")->capture_default_str();
   sub->add_option("--dual", opt->dual, "Dual cone: cpg | angle | nmf")->capture_default_str();
-  sub->add_option("--eps-du", opt->eps_du, "Dual cone: absolute tolerance eps_DU (L2(Gamma^c) norm)")
+  sub->add_option("--eps-du", opt->eps_du,
+                  "Dual cone: tolerance eps_DU on the L2(Gamma^c) error (58), relative (each mu's error divided by "
+                  "|lambda(mu)|) unless absolute")
       ->capture_default_str();
-  sub->add_flag("--eps-du-relative", opt->eps_du_relative,
-                "Dual cone: --eps-du is relative (each mu's error divided by |lambda(mu)|)");
+  sub->add_flag("--eps-du-relative", opt->eps_du_relative, "Dual cone: --eps-du is relative (the default)");
   sub->add_option("--r", opt->r, "Dual cone: a fixed R (NMF rank, or a greedy size limit)");
-  sub->add_option("--eps-eim-k", opt->eps_eim_k, "EIM of the contact map kappa: ell-infinity tolerance")
+  sub->add_option("--eps-eim-k", opt->eps_eim_k,
+                  "EIM of the contact map kappa: ell-infinity tolerance, relative (to max |kappa| over the training "
+                  "set) unless absolute")
       ->capture_default_str();
-  sub->add_option("--eps-eim-g", opt->eps_eim_g, "EIM of the gap gamma: ell-infinity tolerance")->capture_default_str();
+  sub->add_option("--eps-eim-g", opt->eps_eim_g,
+                  "EIM of the gap gamma: ell-infinity tolerance, relative (to max |gamma| over the training set) "
+                  "unless absolute")
+      ->capture_default_str();
+  sub->add_flag("--absolute-tolerances", opt->absolute_tolerances,
+                "All four tolerances absolute (in the units of the case: M-norm of u, |lambda|, |kappa|, |gamma|)");
+  sub->add_flag("--eps-pod-absolute", opt->eps_pod_absolute, "POD: --eps-pod absolute (keep sigma_i > eps)");
+  sub->add_flag("--eps-du-absolute", opt->eps_du_absolute, "Dual cone: --eps-du absolute");
+  sub->add_flag("--eps-eim-k-absolute", opt->eps_eim_k_absolute, "EIM of kappa: --eps-eim-k absolute");
+  sub->add_flag("--eps-eim-g-absolute", opt->eps_eim_g_absolute, "EIM of gamma: --eps-eim-g absolute");
   sub->add_flag("--no-compression", opt->no_compression, "Keep the constraints never active on the training set");
   sub->add_flag("--no-supremizers", opt->no_supremizers,
                 "Primal basis: the POD modes only (no supremizer per dual generator; lambda_hat may then be "

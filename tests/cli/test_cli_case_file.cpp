@@ -129,3 +129,51 @@ TEST(CliCaseFile, ExactlyOneCaseSource) {
   EXPECT_NE(none.exit_code, 0);
   EXPECT_NE(none.exit_code, -1);
 }
+
+// A case file with a relative mesh.file, read from one working directory: the snapshot file
+// and the model made from it (each in its own subdirectory, so neither lies next to the
+// case's .msh) are used from another working directory by offline, online --out and
+// evaluate (they record the mesh path resolved against the case file, absolute). The case is
+// examples/hertz-a (its mesh.file is "hertz-a.msh"), three training values, an untruncated
+// model: at the training values it reproduces the HF solution.
+TEST(CliCaseFile, RelativeMeshPathWorksFromAnyWorkingDirectory) {
+  const fs::path example = fs::path(CONTACTRB_SOURCE_DIR) / "examples" / "hertz-a";
+  contactrb::test::TempDir dir("case_file_cwd");
+  const fs::path work = dir.path() / "work";
+  const fs::path elsewhere = dir.path() / "elsewhere";
+  for (const fs::path& d : {work / "case", work / "snaps", work / "model", elsewhere / "m2"}) fs::create_directories(d);
+  fs::copy_file(example / "case.toml", work / "case" / "case.toml");
+  fs::copy_file(example / "hertz-a.msh", work / "case" / "hertz-a.msh");
+  ASSERT_NE(read_text(work / "case" / "case.toml").find("file = \"hertz-a.msh\""), std::string::npos);
+  const std::string tight = " --alpha 1 --tol 1e-10";
+
+  const CliResult s = run_cli("snapshots --case-file case/case.toml --values 0.15,0.3,0.45 -q" + tight +
+                                  " --out snaps/s.h5",
+                              work.string());
+  ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
+  const std::string untruncated = " --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0";
+  const CliResult m = run_cli("offline --snapshots snaps/s.h5" + untruncated + " --out model/model.h5", work.string());
+  ASSERT_EQ(m.exit_code, 0) << m.out << m.err;
+  const CliResult m2 = run_cli("offline --snapshots ../work/snaps/s.h5 --out m2/model.h5", elsewhere.string());
+  ASSERT_EQ(m2.exit_code, 0) << m2.out << m2.err;
+
+  const CliResult hf = run_cli("solve --case-file case/case.toml --mu 0.3" + tight + " --out hf", work.string());
+  ASSERT_EQ(hf.exit_code, 0) << hf.out << hf.err;
+  std::ifstream hf_json(work / "hf" / "solution.json");
+  const double force = nlohmann::json::parse(hf_json).at("contact_force").get<double>();
+
+  const CliResult on = run_cli("online --model ../work/model/model.h5 --mu 0.3 --out online", elsewhere.string());
+  ASSERT_EQ(on.exit_code, 0) << on.out << on.err;
+  EXPECT_TRUE(fs::exists(elsewhere / "online" / "solution.vtu"));
+  EXPECT_NEAR(nlohmann::json::parse(on.out).at("contact_force").get<double>(), force, 1e-6 * force);
+
+  std::ofstream(elsewhere / "mus.txt") << "0.15\n0.3\n0.45\n";
+  const CliResult ev = run_cli("evaluate --model ../work/model/model.h5 --set mus.txt -q --out eval", elsewhere.string());
+  ASSERT_EQ(ev.exit_code, 0) << ev.out << ev.err;
+  std::ifstream in(elsewhere / "eval" / "evaluation.json");
+  const nlohmann::json e = nlohmann::json::parse(in);
+  EXPECT_EQ(e.at("summary").at("count").get<int>(), 3);
+  // The evaluation's HF solves use the model's Kacanov settings (tight): training values are
+  // reproduced to solver tolerance.
+  EXPECT_LT(e.at("summary").at("e_displ").at("max").get<double>(), 1e-6);
+}

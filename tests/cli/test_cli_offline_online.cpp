@@ -163,6 +163,59 @@ TEST_F(CliOfflineOnline, RelativeDualToleranceStopsOnTheRelativeHistory) {
   EXPECT_GT(abs[0], 1.0);           // the absolute history is on another scale (pressures ~ 1-10)
 }
 
+// The tolerances are relative by default (POD: sigma_i / sigma_1 > eps; EIM: to max |f| over
+// the training set, the first entry of the EIM error history), absolute with
+// --absolute-tolerances or per tolerance; offline.json records each mode and the threshold.
+TEST_F(CliOfflineOnline, TolerancesAreRelativeByDefaultAndAbsoluteOnRequest) {
+  const auto offline = [&](const std::string& name, const std::string& options) {
+    const std::string out = dir_->file(name);
+    fs::create_directories(out);
+    const CliResult r = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --eps-pod 1e-2 --eps-eim-k 1e-3" +
+                                options + " --out " + shell_quote(out + "/model.h5"));
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::ifstream in(out + "/offline.json");
+    return json::parse(in);
+  };
+  const auto count_above = [](const std::vector<double>& v, double t) {
+    int n = 0;
+    for (double x : v) n += x > t ? 1 : 0;
+    return n;
+  };
+  const json rel = offline("tol_relative", "");
+  const auto sigma = rel.at("pod").at("singular_values").get<std::vector<double>>();
+  ASSERT_GT(sigma[0], 1.0);  // the energy norm of these snapshots is far from 1: the modes differ
+  for (const char* key : {"eps_pod_relative", "eps_du_relative", "eps_eim_k_relative", "eps_eim_g_relative"}) {
+    EXPECT_TRUE(rel.at("settings").at(key).get<bool>()) << key;
+  }
+  const double pod_threshold = rel.at("thresholds").at("pod").get<double>();
+  EXPECT_NEAR(pod_threshold, 1e-2 * sigma[0], 1e-15 * sigma[0]);
+  EXPECT_EQ(rel.at("pod").at("N").get<int>(), count_above(sigma, pod_threshold));
+  const auto k_errors = rel.at("eim_kappa").at("errors").get<std::vector<double>>();
+  EXPECT_NEAR(rel.at("thresholds").at("eim_kappa").get<double>(), 1e-3 * k_errors[0], 1e-15 * k_errors[0]);
+  EXPECT_LE(k_errors.back(), 1e-3 * k_errors[0]);
+  EXPECT_GT(k_errors[k_errors.size() - 2], 1e-3 * k_errors[0]);  // one function fewer is not enough
+
+  const json abs = offline("tol_absolute", " --absolute-tolerances");
+  for (const char* key : {"eps_pod_relative", "eps_du_relative", "eps_eim_k_relative", "eps_eim_g_relative"}) {
+    EXPECT_FALSE(abs.at("settings").at(key).get<bool>()) << key;
+  }
+  EXPECT_EQ(abs.at("thresholds").at("pod").get<double>(), 1e-2);
+  EXPECT_EQ(abs.at("pod").at("N").get<int>(), count_above(sigma, 1e-2));
+  EXPECT_GT(abs.at("pod").at("N").get<int>(), rel.at("pod").at("N").get<int>());
+  EXPECT_EQ(abs.at("thresholds").at("eim_kappa").get<double>(), 1e-3);
+
+  const json pod_only = offline("tol_pod_absolute", " --eps-pod-absolute");
+  EXPECT_FALSE(pod_only.at("settings").at("eps_pod_relative").get<bool>());
+  EXPECT_TRUE(pod_only.at("settings").at("eps_du_relative").get<bool>());
+  EXPECT_TRUE(pod_only.at("settings").at("eps_eim_k_relative").get<bool>());
+  EXPECT_EQ(pod_only.at("pod").at("N"), abs.at("pod").at("N"));
+  EXPECT_EQ(pod_only.at("sizes").at("Mk"), rel.at("sizes").at("Mk"));
+
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) +
+                            " --eps-du-relative --absolute-tolerances --out " + shell_quote(dir_->file("x.h5"))),
+                    "contradicts");
+}
+
 TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   // Default online tolerances (those of the snapshots: tight here) against the default HF solve.
   const CliResult r = run_cli("online --model " + shell_quote(model_) + " --mu 0.3");

@@ -219,7 +219,7 @@ TEST(CliReportErrors, PlotScriptRejectsAMissingInput) {
 
 // Issue [A] item 5.6: `report --case-file` used eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 for a user
 // case (M^g = 1, e_displ 5% on this hertz-a copy; M^g = 0 on others) and said nothing. It now
-// uses `contactrb offline`'s defaults (eps_EIM 1e-6), and a model whose verification e_displ
+// uses `contactrb offline`'s defaults (relative), and a model whose verification e_displ
 // exceeds 1e-2 is warned about on stderr and in report.md: exactly those models, no other.
 TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
   contactrb::test::TempDir dir("report_case_file");
@@ -229,7 +229,11 @@ TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
   ASSERT_EQ(ok.exit_code, 0) << ok.out << ok.err;
   const json study = json::parse(read_text(fs::path(dir.file("ok")) / "study.json"));
   const std::string md_ok = read_text(fs::path(dir.file("ok")) / "report.md");
-  EXPECT_NE(md_ok.find("eps_EIM^k = 1e-06, eps_EIM^g = 1e-06"), std::string::npos) << md_ok;
+  EXPECT_NE(md_ok.find("Tolerances (relative, as `contactrb offline`'s defaults): eps_POD = 3e-05, eps_DU = 0.001, "
+                       "eps_EIM^k = 1e-05, eps_EIM^g = 1e-05"),
+            std::string::npos)
+      << md_ok;
+  EXPECT_TRUE(study["tolerances"]["relative"].get<bool>());
   for (const json& m : study["models"]) {
     EXPECT_GE(m["Mg"].get<int>(), 2) << m.dump();
     const bool above = m["verification"]["max_e_displ"].get<double>() > 1e-2;
@@ -242,7 +246,7 @@ TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
   }
 
   const CliResult loose =
-      run_cli("report --case-file " + toml + " --eps-eim-g 1e-3 --eps-eim-k 1e-2" + common + shell_quote(dir.file("loose")));
+      run_cli("report --case-file " + toml + " --eps-eim-g 1e-1 --eps-eim-k 1e-1" + common + shell_quote(dir.file("loose")));
   ASSERT_EQ(loose.exit_code, 0) << loose.out << loose.err;
   EXPECT_NE(loose.err.find("contactrb: warning: model CPG: max e_displ on the verification set is"), std::string::npos)
       << loose.err;

@@ -175,24 +175,20 @@ TEST_P(OfflineOnline, UntruncatedAngleGreedyModelReproducesTrainingSnapshots) {
   }
 }
 
-// Two offline settings, tolerances relative to the data's own scales; errors at parameter
-// values outside the training set (HF solves at the verification values).
+// Two offline settings, tolerances relative to the data's own scales (the default mode);
+// errors at parameter values outside the training set (HF solves at the verification values).
 TEST_P(OfflineOnline, ErrorsFallAsOfflineTolerancesTighten) {
   const SnapshotSet& set = snapshots(GetParam());
   const SnapshotSet& check = snapshots(GetParam(), true);
   const auto spec = contactrb::cases::builtin_case_spec(GetParam());
-  const OfflineResult probe = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
-  const double sigma1 = probe.report.singular_values(0);
-  const double lambda_scale = probe.report.dual_errors.front();
-  const double k_scale = probe.report.eim_kappa_errors.front();
-  const double g_scale = probe.report.eim_gamma_errors.front();
   std::vector<double> worst;
   for (double rel : {1e-1, 1e-4}) {
     OfflineSettings s;
-    s.eps_pod = rel * sigma1;
-    s.eps_du = rel * lambda_scale;
-    s.eps_eim_k = rel * k_scale;
-    s.eps_eim_g = rel * g_scale;
+    ASSERT_TRUE(s.eps_pod_relative && s.eps_du_relative && s.eps_eim_k_relative && s.eps_eim_g_relative);
+    s.eps_pod = rel;
+    s.eps_du = rel;
+    s.eps_eim_k = rel;
+    s.eps_eim_g = rel;
     const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, s);
     OnlineSolver solver(off.model);
     OnlineSettings settings;

@@ -89,7 +89,8 @@ TEST(PressureAccuracy, RingBlockMeetsTheTargetOnlyWithSupremizers) {
   EXPECT_LE(on.summary.max_e_force, 1e-3);
   expect_near_cone_best(on);
   const Evaluation off = evaluate("ring-block", false);
-  EXPECT_GT(off.summary.max_e_press, 0.1);  // measured 0.30: R = 3 generators, N = 4 POD modes
+  EXPECT_GT(off.summary.max_e_press, 1e-2);  // measured 4.4e-2: R = 8 generators, N = 5 POD modes
+  EXPECT_GT(off.summary.max_e_press, 10.0 * off.summary.max_e_press_cone);
 }
 
 TEST(PressureAccuracy, HertzAIsAtTheConesBestWithSupremizers) {

@@ -74,10 +74,23 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   EXPECT_NO_THROW(contactrb::rb::check_model(r));
   EXPECT_EQ(r.eps_du, m.eps_du);
   EXPECT_EQ(r.eps_du_relative, m.eps_du_relative);
-  ReducedModel relative = m;  // the flag survives the file in both states
-  relative.eps_du_relative = !m.eps_du_relative;
-  contactrb::io::write_reduced_model_file(relative, dir.file("relative.h5"));
-  EXPECT_EQ(contactrb::io::read_reduced_model_file(dir.file("relative.h5")).eps_du_relative, relative.eps_du_relative);
+  EXPECT_TRUE(m.eps_pod_relative && m.eps_du_relative && m.eps_eim_k_relative && m.eps_eim_g_relative);  // defaults
+  EXPECT_EQ(r.eps_pod_relative, m.eps_pod_relative);
+  EXPECT_EQ(r.eps_eim_k_relative, m.eps_eim_k_relative);
+  EXPECT_EQ(r.eps_eim_g_relative, m.eps_eim_g_relative);
+  // Each mode flag survives the file in both states, independently of the others.
+  for (int flipped = 0; flipped < 4; ++flipped) {
+    ReducedModel other = m;
+    bool* flags[] = {&other.eps_pod_relative, &other.eps_du_relative, &other.eps_eim_k_relative,
+                     &other.eps_eim_g_relative};
+    *flags[flipped] = !*flags[flipped];
+    contactrb::io::write_reduced_model_file(other, dir.file("modes.h5"));
+    const ReducedModel back = contactrb::io::read_reduced_model_file(dir.file("modes.h5"));
+    EXPECT_EQ(back.eps_pod_relative, other.eps_pod_relative) << flipped;
+    EXPECT_EQ(back.eps_du_relative, other.eps_du_relative) << flipped;
+    EXPECT_EQ(back.eps_eim_k_relative, other.eps_eim_k_relative) << flipped;
+    EXPECT_EQ(back.eps_eim_g_relative, other.eps_eim_g_relative) << flipped;
+  }
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_spec, m.case_spec);
   EXPECT_EQ(r.parameter.kind, m.parameter.kind);

@@ -68,8 +68,10 @@ TEST(Study, UserCasesGetTheOfflineDefaults) {
   EXPECT_DOUBLE_EQ(t.eps_du, offline.eps_du);
   EXPECT_DOUBLE_EQ(t.eps_eim_k, offline.eps_eim_k);
   EXPECT_DOUBLE_EQ(t.eps_eim_g, offline.eps_eim_g);
-  EXPECT_DOUBLE_EQ(t.eps_eim_k, 1e-6);  // the documented `offline` default (docs/user-guide.md)
-  EXPECT_DOUBLE_EQ(t.eps_eim_g, 1e-6);
+  EXPECT_DOUBLE_EQ(t.eps_eim_k, 1e-5);  // the documented `offline` default (docs/user-guide.md)
+  EXPECT_DOUBLE_EQ(t.eps_eim_g, 1e-5);
+  EXPECT_TRUE(t.relative);  // as `offline`'s defaults
+  EXPECT_FALSE(rb::default_study_tolerances("hertz-b").relative);  // the paper's, absolute
 }
 
 TEST(Study, LargeVerificationErrorsAreWarnedInTheReport) {

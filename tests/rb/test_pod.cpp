@@ -146,6 +146,56 @@ TEST(POD, RankDeficientSnapshotsGiveTheNumericalRank) {
   EXPECT_EQ(pod(S, M, s).N, 4);
 }
 
+// Snapshots S = Phi diag(sigma) V' with Phi M-orthonormal and V orthogonal have the M-singular
+// values sigma exactly: here sigma_i / sigma_1 = 10^(-12 i / 15), i = 0 .. 15, down to 1e-12.
+// The thin SVD recovers all of them (the method of snapshots, i.e. the eigenvalues of S' M S,
+// loses those below about 1e-8 sigma_1); relative truncation is scale-free.
+TEST(POD, ThinSVDRecoversSingularValuesDownTo1e12Relative) {
+  const int n = 200, P = 16;
+  const auto M = h1_like(n);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N01;
+  const MatrixXd A = MatrixXd::NullaryExpr(n, P, [&] { return N01(rng); });
+  const MatrixXd G = A.transpose() * (M * A);
+  const Eigen::LLT<MatrixXd> llt(G);
+  const MatrixXd Phi = llt.matrixU().solve<Eigen::OnTheRight>(A);  // Phi' M Phi = I
+  ASSERT_LT((Phi.transpose() * (M * Phi) - MatrixXd::Identity(P, P)).cwiseAbs().maxCoeff(), 1e-13);
+  Eigen::HouseholderQR<MatrixXd> qv(MatrixXd::NullaryExpr(P, P, [&] { return N01(rng); }));
+  const MatrixXd V = qv.householderQ() * MatrixXd::Identity(P, P);
+  VectorXd sigma(P);
+  for (int i = 0; i < P; ++i) sigma(i) = 3.0 * std::pow(10.0, -12.0 * i / (P - 1));
+  const MatrixXd S = Phi * sigma.asDiagonal() * V.transpose();
+
+  PODSettings s;
+  s.tolerance = 0.0;
+  const PODResult r = pod(S, M, s);
+  EXPECT_EQ(r.rank, P);
+  for (int i = 0; i < P; ++i) {
+    EXPECT_NEAR(r.singular_values(i), sigma(i), 1e-15 * sigma(0)) << "i = " << i;
+  }
+  // Relative truncation: keep sigma_i / sigma_1 > 1e-11, i.e. i <= 13 (10^(-12*13/15) = 1.6e-11,
+  // 10^(-12*14/15) = 1.6e-12); the same N for snapshots scaled by 1e9 and by 1e-3.
+  s.relative = true;
+  s.tolerance = 1e-11;
+  for (double scale : {1.0, 1e9, 1e-3}) {
+    const PODResult t = pod(MatrixXd(scale * S), M, s);
+    EXPECT_EQ(t.N, 14) << "scale " << scale;
+    EXPECT_NEAR(t.threshold, 1e-11 * 3.0 * scale, 1e-24 * scale);
+    const MatrixXd Gt = t.basis.transpose() * (M * t.basis);
+    EXPECT_LT((Gt - MatrixXd::Identity(t.N, t.N)).cwiseAbs().maxCoeff(), 1e-12);
+    // The projection error is the discarded energy sigma_14^2 + sigma_15^2 (relative to sigma_1^2:
+    // 2.5e-24), to a few percent: the 14 modes are accurate far below 1e-8 sigma_1.
+    const double discarded = scale * scale * (sigma(14) * sigma(14) + sigma(15) * sigma(15));
+    EXPECT_NEAR(projection_error_sq(MatrixXd(scale * S), M, t.basis), discarded, 0.05 * discarded)
+        << "scale " << scale;
+  }
+  // Discarded energy relative to the total (ProjectionError): sqrt(sum_{i>=N} sigma_i^2 / sum sigma^2)
+  // is 4.0e-3 for N = 3 and 6.3e-4 for N = 4, so 1e-3 keeps N = 4.
+  s.truncation = PODTruncation::ProjectionError;
+  s.tolerance = 1e-3;
+  EXPECT_EQ(pod(S, M, s).N, 4);
+}
+
 TEST(POD, IdentityInnerProductAndEdgeCases) {
   const MatrixXd S = decaying_snapshots(12, 5, 0.5, 13);
   PODSettings s;

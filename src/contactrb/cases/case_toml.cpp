@@ -348,6 +348,9 @@ bool same_value(const std::optional<AffineValue>& a, const std::optional<AffineV
 CaseSpec case_from_toml_string(const std::string& text, const std::string& origin) {
   fs::path base = fs::path(origin).parent_path();
   if (base.empty()) base = fs::current_path();
+  // Absolute, so that the resolved mesh.file (recorded by to_toml in snapshot and model
+  // files) names the same file from any working directory.
+  base = fs::absolute(base);
   toml::table root;
   try {
     root = toml::parse(text, origin);

@@ -9,7 +9,8 @@
 namespace contactrb::cases {
 
 // Reads and checks a case file. A relative mesh.file is resolved against the directory of
-// `path`. Throws contactrb::Error with one message naming the file, the line when known and
+// `path` and made absolute (so the spec, and the files recording it, work from any
+// working directory). Throws contactrb::Error with one message naming the file, the line when known and
 // the key: a TOML syntax error, an unknown key, a missing key, a wrong type, an invalid
 // value (check_case_spec). The .msh file is not read here (see reference_mesh), but its
 // existence is checked.
@@ -17,12 +18,12 @@ CaseSpec case_from_toml_file(const std::string& path);
 
 // Same from the text of a case file; `origin` names it in messages and a relative
 // mesh.file is resolved against the directory of `origin` (the working directory if it
-// has none).
+// has none) and made absolute.
 CaseSpec case_from_toml_string(const std::string& text, const std::string& origin);
 
 // The TOML text of a spec, read back by case_from_toml_string to an equal spec (doubles
 // are written in their shortest round-trip form; parameter sets as explicit lists; a .msh
-// path as given in the spec, i.e. resolved: absolute when it came from a file).
+// path as given in the spec, i.e. resolved: absolute when it came from a case file or text).
 std::string to_toml(const CaseSpec& spec);
 
 // Field-by-field equality, exact on doubles, of every field but `origin` (provenance):

@@ -215,6 +215,14 @@ void points(V& v, const std::string& name, std::vector<Eigen::Vector2d>& p) {
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = m.col(static_cast<Eigen::Index>(i));
 }
 
+// A bool stored as an integer 0 / 1.
+template <typename V>
+void flag(V& v, const std::string& name, bool& b) {
+  int i = b ? 1 : 0;
+  v.integer(name, i);
+  b = i != 0;
+}
+
 // Every field of the model, in the checksum's order (the format version is checked first,
 // apart).
 template <typename V>
@@ -240,12 +248,13 @@ void visit(V& v, rb::ReducedModel& m) {
   v.str("inner_product", m.inner_product);
   v.str("dual_method", m.dual_method);
   v.num("eps_pod", m.eps_pod);
+  flag(v, "eps_pod_relative", m.eps_pod_relative);
   v.num("eps_du", m.eps_du);
-  int eps_du_relative = m.eps_du_relative ? 1 : 0;
-  v.integer("eps_du_relative", eps_du_relative);
-  m.eps_du_relative = eps_du_relative != 0;
+  flag(v, "eps_du_relative", m.eps_du_relative);
   v.num("eps_eim_k", m.eps_eim_k);
+  flag(v, "eps_eim_k_relative", m.eps_eim_k_relative);
   v.num("eps_eim_g", m.eps_eim_g);
+  flag(v, "eps_eim_g_relative", m.eps_eim_g_relative);
   int compression = m.compression ? 1 : 0;
   v.integer("compression", compression);
   m.compression = compression != 0;

@@ -57,7 +57,8 @@ EIMResult eim(const Eigen::MatrixXd& F, const EIMSettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();
   EIMProblem problem(F);
   GreedySettings g;
-  g.tolerance = settings.tolerance;
+  const double largest = F.size() > 0 ? F.cwiseAbs().maxCoeff() : 0.0;
+  g.tolerance = settings.relative ? settings.tolerance * largest : settings.tolerance;
   g.max_size = settings.max_size;
   g.exhaustion_tolerance = settings.rank_tolerance;
   const GreedyResult gr = run_greedy(problem, g);
@@ -67,6 +68,7 @@ EIMResult eim(const Eigen::MatrixXd& F, const EIMSettings& settings) {
   out.magic_points = problem.magic_points();
   out.Q = problem.basis();
   out.errors = gr.max_errors;
+  out.threshold = g.tolerance;
   const Eigen::Index M = out.Q.cols();
   out.B.resize(M, M);
   for (Eigen::Index i = 0; i < M; ++i) out.B.row(i) = out.Q.row(out.magic_points[static_cast<std::size_t>(i)]);

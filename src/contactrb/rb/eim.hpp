@@ -15,7 +15,10 @@
 namespace contactrb::rb {
 
 struct EIMSettings {
-  double tolerance = 1e-6;  // eps_EIM (absolute): stop when max_{mu, x} |r| <= tolerance
+  // eps_EIM: stop when max_{mu, x} |r| <= tolerance (absolute) or <= tolerance * max |F|
+  // (relative: to the largest |entry| of the function over the training set).
+  double tolerance = 1e-6;
+  bool relative = false;
   int max_size = -1;        // M_max; -1: no limit but the training set size
   // Exhausted when max |r| <= rank_tolerance * max |F| (the rest is round-off: a new function
   // would be noise and B would lose its conditioning).
@@ -34,6 +37,7 @@ struct EIMResult {
   // errors[m] = max_{mu, x} |F - I_m F| on the training set, m = 0 .. M (errors[0] = max |F|);
   // each step at most doubles it (|q|_inf = 1); usually decreasing, not provably monotone.
   std::vector<double> errors;
+  double threshold = 0.0;  // the absolute stopping threshold used (tolerance, or tolerance * max |F|)
   double seconds = 0.0;
 
   int size() const { return static_cast<int>(magic_points.size()); }

@@ -196,15 +196,18 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   for (int p = 0; p < P; ++p) U0.col(p) = set.snapshots[sz(p)].u0;
   PODSettings pod_settings;
   pod_settings.tolerance = settings.eps_pod;
+  pod_settings.relative = settings.eps_pod_relative;
   pod_settings.max_modes = settings.pod_modes;
   const PODResult pod_result = pod(U0, inner, pod_settings);
   require(pod_result.N >= 1, "offline: POD kept no mode (eps_pod = " + std::to_string(settings.eps_pod) +
+                                 (settings.eps_pod_relative ? " relative" : " absolute") +
                                  " above every singular value, largest " +
                                  std::to_string(pod_result.singular_values.size() ? pod_result.singular_values(0) : 0.0) +
                                  ")");
   Eigen::MatrixXd Theta = pod_result.basis;
   rep.singular_values = pod_result.singular_values;
   rep.N_pod = pod_result.N;
+  rep.pod_threshold = pod_result.threshold;
   rep.pod_s = pod_result.seconds;
   std::vector<int> global_to_free(sz(set.num_dofs), -1);
   for (std::size_t i = 0; i < set.free_dofs.size(); ++i) global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
@@ -270,6 +273,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   for (const io::Snapshot& s : set.snapshots) Ks.push_back(restrict_rows(s.K, kept));
   EIMSettings ek;
   ek.tolerance = settings.eps_eim_k;
+  ek.relative = settings.eps_eim_k_relative;
   ek.max_size = settings.eim_k_size;
   const EIMResult eim_k = eim(flatten_columns(Ks), ek);
   Ks.clear();
@@ -282,6 +286,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   rep.Mk = eim_k.size();
   rep.eim_kappa_errors = eim_k.errors;
   rep.eim_kappa_status = eim_status(eim_k);
+  rep.eim_kappa_threshold = eim_k.threshold;
   rep.eim_kappa_s = seconds_since(t0);
 
   // --- (T1) EIM of gamma = g - K u_D(mu) on the kept rows.
@@ -293,6 +298,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   }
   EIMSettings eg;
   eg.tolerance = settings.eps_eim_g;
+  eg.relative = settings.eps_eim_g_relative;
   eg.max_size = settings.eim_g_size;
   const EIMResult eim_g = eim(G, eg);
   // M^g = 0 replaces gamma by 0: accepted only when gamma vanishes on the whole training set up
@@ -307,6 +313,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   rep.Mg = eim_g.size();
   rep.eim_gamma_errors = eim_g.errors;
   rep.eim_gamma_status = eim_status(eim_g);
+  rep.eim_gamma_threshold = eim_g.threshold;
   rep.eim_gamma_s = seconds_since(t0);
 
   // --- Reduced arrays.
@@ -320,10 +327,13 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.inner_product = to_string(settings.inner_product);
   m.dual_method = to_string(settings.dual_method);
   m.eps_pod = settings.eps_pod;
+  m.eps_pod_relative = settings.eps_pod_relative;
   m.eps_du = settings.eps_du;
   m.eps_du_relative = settings.eps_du_relative;
   m.eps_eim_k = settings.eps_eim_k;
+  m.eps_eim_k_relative = settings.eps_eim_k_relative;
   m.eps_eim_g = settings.eps_eim_g;
+  m.eps_eim_g_relative = settings.eps_eim_g_relative;
   m.compression = settings.compression;
   m.kacanov_alpha = set.kacanov_alpha;
   m.kacanov_tolerance = set.kacanov_tolerance;

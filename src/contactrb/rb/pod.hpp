@@ -1,7 +1,10 @@
 #pragma once
-// Proper orthogonal decomposition by the method of snapshots (paper Section 5, task (T2);
-// singular values as in Figs. 11 and 19, truncation as in Table 4), in the inner product
-// (u, v)_M = u' M v with M sparse SPD (energy or H1 Gram matrix) or the identity.
+// Proper orthogonal decomposition (paper Section 5, task (T2); singular values as in Figs. 11
+// and 19, truncation as in Table 4) in the inner product (u, v)_M = u' M v with M sparse SPD
+// (energy or H1 Gram matrix) or the identity. Computed by a thin SVD of the weighted
+// snapshots L' P S (M = P' L L' P, sparse Cholesky), not by the method of snapshots: the
+// eigenvalues of S' M S lose every singular value below about 1e-8 sigma_1 to round-off,
+// the SVD keeps them down to about 1e-15 sigma_1 (tests/rb/test_pod.cpp).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -9,21 +12,25 @@
 namespace contactrb::rb {
 
 enum class PODTruncation {
-  // Keep every mode with sigma_i > tolerance (absolute threshold on the singular values;
-  // the default, our reading of the paper's eps_POD).
+  // Keep every mode with sigma_i > threshold (our reading of the paper's eps_POD).
   SingularValue,
-  // Keep the fewest modes such that the discarded energy sqrt(sum_{i>N} sigma_i^2) <= tolerance
+  // Keep the fewest modes such that the discarded energy sqrt(sum_{i>N} sigma_i^2) <= threshold
   // (= the Frobenius M-norm of the snapshots' projection error).
   ProjectionError
 };
 
 struct PODSettings {
-  double tolerance = 1e-2;  // eps_POD (absolute, in the units of the M-norm of a snapshot)
+  // eps_POD. Absolute (relative = false): the threshold is the tolerance itself, in the units
+  // of the M-norm of a snapshot. Relative: the threshold is tolerance * sigma_1 (SingularValue:
+  // keep sigma_i / sigma_1 > tolerance) or tolerance * sqrt(sum_i sigma_i^2) (ProjectionError:
+  // the discarded energy relative to the total), invariant under a scaling of the snapshots or M.
+  double tolerance = 1e-2;
+  bool relative = false;
   PODTruncation truncation = PODTruncation::SingularValue;
   // >= 0: fixed N = min(max_modes, numerical rank), the tolerance is then ignored; -1: by tolerance.
   int max_modes = -1;
-  // Eigenvalues of the correlation matrix <= rank_tolerance * (largest eigenvalue) are round-off:
-  // those modes are never kept (numerical rank). 1e-13 on eigenvalues ~ 3e-7 on sigma_i / sigma_1.
+  // Singular values <= rank_tolerance * sigma_1 are round-off (the SVD's accuracy is about
+  // 1e-16 sigma_1 times a small factor): those modes are never kept (numerical rank).
   double rank_tolerance = 1e-13;
 };
 // Throws contactrb::Error for a negative or non-finite tolerance, max_modes < -1 or a bad rank_tolerance.
@@ -31,9 +38,10 @@ void check_settings(const PODSettings& settings);
 
 struct PODResult {
   Eigen::MatrixXd basis;            // N_hf x N, M-orthonormal, modes by decreasing singular value
-  Eigen::VectorXd singular_values;  // all P values sigma_i = sqrt(max(eig_i, 0)), decreasing
+  Eigen::VectorXd singular_values;  // all P singular values, decreasing (zeros beyond N_hf)
   int N = 0;                        // modes kept
-  int rank = 0;                     // numerical rank (eigenvalues above rank_tolerance)
+  int rank = 0;                     // numerical rank (singular values above rank_tolerance * sigma_1)
+  double threshold = 0.0;           // the absolute threshold the truncation used (see PODSettings)
   double discarded_energy = 0.0;    // sum_{i>N} sigma_i^2 = sum_p |s_p - Pi_N s_p|_M^2 (exact arithmetic)
   double seconds = 0.0;
 };

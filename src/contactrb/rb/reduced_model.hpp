@@ -50,11 +50,16 @@ struct ReducedModel {
   // Settings the model was built with (recorded, not used online except the Kacanov ones).
   std::string inner_product;  // "energy" | "h1"
   std::string dual_method;    // "cpg" | "angle" | "nmf"
+  // The offline tolerances and whether each was relative (rb::OfflineSettings; format 3 for
+  // the POD and EIM modes).
   double eps_pod = 0.0;
+  bool eps_pod_relative = false;
   double eps_du = 0.0;
   bool eps_du_relative = false;  // eps_du divides each mu's error by |lambda(mu)| (format 2)
   double eps_eim_k = 0.0;
+  bool eps_eim_k_relative = false;
   double eps_eim_g = 0.0;
+  bool eps_eim_g_relative = false;
   bool compression = true;
   double kacanov_alpha = 0.3;  // the HF settings of the snapshots: the online defaults
   double kacanov_tolerance = 1e-3;
