@@ -64,7 +64,7 @@ void expect_user_error(const CliResult& r, const std::string& words) {
 
 constexpr const char* kHeader =
     "mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"
-    "e_displ,e_inter,energy_hf,energy_rb";
+    "e_displ,e_inter,energy_hf,energy_rb,e_energy_norm,estimate,effectivity";
 
 class CliEvaluate : public ::testing::Test {
  protected:
