@@ -66,7 +66,9 @@ nlohmann::json solution_json(double mu, const rb::OnlineSolver& solver, const rb
                                                {"coercivity", e.coercivity},
                                                {"violation", e.violation},
                                                {"complementarity", e.complementarity},
-                                               {"multiplier_norm", e.multiplier_norm}}
+                                               {"multiplier_norm", e.multiplier_norm},
+                                               {"eim_residual", e.eim_residual},
+                                               {"eim_slack", e.eim_slack}}
                               : nlohmann::json(nullptr);
   j["u_hat"] = to_json(s.u_hat);
   j["lambda_hat"] = to_json(s.lambda_hat);

@@ -206,8 +206,14 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   EXPECT_NEAR(e.multiplier_norm, std::sqrt(lam2), 1e-12 * std::sqrt(lam2));
   EXPECT_NEAR(e.complementarity, lambda.dot(s), 1e-12 * lambda.norm() * s.norm());
   EXPECT_DOUBLE_EQ(e.coercivity, 1.0);  // J^a = 1, theta^a = 1 in the built-in cases
-  const double c1 = 0.5 * residual;
-  EXPECT_NEAR(e.energy, c1 + std::sqrt(c1 * c1 + std::sqrt(viol2 * lam2) + std::max(0.0, lambda.dot(s))),
+  // The EIM terms: the training calibration at (Mk, Mg), scaled by |lambda_rb|_Lambda for the residual.
+  EXPECT_DOUBLE_EQ(e.eim_residual, m.estimate.eim_residual(Mk) * e.multiplier_norm);
+  EXPECT_DOUBLE_EQ(e.eim_slack, m.estimate.eim_slack(Mk, Mg));
+  EXPECT_GT(e.eim_residual, 0.0);  // truncated EIMs: a non-zero calibration
+  EXPECT_GT(e.eim_slack, 0.0);
+  const double c1 = 0.5 * (residual + e.eim_residual);
+  EXPECT_NEAR(e.energy,
+              c1 + std::sqrt(c1 * c1 + (std::sqrt(viol2) + e.eim_slack) * std::sqrt(lam2) + std::max(0.0, lambda.dot(s))),
               1e-9 * e.energy);
   std::printf("[ %s ] sizes (%d, %d, %d, %d): residual %.6e (HF %.6e), violation %.3e, complementarity %.3e\n",
               name.c_str(), N, R, Mk, Mg, e.residual, residual, e.violation, e.complementarity);

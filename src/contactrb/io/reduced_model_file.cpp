@@ -293,6 +293,8 @@ void visit(V& v, rb::ReducedModel& m) {
   v.mat("estimate_residual_T", e.residual_T);
   mats(v, "estimate_QTheta_kappa", e.QTheta_kappa);
   v.mat("estimate_Q_gamma", e.Q_gamma);
+  vec(v, "estimate_eim_residual", e.eim_residual);
+  v.mat("estimate_eim_slack", e.eim_slack);
 }
 
 void write_u64(hid_t file, const std::string& name, std::uint64_t value) {

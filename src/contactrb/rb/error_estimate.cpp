@@ -24,9 +24,89 @@ Index residual_columns(int Jf, int Ja, int JD, int N, int Mk, int R) {
 }
 }  // namespace
 
+// The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
+// leading size: I_M F = Q[:, :M] B[:M, :M]^-1 F(magic[:M]) (B lower triangular).
+void calibrate_eim(const EstimateInputs& in, const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>& llt,
+                   const std::vector<Index>& global_to_free, EstimateData& e) {
+  const Eigen::MatrixXd& Qk = *in.Q_kappa;
+  const Eigen::MatrixXd& Qg = *in.Q_gamma;
+  const int Mk = static_cast<int>(Qk.cols()), Mg = static_cast<int>(Qg.cols());
+  const Index R_kept = Qg.rows();
+  const Index n_c = ix(in.contact_dofs->size());
+  const Index n_free = ix(in.free_dofs->size());
+  const Eigen::VectorXd& w = *in.weights_kept;
+  require(ix(in.kappa_magic->size()) == Mk && ix(in.gamma_magic->size()) == Mg && w.size() == R_kept &&
+              in.B_kappa->rows() == Mk && in.B_gamma->rows() == Mg,
+          "build_estimate_data: the EIM data disagree with the bases");
+  e.eim_residual = Eigen::VectorXd::Zero(Mk + 1);
+  e.eim_slack = Eigen::MatrixXd::Zero(Mk + 1, Mg + 1);
+  for (const io::Snapshot& snap : in.set->snapshots) {
+    Eigen::MatrixXd K(R_kept, n_c);
+    Eigen::VectorXd lambda(R_kept), G(R_kept);
+    const Eigen::VectorXd lift = in.lift_c->cols() > 0
+                                     ? Eigen::VectorXd(*in.lift_c * cases::evaluate(in.thetas->lift, snap.mu))
+                                     : Eigen::VectorXd::Zero(n_c);
+    const Eigen::VectorXd g_lift = snap.g - snap.K * lift;
+    for (Index r = 0; r < R_kept; ++r) {
+      const int row = (*in.kept_rows)[sz(r)];
+      K.row(r) = Eigen::RowVectorXd(snap.K.row(row));
+      lambda(r) = std::max(0.0, snap.lambda(row));
+      G(r) = g_lift(row);
+    }
+    Eigen::VectorXd u0_c = Eigen::VectorXd::Zero(n_c);
+    for (Index a = 0; a < n_c; ++a) {
+      const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+      if (fi >= 0) u0_c(a) = snap.u0(fi);
+    }
+    const double lambda_norm = std::sqrt((w.array() * lambda.array().square()).sum());
+    // Flattened row-major (eim_flatten.hpp): F(r n_c + n) = K(r, n).
+    const Eigen::MatrixXd Kt = K.transpose();
+    const Eigen::Map<const Eigen::VectorXd> F(Kt.data(), Kt.size());
+    std::vector<Eigen::VectorXd> dKu(sz(Mk + 1));
+    for (int M = 0; M <= Mk; ++M) {
+      Eigen::VectorXd IF = Eigen::VectorXd::Zero(F.size());
+      if (M > 0) {
+        Eigen::VectorXd values(M);
+        for (int i = 0; i < M; ++i) values(i) = F((*in.kappa_magic)[sz(i)]);
+        IF = Qk.leftCols(M) * in.B_kappa->topLeftCorner(M, M).triangularView<Eigen::Lower>().solve(values);
+      }
+      const Eigen::VectorXd dF = F - IF;
+      const Eigen::Map<const Eigen::MatrixXd> dKt(dF.data(), n_c, R_kept);  // (K - I_M K)'
+      dKu[sz(M)] = dKt.transpose() * u0_c;
+      if (lambda_norm > 0.0) {
+        const Eigen::VectorXd c = dKt * lambda;  // (K - I_M K)' lambda on the contact DOFs
+        Eigen::VectorXd v = Eigen::VectorXd::Zero(n_free);
+        for (Index a = 0; a < n_c; ++a) {
+          const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+          if (fi >= 0) v(fi) = c(a);
+        }
+        Eigen::VectorXd pv = llt.permutationP() * v;
+        llt.matrixL().solveInPlace(pv);
+        e.eim_residual(M) = std::max(e.eim_residual(M), pv.norm() / lambda_norm);
+      }
+    }
+    for (int Mp = 0; Mp <= Mg; ++Mp) {
+      Eigen::VectorXd dG = G;
+      if (Mp > 0) {
+        Eigen::VectorXd values(Mp);
+        for (int i = 0; i < Mp; ++i) values(i) = G((*in.gamma_magic)[sz(i)]);
+        dG -= Qg.leftCols(Mp) * in.B_gamma->topLeftCorner(Mp, Mp).triangularView<Eigen::Lower>().solve(values);
+      }
+      // The slack error enters the bound as ((delta s)^-)' lambda (the interpenetration the EIM hides,
+      // weighted by the pressure that meets it): calibrated as that product per unit |lambda|_Lambda.
+      if (lambda_norm <= 0.0) continue;
+      for (int M = 0; M <= Mk; ++M) {
+        const double hidden = (dKu[sz(M)] - dG).cwiseMax(0.0).dot(lambda) / lambda_norm;  // delta s = dG - dKu
+        e.eim_slack(M, Mp) = std::max(e.eim_slack(M, Mp), hidden);
+      }
+    }
+  }
+}
+
 EstimateData build_estimate_data(const EstimateInputs& in) {
   require(in.terms && in.thetas && in.free_dofs && in.contact_dofs && in.Theta && in.Theta_c && in.Xi && in.Q_kappa &&
-              in.Q_gamma,
+              in.Q_gamma && in.set && in.kept_rows && in.lift_c && in.weights_kept && in.kappa_magic &&
+              in.B_kappa && in.gamma_magic && in.B_gamma,
           "build_estimate_data: a required input is missing");
   const cases::AffineTerms& terms = *in.terms;
   const std::vector<int>& free = *in.free_dofs;
@@ -111,6 +191,7 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
   e.residual_T = Rtop * qr.colsPermutation().transpose();  // W = Q R P': |W y| = |R P' y|
   for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
   e.Q_gamma = *in.Q_gamma;
+  calibrate_eim(in, llt, global_to_free, e);
   return e;
 }
 
@@ -131,6 +212,8 @@ void check_estimate_data(const ReducedModel& m) {
     if (q.rows() != m.R_kept() || q.cols() != m.N_max) fail("QTheta_kappa has the wrong shape");
   }
   if (e.Q_gamma.rows() != m.R_kept() || e.Q_gamma.cols() != m.Mg_max) fail("Q_gamma has the wrong shape");
+  if (e.eim_residual.size() != m.Mk_max + 1) fail("eim_residual has the wrong size");
+  if (e.eim_slack.rows() != m.Mk_max + 1 || e.eim_slack.cols() != m.Mg_max + 1) fail("eim_slack has the wrong shape");
   if (!e.residual_T.allFinite()) fail("residual_T is not finite");
 }
 
@@ -159,14 +242,21 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   const Index d = ix(sel.size());
   Eigen::MatrixXd Tsel(e.residual_T.rows(), d);
   for (Index k = 0; k < d; ++k) Tsel.col(k) = e.residual_T.col(sel[sz(k)]);
-  // |Tsel y| = |R y| with Tsel = Q R: fewer rows when d < rho.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Tsel);
-  const Index rows = std::min(Tsel.rows(), d);
+  // |Tsel y| = |R P' y| with Tsel P = Q R (column pivoting): only the rows of the numerical rank of
+  // the selected terms are kept (the same tolerance as offline), so the online product is rank x d.
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Tsel);
+  qr.setThreshold(kEstimateRankTolerance);
+  const Index rows = std::max<Index>(1, std::min<Index>(qr.rank(), d));
   T_ = qr.matrixQR().topRows(rows).triangularView<Eigen::Upper>();
+  perm_.resize(sz(d));
+  for (Index k = 0; k < d; ++k) perm_[sz(k)] = qr.colsPermutation().indices()(k);
+  y_perm_.resize(d);
   QTheta_.resize(m.R_kept(), static_cast<Index>(Mk) * N);
   for (int i = 0; i < Mk; ++i) QTheta_.middleCols(static_cast<Index>(i) * N, N) = e.QTheta_kappa[sz(i)].leftCols(N);
   Q_gamma_ = e.Q_gamma.leftCols(Mg);
   Xi_ = m.Xi.leftCols(R);
+  eim_residual_ = e.eim_residual(Mk);
+  eim_slack_ = e.eim_slack(Mk, Mg);
   y_.resize(d);
   v_.resize(rows);
   phi_u_.resize(static_cast<Index>(Mk) * N);
@@ -200,7 +290,8 @@ ErrorEstimate ErrorEstimator::evaluate(double mu, const Eigen::VectorXd& u_hat, 
     y_.segment(k, R_) = phi(i) * lambda_hat;
     k += R_;
   }
-  v_.noalias() = T_.triangularView<Eigen::Upper>() * y_;
+  for (Index i = 0; i < y_.size(); ++i) y_perm_(i) = y_(perm_[sz(i)]);  // P' y
+  v_.noalias() = T_.triangularView<Eigen::Upper>() * y_perm_;
   est.residual = v_.norm();
 
   // alpha(mu) = min_j theta^a_j(mu) / theta^a_j(mu_ref): with A_j symmetric positive semi-definite
@@ -228,10 +319,14 @@ ErrorEstimate ErrorEstimator::evaluate(double mu, const Eigen::VectorXd& u_hat, 
   est.violation = std::sqrt(viol2);
   est.multiplier_norm = std::sqrt(lam2);
   est.complementarity = lam_.dot(s_);
+  // The EIM's share (calibrated on the training snapshots): the residual with the HF contact map
+  // differs by E_c' (K - I K)' lambda, the slack by (gamma - I gamma) - (K - I K) u_0,c.
+  est.eim_residual = eim_residual_ * est.multiplier_norm;
+  est.eim_slack = eim_slack_;
   // |e|_A^2 <= (|r|_X' / sqrt(alpha)) |e|_A + violation |lambda|_Lambda + complementarity, with
   // |lambda|_Lambda estimated by |lambda_rb|_Lambda: the positive root of the quadratic, as in HSW12.
-  const double c1 = 0.5 * est.residual / std::sqrt(alpha);
-  const double c2 = est.violation * est.multiplier_norm + std::max(0.0, est.complementarity);
+  const double c1 = 0.5 * (est.residual + est.eim_residual) / std::sqrt(alpha);
+  const double c2 = (est.violation + est.eim_slack) * est.multiplier_norm + std::max(0.0, est.complementarity);
   est.energy = c1 + std::sqrt(c1 * c1 + c2);
   est.available = true;
   return est;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "contactrb/cases/theta.hpp"
+#include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/error_estimate_data.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 
@@ -42,6 +43,17 @@ struct EstimateInputs {
   const Eigen::MatrixXd* Xi = nullptr;             // R_kept x R_max
   const Eigen::MatrixXd* Q_kappa = nullptr;        // (R_kept n_c) x Mk_max, flattened row-major (eim_flatten.hpp)
   const Eigen::MatrixXd* Q_gamma = nullptr;        // R_kept x Mg_max
+  // The EIM calibration on the training snapshots: magic points (flattened rows of the kappa
+  // snapshot matrix, rows of gamma's), B matrices, the kept rows, the lift on the contact DOFs,
+  // the row weights |I_r| on the kept rows.
+  const io::SnapshotSet* set = nullptr;
+  const std::vector<int>* kept_rows = nullptr;
+  const Eigen::MatrixXd* lift_c = nullptr;         // n_c x J^D
+  const Eigen::VectorXd* weights_kept = nullptr;   // R_kept
+  const std::vector<int>* kappa_magic = nullptr;   // Mk_max
+  const Eigen::MatrixXd* B_kappa = nullptr;
+  const std::vector<int>* gamma_magic = nullptr;   // Mg_max
+  const Eigen::MatrixXd* B_gamma = nullptr;
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.
@@ -72,11 +84,13 @@ class ErrorEstimator {
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::AffineThetas thetas_;
   Eigen::VectorXd theta_ref_;
-  Eigen::MatrixXd T_;        // min(rho, d) x d: R factor of the selected columns of residual_T
+  Eigen::MatrixXd T_;        // rank x d: R factor of the selected columns of residual_T (pivoted)
+  std::vector<Eigen::Index> perm_;  // column pivots: (P' y)(k) = y(perm_[k])
   Eigen::MatrixXd QTheta_;   // R_kept x (Mk N): column i N + n = (Q_i Theta_c)[:, n]
   Eigen::MatrixXd Q_gamma_;  // R_kept x Mg
   Eigen::MatrixXd Xi_;       // R_kept x R
-  Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
+  double eim_residual_ = 0.0, eim_slack_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
+  Eigen::VectorXd y_, y_perm_, v_, phi_u_, s_, lam_;  // workspaces
 };
 
 }  // namespace contactrb::rb

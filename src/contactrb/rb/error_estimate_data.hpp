@@ -25,6 +25,12 @@ struct EstimateData {
   // each, Mk_max matrices); gamma ~ Q_gamma phi^gamma (R_kept x Mg_max).
   std::vector<Eigen::MatrixXd> QTheta_kappa;
   Eigen::MatrixXd Q_gamma;
+  // The EIM errors, measured offline on the training snapshots (estimated, not bounded online):
+  // eim_residual(M) = max_p ||E_c' (K_p - I_M K_p)' lambda_p||_{X'} / ||lambda_p||_Lambda, M = 0..Mk_max;
+  // eim_slack(M, M') = max_p ((delta s_p)^-)' lambda_p / ||lambda_p||_Lambda, with the slack error
+  // delta s_p = (gamma_p - I_M' gamma_p) - (K_p - I_M K_p) u_0,c(mu_p).
+  Eigen::VectorXd eim_residual;  // Mk_max + 1
+  Eigen::MatrixXd eim_slack;     // (Mk_max + 1) x (Mg_max + 1)
 };
 
 // One online answer's estimate (OnlineSolution::estimate). The energy norm is |v|_A(mu) =
@@ -36,6 +42,8 @@ struct ErrorEstimate {
   double violation = 0.0;        // ||(K u - gamma)^+||_{Lambda'} on the kept rows (EIM K, gamma)
   double complementarity = 0.0;  // (Xi lambda_hat)' (gamma - K u), EIM K, gamma
   double multiplier_norm = 0.0;  // ||Xi lambda_hat||_Lambda, Lambda = L2(Gamma^c)
+  double eim_residual = 0.0;     // eim_residual(Mk) ||Xi lambda_hat||_Lambda (estimated EIM part of the residual)
+  double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
   double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
 };
 

@@ -93,7 +93,8 @@ long long model_doubles(const ReducedModel& m) {
   for (const auto& f : m.f_hat) n += f.size();
   for (const auto& f : m.A_lift_hat) n += f.size();
   for (const auto& c : m.C_kappa) n += c.size();
-  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size();
+  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
+       m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
   for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
   return n;
 }
