@@ -250,7 +250,6 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   T_ = qr.matrixQR().topRows(rows).triangularView<Eigen::Upper>();
   perm_.resize(sz(d));
   for (Index k = 0; k < d; ++k) perm_[sz(k)] = qr.colsPermutation().indices()(k);
-  y_perm_.resize(d);
   QTheta_.resize(m.R_kept(), static_cast<Index>(Mk) * N);
   for (int i = 0; i < Mk; ++i) QTheta_.middleCols(static_cast<Index>(i) * N, N) = e.QTheta_kappa[sz(i)].leftCols(N);
   Q_gamma_ = e.Q_gamma.leftCols(Mg);
@@ -290,8 +289,16 @@ ErrorEstimate ErrorEstimator::evaluate(double mu, const Eigen::VectorXd& u_hat, 
     y_.segment(k, R_) = phi(i) * lambda_hat;
     k += R_;
   }
-  for (Index i = 0; i < y_.size(); ++i) y_perm_(i) = y_(perm_[sz(i)]);  // P' y
-  v_.noalias() = T_.triangularView<Eigen::Upper>() * y_perm_;
+  // v = R P' y, column by column over the non-zero coefficients: the contact coefficients
+  // phi_i lambda_hat_r vanish for every inactive generator r (lambda_hat >= 0 is usually sparse).
+  v_.setZero();
+  const Index rows = T_.rows();
+  for (Index c = 0; c < y_.size(); ++c) {
+    const double yc = y_(perm_[sz(c)]);
+    if (yc == 0.0) continue;
+    const Index n = std::min(c + 1, rows);  // R is upper trapezoidal
+    v_.head(n).noalias() += yc * T_.col(c).head(n);
+  }
   est.residual = v_.norm();
 
   // alpha(mu) = min_j theta^a_j(mu) / theta^a_j(mu_ref): with A_j symmetric positive semi-definite

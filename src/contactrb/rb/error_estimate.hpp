@@ -90,7 +90,7 @@ class ErrorEstimator {
   Eigen::MatrixXd Q_gamma_;  // R_kept x Mg
   Eigen::MatrixXd Xi_;       // R_kept x R
   double eim_residual_ = 0.0, eim_slack_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
-  Eigen::VectorXd y_, y_perm_, v_, phi_u_, s_, lam_;  // workspaces
+  Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
 };
 
 }  // namespace contactrb::rb
