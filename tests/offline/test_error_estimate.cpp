@@ -219,6 +219,61 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
               name.c_str(), N, R, Mk, Mg, e.residual, residual, e.violation, e.complementarity);
 }
 
+// The EIM calibration (EstimateData::eim_residual, eim_slack): zero at the full sizes of an
+// untruncated model (the EIMs interpolate every training snapshot), and at M = 0 (no EIM term: the
+// whole contact force) equal to max_p ||E_c' K_p' lambda_p||_{X'} / ||lambda_p||_Lambda computed here.
+TEST_P(ErrorEstimate, EimCalibrationVanishesWhenExhaustedAndMatchesAtZeroTerms) {
+  const std::string name = GetParam();
+  const SnapshotSet& set = snapshots(name, false);
+  const auto spec = contactrb::cases::builtin_case_spec(name);
+  const auto& m = untruncated_model(name).model;
+  const auto& est = m.estimate;
+  ASSERT_EQ(est.eim_residual.size(), m.Mk_max + 1);
+  EXPECT_LT(est.eim_residual(m.Mk_max), 1e-8 * est.eim_residual(0));
+  EXPECT_LT(est.eim_slack(m.Mk_max, m.Mg_max), 1e-8 * est.eim_slack.maxCoeff() + 1e-300);
+  const auto mesh = contactrb::cases::reference_mesh(spec, set.level);
+  const auto terms = contactrb::cases::assemble_affine_terms(spec, mesh);
+  const auto th = contactrb::cases::theta_functions(spec);
+  const auto A_ref = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference));
+  const Index n_free = static_cast<Index>(set.free_dofs.size());
+  std::vector<Index> to_free(static_cast<std::size_t>(set.num_dofs), -1);
+  for (Index i = 0; i < n_free; ++i) to_free[static_cast<std::size_t>(set.free_dofs[static_cast<std::size_t>(i)])] = i;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (Index k = 0; k < A_ref.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A_ref, k); it; ++it) {
+      const Index i = to_free[static_cast<std::size_t>(it.row())], j = to_free[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0) trip.emplace_back(i, j, it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> X(n_free, n_free);
+  X.setFromTriplets(trip.begin(), trip.end());
+  contactrb::fem::SparseCholesky chol;
+  ASSERT_EQ(chol.compute(X), contactrb::fem::FactorStatus::Success);
+  // The Lambda weights of the model: the mean |I_r| over the training set, on the kept rows.
+  Eigen::VectorXd weight = Eigen::VectorXd::Zero(set.snapshots.front().weight.size());
+  for (const auto& s : set.snapshots) weight += s.weight;
+  weight /= static_cast<double>(set.snapshots.size());
+  double expected = 0.0;
+  for (const auto& s : set.snapshots) {
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(s.lambda.size());
+    double norm2 = 0.0;
+    for (int r : m.kept_rows) {
+      lambda(r) = std::max(0.0, s.lambda(r));
+      norm2 += weight(r) * lambda(r) * lambda(r);
+    }
+    const Eigen::VectorXd c = s.K.transpose() * lambda;  // on the contact DOFs
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(n_free);
+    for (std::size_t a = 0; a < set.contact_dofs.size(); ++a) {
+      const Index fi = to_free[static_cast<std::size_t>(set.contact_dofs[a])];
+      if (fi >= 0) v(fi) = c(static_cast<Index>(a));
+    }
+    expected = std::max(expected, std::sqrt(v.dot(chol.solve(v)) / norm2));
+  }
+  EXPECT_NEAR(est.eim_residual(0), expected, 1e-10 * expected);
+  std::printf("[ %s ] eim_residual(M): M = 0 %.4e, 1 %.4e, Mk_max %.2e\n", name.c_str(), est.eim_residual(0),
+              est.eim_residual(1), est.eim_residual(m.Mk_max));
+}
+
 // Nothing truncated, at a training value: the reduced solution is the HF one, and the estimate is zero
 // to solver tolerance.
 TEST_P(ErrorEstimate, VanishesForTheUntruncatedModelAtTrainingValues) {
