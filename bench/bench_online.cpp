@@ -13,6 +13,11 @@
 //   dev_u          max over the verification set of |u_hat - u_hat*| / |u_hat*|, u_hat* the
 //                  reduced fixed point (relaxed iteration to eps_KA = 1e-10): the Kacanov error
 //   N, R, Mk, Mg   the model's sizes
+//   median_us_noest  the same queries without the a posteriori estimate
+//                  (OnlineSettings::error_estimate = false), interleaved with the timed ones so
+//                  that both see the same machine load; est_cost = median_us / median_us_noest - 1
+//   eff_min, eff_med, eff_max  effectivity of the estimate, Delta_u / |u_RB - u_HF|_A(mu), over the
+//                  verification set
 // Variants: reference:0 the default OnlineSettings (accelerated iteration), reference:1 the
 // relaxed iteration at the HF snapshots' alpha (OnlineIteration::Relaxed, the paper's (12));
 // "/nosup": the model without supremizers (OfflineSettings::supremizers = false, the POD basis only).
@@ -32,7 +37,10 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/theta.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/online_solver.hpp"
@@ -68,6 +76,7 @@ io::SnapshotSet snapshots(const std::string& name, const std::string& set_name) 
 struct CaseData {
   io::SnapshotSet verification;
   rb::OfflineResult offline;
+  cases::AffineTerms terms;  // for |u_RB - u_HF|_A(mu), the error the estimate bounds
 };
 
 // paper: the paper's tolerances; otherwise the default OfflineSettings.
@@ -90,6 +99,8 @@ const CaseData& case_data(const std::string& name, bool paper, bool supremizers)
       s.dual_method = rb::DualConeMethod::CPG;
     }
     slot->offline = rb::build_reduced_model(training[name], cases::builtin_case_spec(name), s);
+    const cases::CaseSpec spec = cases::builtin_case_spec(name);
+    slot->terms = cases::assemble_affine_terms(spec, cases::reference_mesh(spec, training[name].level));
   }
   return *slot;
 }
@@ -115,6 +126,7 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
   std::vector<std::vector<double>> times(P);
   std::vector<double> iterations(P, 0.0);
   double err_u = 0.0, e_press = 0.0, e_force = 0.0, dev_u = 0.0;
+  std::vector<double> effectivity;
   int failures = 0;
   // The fixed point itself: the relaxed iteration at the HF alpha to eps_KA = 1e-10.
   rb::OnlineSettings tight;
@@ -134,7 +146,16 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
     const Eigen::VectorXd& w = snaps[p].weight;
     e_press = std::max(e_press, std::sqrt(w.dot((l - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2())));
     e_force = std::max(e_force, std::abs(w.dot(l) - w.dot(lh)) / std::abs(w.dot(lh)));
+    if (sol.converged() && sol.estimate.available) {
+      const auto A = cases::combine(d.terms.A, cases::evaluate(m.thetas.a, snaps[p].mu));
+      const Eigen::VectorXd e = u - snaps[p].u;
+      const double err_A = std::sqrt(std::max(0.0, e.dot(A * e)));
+      if (err_A > 0.0) effectivity.push_back(sol.estimate.energy / err_A);
+    }
   }
+  rb::OnlineSettings no_estimate = settings;
+  no_estimate.error_estimate = false;
+  std::vector<std::vector<double>> times_noest(P);
   std::size_t q = 0;
   for (auto _ : state) {
     const std::size_t p = q++ % P;
@@ -143,12 +164,27 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
     const double t1 = thread_cpu_seconds();
     benchmark::DoNotOptimize(sol.u_hat.data());
     times[p].push_back(t1 - t0);
+    const double t2 = thread_cpu_seconds();
+    const rb::OnlineSolution bare = solver.solve(snaps[p].mu, no_estimate);
+    const double t3 = thread_cpu_seconds();
+    benchmark::DoNotOptimize(bare.u_hat.data());
+    times_noest[p].push_back(t3 - t2);
   }
   std::vector<double> per_mu;
   for (const auto& t : times) {
     if (!t.empty()) per_mu.push_back(median(t));
   }
+  std::vector<double> per_mu_noest;
+  for (const auto& t : times_noest) {
+    if (!t.empty()) per_mu_noest.push_back(median(t));
+  }
   state.counters["median_us"] = 1e6 * median(per_mu);
+  state.counters["median_us_noest"] = 1e6 * median(per_mu_noest);
+  state.counters["est_cost"] = median(per_mu) / median(per_mu_noest) - 1.0;
+  std::sort(effectivity.begin(), effectivity.end());
+  state.counters["eff_min"] = effectivity.empty() ? 0.0 : effectivity.front();
+  state.counters["eff_med"] = median(effectivity);
+  state.counters["eff_max"] = effectivity.empty() ? 0.0 : effectivity.back();
   state.counters["kacanov_it"] = median(iterations);
   state.counters["err_u"] = err_u;
   state.counters["e_press"] = e_press;

@@ -5,6 +5,7 @@
 // table in which every speed-up has the errors of the same solve beside it.
 // Exit codes: 0 every solve converged; 1 a user error; 3 some HF or online solve did not
 // converge (the outputs are still written).
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -78,6 +79,8 @@ std::string value_text(double mu) {
   return os.str();
 }
 
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
 nlohmann::json summary_json(const rb::EvaluationSummary& s) {
   return {{"count", s.count},
           {"hf_failures", s.hf_failures},
@@ -91,18 +94,28 @@ nlohmann::json summary_json(const rb::EvaluationSummary& s) {
           {"e_press_cone", {{"max", s.max_e_press_cone}}},
           {"median_hf_time_s", s.median_hf_time_s},
           {"median_online_time_s", s.median_online_time_s},
-          {"median_speedup", s.median_speedup}};
+          {"median_speedup", s.median_speedup},
+          // NaN (no row with a defined effectivity) is written as null.
+          {"effectivity",
+           {{"count", s.effectivity_count},
+            {"min", finite_or_null(s.min_effectivity)},
+            {"median", finite_or_null(s.median_effectivity)},
+            {"max", finite_or_null(s.max_effectivity)}}}};
 }
 
 void print_table(const rb::Evaluation& e) {
   std::cout << std::setw(10) << "mu" << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
-            << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms" << std::setw(12) << "online us" << std::setw(10) << "speed-up"
-            << "\n";
+            << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms"
+            << std::setw(12) << "online us" << std::setw(10) << "speed-up" << std::setw(12) << "|e|_A" << std::setw(12)
+            << "estimate" << std::setw(8) << "eff." << "\n";
   for (const rb::EvaluationRow& r : e.rows) {
     std::cout << std::setw(10) << std::setprecision(6) << r.mu << std::scientific << std::setprecision(3)
-              << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::setw(12) << r.e_press << std::setw(12) << r.e_force << std::fixed
+              << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::setw(12)
+              << r.e_press << std::setw(12) << r.e_force << std::fixed
               << std::setprecision(1) << std::setw(10) << r.hf_time_s * 1e3 << std::setw(12) << r.online_time_s * 1e6
-              << std::setprecision(0) << std::setw(10) << r.speedup << std::defaultfloat;
+              << std::setprecision(0) << std::setw(10) << r.speedup << std::scientific << std::setprecision(3)
+              << std::setw(12) << r.e_energy_norm << std::setw(12) << r.estimate << std::fixed << std::setprecision(2)
+              << std::setw(8) << r.effectivity << std::defaultfloat;
     if (!r.hf_converged) std::cout << "  HF " << r.hf_status;
     if (!r.rb_converged) std::cout << "  online " << r.rb_status;
     std::cout << "\n";
@@ -119,6 +132,8 @@ void print_table(const rb::Evaluation& e) {
             << "  e_force max " << s.max_e_force << ", mean " << s.mean_e_force << " (total contact force, relative)\n"
             << "  e_peak  max " << s.max_e_peak << ", mean " << s.mean_e_peak << " (peak pressure, relative)\n"
             << "  best pressure in the model's cone: max " << s.max_e_press_cone << " (e_press cannot go below it)\n"
+            << "  estimate / |u_rb - u_hf|_A effectivity over " << s.effectivity_count << " values: min "
+            << s.min_effectivity << ", median " << s.median_effectivity << ", max " << s.max_effectivity << "\n"
             << std::fixed << std::setprecision(1) << "  median HF " << s.median_hf_time_s * 1e3 << " ms, online "
             << s.median_online_time_s * 1e6 << " us, speed-up " << std::setprecision(0) << s.median_speedup
             << std::defaultfloat << std::setprecision(6) << "\n";

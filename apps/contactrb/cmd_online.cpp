@@ -58,6 +58,18 @@ nlohmann::json solution_json(double mu, const rb::OnlineSolver& solver, const rb
   j["contact_force"] = s.contact_force;
   j["time_s"] = s.time_s;
   j["sizes"] = {{"N", solver.N()}, {"R", solver.R()}, {"Mk", solver.Mk()}, {"Mg", solver.Mg()}};
+  // The a posteriori estimate of |u_hf - u_rb|_A(mu) and its parts (docs/offline-online.md); null when
+  // not available (a failed solve).
+  const rb::ErrorEstimate& e = s.estimate;
+  j["estimate"] = e.available ? nlohmann::json{{"energy", e.energy},
+                                               {"residual", e.residual},
+                                               {"coercivity", e.coercivity},
+                                               {"violation", e.violation},
+                                               {"complementarity", e.complementarity},
+                                               {"multiplier_norm", e.multiplier_norm},
+                                               {"eim_residual", e.eim_residual},
+                                               {"eim_slack", e.eim_slack}}
+                              : nlohmann::json(nullptr);
   j["u_hat"] = to_json(s.u_hat);
   j["lambda_hat"] = to_json(s.lambda_hat);
   return j;

@@ -64,7 +64,8 @@ void expect_user_error(const CliResult& r, const std::string& words) {
 
 constexpr const char* kHeader =
     "mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"
-    "e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,peak_hf,peak_rb,energy_hf,energy_rb";
+    "e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,peak_hf,peak_rb,energy_hf,energy_rb,"
+    "e_energy_norm,estimate,effectivity";
 
 class CliEvaluate : public ::testing::Test {
  protected:

@@ -226,6 +226,15 @@ TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   EXPECT_EQ(j.at("u_hat").size(), json::parse(in).at("sizes").at("N").get<std::size_t>());
   EXPECT_GE(j.at("iterations").get<int>(), 1);
   for (const char* key : {"lambda_hat", "energy", "time_s"}) EXPECT_TRUE(j.contains(key)) << key;
+  // The a posteriori estimate: at a training value of an untruncated model, zero to solver
+  // tolerance (Delta^2 against |u|_A^2 = 2 energy, no body load in hertz-a).
+  const json& est = j.at("estimate");
+  for (const char* key : {"energy", "residual", "coercivity", "violation", "complementarity", "multiplier_norm"}) {
+    EXPECT_TRUE(est.contains(key)) << key;
+  }
+  EXPECT_GE(est.at("energy").get<double>(), 0.0);
+  EXPECT_LT(std::pow(est.at("energy").get<double>(), 2), 1e-10 * 2.0 * j.at("energy").get<double>()) << r.out;
+  EXPECT_DOUBLE_EQ(est.at("coercivity").get<double>(), 1.0);
   const double hf_default = hf_contact_force(0.3, "");
   EXPECT_NEAR(j.at("contact_force").get<double>(), hf_default, 1e-3 * std::abs(hf_default));
   // Tight on both sides.
@@ -295,6 +304,9 @@ TEST_F(CliOfflineOnline, BatchAnswersEveryLineInOrder) {
     EXPECT_EQ(j.contains("error"), !good[k]) << lines[k];
     if (good[k]) {
       EXPECT_TRUE(j.at("converged").get<bool>()) << lines[k];
+      EXPECT_GE(j.at("estimate").at("energy").get<double>(), 0.0) << lines[k];  // every batch line has one
+    } else {
+      EXPECT_FALSE(j.contains("estimate")) << lines[k];
     }
   }
   EXPECT_NE(lines[2].find("not a number"), std::string::npos) << lines[2];

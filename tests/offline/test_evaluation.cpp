@@ -140,6 +140,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
   const auto th = contactrb::cases::theta_functions(spec());
   contactrb::rb::OnlineSolver solver(off.model);
   double worst = 0.0;
+  std::vector<double> effectivities;
   for (std::size_t i = 0; i < kTraining.size(); ++i) {
     const double mu = kTraining[i];
     SCOPED_TRACE("mu = " + std::to_string(mu));
@@ -178,11 +179,24 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     const double best = std::sqrt(w.dot((c * xi - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
     EXPECT_NEAR(r.e_press_cone, best, 1e-8 * best);
     EXPECT_GE(r.e_press, r.e_press_cone * (1.0 - 1e-12));
+    // The a posteriori estimate's columns: the energy-norm error, the online estimate, their ratio.
+    const double e_A = std::sqrt(d.dot(A * d));
+    EXPECT_NEAR(r.e_energy_norm, e_A, 1e-9 * e_A);
+    ASSERT_TRUE(sol.estimate.available);
+    EXPECT_EQ(r.estimate, sol.estimate.energy);
+    EXPECT_NEAR(r.effectivity, sol.estimate.energy / e_A, 1e-8 * r.effectivity);
+    effectivities.push_back(r.effectivity);
     std::printf("  mu %.2f: online %s (%d iterations), e_ener %.3e, e_displ %.3e, e_inter %.3e\n", mu,
                 r.rb_status.c_str(), r.rb_iterations, r.e_ener, r.e_displ, r.e_inter);
     worst = std::max(worst, r.e_displ);
   }
   EXPECT_NEAR(e.summary.max_e_displ, worst, 1e-15);
+  std::sort(effectivities.begin(), effectivities.end());
+  ASSERT_EQ(e.summary.effectivity_count, 4);
+  EXPECT_EQ(e.summary.min_effectivity, effectivities.front());
+  EXPECT_EQ(e.summary.max_effectivity, effectivities.back());
+  EXPECT_DOUBLE_EQ(e.summary.median_effectivity, 0.5 * (effectivities[1] + effectivities[2]));
+  EXPECT_GE(e.summary.min_effectivity, 0.5);
   // Fewer modes than the model holds: the errors grow back towards the truncated ones.
   const OfflineResult& full = model(false);
   EvaluationOptions o = options();

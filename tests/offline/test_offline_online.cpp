@@ -510,6 +510,7 @@ TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   m.kappa_dof.clear();
   m.C_kappa.clear();
   m.B_kappa.resize(0, 0);
+  m.estimate = {};  // sized for the original Mk_max; this artificial model has none
   OnlineSolver solver(m);
   for (auto iteration : {contactrb::rb::OnlineIteration::Accelerated, contactrb::rb::OnlineIteration::Relaxed,
                          contactrb::rb::OnlineIteration::Accelerated}) {

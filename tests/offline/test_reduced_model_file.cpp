@@ -115,11 +115,22 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   EXPECT_TRUE(same(r.XiQ_gamma, m.XiQ_gamma));
   EXPECT_TRUE(same(r.Theta_c, m.Theta_c));
   EXPECT_TRUE(same(r.A_hat[0], m.A_hat[0]));
+  // Format 3: the error estimate's arrays.
+  ASSERT_GT(m.estimate.residual_T.size(), 0);
+  EXPECT_TRUE(same(r.estimate.residual_T, m.estimate.residual_T));
+  EXPECT_TRUE(same(r.estimate.theta_a_reference, m.estimate.theta_a_reference));
+  EXPECT_TRUE(same(r.estimate.Q_gamma, m.estimate.Q_gamma));
+  ASSERT_EQ(r.estimate.QTheta_kappa.size(), m.estimate.QTheta_kappa.size());
+  for (std::size_t j = 0; j < m.estimate.QTheta_kappa.size(); ++j) {
+    EXPECT_TRUE(same(r.estimate.QTheta_kappa[j], m.estimate.QTheta_kappa[j]));
+  }
   contactrb::rb::OnlineSolver a(m), b(r);
   const auto sa = a.solve(1.0), sb = b.solve(1.0);
   ASSERT_TRUE(sa.converged());
   EXPECT_TRUE(same(sa.u_hat, sb.u_hat));
   EXPECT_TRUE(same(sa.lambda_hat, sb.lambda_hat));
+  ASSERT_TRUE(sa.estimate.available);
+  EXPECT_EQ(sa.estimate.energy, sb.estimate.energy);
 }
 
 TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {

@@ -297,6 +297,14 @@ void visit(V& v, rb::ReducedModel& m) {
   v.integer("surface_num_constraints", s.num_constraints);
   v.mat("Theta_c", m.Theta_c);
   v.mat("lift_c", m.lift_c);
+  // Format 3: the error estimate (rb/error_estimate_data.hpp).
+  rb::EstimateData& e = m.estimate;
+  vec(v, "estimate_theta_a_reference", e.theta_a_reference);
+  v.mat("estimate_residual_T", e.residual_T);
+  mats(v, "estimate_QTheta_kappa", e.QTheta_kappa);
+  v.mat("estimate_Q_gamma", e.Q_gamma);
+  vec(v, "estimate_eim_residual", e.eim_residual);
+  v.mat("estimate_eim_slack", e.eim_slack);
 }
 
 void write_u64(hid_t file, const std::string& name, std::uint64_t value) {

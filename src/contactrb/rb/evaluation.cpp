@@ -125,6 +125,12 @@ void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, c
   const double norm_hf = std::sqrt(std::max(0.0, uh.dot(H1 * uh)));
   const double norm_d = std::sqrt(std::max(0.0, d.dot(H1 * d)));
   row.e_displ = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;  // (65)
+  // The energy-norm error the a posteriori estimate bounds (error_estimate.hpp).
+  row.e_energy_norm = std::sqrt(std::max(0.0, d.dot(A * d)));
+  if (s.estimate.available) {
+    row.estimate = s.estimate.energy;
+    if (row.e_energy_norm > 0.0) row.effectivity = row.estimate / row.e_energy_norm;
+  }
 
   // (66): the pointwise gap g(u) - k(u; u) of the slave nodes, geometry re-evaluated at u (as
   // HFSolution::gap_violation); its negative parts are the interpenetration.
@@ -221,6 +227,16 @@ EvaluationSummary summarize(const std::vector<EvaluationRow>& rows) {
   s.median_hf_time_s = median(hf_times);
   s.median_online_time_s = median(online_times);
   s.median_speedup = median(speedups);
+  std::vector<double> eff;
+  for (const EvaluationRow& r : rows) {
+    if (r.hf_converged && r.rb_converged && std::isfinite(r.effectivity)) eff.push_back(r.effectivity);
+  }
+  s.effectivity_count = static_cast<int>(eff.size());
+  if (!eff.empty()) {
+    s.min_effectivity = *std::min_element(eff.begin(), eff.end());
+    s.max_effectivity = *std::max_element(eff.begin(), eff.end());
+    s.median_effectivity = median(eff);
+  }
   return s;
 }
 
@@ -312,12 +328,14 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path) {
   io::CsvWriter csv({"mu", "hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
                      "online_time_s", "speedup", "e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak",
-                     "e_press_cone", "force_hf", "force_rb", "peak_hf", "peak_rb", "energy_hf", "energy_rb"});
+                     "e_press_cone", "force_hf", "force_rb", "peak_hf", "peak_rb", "energy_hf", "energy_rb",
+                     "e_energy_norm", "estimate", "effectivity"});
   for (const EvaluationRow& r : evaluation.rows) {
     csv.add_row({r.mu, static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
                  static_cast<long long>(r.rb_converged), r.rb_status, static_cast<long long>(r.rb_iterations),
-                 r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.e_press, r.e_force, r.e_peak, r.e_press_cone, r.force_hf,
-                 r.force_rb, r.peak_hf, r.peak_rb, r.energy_hf, r.energy_rb});
+                 r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.e_press, r.e_force, r.e_peak,
+                 r.e_press_cone, r.force_hf, r.force_rb, r.peak_hf, r.peak_rb, r.energy_hf, r.energy_rb,
+                 r.e_energy_norm, r.estimate, r.effectivity});
   }
   csv.write(path);
 }

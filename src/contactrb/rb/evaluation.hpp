@@ -7,6 +7,7 @@
 // A speed-up is never reported without the errors of the same solve beside it.
 #include <Eigen/Core>
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,10 @@ struct EvaluationRow {
   double energy_hf = 0.0;      // 1/2 a(u, u) - f(u), u = u_hf
   double energy_rb = 0.0;      // same for u = u_rb (so e_ener != |energy_rb - energy_hf| in general)
   MultiplierProfile multipliers;  // filled only for EvaluationOptions::multiplier_mus
+  // The a posteriori estimate against the true error it estimates (docs/offline-online.md).
+  double e_energy_norm = 0.0;  // |u_rb - u_hf|_A(mu) = sqrt(d' A(mu) d), d = u_rb - u_hf, absolute
+  double estimate = std::numeric_limits<double>::quiet_NaN();     // OnlineSolution::estimate.energy (NaN: none)
+  double effectivity = std::numeric_limits<double>::quiet_NaN();  // estimate / e_energy_norm
 };
 
 // Errors: max and mean over the rows where both solves converged; times and speed-ups: medians
@@ -85,6 +90,12 @@ struct EvaluationSummary {
   double median_hf_time_s = 0.0;
   double median_online_time_s = 0.0;
   double median_speedup = 0.0;
+  // Effectivity estimate / e_energy_norm over the rows where both converged and it is defined
+  // (NaN when there is none).
+  int effectivity_count = 0;
+  double min_effectivity = std::numeric_limits<double>::quiet_NaN();
+  double median_effectivity = std::numeric_limits<double>::quiet_NaN();
+  double max_effectivity = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Evaluation {
@@ -103,7 +114,7 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
 
 // CSV (one line per row: mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
 // rb_iterations,online_time_s,speedup,e_ener,e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,
-// peak_hf,peak_rb,energy_hf,energy_rb) and
+// peak_hf,peak_rb,energy_hf,energy_rb,e_energy_norm,estimate,effectivity) and
 // multiplier profile CSVs (abscissa,lambda_hf,lambda_rb), both written atomically.
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path);
 void write_multiplier_csv(const MultiplierProfile& profile, const std::string& path);

@@ -18,6 +18,7 @@
 #include "contactrb/rb/cpg.hpp"
 #include "contactrb/rb/eim.hpp"
 #include "contactrb/rb/eim_flatten.hpp"
+#include "contactrb/rb/error_estimate.hpp"
 #include "contactrb/rb/nmf.hpp"
 #include "contactrb/rb/online_solver.hpp"
 #include "contactrb/rb/pod.hpp"
@@ -420,6 +421,10 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.B_gamma = eim_g.B;
   m.XiQ_gamma = Xi.transpose() * eim_g.Q;
   m.eim_gamma_errors = eim_g.errors;
+  // The a posteriori error estimate's offline data (error_estimate.hpp).
+  m.estimate = build_estimate_data({&terms, &thetas, spec.parameter.reference, &set.free_dofs, &set.contact_dofs,
+                                    &Theta, &m.Theta_c, &Xi, &eim_k.Q, &eim_g.Q, &set, &kept, &lift_c, &ds.weights,
+                                    &eim_k.magic_points, &eim_k.B, &eim_g.magic_points, &eim_g.B});
   check_model(m);
   // The online initial guess: the reduced solutions at the training values (P online solves).
   {

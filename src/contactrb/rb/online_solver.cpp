@@ -126,6 +126,8 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   warm_.reserve(sz(R_));
   for (Eigen::VectorXd* v : {&u_, &u_prev_, &r_, &r_prev_}) v->resize(N_);
   lambda_prev_.resize(R_);
+  estimator_.setup(model, N_, R_, Mk_, Mg_);
+  weight_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
 }
 
 void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, bool restricted,
@@ -427,9 +429,15 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
   sol.energy = 0.5 * sol.u_hat.dot(A_ * sol.u_hat) - f_.dot(sol.u_hat) + E_D_;
   double force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
   for (std::size_t i = 0; i < kept_rows_.size(); ++i) {
-    force += quadrature_.weight(kept_rows_[i]) * Xi_.row(static_cast<Eigen::Index>(i)).dot(sol.lambda_hat);
+    weight_kept_(static_cast<Eigen::Index>(i)) = quadrature_.weight(kept_rows_[i]);
+    force += weight_kept_(static_cast<Eigen::Index>(i)) * Xi_.row(static_cast<Eigen::Index>(i)).dot(sol.lambda_hat);
   }
   sol.contact_force = force;
+  // The estimate at the last linearization (phi_, phi_gamma_ of the last step), as the returned
+  // pair is that linearization's solution.
+  if (settings.error_estimate && sol.converged()) {
+    sol.estimate = estimator_.evaluate(mu, sol.u_hat, sol.lambda_hat, phi_, phi_gamma_, weight_kept_);
+  }
   sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   return sol;
 }

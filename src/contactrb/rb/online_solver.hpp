@@ -28,6 +28,7 @@
 
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/mesh/mesh.hpp"
+#include "contactrb/rb/error_estimate.hpp"
 #include "contactrb/rb/online_magic.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 #include "contactrb/solve/kacanov.hpp"
@@ -86,6 +87,8 @@ struct OnlineSettings {
   // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
   int anderson_depth = 3;
   InitialGuess initial_guess = InitialGuess::Interpolated;
+  // Compute OnlineSolution::estimate (error_estimate.hpp); false only to time the solve without it.
+  bool error_estimate = true;
 };
 
 struct OnlineSolution {
@@ -100,6 +103,9 @@ struct OnlineSolution {
   double energy = 0.0;         // 1/2 u'A(mu)u - f(mu)'u of u = u_D(mu) + Theta u_hat (exact: (49) + lift terms)
   double contact_force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
   double time_s = 0.0;
+  // A posteriori estimate of |u_hf - u_rb|_A(mu) and its parts (docs/offline-online.md); available
+  // when the solve converged and the model holds the estimate data. Included in time_s.
+  ErrorEstimate estimate;
   bool converged() const { return status == solve::KacanovStatus::Converged; }
 };
 
@@ -183,6 +189,8 @@ class OnlineSolver {
   // Accelerated iteration: current and previous iterates, residuals, history columns.
   Eigen::VectorXd u_, u_prev_, r_, r_prev_, lambda_prev_;
   Eigen::MatrixXd dU_, dR_, dL_;         // differences of u, of r = G(u) - u, of lambda_bar
+  ErrorEstimator estimator_;             // the leading blocks of the estimate's data
+  Eigen::VectorXd weight_kept_;          // |I_r|(mu) on the kept rows
 };
 
 }  // namespace contactrb::rb

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/rb/error_estimate.hpp"
 
 namespace contactrb::rb {
 
@@ -84,6 +85,7 @@ void check_model(const ReducedModel& m) {
   expect_shape(m.XiQ_gamma, m.R_max, m.Mg_max, "XiQ_gamma");
   expect_shape(m.Theta_c, n_c, m.N_max, "Theta_c");
   expect_shape(m.lift_c, n_c, static_cast<Eigen::Index>(JD), "lift_c");
+  check_estimate_data(m);
 }
 
 long long model_doubles(const ReducedModel& m) {
@@ -94,6 +96,9 @@ long long model_doubles(const ReducedModel& m) {
   for (const auto& f : m.f_hat) n += f.size();
   for (const auto& f : m.A_lift_hat) n += f.size();
   for (const auto& c : m.C_kappa) n += c.size();
+  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
+       m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
+  for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
   return n;
 }
 

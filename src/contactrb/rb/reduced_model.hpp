@@ -18,10 +18,11 @@
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/rb/error_estimate_data.hpp"
 
 namespace contactrb::rb {
 
-inline constexpr int kReducedModelFormatVersion = 3;
+inline constexpr int kReducedModelFormatVersion = 3;  // 3: N_supremizers, tolerance modes, the error estimate's arrays
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -113,6 +114,9 @@ struct ReducedModel {
   ContactSurface surface;
   Eigen::MatrixXd Theta_c;  // n_c x N_max: Theta on the contact DOFs (zero rows where constrained)
   Eigen::MatrixXd lift_c;   // n_c x J^D: lift_k on the contact DOFs
+
+  // The a posteriori error estimate's arrays (error_estimate.hpp; format 3).
+  EstimateData estimate;
 
   int J_a() const { return static_cast<int>(A_hat.size()); }
   int J_f() const { return static_cast<int>(f_hat.size()); }
