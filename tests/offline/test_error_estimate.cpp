@@ -99,6 +99,23 @@ double energy_norm(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& 
   return std::sqrt(std::max(0.0, v.dot(A * v)));
 }
 
+// The free-DOF block A_00 of a global matrix (independent of the library's own selection).
+Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& A, const SnapshotSet& set) {
+  const Index n_free = static_cast<Index>(set.free_dofs.size());
+  std::vector<Index> to_free(static_cast<std::size_t>(set.num_dofs), -1);
+  for (Index i = 0; i < n_free; ++i) to_free[static_cast<std::size_t>(set.free_dofs[static_cast<std::size_t>(i)])] = i;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (Index k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      const Index i = to_free[static_cast<std::size_t>(it.row())], j = to_free[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0) trip.emplace_back(i, j, it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> X(n_free, n_free);
+  X.setFromTriplets(trip.begin(), trip.end());
+  return X;
+}
+
 class ErrorEstimate : public ::testing::TestWithParam<std::string> {};
 
 // The offline/online split against the HF-size computation, for sizes below the maxima.
@@ -173,21 +190,9 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   for (Index a = 0; a < n_c; ++a) r_global(set.contact_dofs[static_cast<std::size_t>(a)]) -= contact_force(a);
   const Index n_free = static_cast<Index>(set.free_dofs.size());
   Eigen::VectorXd r(n_free);
-  std::vector<Eigen::Triplet<double>> trip;
-  std::vector<Index> to_free(static_cast<std::size_t>(set.num_dofs), -1);
-  for (Index i = 0; i < n_free; ++i) {
-    r(i) = r_global(set.free_dofs[static_cast<std::size_t>(i)]);
-    to_free[static_cast<std::size_t>(set.free_dofs[static_cast<std::size_t>(i)])] = i;
-  }
-  const auto A_ref = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference));
-  for (Index k = 0; k < A_ref.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A_ref, k); it; ++it) {
-      const Index i = to_free[static_cast<std::size_t>(it.row())], j = to_free[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) trip.emplace_back(i, j, it.value());
-    }
-  }
-  Eigen::SparseMatrix<double> X(n_free, n_free);
-  X.setFromTriplets(trip.begin(), trip.end());
+  for (Index i = 0; i < n_free; ++i) r(i) = r_global(set.free_dofs[static_cast<std::size_t>(i)]);
+  const Eigen::SparseMatrix<double> X = free_block(
+      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference)), set);
   contactrb::fem::SparseCholesky chol;
   ASSERT_EQ(chol.compute(X), contactrb::fem::FactorStatus::Success);
   const double residual = std::sqrt(r.dot(chol.solve(r)));
@@ -234,19 +239,11 @@ TEST_P(ErrorEstimate, EimCalibrationVanishesWhenExhaustedAndMatchesAtZeroTerms) 
   const auto mesh = contactrb::cases::reference_mesh(spec, set.level);
   const auto terms = contactrb::cases::assemble_affine_terms(spec, mesh);
   const auto th = contactrb::cases::theta_functions(spec);
-  const auto A_ref = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference));
   const Index n_free = static_cast<Index>(set.free_dofs.size());
   std::vector<Index> to_free(static_cast<std::size_t>(set.num_dofs), -1);
   for (Index i = 0; i < n_free; ++i) to_free[static_cast<std::size_t>(set.free_dofs[static_cast<std::size_t>(i)])] = i;
-  std::vector<Eigen::Triplet<double>> trip;
-  for (Index k = 0; k < A_ref.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A_ref, k); it; ++it) {
-      const Index i = to_free[static_cast<std::size_t>(it.row())], j = to_free[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) trip.emplace_back(i, j, it.value());
-    }
-  }
-  Eigen::SparseMatrix<double> X(n_free, n_free);
-  X.setFromTriplets(trip.begin(), trip.end());
+  const Eigen::SparseMatrix<double> X = free_block(
+      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference)), set);
   contactrb::fem::SparseCholesky chol;
   ASSERT_EQ(chol.compute(X), contactrb::fem::FactorStatus::Success);
   // The Lambda weights of the model: the mean |I_r| over the training set, on the kept rows.

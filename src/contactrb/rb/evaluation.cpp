@@ -199,30 +199,26 @@ EvaluationSummary summarize(const std::vector<EvaluationRow>& rows) {
     s.rb_failures += r.rb_converged ? 0 : 1;
     if (!r.hf_converged || !r.rb_converged) continue;
     ++both;
-    s.max_e_ener = std::max(s.max_e_ener, r.e_ener);
-    s.max_e_displ = std::max(s.max_e_displ, r.e_displ);
-    s.max_e_inter = std::max(s.max_e_inter, r.e_inter);
-    s.mean_e_ener += r.e_ener;
-    s.mean_e_displ += r.e_displ;
-    s.mean_e_inter += r.e_inter;
-    s.max_e_press = std::max(s.max_e_press, r.e_press);
-    s.max_e_force = std::max(s.max_e_force, r.e_force);
-    s.max_e_peak = std::max(s.max_e_peak, r.e_peak);
+    const auto add = [](double& max, double& sum, double value) {
+      max = std::max(max, value);
+      sum += value;
+    };
+    add(s.max_e_ener, s.mean_e_ener, r.e_ener);
+    add(s.max_e_displ, s.mean_e_displ, r.e_displ);
+    add(s.max_e_inter, s.mean_e_inter, r.e_inter);
+    add(s.max_e_press, s.mean_e_press, r.e_press);
+    add(s.max_e_force, s.mean_e_force, r.e_force);
+    add(s.max_e_peak, s.mean_e_peak, r.e_peak);
     s.max_e_press_cone = std::max(s.max_e_press_cone, r.e_press_cone);
-    s.mean_e_press += r.e_press;
-    s.mean_e_force += r.e_force;
-    s.mean_e_peak += r.e_peak;
     hf_times.push_back(r.hf_time_s);
     online_times.push_back(r.online_time_s);
     speedups.push_back(r.speedup);
   }
   if (both > 0) {
-    s.mean_e_ener /= both;
-    s.mean_e_displ /= both;
-    s.mean_e_inter /= both;
-    s.mean_e_press /= both;
-    s.mean_e_force /= both;
-    s.mean_e_peak /= both;
+    for (double* mean : {&s.mean_e_ener, &s.mean_e_displ, &s.mean_e_inter, &s.mean_e_press, &s.mean_e_force,
+                         &s.mean_e_peak}) {
+      *mean /= both;
+    }
   }
   s.median_hf_time_s = median(hf_times);
   s.median_online_time_s = median(online_times);
