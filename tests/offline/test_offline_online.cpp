@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -538,7 +539,48 @@ TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
   bad.eps_pod = -1.0;
   EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec, bad), contactrb::Error);
   set.snapshots[1].converged = false;
-  EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec), contactrb::Error);
+  set.snapshots[1].status = "max_iterations";
+  try {
+    (void)contactrb::rb::build_reduced_model(set, spec);
+    ADD_FAILURE() << "a failed snapshot was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos) << e.what();
+  }
+}
+
+// The builder is a library entry point: a set that did not come through read_snapshot_file is
+// checked before any index is used (issue [R] row 1: an out-of-range free DOF crashed in
+// setFromTriplets), and a repeated training value is refused (row 7: a set of one repeated
+// value gave a model that answered a contact force 45 times the HF one, "converged").
+TEST(OfflineBuilder, RefusesBadIndicesAndRepeatedTrainingValues) {
+  const SnapshotSet good = snapshots("hertz-a");
+  const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
+  const auto expect_refused = [&](const SnapshotSet& set, const std::string& words) {
+    try {
+      (void)contactrb::rb::build_reduced_model(set, spec);
+      ADD_FAILURE() << "accepted; expected an error with '" << words << "'";
+    } catch (const contactrb::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  SnapshotSet set = good;
+  set.free_dofs[4] = good.num_dofs + 1000;
+  expect_refused(set, "offline: inconsistent snapshot set: /discretization/free_dofs[4]");
+  set = good;
+  set.free_dofs[0] = -1;
+  expect_refused(set, "/discretization/free_dofs[0] = -1 is outside");
+  set = good;
+  set.free_dofs[1] = set.free_dofs[0];
+  expect_refused(set, "appears twice");
+  set = good;
+  set.master.back() = good.num_dofs;  // a node index: num_dofs / 2 nodes
+  expect_refused(set, "/discretization/master[");
+  set = good;
+  set.snapshots[0].u0(3) = std::numeric_limits<double>::quiet_NaN();
+  expect_refused(set, "/snapshots/000000/u0 holds a non-finite value");
+  set = good;
+  set.snapshots[2] = set.snapshots[1];
+  expect_refused(set, "the training value mu = 0.21 appears twice (snapshots 1 and 2)");
 }
 
 }  // namespace
