@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <memory>
@@ -530,6 +531,41 @@ TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
     // The energy of u = u_D(mu) alone: hertz-a has no body load, so 1/2 u_D' A u_D > 0.
     EXPECT_GT(sol.energy, 0.0);
   }
+}
+
+// Issue [R] item 2: a result whose energy or force is not finite is never "converged". The
+// lift energy 1/2 u_D' A u_D enters only the energy, so a model whose lift_AA overflowed (inf)
+// solves exactly as before and converges: before the check it was reported as converged with
+// energy inf (JSON null). A right-hand side scaled by 1e300 makes u_hat itself overflow the
+// geometry: a failure status too.
+TEST(OnlineSolver, NonFiniteResultsAreFlaggedNeverConverged) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  const OfflineResult off = truncated_model(set, "hertz-a");
+  OnlineSolver reference(off.model);
+  const contactrb::rb::OnlineSolution good = reference.solve(0.3);
+  ASSERT_TRUE(good.converged()) << good.message;
+  ASSERT_TRUE(std::isfinite(good.energy));
+
+  contactrb::rb::ReducedModel m = off.model;
+  for (double& v : m.lift_AA) v = std::numeric_limits<double>::infinity();
+  OnlineSolver huge_lift(m);
+  const contactrb::rb::OnlineSolution a = huge_lift.solve(0.3);
+  EXPECT_EQ(a.status, contactrb::solve::KacanovStatus::NonFinite) << a.message;
+  EXPECT_FALSE(a.converged());
+  EXPECT_FALSE(std::isfinite(a.energy));
+  EXPECT_NE(a.message.find("is not finite"), std::string::npos) << a.message;
+  EXPECT_EQ(a.u_hat, good.u_hat);  // the solve itself is the same
+
+  m = off.model;
+  for (Eigen::VectorXd& f : m.f_hat) f *= 1e300;
+  for (Eigen::VectorXd& f : m.A_lift_hat) f *= 1e300;
+  OnlineSolver huge_load(m);
+  const contactrb::rb::OnlineSolution b = huge_load.solve(0.3);
+  EXPECT_FALSE(b.converged()) << "energy " << b.energy;
+  EXPECT_NE(b.status, contactrb::solve::KacanovStatus::Converged);
+  EXPECT_FALSE(b.message.empty());
+  std::printf("  lift_AA inf: %s: %s\n  f_hat 1e300: %s: %s\n", to_string(a.status), a.message.c_str(),
+              to_string(b.status), b.message.c_str());
 }
 
 TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
