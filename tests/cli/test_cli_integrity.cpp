@@ -132,6 +132,11 @@ TEST_F(CliIntegrity, RepeatedTrainingValuesAreRefused) {
   expect_user_error(run_cli("offline --case hertz-a --values 0.3,0.2 -q" + h5),
                     "--values: the values must be strictly increasing, but value 2 (0.2) is not above value 1 (0.3)");
   EXPECT_FALSE(fs::exists(dir_->file("r.h5")));
+  const std::string report = " --out " + shell_quote(dir_->file("report"));
+  expect_user_error(run_cli("report --case hertz-a --training-values 0.2,0.2" + report),
+                    "--training-values: the values must be strictly increasing");
+  expect_user_error(run_cli("report --case hertz-a --verification-values ''" + report),
+                    "--verification-values value 1: the value is empty");
 }
 
 // Rows 3, 4, 5 and the stiffness ratio of item 2: refused before any solve, naming the datum.
