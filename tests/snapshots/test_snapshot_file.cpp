@@ -400,6 +400,9 @@ TEST(SnapshotFile, CheckSnapshotSetNamesTheBadField) {
   s = synthetic_set();
   s.num_dofs = 21;
   expect_named(s, "num_dofs = 21");
+  s = synthetic_set();  // a damaged count: checked without memory in proportion to it
+  s.num_dofs = 2000000000;
+  expect_named(s, "/snapshots/000000: u has 20 entries, expected 2000000000");
   // Non-finite values of a converged snapshot, by dataset.
   s = synthetic_set();
   s.snapshots[0].u(7) = std::numeric_limits<double>::quiet_NaN();

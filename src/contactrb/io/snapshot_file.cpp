@@ -489,20 +489,26 @@ std::string exact(double x) {
 }
 
 // Index list `name`: every entry in [0, bound), no entry twice (except that a closed chain
-// may repeat its first node once, at the end).
+// may repeat its first node once, at the end). Duplicates are found by sorting a copy: the
+// memory is that of the list, not of `bound` (a damaged num_dofs may be huge).
 void check_indices(const std::vector<int>& v, int bound, const std::string& name, const std::string& bound_name,
                    bool closed_chain_allowed = false) {
-  std::vector<char> seen(static_cast<std::size_t>(std::max(bound, 0)), 0);
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const int x = v[i];
-    if (x < 0 || x >= bound) {
-      invalid(name + "[" + std::to_string(i) + "] = " + std::to_string(x) + " is outside [0, " + bound_name + " = " +
-              std::to_string(bound) + ")");
+    if (v[i] < 0 || v[i] >= bound) {
+      invalid(name + "[" + std::to_string(i) + "] = " + std::to_string(v[i]) + " is outside [0, " + bound_name +
+              " = " + std::to_string(bound) + ")");
     }
-    auto& s = seen[static_cast<std::size_t>(x)];
-    const bool closing = closed_chain_allowed && i + 1 == v.size() && i >= 2 && x == v.front();
-    if (s != 0 && !closing) invalid(name + "[" + std::to_string(i) + "] = " + std::to_string(x) + " appears twice");
-    s = 1;
+  }
+  const bool closed = closed_chain_allowed && v.size() >= 3 && v.back() == v.front();
+  std::vector<std::pair<int, std::size_t>> sorted;  // (index, position)
+  for (std::size_t i = 0; i + (closed ? 1 : 0) < v.size(); ++i) sorted.emplace_back(v[i], i);
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t first = v.size();  // earliest position that repeats an earlier entry
+  for (std::size_t k = 1; k < sorted.size(); ++k) {
+    if (sorted[k].first == sorted[k - 1].first) first = std::min(first, sorted[k].second);
+  }
+  if (first < v.size()) {
+    invalid(name + "[" + std::to_string(first) + "] = " + std::to_string(v[first]) + " appears twice");
   }
 }
 
