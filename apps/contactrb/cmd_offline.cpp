@@ -42,7 +42,7 @@ struct OfflineOptions {
   std::string case_name;
   std::string case_file;
   std::string set_name = "training";
-  std::vector<double> values;
+  std::vector<std::string> values;  // parse_values_option
   int level = 0;
   std::string constraint;
   int jobs = 1;
@@ -84,7 +84,7 @@ io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& 
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   std::optional<std::vector<double>> values;
-  if (!opt.values.empty()) values = opt.values;
+  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
   rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   request.settings.kacanov.alpha = opt.alpha;
   request.settings.kacanov.tolerance = opt.tolerance;

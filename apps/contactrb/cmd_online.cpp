@@ -32,7 +32,7 @@ constexpr int kExitNotConverged = 3;
 
 struct OnlineOptions {
   std::string model;
-  std::optional<double> mu;
+  std::optional<std::string> mu;  // as given: parse_mu_option (CLI11 reads '' as 0)
   std::string batch;
   int n = -1, r = -1, mk = -1, mg = -1;
   std::optional<double> alpha;
@@ -112,9 +112,11 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
 }
 
 int run_online(const OnlineOptions& opt) {
+  const bool single = opt.mu.has_value();  // --mu, else --batch
+  const double mu = single ? parse_mu_option(*opt.mu, "--mu") : 0.0;
   const rb::OnlineSizes sizes{opt.n, opt.r, opt.mk, opt.mg};
   check_size_flags(sizes);
-  require(opt.out.empty() || opt.mu.has_value(),
+  require(opt.out.empty() || single,
           "--out is not available with --batch (one output directory per --mu: run one online --mu per value, "
           "or `contactrb evaluate`)");
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
@@ -133,7 +135,7 @@ int run_online(const OnlineOptions& opt) {
     settings.kacanov = k;
   }
   rb::OnlineSolver solver(model, sizes);
-  if (!opt.mu) {
+  if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
     return run_batch(opt, solver, settings);
   }
@@ -150,11 +152,11 @@ int run_online(const OnlineOptions& opt) {
     reference = rb::model_reference_mesh(*spec, model, *rec);
   }
 
-  const rb::OnlineSolution s = solver.solve(*opt.mu, settings);
-  nlohmann::json j = solution_json(*opt.mu, solver, s);
+  const rb::OnlineSolution s = solver.solve(mu, settings);
+  nlohmann::json j = solution_json(mu, solver, s);
   if (rec) {
     const rb::SolutionFiles files = rb::write_solution_fields(
-        *spec, *reference, *opt.mu, model.surface.discretization, rb::reconstruct_displacement(*rec, *opt.mu, s.u_hat),
+        *spec, *reference, mu, model.surface.discretization, rb::reconstruct_displacement(*rec, mu, s.u_hat),
         rb::reconstruct_multipliers(*rec, s.lambda_hat), opt.out);
     j["files"] = {{"vtu", files.vtu}, {"deformed_vtu", files.deformed_vtu}, {"multipliers", files.multipliers}};
   }

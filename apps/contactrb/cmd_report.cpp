@@ -51,8 +51,8 @@ struct ReportOptions {
   bool no_plots = false;
   int max_training = -1;
   int max_verification = -1;
-  std::vector<double> training_values;
-  std::vector<double> verification_values;
+  std::vector<std::string> training_values;  // parse_values_option
+  std::vector<std::string> verification_values;
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
   int history_r = rb::StudySettings{}.history_max_R;
   int profiles = rb::StudySettings{}.multiplier_profiles;
@@ -137,8 +137,10 @@ int run_report(const ReportOptions& opt) {
   if (opt.eps_eim_g) s.tolerances.eps_eim_g = *opt.eps_eim_g;
   s.max_training = opt.max_training;
   s.max_verification = opt.max_verification;
-  if (!opt.training_values.empty()) s.training_values = opt.training_values;
-  if (!opt.verification_values.empty()) s.verification_values = opt.verification_values;
+  if (!opt.training_values.empty()) s.training_values = parse_values_option(opt.training_values, "--training-values");
+  if (!opt.verification_values.empty()) {
+    s.verification_values = parse_values_option(opt.verification_values, "--verification-values");
+  }
   s.history_max_R = opt.history_r;
   s.multiplier_profiles = opt.profiles;
   s.online_repeats = opt.repeats;

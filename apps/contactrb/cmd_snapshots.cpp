@@ -31,7 +31,7 @@ struct SnapshotsOptions {
   std::string case_name;
   std::string case_file;
   std::string set_name = "training";
-  std::vector<double> values;  // overrides the set when given
+  std::vector<std::string> values;  // overrides the set when given (parse_values_option)
   int jobs = 1;
   int level = 0;
   std::string constraint;  // empty: the case's default
@@ -58,7 +58,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   solve::check_settings(settings.kacanov);
   check_output_file(opt.out);
   std::optional<std::vector<double>> values;
-  if (!opt.values.empty()) values = opt.values;
+  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
 
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };

@@ -29,6 +29,7 @@ namespace {
 struct SolveOptions {
   std::string case_name;
   std::string case_file;
+  std::string mu_text;  // --mu as given: parsed by parse_mu_option (CLI11 reads '' as 0)
   double mu = 0.0;
   std::string constraint;  // empty: the case's default
   double alpha = solve::KacanovSettings{}.alpha;
@@ -99,6 +100,7 @@ int run_solve(SolveOptions opt) {
   } else {
     spec = cases::builtin_case_spec(opt.case_name);
   }
+  opt.mu = parse_mu_option(opt.mu_text, "--mu");
   spec.parameter.check(opt.mu, "case '" + spec.name + "'" + (opt.case_file.empty() ? "" : " (" + opt.case_file + ")"));
   hf::HFSettings settings;
   settings.kacanov.alpha = opt.alpha;
@@ -163,7 +165,7 @@ Command add_solve_command(CLI::App& app) {
   input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
   input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");
   input->require_option(1);
-  sub->add_option("--mu", opt->mu, "Parameter value (inside the case's domain)")->required();
+  sub->add_option("--mu", opt->mu_text, "Parameter value (inside the case's domain)")->required();
   sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace contactrb::rb {
 struct OnlineSizes;
@@ -41,6 +42,16 @@ void check_output_file(const std::string& path);
 // One parameter value per line (online --batch, evaluate --set FILE): a number with optional
 // surrounding blanks, nothing else. Throws contactrb::Error saying what is wrong.
 double parse_mu_line(const std::string& line);
+
+// The text of a parameter option (--mu): a finite number, not empty (CLI11 turns an empty
+// value into 0) and not an underflow ('1e-400' is 0 to strtod). Throws contactrb::Error
+// naming `flag`.
+double parse_mu_option(const std::string& text, const std::string& flag);
+
+// The comma-separated items of a list of parameter values (--values): each as
+// parse_mu_option, strictly increasing (a repeated value is refused). Throws contactrb::Error
+// naming `flag` and the position.
+std::vector<double> parse_values_option(const std::vector<std::string>& items, const std::string& flag);
 
 // --n, --r, --mk, --mg (online_sizes.cpp): signs first (-1: the model's maximum), then the
 // maxima stored in the model read from `path`. Throw contactrb::Error naming the flag.

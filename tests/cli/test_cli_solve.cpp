@@ -80,7 +80,7 @@ TEST(CliSolve, BadInputsGiveOneClearError) {
   const std::string out = " --out " + shell_quote(dir.path().string());
   expect_user_error(run_cli("solve --case hertz-a --mu 0.5" + out), "outside the domain");
   expect_user_error(run_cli("solve --case hertz-a --mu 0.1" + out), "[0.15, 0.45]");
-  expect_user_error(run_cli("solve --case hertz-a --mu nan" + out), "outside the domain");
+  expect_user_error(run_cli("solve --case hertz-a --mu nan" + out), "--mu: 'nan' is not a number (NaN)");
   expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --alpha 0" + out), "alpha");
   expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --alpha 1.5" + out), "alpha");
   expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --tol 0" + out), "tolerance");

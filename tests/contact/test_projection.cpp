@@ -401,3 +401,30 @@ TEST(Projection, RejectsBadDisplacements) {
   set(w, pair.master[1], X(m, pair.master[0]) - X(m, pair.master[1]));
   EXPECT_THROW(project_slave_nodes(m, pair, w), Error);
 }
+
+// Issue [R] row 3: finite displacements whose squared distances overflow (1e155) left the
+// search at its initial segment -1, which was then used as an index into the master chain (a
+// heap-buffer-overflow read under ASan, garbage rows in Release). One clear error now, with
+// both searches.
+TEST(Projection, OverflowingDistancesAreAnErrorNotAnIndexOfMinusOne) {
+  const Mesh m = flat_blocks(0.0, 1.0, 0.25, 7, 0.0, 1.0, 5);
+  const ContactPair pair = make_contact_pair(m);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(m.num_dofs());
+  for (int s : pair.slave) set(w, s, Vector2d(0.0, 1e155));
+  for (const SearchMethod method : {SearchMethod::AllPairs, SearchMethod::Tree}) {
+    ProjectionOptions options;
+    options.search = method;
+    try {
+      (void)project_slave_nodes(m, pair, w, options);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("to the master boundary is not finite (positions of magnitude 1e+155"), std::string::npos)
+          << what;
+    }
+  }
+  // Just below the overflow the same data project normally (distance 1e153 - 0.25 above).
+  for (int s : pair.slave) set(w, s, Vector2d(0.0, 1e153));
+  const PointwiseContact pc = project_slave_nodes(m, pair, w);
+  for (const SlaveProjection& p : pc.projection) EXPECT_GE(p.segment, 0);
+}

@@ -66,3 +66,26 @@ TEST(HFErrors, NonConvergenceIsAStatusWithIterationsAndIncrements) {
   EXPECT_NE(sol.message.find("2 iterations"), std::string::npos) << sol.message;
   EXPECT_NE(sol.message.find("increments"), std::string::npos) << sol.message;
 }
+
+// Issue [R] rows 3 and 5, at the library level (check_case_spec refuses such data before a case
+// gets here; a ContactProblem built directly does not go through it). A Dirichlet value of 1e155
+// made the squared distances of the projection overflow, and the search indexed segment -1 (a
+// heap-buffer-overflow read); at 1e154 the solve "converged" with an infinite energy. Either a
+// clear error or a flagged status now, never "converged".
+TEST(HFErrors, OverflowingDataEndInAnErrorOrANonFiniteStatus) {
+  for (const double uy : {-1e154, -1e155, -1e200}) {
+    SCOPED_TRACE(uy);
+    hf::ContactProblem p = blocks();
+    p.dirichlet = {{"top", 0.0, uy}, {"bottom", 0.0, 0.0}};
+    try {
+      const hf::HFSolution s = hf::HFSolver(p).solve({});
+      EXPECT_FALSE(s.converged);
+      EXPECT_NE(s.status, solve::KacanovStatus::Converged) << s.message;
+      EXPECT_NE(s.message.find("finite"), std::string::npos) << s.message;
+      std::printf("  uy = %g: status %s: %s\n", uy, solve::to_string(s.status), s.message.c_str());
+    } catch (const Error& e) {  // a clear error is as good as a flagged status
+      EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+      std::printf("  uy = %g: error: %s\n", uy, e.what());
+    }
+  }
+}

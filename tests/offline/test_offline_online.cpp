@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -532,6 +534,41 @@ TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   }
 }
 
+// Issue [R] item 2: a result whose energy or force is not finite is never "converged". The
+// lift energy 1/2 u_D' A u_D enters only the energy, so a model whose lift_AA overflowed (inf)
+// solves exactly as before and converges: before the check it was reported as converged with
+// energy inf (JSON null). A right-hand side scaled by 1e300 makes u_hat itself overflow the
+// geometry: a failure status too.
+TEST(OnlineSolver, NonFiniteResultsAreFlaggedNeverConverged) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  const OfflineResult off = truncated_model(set, "hertz-a");
+  OnlineSolver reference(off.model);
+  const contactrb::rb::OnlineSolution good = reference.solve(0.3);
+  ASSERT_TRUE(good.converged()) << good.message;
+  ASSERT_TRUE(std::isfinite(good.energy));
+
+  contactrb::rb::ReducedModel m = off.model;
+  for (double& v : m.lift_AA) v = std::numeric_limits<double>::infinity();
+  OnlineSolver huge_lift(m);
+  const contactrb::rb::OnlineSolution a = huge_lift.solve(0.3);
+  EXPECT_EQ(a.status, contactrb::solve::KacanovStatus::NonFinite) << a.message;
+  EXPECT_FALSE(a.converged());
+  EXPECT_FALSE(std::isfinite(a.energy));
+  EXPECT_NE(a.message.find("is not finite"), std::string::npos) << a.message;
+  EXPECT_EQ(a.u_hat, good.u_hat);  // the solve itself is the same
+
+  m = off.model;
+  for (Eigen::VectorXd& f : m.f_hat) f *= 1e300;
+  for (Eigen::VectorXd& f : m.A_lift_hat) f *= 1e300;
+  OnlineSolver huge_load(m);
+  const contactrb::rb::OnlineSolution b = huge_load.solve(0.3);
+  EXPECT_FALSE(b.converged()) << "energy " << b.energy;
+  EXPECT_NE(b.status, contactrb::solve::KacanovStatus::Converged);
+  EXPECT_FALSE(b.message.empty());
+  std::printf("  lift_AA inf: %s: %s\n  f_hat 1e300: %s: %s\n", to_string(a.status), a.message.c_str(),
+              to_string(b.status), b.message.c_str());
+}
+
 TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
   SnapshotSet set = snapshots("hertz-a");
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
@@ -539,7 +576,48 @@ TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
   bad.eps_pod = -1.0;
   EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec, bad), contactrb::Error);
   set.snapshots[1].converged = false;
-  EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec), contactrb::Error);
+  set.snapshots[1].status = "max_iterations";
+  try {
+    (void)contactrb::rb::build_reduced_model(set, spec);
+    ADD_FAILURE() << "a failed snapshot was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos) << e.what();
+  }
+}
+
+// The builder is a library entry point: a set that did not come through read_snapshot_file is
+// checked before any index is used (issue [R] row 1: an out-of-range free DOF crashed in
+// setFromTriplets), and a repeated training value is refused (row 7: a set of one repeated
+// value gave a model that answered a contact force 45 times the HF one, "converged").
+TEST(OfflineBuilder, RefusesBadIndicesAndRepeatedTrainingValues) {
+  const SnapshotSet good = snapshots("hertz-a");
+  const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
+  const auto expect_refused = [&](const SnapshotSet& set, const std::string& words) {
+    try {
+      (void)contactrb::rb::build_reduced_model(set, spec);
+      ADD_FAILURE() << "accepted; expected an error with '" << words << "'";
+    } catch (const contactrb::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  SnapshotSet set = good;
+  set.free_dofs[4] = good.num_dofs + 1000;
+  expect_refused(set, "offline: inconsistent snapshot set: /discretization/free_dofs[4]");
+  set = good;
+  set.free_dofs[0] = -1;
+  expect_refused(set, "/discretization/free_dofs[0] = -1 is outside");
+  set = good;
+  set.free_dofs[1] = set.free_dofs[0];
+  expect_refused(set, "appears twice");
+  set = good;
+  set.master.back() = good.num_dofs;  // a node index: num_dofs / 2 nodes
+  expect_refused(set, "/discretization/master[");
+  set = good;
+  set.snapshots[0].u0(3) = std::numeric_limits<double>::quiet_NaN();
+  expect_refused(set, "/snapshots/000000/u0 holds a non-finite value");
+  set = good;
+  set.snapshots[2] = set.snapshots[1];
+  expect_refused(set, "the training value mu = 0.21 appears twice (snapshots 1 and 2)");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // file, a non-HDF5 file, a truncated file, a wrong version and a checksum mismatch each give a
 // clear error naming the file.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include "support/temp_dir.hpp"
 
@@ -174,6 +175,52 @@ TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
   put(flipped, damaged);
   EXPECT_NE(read_error(flipped).find("checksum mismatch"), std::string::npos) << read_error(flipped);
   for (const std::string& f : {missing, text, truncated, newer, flipped}) std::printf("  %s\n", read_error(f).c_str());
+}
+
+}  // namespace
+
+namespace {
+
+// Sets the model file's `complete` mark to `value` through the HDF5 C API.
+void set_complete(const std::string& path, const std::string& name, int value) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+  const herr_t written = set >= 0 ? H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) : -1;
+  if (set >= 0) H5Dclose(set);
+  H5Fclose(file);
+  ASSERT_GE(written, 0);
+}
+
+// Issue [R] row 14: `complete = 0` was accepted (only its presence was checked).
+TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
+  contactrb::test::TempDir dir("reduced_model_complete");
+  const std::string path = dir.file("model.h5");
+  contactrb::io::write_reduced_model_file(built().model, built().reconstruction, path);
+  ASSERT_EQ(read_error(path), "");
+  ASSERT_NO_THROW((void)contactrb::io::read_reconstruction(path));
+  set_complete(path, "complete", 0);
+  EXPECT_NE(read_error(path).find("incomplete file"), std::string::npos) << read_error(path);
+  set_complete(path, "complete", 1);
+  EXPECT_EQ(read_error(path), "");
+  set_complete(path, "reconstruction/complete", 0);
+  try {
+    (void)contactrb::io::read_reconstruction(path);
+    ADD_FAILURE() << "an incomplete reconstruction was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("incomplete reconstruction"), std::string::npos) << e.what();
+  }
+}
+
+// Issue [R] row 14: a snapshot file given as a model said "missing dataset 'format'".
+TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
+  contactrb::test::TempDir dir("reduced_model_snapshots");
+  const std::string path = dir.file("snapshots.h5");
+  const auto request = contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-a"), "training",
+                                                            0, std::nullopt, std::vector<double>{0.3});
+  contactrb::io::write_snapshot_file(contactrb::rb::generate_snapshots(request), path);
+  const std::string e = read_error(path);
+  EXPECT_NE(e.find("'" + path + "': a contactrb snapshot file, not a reduced model"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -3,14 +3,19 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "snapshot_fixtures.hpp"
 
@@ -228,4 +233,283 @@ TEST(SnapshotFile, MissingDatasetIsRejected) {
   write_snapshot_file(synthetic_set(), dir.file("m.h5"));
   edit_file(dir.file("m.h5"), [](hid_t f) { ASSERT_GE(H5Ldelete(f, "/snapshots/000000/lambda", H5P_DEFAULT), 0); });
   expect_error_naming(dir.file("m.h5"), "missing dataset 'lambda'");
+}
+
+// ---------------------------------------------------------------------------- issue [R] item 1
+
+namespace {
+
+// The message of check_snapshot_set for `set`, or "" when it accepts it.
+std::string check_error(const SnapshotSet& set) {
+  try {
+    contactrb::io::check_snapshot_set(set);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Overwrites the int dataset `name` with `values` (its size unchanged).
+void put_ints(const std::string& path, const char* name, const std::vector<int>& values) {
+  edit_file(path, [&](hid_t f) {
+    const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
+    ASSERT_GE(set, 0);
+    ASSERT_GE(H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+    H5Dclose(set);
+  });
+}
+
+// Overwrites entry `i` of the double dataset `name` (the whole dataset rewritten).
+void put_double(const std::string& path, const char* name, std::size_t i, double value) {
+  edit_file(path, [&](hid_t f) {
+    const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
+    ASSERT_GE(set, 0);
+    const hid_t space = H5Dget_space(set);
+    const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+    H5Sclose(space);
+    std::vector<double> v(n);
+    ASSERT_GE(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    ASSERT_LT(i, n);
+    v[i] = value;
+    ASSERT_GE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    H5Dclose(set);
+  });
+}
+
+void put_double_attribute(const std::string& path, const char* object, const char* name, double value) {
+  edit_file(path, [&](hid_t f) {
+    // Through the open object: HDF5 1.10 cannot write an attribute opened by path alone.
+    const hid_t obj = H5Oopen(f, object, H5P_DEFAULT);
+    const hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
+    const herr_t written = H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+    H5Aclose(attr);
+    H5Oclose(obj);
+    EXPECT_GE(written, 0);
+  });
+}
+
+}  // namespace
+
+// The issue's row 1: free_dofs out of range, negative or repeated made `offline` crash in
+// Eigen's setFromTriplets. Every such edit is now caught by the checksum, naming the file.
+TEST(SnapshotFile, EditedIndicesAreCaughtByTheChecksum) {
+  TempDir dir("edited_indices");
+  write_snapshot_file(synthetic_set(), dir.file("good.h5"));
+  const std::vector<int> free = synthetic_set().free_dofs;
+  struct Case {
+    const char* label;
+    const char* dataset;
+    std::vector<int> values;
+  };
+  std::vector<int> out_of_range = free, negative = free, repeated = free;
+  out_of_range[3] = 1000000;
+  negative[0] = -7;
+  repeated[5] = repeated[4];
+  std::vector<int> slave = synthetic_set().slave;
+  slave[1] = 9999;
+  const std::vector<Case> cases = {{"out of range", "/discretization/free_dofs", out_of_range},
+                                   {"negative", "/discretization/free_dofs", negative},
+                                   {"repeated", "/discretization/free_dofs", repeated},
+                                   {"slave out of range", "/discretization/slave", slave}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.label);
+    const std::string path = dir.file(std::string(c.label) + ".h5");
+    fs::copy_file(dir.file("good.h5"), path);
+    put_ints(path, c.dataset, c.values);
+    expect_error_naming(path, "checksum mismatch");
+  }
+}
+
+TEST(SnapshotFile, EditedValuesAreCaughtByTheChecksum) {
+  TempDir dir("edited_values");
+  write_snapshot_file(synthetic_set(), dir.file("good.h5"));
+  const auto edited = [&](const std::string& label) {
+    const std::string path = dir.file(label + ".h5");
+    fs::copy_file(dir.file("good.h5"), path);
+    return path;
+  };
+  // One ulp in one displacement entry of a converged snapshot.
+  std::string path = edited("u");
+  put_double(path, "/snapshots/000000/u", 5, std::nextafter(synthetic_set().snapshots[0].u(5), 10.0));
+  expect_error_naming(path, "checksum mismatch");
+  path = edited("K");
+  put_double(path, "/snapshots/000002/K", 3, 0.0);  // a failed snapshot's arrays are covered too
+  expect_error_naming(path, "checksum mismatch");
+  path = edited("domain");
+  put_double_attribute(path, "/parameter", "max", 2.0);
+  expect_error_naming(path, "checksum mismatch");
+  path = edited("mu");
+  put_double_attribute(path, "/snapshots/000001", "mu", 1.0);
+  expect_error_naming(path, "checksum mismatch");
+  path = edited("deleted");  // an optional array of a failed snapshot removed
+  edit_file(path, [](hid_t f) { ASSERT_GE(H5Ldelete(f, "/snapshots/000002/gap_pointwise", H5P_DEFAULT), 0); });
+  expect_error_naming(path, "checksum mismatch");
+  path = edited("no_checksum");
+  edit_file(path, [](hid_t f) { ASSERT_GE(H5Adelete(f, "checksum"), 0); });
+  expect_error_naming(path, "missing attribute 'checksum'");
+}
+
+TEST(SnapshotFile, CompleteOtherThanOneIsRefused) {
+  TempDir dir("complete_zero");
+  for (const int value : {0, 2}) {
+    const std::string path = dir.file("c" + std::to_string(value) + ".h5");
+    write_snapshot_file(synthetic_set(), path);
+    edit_file(path, [&](hid_t f) {
+      const hid_t attr = H5Aopen(f, "complete", H5P_DEFAULT);
+      ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &value), 0);
+      H5Aclose(attr);
+    });
+    expect_error_naming(path, "incomplete");
+  }
+}
+
+// The checks behind the checksum, for a file with a valid checksum over bad contents (a
+// faulty writer, a crafted file) and for sets handed to the offline builder directly. Each
+// case names the field.
+TEST(SnapshotFile, CheckSnapshotSetNamesTheBadField) {
+  EXPECT_EQ(check_error(synthetic_set()), "");
+  const auto expect_named = [](const SnapshotSet& s, const std::string& words) {
+    const std::string e = check_error(s);
+    EXPECT_NE(e.find(words), std::string::npos) << "expected '" << words << "' in: " << e;
+  };
+  SnapshotSet s = synthetic_set();
+  s.free_dofs[3] = 20;  // == num_dofs
+  expect_named(s, "/discretization/free_dofs[3] = 20 is outside [0, num_dofs = 20)");
+  s = synthetic_set();
+  s.free_dofs[0] = -1;
+  expect_named(s, "/discretization/free_dofs[0] = -1 is outside");
+  s = synthetic_set();
+  s.free_dofs[5] = s.free_dofs[4];
+  expect_named(s, "/discretization/free_dofs[5] = 6 appears twice");
+  s = synthetic_set();
+  s.slave[0] = 10;  // nodes = 10
+  expect_named(s, "/discretization/slave[0] = 10 is outside [0, nodes = 10)");
+  s = synthetic_set();
+  s.master = {6, 6};
+  expect_named(s, "/discretization/master[1] = 6 appears twice");
+  s = synthetic_set();
+  s.master = {6, 7, 3, 6};  // a closed chain repeats its first node at the end: accepted
+  s.contact_dofs = {4, 5, 6, 7, 12, 13, 14, 15};
+  s.contact_dofs.insert(s.contact_dofs.begin() + 4, {6, 7});
+  std::sort(s.contact_dofs.begin(), s.contact_dofs.end());
+  s.contact_dofs.erase(std::unique(s.contact_dofs.begin(), s.contact_dofs.end()), s.contact_dofs.end());
+  EXPECT_EQ(check_error(s), "");
+  s = synthetic_set();
+  s.contact_dofs[1] = 4;
+  expect_named(s, "/discretization/contact_dofs (8 entries) are not the two components");
+  s = synthetic_set();
+  s.num_dofs = 21;
+  expect_named(s, "num_dofs = 21");
+  s = synthetic_set();  // a damaged count: checked without memory in proportion to it
+  s.num_dofs = 2000000000;
+  expect_named(s, "/snapshots/000000: u has 20 entries, expected 2000000000");
+  // Non-finite values of a converged snapshot, by dataset.
+  s = synthetic_set();
+  s.snapshots[0].u(7) = std::numeric_limits<double>::quiet_NaN();
+  expect_named(s, "/snapshots/000000/u holds a non-finite value (nan) at entry 7");
+  s = synthetic_set();
+  s.snapshots[0].K(1, 2) = -std::numeric_limits<double>::infinity();
+  expect_named(s, "/snapshots/000000/K holds a non-finite value (-inf) at (1, 2)");
+  s = synthetic_set();
+  s.snapshots[0].g(0) = std::numeric_limits<double>::infinity();
+  expect_named(s, "/snapshots/000000/g holds a non-finite value");
+  s = synthetic_set();  // a failed snapshot keeps whatever its last iterate was
+  s.snapshots[2].u(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(check_error(s), "");
+  // Parameter values against the stored domain, and the domain itself.
+  s = synthetic_set();
+  s.snapshots[1].mu = 1.2;
+  expect_named(s, "/snapshots/000001: mu = 1.2 is outside the stored domain [0.95, 1.15]");  // shortest digits
+  s = synthetic_set();
+  s.snapshots[1].mu = std::nextafter(0.95, 0.0);
+  expect_named(s, "is outside the stored domain");
+  s = synthetic_set();
+  std::swap(s.parameter_min, s.parameter_max);
+  expect_named(s, "the parameter domain [1.15, 0.95] (/parameter min, max) is not an interval");
+  s = synthetic_set();
+  s.parameter_max = std::numeric_limits<double>::quiet_NaN();
+  expect_named(s, "is not an interval");
+  // Status and flag, settings, kinds.
+  s = synthetic_set();
+  s.snapshots[2].converged = true;
+  expect_named(s, "/snapshots/000002: status 'max_iterations' disagrees with /snapshots/converged = 1");
+  s = synthetic_set();
+  s.kacanov_alpha = 0.0;
+  expect_named(s, "Kacanov settings");
+  s = synthetic_set();
+  s.constraint = "mortar";
+  expect_named(s, "/case/constraint is 'mortar'");
+}
+
+TEST(SnapshotFile, WriterRefusesWhatTheReaderWouldRefuse) {
+  TempDir dir("writer_refuses");
+  SnapshotSet bad = synthetic_set();
+  bad.free_dofs[2] = 99;
+  try {
+    write_snapshot_file(bad, dir.file("bad.h5"));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/discretization/free_dofs[2] = 99"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  // A set whose every solve threw before its discretization existed is still written (the
+  // failures are the record).
+  SnapshotSet failed = synthetic_set();
+  failed.num_dofs = 0;
+  failed.constraint.clear();
+  failed.free_dofs.clear();
+  failed.contact_dofs.clear();
+  failed.slave.clear();
+  failed.master.clear();
+  failed.snapshots = {failed.snapshots[1]};
+  write_snapshot_file(failed, dir.file("failed.h5"));
+  EXPECT_EQ(read_snapshot_file(dir.file("failed.h5")).num_failed(), 1);
+}
+
+TEST(SnapshotFile, AReducedModelFileIsNamedAsSuch) {
+  TempDir dir("model_as_snapshots");
+  const std::string path = dir.file("model.h5");
+  contactrb::io::write_reduced_model_file(contactrb::rb::ReducedModel{}, path);
+  expect_error_naming(path, "is a contactrb reduced model file, not a snapshot file");
+  EXPECT_FALSE(contactrb::io::is_snapshot_file(path));
+  write_snapshot_file(synthetic_set(), dir.file("s.h5"));
+  EXPECT_TRUE(contactrb::io::is_snapshot_file(dir.file("s.h5")));
+  EXPECT_FALSE(contactrb::io::is_snapshot_file(dir.file("nothing.h5")));
+}
+
+// Issue [R] row 2: 72 of 80 random byte flips of a snapshot file were accepted and 14 changed
+// the online answer. Now every flip is either refused with a message naming the file or lands
+// in bytes that carry no data (HDF5 padding, free space): the data read back are then
+// bitwise the written ones. Seeded, so a failure reproduces.
+TEST(SnapshotFile, EveryByteFlipIsRefusedOrHarmless) {
+  TempDir dir("byte_flips");
+  const SnapshotSet s = synthetic_set();
+  write_snapshot_file(s, dir.file("good.h5"));
+  std::ifstream in(dir.file("good.h5"), std::ios::binary);
+  const std::vector<char> good{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_GT(good.size(), 1000u);
+  std::mt19937 rng(20261123);
+  std::uniform_int_distribution<std::size_t> where(0, good.size() - 1);
+  std::uniform_int_distribution<int> bit(0, 7);
+  int refused = 0, harmless = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<char> bytes = good;
+    const std::size_t at = where(rng);
+    bytes[at] = static_cast<char>(bytes[at] ^ (1 << bit(rng)));
+    const std::string path = dir.file("flip.h5");
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    try {
+      const SnapshotSet r = read_snapshot_file(path);
+      SCOPED_TRACE("byte " + std::to_string(at) + " accepted");
+      contactrb::test::expect_same_data(s, r, /*with_timings=*/true);
+      ++harmless;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      ++refused;
+    }
+  }
+  std::printf("  300 single-bit flips: %d refused, %d in bytes without data\n", refused, harmless);
+  // Measured: 97 of the 300 flips refused; the rest hit bytes HDF5 never reads back (the file
+  // is mostly padding at this size). Far fewer would mean the reader stopped looking.
+  EXPECT_GT(refused, 50);
 }

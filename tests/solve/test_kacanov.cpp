@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "contactrb/common/error.hpp"
@@ -128,4 +129,25 @@ TEST(Kacanov, LostContactNeedsAlphaOne) {
   const KacanovResult undamped = kacanov(step, VectorXd::Constant(1, 1.0), VectorXd::Constant(1, 2.0), s);
   EXPECT_EQ(undamped.status, KacanovStatus::Converged);
   EXPECT_EQ(undamped.iterations, 2);
+}
+
+// Issue [R] item 2: a NaN increment fails every comparison, and max(du = 0, NaN) is 0, so a step
+// whose multipliers were NaN passed the stopping test as "converged". Non-finite steps now end
+// with their own status, on the first such step.
+TEST(Kacanov, NonFiniteStepIsAStatusNeverConverged) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  KacanovSettings s;
+  s.alpha = 1.0;
+  const KacanovResult r =
+      kacanov(constant_step(VectorXd::Constant(1, 1.0), VectorXd::Constant(1, nan)), VectorXd::Constant(1, 1.0),
+              VectorXd::Constant(1, 1.0), s);
+  EXPECT_EQ(r.status, KacanovStatus::NonFinite);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_NE(r.message.find("not finite (multipliers)"), std::string::npos) << r.message;
+  EXPECT_STREQ(to_string(r.status), "non_finite");
+  const KacanovResult d = kacanov(constant_step(VectorXd::Constant(2, inf), VectorXd::Zero(1)), VectorXd::Ones(2),
+                                  VectorXd::Zero(1), s);
+  EXPECT_EQ(d.status, KacanovStatus::NonFinite);
+  EXPECT_NE(d.message.find("not finite (displacement)"), std::string::npos) << d.message;
 }

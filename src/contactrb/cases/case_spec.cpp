@@ -1,5 +1,7 @@
 #include "contactrb/cases/case_spec.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -26,6 +28,25 @@ constexpr double kRingBlockNu = 0.3;
 constexpr double kRingPush = 0.2;
 
 AffineValue constant(double a) { return {a, 0.0}; }
+
+// Physically degenerate data (docs/cases.md, "Limits"). Plane strain lambda_L =
+// E nu / ((1 + nu)(1 - 2 nu)) grows like 1/(1 - 2 nu): at nu = 0.5 - 1e-6 lambda_L / mu_L is
+// already 3e5 and P1 elements lock; at 0.49999999999999994 (one ulp below 0.5) the solve
+// "converged" to an energy 26 times off.
+constexpr double kIncompressibleMargin = 1e-6;
+// Beyond this ratio of the two Young's moduli the stiffness matrix has a condition number whose
+// product with the double round-off (1e-16) is no longer small.
+constexpr double kMaxStiffnessRatio = 1e12;
+// Largest magnitude of E, a body load and a Dirichlet value over the parameter domain: the
+// energy multiplies E by squared displacements and the projection squares distances, which
+// overflow double precision from about 1e154 on (the projection then indexed segment -1).
+// 1e50 leaves room for any unit system and mesh size.
+constexpr double kMaxDataMagnitude = 1e50;
+
+std::string shortest(double x) {
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+}
 
 CaseSpec hertz_a() {
   CaseSpec c;
@@ -125,13 +146,42 @@ void check_case_spec(const CaseSpec& c) {
     if (!(std::isfinite(b.nu) && b.nu > -1.0 && b.nu < 0.5)) {
       fail(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + std::to_string(b.nu) + ")");
     }
+    if (b.nu > 0.5 - kIncompressibleMargin) {
+      fail(body + ": Poisson's ratio nu = " + shortest(b.nu) +
+           " is within 1e-6 of 0.5: a nearly incompressible material, for which the plane-strain Lame "
+           "coefficient lambda_L blows up and P1 elements lock (use nu <= 0.499999)");
+    }
+    if (b.E > kMaxDataMagnitude) {
+      fail(body + ": Young's modulus E = " + shortest(b.E) + " is above 1e50 (products with it would overflow "
+                  "double precision: change the units)");
+    }
     if (!b.load.allFinite()) fail(body + ": body load is not finite");
+    if (b.load.cwiseAbs().maxCoeff() > kMaxDataMagnitude) {
+      fail(body + ": body load of magnitude " + shortest(b.load.cwiseAbs().maxCoeff()) +
+           " is above 1e50 (products with it would overflow double precision: change the units)");
+    }
+  }
+  {
+    const double ratio = std::max(c.bodies[0].E, c.bodies[1].E) / std::min(c.bodies[0].E, c.bodies[1].E);
+    if (ratio > kMaxStiffnessRatio) {
+      fail("the Young's moduli of the two bodies (" + shortest(c.bodies[0].E) + ", " + shortest(c.bodies[1].E) +
+           ") differ by a factor " + shortest(ratio) +
+           " above 1e12: the stiffness matrix is too ill-conditioned for double precision");
+    }
   }
   for (const DirichletSpec& d : c.dirichlet) {
     if (d.group.empty()) fail("a Dirichlet condition has no group");
     if (!d.ux && !d.uy) fail("Dirichlet condition on '" + d.group + "' prescribes no component");
     for (const auto& v : {d.ux, d.uy}) {
       if (v && !(std::isfinite(v->a) && std::isfinite(v->b))) fail("Dirichlet data on '" + d.group + "' is not finite");
+      if (!v || !std::isfinite(c.parameter.min) || !std::isfinite(c.parameter.max)) continue;  // domain: below
+      // a + b mu is affine: its largest magnitude over the domain is at an end.
+      const double largest = std::max(std::abs(v->a + v->b * c.parameter.min), std::abs(v->a + v->b * c.parameter.max));
+      if (!(largest <= kMaxDataMagnitude)) {
+        fail("Dirichlet data on '" + d.group + "' reaches magnitude " + shortest(largest) +
+             " on the parameter domain, above 1e50 (energies and distances would overflow double precision: "
+             "change the units)");
+      }
     }
   }
   check_parameter_spec(c.parameter, where);

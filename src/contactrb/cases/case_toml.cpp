@@ -45,6 +45,13 @@ std::string type_name(const toml::node& n) {
   return "nothing";
 }
 
+// Shortest round-trip text of a double, for messages (nan and inf as such).
+std::string shortest(double x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
 // Reads one TOML document into a CaseSpec; every message names the file, the line (when
 // toml++ knows it) and the dotted key.
 class Reader {
@@ -141,17 +148,42 @@ class Reader {
   }
 
   // A parameter set: an array of numbers or {start, step, count}.
+  // The values must be strictly increasing (a repeated value, e.g. from step = 0, gave a model
+  // that answered far from the HF solution with converged = true).
   std::vector<double> parameter_set(const toml::node& n, const std::string& key) const {
-    if (n.is_array()) return numbers(n, key);
+    if (n.is_array()) {
+      std::vector<double> v = numbers(n, key);
+      for (std::size_t i = 1; i < v.size(); ++i) {
+        if (!(v[i] > v[i - 1])) {
+          fail(n.as_array()->get(i), "key '" + key + "' must be strictly increasing, but element " +
+                                         std::to_string(i + 1) + " (" + shortest(v[i]) + ") is not above element " +
+                                         std::to_string(i) + " (" + shortest(v[i - 1]) + ")");
+        }
+      }
+      return v;
+    }
     const auto* t = n.as_table();
     if (t == nullptr) wrong_type(n, key, "an array of numbers or a table {start, step, count}");
     check_keys(*t, key, {"start", "step", "count"});
     const double start = number(required(*t, key, "start"), key + ".start");
-    const double step = number(required(*t, key, "step"), key + ".step");
+    const toml::node& step_node = required(*t, key, "step");
+    const double step = number(step_node, key + ".step");
     const toml::node& c = required(*t, key, "count");
     const long long count = integer(c, key + ".count");
     if (count < 1 || count > 1000000) fail(&c, "key '" + key + ".count' must be in [1, 1000000]");
-    return arithmetic_set(start, step, static_cast<int>(count));
+    if (count > 1 && !(step > 0.0)) {
+      fail(&step_node, "key '" + key + ".step' must be > 0 (the values must be strictly increasing), got " +
+                           shortest(step));
+    }
+    std::vector<double> v = arithmetic_set(start, step, static_cast<int>(count));
+    for (std::size_t i = 1; i < v.size(); ++i) {
+      if (!(v[i] > v[i - 1])) {  // a step below the spacing of doubles at start
+        fail(&step_node, "key '" + key + ".step' = " + shortest(step) + " is too small for start = " +
+                             shortest(start) + ": values " + std::to_string(i) + " and " + std::to_string(i + 1) +
+                             " are equal");
+      }
+    }
+    return v;
   }
 
   // A generated value within round-off of the domain (0.15 + 6 * 0.05 = 0.45000000000000007)

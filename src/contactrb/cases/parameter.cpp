@@ -1,5 +1,6 @@
 #include "contactrb/cases/parameter.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -73,6 +74,21 @@ void check_parameter_spec(const ParameterSpec& p, const std::string& context) {
     require(!s.name.empty(), "a parameter set has no name" + where);
     require(names.insert(s.name).second, "parameter set '" + s.name + "' is defined twice" + where);
     for (double mu : s.values) p.check(mu, "parameter set '" + s.name + "'" + where);
+    check_increasing(s.values, "parameter set '" + s.name + "'" + where);
+  }
+}
+
+void check_increasing(const std::vector<double>& values, const std::string& context) {
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (!(values[i] > values[i - 1])) {
+      const auto text = [](double x) {  // shortest round-trip digits
+        char buf[32];
+        return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+      };
+      throw Error("the values of " + context + " must be strictly increasing, but value " + std::to_string(i + 1) +
+                  " (" + text(values[i]) + ") is not above value " + std::to_string(i) + " (" + text(values[i - 1]) +
+                  ")");
+    }
   }
 }
 

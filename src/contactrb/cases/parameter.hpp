@@ -44,8 +44,14 @@ struct ParameterSpec {
 
 // Throws contactrb::Error naming the first inconsistency: empty domain, non-finite bounds,
 // reference outside the domain (or <= 0 for BodyScaling), a set value outside the
-// domain, an empty or duplicated set name, a scaled body other than 0 or 1.
+// domain, a set that is not strictly increasing, an empty or duplicated set name, a scaled
+// body other than 0 or 1.
 void check_parameter_spec(const ParameterSpec& spec, const std::string& context);
+
+// Throws contactrb::Error naming `context` and the first position where `values` does not
+// strictly increase (a repeated value: a training set of one repeated value gave a model that
+// answered far from the HF solution with converged = true).
+void check_increasing(const std::vector<double>& values, const std::string& context);
 
 // {start + step i, i = 0..count-1}, each value computed as start + i * step (no drift).
 std::vector<double> arithmetic_set(double start, double step, int count);

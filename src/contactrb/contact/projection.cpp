@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -214,6 +215,16 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
     const int node = pair.slave[static_cast<std::size_t>(s)];
     const Vec2 x = position(mesh, w, node);
     const SegmentHit h = use_tree ? tree->nearest(x, stack) : search_all_pairs(m, x);
+    // No segment at a finite distance: the coordinates are finite but their squared distances
+    // overflow (from about 1e154 on). The search then keeps its initial segment -1, which was
+    // used as an index (issue [R] row 3).
+    if (h.segment < 0 || !std::isfinite(h.d2)) {
+      std::ostringstream os;
+      os << "project_slave_nodes: the distance from slave node " << node
+         << " to the master boundary is not finite (positions of magnitude " << x.cwiseAbs().maxCoeff()
+         << " overflow double precision when squared)";
+      throw Error(os.str());
+    }
     const int a = pair.master[static_cast<std::size_t>(h.segment)];
     const int b = pair.master[static_cast<std::size_t>(h.segment + 1)];
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/contact_condensation.hpp"
@@ -143,7 +144,13 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   // One linearized step (12): K, g frozen at the previous iterate u.
   solve::KacanovStep step = [&](const Eigen::VectorXd& u, const Eigen::VectorXd&, Eigen::VectorXd& u_bar,
                                 Eigen::VectorXd& lambda_bar, int& inner, std::string& message) {
-    contact::PointwiseContact pw = contact::project_slave_nodes(mesh, m.pair, u);
+    contact::PointwiseContact pw;
+    try {
+      pw = contact::project_slave_nodes(mesh, m.pair, u);
+    } catch (const Error& e) {  // an iterate the geometry cannot handle (non-finite, overflowing)
+      message = e.what();
+      return false;
+    }
     contact::ConstraintRows rows = contact::constraint_rows(mesh, m.pair, m.quadrature, pw, u);
     RowSparse Kc;
     Eigen::VectorXd g_lift;
@@ -215,12 +222,34 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   sol.kkt.complementarity = sol.lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / (lmax * gap_scale);
 
   // Nonlinear feasibility: geometry re-evaluated at the returned displacement.
-  const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, m.pair, sol.u);
-  const Eigen::VectorXd violation = at_u.K * sol.u - at_u.g;
-  sol.gap_violation = std::max(0.0, violation.maxCoeff());
+  std::string geometry_failure;
+  try {
+    const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, m.pair, sol.u);
+    const Eigen::VectorXd violation = at_u.K * sol.u - at_u.g;
+    sol.gap_violation = std::max(0.0, violation.maxCoeff());
+  } catch (const Error& e) {  // the returned displacement overflows the projection
+    sol.gap_violation = INFINITY;
+    geometry_failure = e.what();
+  }
 
   sol.energy = 0.5 * sol.u.dot(m.A * sol.u) - m.f.dot(sol.u);
   sol.contact_force = sol.lambda.dot(m.quadrature.weight);
+  // Finite iterates can still give a non-finite result (u of 1e154: u'Au overflows; of 1e155:
+  // the projection's squared distances). Not an answer: flagged, never "converged". (A solve
+  // that already failed keeps its own status and message.)
+  if (sol.converged && (!geometry_failure.empty() || !std::isfinite(sol.energy) ||
+                        !std::isfinite(sol.contact_force) || !std::isfinite(sol.gap_violation))) {
+    std::ostringstream os;
+    if (!geometry_failure.empty()) {
+      os << "the returned displacement cannot be checked against the contact geometry: " << geometry_failure;
+    } else {
+      os << "the solution is not finite (energy " << sol.energy << ", contact force " << sol.contact_force
+         << ", gap violation " << sol.gap_violation << "): the data overflow double precision";
+    }
+    sol.status = solve::KacanovStatus::NonFinite;
+    sol.converged = false;
+    sol.message = os.str();
+  }
   sol.active_constraints = static_cast<int>((sol.lambda.array() > 0.0).count());
   sol.time_s = seconds_since(t0) + m.setup_time;
   return sol;

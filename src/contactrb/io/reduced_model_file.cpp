@@ -12,6 +12,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
+#include "contactrb/io/snapshot_file.hpp"
 
 namespace contactrb::io {
 
@@ -320,6 +321,18 @@ std::uint64_t read_u64(hid_t file, const std::string& name) {
   return value;
 }
 
+// The mark `name` (= 1) is written last: a missing one or any other value (0, a damaged one) is
+// not a finished write.
+bool is_complete(hid_t file, const std::string& name) {
+  if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) return false;
+  int complete = 0;
+  read_raw(file, name, 1, H5T_NATIVE_INT, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
+    if (n != 1) throw H5Failure{"dataset '" + name + "' is not a scalar"};
+    return &complete;
+  });
+  return complete == 1;
+}
+
 }  // namespace
 
 namespace {
@@ -421,6 +434,10 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
   try {
     Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
             "cannot open the file (truncated or damaged)");
+    if (H5Lexists(file.get(), "format", H5P_DEFAULT) <= 0 && is_snapshot_file(path)) {
+      throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
+                      "--snapshots`)"};
+    }
     Reader r(file.get());
     std::string format;
     r.str("format", format);
@@ -431,9 +448,7 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
       throw H5Failure{"format version " + std::to_string(m.format_version) + ", this build reads version " +
                       std::to_string(rb::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)"};
     }
-    if (H5Lexists(file.get(), "complete", H5P_DEFAULT) <= 0) {
-      throw H5Failure{"incomplete file (the write was interrupted)"};
-    }
+    if (!is_complete(file.get(), "complete")) throw H5Failure{"incomplete file (the write was interrupted)"};
     visit(r, m);
     const std::uint64_t stored = read_u64(file.get(), "checksum");
     if (stored != r.checksum().value()) throw H5Failure{"checksum mismatch: the file was modified or damaged"};
@@ -468,7 +483,7 @@ rb::ReducedReconstruction read_reconstruction(const std::string& path) {
                       "them)"};
     }
     const std::string g = std::string(kReconstructionGroup) + "/";
-    if (H5Lexists(file.get(), (g + "complete").c_str(), H5P_DEFAULT) <= 0) {
+    if (!is_complete(file.get(), g + "complete")) {
       throw H5Failure{"incomplete reconstruction data (the write was interrupted)"};
     }
     Reader r(file.get());

@@ -3,7 +3,12 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <system_error>
@@ -11,7 +16,9 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/version.hpp"
+#include "contactrb/io/field_checksum.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
+#include "contactrb/io/reduced_model_file.hpp"
 
 namespace contactrb::io {
 
@@ -35,68 +42,96 @@ bool exists(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
 }
 
+// Field kinds of the checksum (FieldChecksum::add).
+constexpr char kString = 's';
+constexpr char kDouble = 'd';
+constexpr char kInt = 'i';
+
+// A group (or the root) and its path, the prefix of the checksum names of its fields.
+struct Loc {
+  hid_t id;
+  std::string path;  // "" for the root, "/case", "/snapshots/000003", ...
+  std::string field(const std::string& name) const { return path + "/" + name; }
+};
+
 // ---------------------------------------------------------------------------- writing
 
-Handle create_group(hid_t loc, const std::string& name) {
-  return {H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-          "cannot create group '" + name + "'"};
-}
+class FileWriter {
+ public:
+  Handle create_group(const Loc& loc, const std::string& name) {
+    return {H5Gcreate2(loc.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+            "cannot create group '" + loc.field(name) + "'"};
+  }
 
-Handle string_type(std::size_t length) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
-  check(H5Tset_size(type.get(), length == 0 ? 1 : length), "cannot size a string type");
-  check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "cannot set string padding");
-  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot set string encoding");
-  return type;
-}
+  void attribute(const Loc& loc, const std::string& name, const std::string& value) {
+    Handle type = string_type(value.size());
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
+    Handle attr(H5Acreate2(loc.id, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                "cannot create attribute '" + name + "'");
+    const std::string buffer = value.empty() ? std::string(1, '\0') : value;
+    check(H5Awrite(attr.get(), type.get(), buffer.data()), "cannot write attribute '" + name + "'");
+    sum_.add(loc.field(name), kString, {value.size()}, value.data(), value.size());
+  }
+  void attribute(const Loc& loc, const std::string& name, double value) {
+    number_attribute(loc, name, value, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+    sum_.add(loc.field(name), kDouble, {1}, &value, sizeof value);
+  }
+  void attribute(const Loc& loc, const std::string& name, int value) {
+    number_attribute(loc, name, value, H5T_STD_I32LE, H5T_NATIVE_INT);
+    sum_.add(loc.field(name), kInt, {1}, &value, sizeof value);
+  }
 
-void write_attribute(hid_t loc, const std::string& name, const std::string& value) {
-  Handle type = string_type(value.size());
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
-  Handle attr(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-              "cannot create attribute '" + name + "'");
-  const std::string buffer = value.empty() ? std::string(1, '\0') : value;
-  check(H5Awrite(attr.get(), type.get(), buffer.data()), "cannot write attribute '" + name + "'");
-}
+  void vector(const Loc& loc, const std::string& name, const Eigen::VectorXd& v) {
+    const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
+    dataset(loc, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+    sum_.add(loc.field(name), kDouble, {dims[0]}, v.data(), static_cast<std::size_t>(v.size()) * sizeof(double));
+  }
+  void vector(const Loc& loc, const std::string& name, const std::vector<int>& v) {
+    const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
+    dataset(loc, name, v.data(), 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
+    sum_.add(loc.field(name), kInt, {dims[0]}, v.data(), v.size() * sizeof(int));
+  }
+  void matrix(const Loc& loc, const std::string& name, const Eigen::MatrixXd& m) {
+    const RowMajorMatrix row_major = m;  // HDF5 stores C order
+    const hsize_t dims[2] = {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())};
+    dataset(loc, name, row_major.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+    sum_.add(loc.field(name), kDouble, {dims[0], dims[1]}, row_major.data(),
+             static_cast<std::size_t>(m.size()) * sizeof(double));
+  }
+  // Arrays a failed solve may lack are written only when present.
+  void optional(const Loc& loc, const std::string& name, const Eigen::VectorXd& v) {
+    if (v.size() > 0) vector(loc, name, v);
+  }
 
-template <typename T>
-void write_attribute_number(hid_t loc, const std::string& name, T value, hid_t file_type, hid_t mem_type) {
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
-  Handle attr(H5Acreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-              "cannot create attribute '" + name + "'");
-  check(H5Awrite(attr.get(), mem_type, &value), "cannot write attribute '" + name + "'");
-}
-void write_attribute(hid_t loc, const std::string& name, double value) {
-  write_attribute_number(loc, name, value, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
-}
-void write_attribute(hid_t loc, const std::string& name, int value) {
-  write_attribute_number(loc, name, value, H5T_STD_I32LE, H5T_NATIVE_INT);
-}
+  std::uint64_t checksum() const { return sum_.value(); }
 
-void write_dataset(hid_t loc, const std::string& name, const void* data, int rank, const hsize_t* dims,
-                   hid_t file_type, hid_t mem_type) {
-  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "cannot create the dataspace of '" + name + "'");
-  Handle set(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose, "cannot create dataset '" + name + "'");
-  check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset '" + name + "'");
-}
-void write_vector(hid_t loc, const std::string& name, const Eigen::VectorXd& v) {
-  const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
-  write_dataset(loc, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
-}
-void write_vector(hid_t loc, const std::string& name, const std::vector<int>& v) {
-  const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
-  write_dataset(loc, name, v.data(), 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
-}
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m) {
-  const RowMajorMatrix row_major = m;  // HDF5 stores C order
-  const hsize_t dims[2] = {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())};
-  write_dataset(loc, name, row_major.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
-}
-// Arrays a failed solve may lack are written only when present.
-void write_optional(hid_t loc, const std::string& name, const Eigen::VectorXd& v) {
-  if (v.size() > 0) write_vector(loc, name, v);
-}
+ private:
+  static Handle string_type(std::size_t length) {
+    Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
+    check(H5Tset_size(type.get(), length == 0 ? 1 : length), "cannot size a string type");
+    check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "cannot set string padding");
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot set string encoding");
+    return type;
+  }
+  template <typename T>
+  static void number_attribute(const Loc& loc, const std::string& name, T value, hid_t file_type, hid_t mem_type) {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
+    Handle attr(H5Acreate2(loc.id, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                "cannot create attribute '" + name + "'");
+    check(H5Awrite(attr.get(), mem_type, &value), "cannot write attribute '" + name + "'");
+  }
+  static void dataset(const Loc& loc, const std::string& name, const void* data, int rank, const hsize_t* dims,
+                      hid_t file_type, hid_t mem_type) {
+    Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose,
+                 "cannot create the dataspace of '" + loc.field(name) + "'");
+    Handle set(H5Dcreate2(loc.id, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Dclose, "cannot create dataset '" + loc.field(name) + "'");
+    check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+          "cannot write dataset '" + loc.field(name) + "'");
+  }
+
+  FieldChecksum sum_;
+};
 
 std::string snapshot_group_name(std::size_t i) {
   char buffer[24];
@@ -104,70 +139,52 @@ std::string snapshot_group_name(std::size_t i) {
   return buffer;
 }
 
-void check_sizes(const SnapshotSet& set) {
-  const auto num_free = static_cast<Eigen::Index>(set.free_dofs.size());
-  const auto nc = static_cast<Eigen::Index>(set.contact_dofs.size());
-  for (int d : set.free_dofs) require(d >= 0 && d < set.num_dofs, "free DOF index out of range");
-  for (int d : set.contact_dofs) require(d >= 0 && d < set.num_dofs, "contact DOF index out of range");
-  for (const Snapshot& s : set.snapshots) {
-    std::ostringstream where;
-    where << "snapshot mu = " << s.mu << ": ";
-    const auto R = s.lambda.size();
-    require(s.u0.size() == 0 || s.u0.size() == num_free,
-            where.str() + "u0 has " + std::to_string(s.u0.size()) + " entries, expected " + std::to_string(num_free));
-    require(s.u.size() == 0 || s.u.size() == set.num_dofs,
-            where.str() + "u has " + std::to_string(s.u.size()) + " entries, expected " + std::to_string(set.num_dofs));
-    require(s.K.size() == 0 || (s.K.rows() == R && s.K.cols() == nc),
-            where.str() + "K is " + std::to_string(s.K.rows()) + " x " + std::to_string(s.K.cols()) + ", expected " +
-                std::to_string(R) + " x " + std::to_string(nc));
-    require(s.g.size() == 0 || s.g.size() == R, where.str() + "g and lambda differ in size");
-    require(s.weight.size() == 0 || s.weight.size() == R, where.str() + "weight and lambda differ in size");
-    require(s.gap_pointwise.size() == 0 || s.gap_pointwise.size() == static_cast<Eigen::Index>(set.slave.size()),
-            where.str() + "gap_pointwise and the slave chain differ in size");
-    require(!s.converged || (s.u0.size() > 0 && s.u.size() > 0 && s.g.size() == R && s.weight.size() == R),
-            where.str() + "a converged snapshot needs u0, u, lambda, K, g and weight");
-  }
-}
-
-void write_contents(hid_t file, const SnapshotSet& set) {
-  write_attribute(file, "format", std::string(kSnapshotFormatName));
-  write_attribute(file, "format_version", kSnapshotFormatVersion);
-  write_attribute(file, "contactrb_version", std::string(kVersion));
+// Every field but `complete` and `checksum` (written by the caller, last).
+void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
+  const Loc root{file, ""};
+  w.attribute(root, "format", std::string(kSnapshotFormatName));
+  w.attribute(root, "format_version", kSnapshotFormatVersion);
+  w.attribute(root, "contactrb_version", std::string(kVersion));
   {
-    Handle g = create_group(file, "case");
-    write_attribute(g.get(), "name", set.case_name);
-    write_attribute(g.get(), "kind", set.case_kind);
-    write_attribute(g.get(), "spec", set.case_spec);
-    write_attribute(g.get(), "level", set.level);
-    write_attribute(g.get(), "constraint", set.constraint);
+    Handle g = w.create_group(root, "case");
+    const Loc c{g.get(), "/case"};
+    w.attribute(c, "name", set.case_name);
+    w.attribute(c, "kind", set.case_kind);
+    w.attribute(c, "spec", set.case_spec);
+    w.attribute(c, "level", set.level);
+    w.attribute(c, "constraint", set.constraint);
   }
   {
-    Handle g = create_group(file, "parameter");
-    write_attribute(g.get(), "name", set.parameter_name);
-    write_attribute(g.get(), "min", set.parameter_min);
-    write_attribute(g.get(), "max", set.parameter_max);
-    write_attribute(g.get(), "set", set.set_name);
+    Handle g = w.create_group(root, "parameter");
+    const Loc p{g.get(), "/parameter"};
+    w.attribute(p, "name", set.parameter_name);
+    w.attribute(p, "min", set.parameter_min);
+    w.attribute(p, "max", set.parameter_max);
+    w.attribute(p, "set", set.set_name);
     Eigen::VectorXd mu(static_cast<Eigen::Index>(set.snapshots.size()));
     for (std::size_t i = 0; i < set.snapshots.size(); ++i) mu(static_cast<Eigen::Index>(i)) = set.snapshots[i].mu;
-    write_vector(g.get(), "values", mu);
+    w.vector(p, "values", mu);
   }
   {
-    Handle g = create_group(file, "settings");
-    write_attribute(g.get(), "kacanov_alpha", set.kacanov_alpha);
-    write_attribute(g.get(), "kacanov_tolerance", set.kacanov_tolerance);
-    write_attribute(g.get(), "kacanov_max_iterations", set.kacanov_max_iterations);
+    Handle g = w.create_group(root, "settings");
+    const Loc s{g.get(), "/settings"};
+    w.attribute(s, "kacanov_alpha", set.kacanov_alpha);
+    w.attribute(s, "kacanov_tolerance", set.kacanov_tolerance);
+    w.attribute(s, "kacanov_max_iterations", set.kacanov_max_iterations);
   }
   {
-    Handle g = create_group(file, "discretization");
-    write_attribute(g.get(), "num_dofs", set.num_dofs);
-    write_vector(g.get(), "free_dofs", set.free_dofs);
-    write_vector(g.get(), "contact_dofs", set.contact_dofs);
-    write_vector(g.get(), "slave", set.slave);
-    write_vector(g.get(), "master", set.master);
+    Handle g = w.create_group(root, "discretization");
+    const Loc d{g.get(), "/discretization"};
+    w.attribute(d, "num_dofs", set.num_dofs);
+    w.vector(d, "free_dofs", set.free_dofs);
+    w.vector(d, "contact_dofs", set.contact_dofs);
+    w.vector(d, "slave", set.slave);
+    w.vector(d, "master", set.master);
   }
-  Handle snaps = create_group(file, "snapshots");
+  Handle snaps_group = w.create_group(root, "snapshots");
+  const Loc snaps{snaps_group.get(), "/snapshots"};
   const std::size_t n = set.snapshots.size();
-  write_attribute(snaps.get(), "count", static_cast<int>(n));
+  w.attribute(snaps, "count", static_cast<int>(n));
   std::vector<int> converged(n), iterations(n);
   Eigen::VectorXd time(static_cast<Eigen::Index>(n)), cpu_time(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
@@ -176,38 +193,49 @@ void write_contents(hid_t file, const SnapshotSet& set) {
     iterations[i] = s.iterations;
     time(static_cast<Eigen::Index>(i)) = s.time_s;
     cpu_time(static_cast<Eigen::Index>(i)) = s.cpu_time_s;
-    Handle g = create_group(snaps.get(), snapshot_group_name(i));
-    write_attribute(g.get(), "mu", s.mu);
-    write_attribute(g.get(), "status", s.status);
-    write_attribute(g.get(), "message", s.message);
-    write_optional(g.get(), "u0", s.u0);
-    write_optional(g.get(), "u", s.u);
-    write_optional(g.get(), "lambda", s.lambda);
-    if (s.K.size() > 0) write_matrix(g.get(), "K", s.K);
-    write_optional(g.get(), "g", s.g);
-    write_optional(g.get(), "weight", s.weight);
-    write_optional(g.get(), "gap_pointwise", s.gap_pointwise);
+    const std::string name = snapshot_group_name(i);
+    Handle g = w.create_group(snaps, name);
+    const Loc one{g.get(), snaps.field(name)};
+    w.attribute(one, "mu", s.mu);
+    w.attribute(one, "status", s.status);
+    w.attribute(one, "message", s.message);
+    w.optional(one, "u0", s.u0);
+    w.optional(one, "u", s.u);
+    w.optional(one, "lambda", s.lambda);
+    if (s.K.size() > 0) w.matrix(one, "K", s.K);
+    w.optional(one, "g", s.g);
+    w.optional(one, "weight", s.weight);
+    w.optional(one, "gap_pointwise", s.gap_pointwise);
   }
-  write_vector(snaps.get(), "converged", converged);
-  write_vector(snaps.get(), "iterations", iterations);
-  write_vector(snaps.get(), "time_s", time);
-  write_vector(snaps.get(), "cpu_time_s", cpu_time);
+  w.vector(snaps, "converged", converged);
+  w.vector(snaps, "iterations", iterations);
+  w.vector(snaps, "time_s", time);
+  w.vector(snaps, "cpu_time_s", cpu_time);
+}
+
+void write_checksum(hid_t file, std::uint64_t value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
+  Handle attr(H5Acreate2(file, "checksum", H5T_STD_U64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "cannot create attribute 'checksum'");
+  check(H5Awrite(attr.get(), H5T_NATIVE_UINT64, &value), "cannot write attribute 'checksum'");
 }
 
 // ---------------------------------------------------------------------------- reading
-
-Handle open_group(hid_t loc, const std::string& name) {
-  if (!exists(loc, name)) throw H5Failure{"missing group '" + name + "'"};
-  return {H5Gopen2(loc, name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group '" + name + "'"};
-}
 
 Handle open_attribute(hid_t loc, const std::string& name) {
   if (H5Aexists(loc, name.c_str()) <= 0) throw H5Failure{"missing attribute '" + name + "'"};
   return {H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + name + "'"};
 }
 
+// A scalar attribute: a dataspace of more than one element would overflow the one value read.
+void check_scalar(hid_t attr, const std::string& name) {
+  Handle space(H5Aget_space(attr), H5Sclose, "cannot read the shape of attribute '" + name + "'");
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw H5Failure{"attribute '" + name + "' is not a scalar"};
+}
+
 std::string read_string_attribute(hid_t loc, const std::string& name) {
   Handle attr = open_attribute(loc, name);
+  check_scalar(attr.get(), name);
   Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
     throw H5Failure{"attribute '" + name + "' is not a fixed-length string"};
@@ -223,14 +251,12 @@ std::string read_string_attribute(hid_t loc, const std::string& name) {
 template <typename T>
 T read_number_attribute(hid_t loc, const std::string& name, hid_t mem_type, H5T_class_t expected) {
   Handle attr = open_attribute(loc, name);
+  check_scalar(attr.get(), name);
   Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
   if (H5Tget_class(type.get()) != expected) throw H5Failure{"attribute '" + name + "' has the wrong type"};
   T value{};
   check(H5Aread(attr.get(), mem_type, &value), "cannot read attribute '" + name + "'");
   return value;
-}
-double read_double_attribute(hid_t loc, const std::string& name) {
-  return read_number_attribute<double>(loc, name, H5T_NATIVE_DOUBLE, H5T_FLOAT);
 }
 int read_int_attribute(hid_t loc, const std::string& name) {
   return read_number_attribute<int>(loc, name, H5T_NATIVE_INT, H5T_INTEGER);
@@ -251,101 +277,128 @@ Handle open_dataset(hid_t loc, const std::string& name, int rank, H5T_class_t ex
   return set;
 }
 
-Eigen::VectorXd read_vector(hid_t loc, const std::string& name) {
-  hsize_t dims[1] = {0};
-  Handle set = open_dataset(loc, name, 1, H5T_FLOAT, dims);
-  Eigen::VectorXd v(static_cast<Eigen::Index>(dims[0]));
-  if (v.size() > 0) {
-    check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
-          "cannot read dataset '" + name + "'");
+// The mirror of FileWriter: every value read is added to the checksum under the same name.
+class FileReader {
+ public:
+  Handle open_group(const Loc& loc, const std::string& name) const {
+    if (!exists(loc.id, name)) throw H5Failure{"missing group '" + name + "'"};
+    return {H5Gopen2(loc.id, name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group '" + name + "'"};
   }
-  return v;
-}
-std::vector<int> read_int_vector(hid_t loc, const std::string& name) {
-  hsize_t dims[1] = {0};
-  Handle set = open_dataset(loc, name, 1, H5T_INTEGER, dims);
-  std::vector<int> v(static_cast<std::size_t>(dims[0]));
-  if (!v.empty()) {
-    check(H5Dread(set.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
-          "cannot read dataset '" + name + "'");
-  }
-  return v;
-}
-Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name) {
-  hsize_t dims[2] = {0, 0};
-  Handle set = open_dataset(loc, name, 2, H5T_FLOAT, dims);
-  RowMajorMatrix m(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
-  if (m.size() > 0) {
-    check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
-          "cannot read dataset '" + name + "'");
-  }
-  return m;
-}
-Eigen::VectorXd read_optional(hid_t loc, const std::string& name) {
-  return exists(loc, name) ? read_vector(loc, name) : Eigen::VectorXd();
-}
 
-// Checked on reading: array sizes against the discretization. A failed snapshot may lack
-// arrays; a converged one has them all.
-void check_snapshot(const SnapshotSet& set, const Snapshot& s, const std::string& group) {
-  const auto R = s.lambda.size();
-  const auto expect = [&](bool ok, const std::string& what) {
-    if (!ok) throw H5Failure{"snapshot '" + group + "': " + what};
+  std::string string(const Loc& loc, const std::string& name) {
+    const std::string v = read_string_attribute(loc.id, name);
+    sum_.add(loc.field(name), kString, {v.size()}, v.data(), v.size());
+    return v;
+  }
+  double number(const Loc& loc, const std::string& name) {
+    const double v = read_number_attribute<double>(loc.id, name, H5T_NATIVE_DOUBLE, H5T_FLOAT);
+    sum_.add(loc.field(name), kDouble, {1}, &v, sizeof v);
+    return v;
+  }
+  int integer(const Loc& loc, const std::string& name) {
+    const int v = read_int_attribute(loc.id, name);
+    sum_.add(loc.field(name), kInt, {1}, &v, sizeof v);
+    return v;
+  }
+
+  Eigen::VectorXd vector(const Loc& loc, const std::string& name) {
+    hsize_t dims[1] = {0};
+    Handle set = open_dataset(loc.id, name, 1, H5T_FLOAT, dims);
+    Eigen::VectorXd v(static_cast<Eigen::Index>(dims[0]));
+    if (v.size() > 0) {
+      check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+            "cannot read dataset '" + name + "'");
+    }
+    sum_.add(loc.field(name), kDouble, {dims[0]}, v.data(), static_cast<std::size_t>(v.size()) * sizeof(double));
+    return v;
+  }
+  std::vector<int> int_vector(const Loc& loc, const std::string& name) {
+    hsize_t dims[1] = {0};
+    Handle set = open_dataset(loc.id, name, 1, H5T_INTEGER, dims);
+    std::vector<int> v(static_cast<std::size_t>(dims[0]));
+    if (!v.empty()) {
+      check(H5Dread(set.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+            "cannot read dataset '" + name + "'");
+    }
+    sum_.add(loc.field(name), kInt, {dims[0]}, v.data(), v.size() * sizeof(int));
+    return v;
+  }
+  Eigen::MatrixXd matrix(const Loc& loc, const std::string& name) {
+    hsize_t dims[2] = {0, 0};
+    Handle set = open_dataset(loc.id, name, 2, H5T_FLOAT, dims);
+    RowMajorMatrix m(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
+    if (m.size() > 0) {
+      check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
+            "cannot read dataset '" + name + "'");
+    }
+    sum_.add(loc.field(name), kDouble, {dims[0], dims[1]}, m.data(),
+             static_cast<std::size_t>(m.size()) * sizeof(double));
+    return m;
+  }
+  Eigen::VectorXd optional(const Loc& loc, const std::string& name) {
+    return exists(loc.id, name) ? vector(loc, name) : Eigen::VectorXd();
+  }
+
+  std::uint64_t checksum() const { return sum_.value(); }
+
+ private:
+  FieldChecksum sum_;
+};
+
+// `inconsistency`: the first disagreement between two stored copies of one fact, reported by
+// the caller after the checksum (which explains most of them: an edited or damaged file).
+SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency) {
+  const auto note = [&](const std::string& what) {
+    if (inconsistency.empty()) inconsistency = what;
   };
-  if (s.converged) {
-    expect(s.u0.size() == static_cast<Eigen::Index>(set.free_dofs.size()) && s.u.size() == set.num_dofs &&
-               s.g.size() == R && s.weight.size() == R,
-           "a converged snapshot lacks u0, u, g or weight");
-  }
-  expect(s.u0.size() == 0 || s.u0.size() == static_cast<Eigen::Index>(set.free_dofs.size()), "u0 has the wrong size");
-  expect(s.u.size() == 0 || s.u.size() == set.num_dofs, "u has the wrong size");
-  expect(s.K.size() == 0 || (s.K.rows() == R && s.K.cols() == static_cast<Eigen::Index>(set.contact_dofs.size())),
-         "K has the wrong shape");
-  expect(s.g.size() == 0 || s.g.size() == R, "g has the wrong size");
-  expect(s.weight.size() == 0 || s.weight.size() == R, "weight has the wrong size");
-  expect(s.gap_pointwise.size() == 0 || s.gap_pointwise.size() == static_cast<Eigen::Index>(set.slave.size()),
-         "gap_pointwise has the wrong size");
-}
-
-SnapshotSet read_contents(hid_t file) {
+  const Loc root{file, ""};
   SnapshotSet set;
+  // The root attributes were checked before; read again for the checksum.
+  (void)r.string(root, "format");
+  (void)r.integer(root, "format_version");
+  (void)r.string(root, "contactrb_version");
   {
-    Handle g = open_group(file, "case");
-    set.case_name = read_string_attribute(g.get(), "name");
-    set.case_kind = read_string_attribute(g.get(), "kind");
-    set.case_spec = read_string_attribute(g.get(), "spec");
-    set.level = read_int_attribute(g.get(), "level");
-    set.constraint = read_string_attribute(g.get(), "constraint");
+    Handle g = r.open_group(root, "case");
+    const Loc c{g.get(), "/case"};
+    set.case_name = r.string(c, "name");
+    set.case_kind = r.string(c, "kind");
+    set.case_spec = r.string(c, "spec");
+    set.level = r.integer(c, "level");
+    set.constraint = r.string(c, "constraint");
   }
   Eigen::VectorXd mu;
   {
-    Handle g = open_group(file, "parameter");
-    set.parameter_name = read_string_attribute(g.get(), "name");
-    set.parameter_min = read_double_attribute(g.get(), "min");
-    set.parameter_max = read_double_attribute(g.get(), "max");
-    set.set_name = read_string_attribute(g.get(), "set");
-    mu = read_vector(g.get(), "values");
+    Handle g = r.open_group(root, "parameter");
+    const Loc p{g.get(), "/parameter"};
+    set.parameter_name = r.string(p, "name");
+    set.parameter_min = r.number(p, "min");
+    set.parameter_max = r.number(p, "max");
+    set.set_name = r.string(p, "set");
+    mu = r.vector(p, "values");
   }
   {
-    Handle g = open_group(file, "settings");
-    set.kacanov_alpha = read_double_attribute(g.get(), "kacanov_alpha");
-    set.kacanov_tolerance = read_double_attribute(g.get(), "kacanov_tolerance");
-    set.kacanov_max_iterations = read_int_attribute(g.get(), "kacanov_max_iterations");
+    Handle g = r.open_group(root, "settings");
+    const Loc s{g.get(), "/settings"};
+    set.kacanov_alpha = r.number(s, "kacanov_alpha");
+    set.kacanov_tolerance = r.number(s, "kacanov_tolerance");
+    set.kacanov_max_iterations = r.integer(s, "kacanov_max_iterations");
   }
   {
-    Handle g = open_group(file, "discretization");
-    set.num_dofs = read_int_attribute(g.get(), "num_dofs");
-    set.free_dofs = read_int_vector(g.get(), "free_dofs");
-    set.contact_dofs = read_int_vector(g.get(), "contact_dofs");
-    set.slave = read_int_vector(g.get(), "slave");
-    set.master = read_int_vector(g.get(), "master");
+    Handle g = r.open_group(root, "discretization");
+    const Loc d{g.get(), "/discretization"};
+    set.num_dofs = r.integer(d, "num_dofs");
+    set.free_dofs = r.int_vector(d, "free_dofs");
+    set.contact_dofs = r.int_vector(d, "contact_dofs");
+    set.slave = r.int_vector(d, "slave");
+    set.master = r.int_vector(d, "master");
   }
-  Handle snaps = open_group(file, "snapshots");
-  const int count = read_int_attribute(snaps.get(), "count");
-  const std::vector<int> converged = read_int_vector(snaps.get(), "converged");
-  const std::vector<int> iterations = read_int_vector(snaps.get(), "iterations");
-  const Eigen::VectorXd time = read_vector(snaps.get(), "time_s");
-  const Eigen::VectorXd cpu_time = read_vector(snaps.get(), "cpu_time_s");
+  Handle snaps_group = r.open_group(root, "snapshots");
+  const Loc snaps{snaps_group.get(), "/snapshots"};
+  const int count = r.integer(snaps, "count");
+  const std::vector<int> converged = r.int_vector(snaps, "converged");
+  const std::vector<int> iterations = r.int_vector(snaps, "iterations");
+  const Eigen::VectorXd time = r.vector(snaps, "time_s");
+  const Eigen::VectorXd cpu_time = r.vector(snaps, "cpu_time_s");
   const auto n = static_cast<std::size_t>(count);
   if (count < 0 || mu.size() != count || converged.size() != n || iterations.size() != n ||
       time.size() != count || cpu_time.size() != count) {
@@ -356,34 +409,63 @@ SnapshotSet read_contents(hid_t file) {
   for (std::size_t i = 0; i < n; ++i) {
     Snapshot& s = set.snapshots[i];
     const std::string name = snapshot_group_name(i);
-    Handle g = open_group(snaps.get(), name);
-    s.mu = read_double_attribute(g.get(), "mu");
-    s.status = read_string_attribute(g.get(), "status");
-    s.message = read_string_attribute(g.get(), "message");
-    s.converged = converged[i] != 0;
+    Handle g = r.open_group(snaps, name);
+    const Loc one{g.get(), snaps.field(name)};
+    s.mu = r.number(one, "mu");
+    s.status = r.string(one, "status");
+    s.message = r.string(one, "message");
+    if (converged[i] != 0 && converged[i] != 1) {
+      note("/snapshots/converged[" + std::to_string(i) + "] is " + std::to_string(converged[i]) + " (expected 0 or 1)");
+    }
+    s.converged = converged[i] == 1;
     s.iterations = iterations[i];
     s.time_s = time(static_cast<Eigen::Index>(i));
     s.cpu_time_s = cpu_time(static_cast<Eigen::Index>(i));
-    if (s.converged) {
-      s.u0 = read_vector(g.get(), "u0");
-      s.u = read_vector(g.get(), "u");
-      s.lambda = read_vector(g.get(), "lambda");
-      s.K = read_matrix(g.get(), "K");
-      s.g = read_vector(g.get(), "g");
-      s.weight = read_vector(g.get(), "weight");
-      s.gap_pointwise = read_vector(g.get(), "gap_pointwise");
-    } else {
-      s.u0 = read_optional(g.get(), "u0");
-      s.u = read_optional(g.get(), "u");
-      s.lambda = read_optional(g.get(), "lambda");
-      if (exists(g.get(), "K")) s.K = read_matrix(g.get(), "K");
-      s.g = read_optional(g.get(), "g");
-      s.weight = read_optional(g.get(), "weight");
-      s.gap_pointwise = read_optional(g.get(), "gap_pointwise");
+    // /parameter/values and the group's mu are two copies: both must agree (bitwise).
+    const double listed = mu(static_cast<Eigen::Index>(i));
+    if (std::memcmp(&listed, &s.mu, sizeof listed) != 0) {
+      note("/parameter/values[" + std::to_string(i) + "] differs from the mu of " + one.path);
     }
-    check_snapshot(set, s, "/snapshots/" + name);
+    if (s.converged) {
+      s.u0 = r.vector(one, "u0");
+      s.u = r.vector(one, "u");
+      s.lambda = r.vector(one, "lambda");
+      s.K = r.matrix(one, "K");
+      s.g = r.vector(one, "g");
+      s.weight = r.vector(one, "weight");
+      s.gap_pointwise = r.vector(one, "gap_pointwise");
+    } else {
+      s.u0 = r.optional(one, "u0");
+      s.u = r.optional(one, "u");
+      s.lambda = r.optional(one, "lambda");
+      if (exists(one.id, "K")) s.K = r.matrix(one, "K");
+      s.g = r.optional(one, "g");
+      s.weight = r.optional(one, "weight");
+      s.gap_pointwise = r.optional(one, "gap_pointwise");
+    }
   }
   return set;
+}
+
+std::uint64_t read_checksum(hid_t file) {
+  return read_number_attribute<std::uint64_t>(file, "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
+}
+
+// The `format` of a reduced model file is a dataset of bytes (io/reduced_model_file.cpp),
+// not an attribute: recognized here to say what the file is.
+bool has_model_format(hid_t file) {
+  if (!exists(file, "format")) return false;
+  hsize_t dims[1] = {0};
+  try {  // open_dataset refuses a group or another shape with a Failure
+    Handle set = open_dataset(file, "format", 1, H5T_INTEGER, dims);
+    const std::string expected = kReducedModelFormatName;
+    if (dims[0] != expected.size()) return false;
+    std::string value(expected.size(), '\0');
+    check(H5Dread(set.get(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, value.data()), "format");
+    return value == expected;
+  } catch (const H5Failure&) {
+    return false;
+  }
 }
 
 std::string temporary_name(const std::string& path) {
@@ -392,9 +474,182 @@ std::string temporary_name(const std::string& path) {
 
 }  // namespace
 
+// ---------------------------------------------------------------------------- checking
+
+namespace {
+
+[[noreturn]] void invalid(const std::string& what) { throw Error(what); }
+
+// Shortest text that reads back as the same double: a value just outside the domain must not
+// print as its bound.
+std::string exact(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+// Index list `name`: every entry in [0, bound), no entry twice (except that a closed chain
+// may repeat its first node once, at the end). Duplicates are found by sorting a copy: the
+// memory is that of the list, not of `bound` (a damaged num_dofs may be huge).
+void check_indices(const std::vector<int>& v, int bound, const std::string& name, const std::string& bound_name,
+                   bool closed_chain_allowed = false) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (v[i] < 0 || v[i] >= bound) {
+      invalid(name + "[" + std::to_string(i) + "] = " + std::to_string(v[i]) + " is outside [0, " + bound_name +
+              " = " + std::to_string(bound) + ")");
+    }
+  }
+  const bool closed = closed_chain_allowed && v.size() >= 3 && v.back() == v.front();
+  std::vector<std::pair<int, std::size_t>> sorted;  // (index, position)
+  for (std::size_t i = 0; i + (closed ? 1 : 0) < v.size(); ++i) sorted.emplace_back(v[i], i);
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t first = v.size();  // earliest position that repeats an earlier entry
+  for (std::size_t k = 1; k < sorted.size(); ++k) {
+    if (sorted[k].first == sorted[k - 1].first) first = std::min(first, sorted[k].second);
+  }
+  if (first < v.size()) {
+    invalid(name + "[" + std::to_string(first) + "] = " + std::to_string(v[first]) + " appears twice");
+  }
+}
+
+// The first non-finite entry of a converged snapshot's array, named (a NaN in u0 would
+// become a NaN POD basis, in K a NaN EIM, silently).
+template <typename Derived>
+void check_finite(const Eigen::DenseBase<Derived>& a, const std::string& name) {
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      if (!std::isfinite(a(i, j))) {
+        std::ostringstream os;
+        os << name << " holds a non-finite value (" << a(i, j) << ") at ";
+        if (a.cols() == 1) {
+          os << "entry " << i;
+        } else {
+          os << "(" << i << ", " << j << ")";
+        }
+        invalid(os.str());
+      }
+    }
+  }
+}
+
+bool known_constraint(const std::string& c) { return c == "collocation" || c == "lac" || c == "lac-simpson"; }
+
+}  // namespace
+
+void check_snapshot_set(const SnapshotSet& set) {
+  // Header.
+  if (set.case_kind != "builtin" && set.case_kind != "toml") {
+    invalid("/case/kind is '" + set.case_kind + "' (expected builtin or toml)");
+  }
+  if (set.level < 0) invalid("/case/level is " + std::to_string(set.level) + " (expected >= 0)");
+  if (!std::isfinite(set.parameter_min) || !std::isfinite(set.parameter_max) || set.parameter_min > set.parameter_max) {
+    invalid("the parameter domain [" + exact(set.parameter_min) + ", " + exact(set.parameter_max) +
+            "] (/parameter min, max) is not an interval");
+  }
+  if (!(std::isfinite(set.kacanov_alpha) && set.kacanov_alpha > 0.0 && set.kacanov_alpha <= 1.0) ||
+      !(std::isfinite(set.kacanov_tolerance) && set.kacanov_tolerance > 0.0) || set.kacanov_max_iterations < 1) {
+    invalid("the Kacanov settings (/settings) are invalid (alpha in (0, 1], tolerance > 0, max_iterations >= 1)");
+  }
+
+  // Discretization: every index is checked before anyone uses it.
+  const bool has_layout = set.num_dofs != 0;
+  if (set.num_dofs < 0 || set.num_dofs % 2 != 0) {
+    invalid("/discretization num_dofs = " + std::to_string(set.num_dofs) + " (expected 2 x nodes, >= 0)");
+  }
+  if (!has_layout) {
+    // Every solve threw before its discretization existed: nothing but failures to record.
+    if (!set.free_dofs.empty() || !set.contact_dofs.empty() || !set.slave.empty() || !set.master.empty()) {
+      invalid("/discretization has index lists but num_dofs = 0");
+    }
+  } else if (!known_constraint(set.constraint)) {
+    invalid("/case/constraint is '" + set.constraint + "' (expected collocation, lac or lac-simpson)");
+  }
+  const int num_nodes = set.num_dofs / 2;
+  check_indices(set.free_dofs, set.num_dofs, "/discretization/free_dofs", "num_dofs");
+  check_indices(set.slave, num_nodes, "/discretization/slave", "nodes");
+  check_indices(set.master, num_nodes, "/discretization/master", "nodes", /*closed_chain_allowed=*/true);
+  if (has_layout && (set.slave.empty() || set.master.size() < 2)) {
+    invalid("/discretization: the slave chain has " + std::to_string(set.slave.size()) + " node(s), the master " +
+            std::to_string(set.master.size()) + " (at least 1 and 2 are needed)");
+  }
+  // contact_dofs is derived from the chains (both components of each contact node, ascending):
+  // anything else would make K's columns mean other DOFs.
+  std::vector<int> nodes = set.slave;
+  nodes.insert(nodes.end(), set.master.begin(), set.master.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  bool contact_ok = set.contact_dofs.size() == 2 * nodes.size();
+  for (std::size_t i = 0; contact_ok && i < nodes.size(); ++i) {
+    contact_ok = set.contact_dofs[2 * i] == 2 * nodes[i] && set.contact_dofs[2 * i + 1] == 2 * nodes[i] + 1;
+  }
+  if (!contact_ok) {
+    invalid("/discretization/contact_dofs (" + std::to_string(set.contact_dofs.size()) +
+            " entries) are not the two components of the " + std::to_string(nodes.size()) +
+            " slave and master nodes in ascending order");
+  }
+
+  // Snapshots.
+  const auto num_free = static_cast<Eigen::Index>(set.free_dofs.size());
+  const auto nc = static_cast<Eigen::Index>(set.contact_dofs.size());
+  const auto S = static_cast<Eigen::Index>(set.slave.size());
+  for (std::size_t i = 0; i < set.snapshots.size(); ++i) {
+    const Snapshot& s = set.snapshots[i];
+    const std::string where = "/snapshots/" + snapshot_group_name(i);
+    if (!std::isfinite(s.mu) || s.mu < set.parameter_min || s.mu > set.parameter_max) {
+      invalid(where + ": mu = " + exact(s.mu) + " is outside the stored domain [" + exact(set.parameter_min) + ", " +
+              exact(set.parameter_max) + "]");
+    }
+    if (!std::isfinite(s.time_s) || s.time_s < 0.0 || !std::isfinite(s.cpu_time_s) || s.cpu_time_s < 0.0) {
+      invalid(where + ": its time_s or cpu_time_s is negative or not finite");
+    }
+    if (s.iterations < 0) invalid(where + ": iterations = " + std::to_string(s.iterations) + " (expected >= 0)");
+    if (s.converged != (s.status == "converged")) {
+      invalid(where + ": status '" + s.status + "' disagrees with /snapshots/converged = " + (s.converged ? "1" : "0"));
+    }
+    const auto R = s.lambda.size();
+    const auto expect = [&](bool ok, const std::string& what) {
+      if (!ok) invalid(where + ": " + what);
+    };
+    expect(s.u0.size() == 0 || s.u0.size() == num_free,
+           "u0 has " + std::to_string(s.u0.size()) + " entries, expected " + std::to_string(num_free));
+    expect(s.u.size() == 0 || s.u.size() == set.num_dofs,
+           "u has " + std::to_string(s.u.size()) + " entries, expected " + std::to_string(set.num_dofs));
+    expect(s.K.size() == 0 || (s.K.rows() == R && s.K.cols() == nc),
+           "K is " + std::to_string(s.K.rows()) + " x " + std::to_string(s.K.cols()) + ", expected " +
+               std::to_string(R) + " x " + std::to_string(nc));
+    expect(s.g.size() == 0 || s.g.size() == R, "g and lambda differ in size");
+    expect(s.weight.size() == 0 || s.weight.size() == R, "weight and lambda differ in size");
+    expect(s.gap_pointwise.size() == 0 || s.gap_pointwise.size() == S, "gap_pointwise and the slave chain differ in size");
+    if (!s.converged) continue;  // a failed solve is a record: its last iterate may be anything
+    expect(has_layout && s.u0.size() > 0 && s.u.size() > 0 && R > 0 && s.K.size() > 0 && s.g.size() == R &&
+               s.weight.size() == R && s.gap_pointwise.size() == S,
+           "a converged snapshot needs u0, u, lambda, K, g, weight and gap_pointwise");
+    check_finite(s.u0, where + "/u0");
+    check_finite(s.u, where + "/u");
+    check_finite(s.lambda, where + "/lambda");
+    check_finite(s.K, where + "/K");
+    check_finite(s.g, where + "/g");
+    check_finite(s.weight, where + "/weight");
+    check_finite(s.gap_pointwise, where + "/gap_pointwise");
+  }
+}
+
+bool is_snapshot_file(const std::string& path) {
+  const QuietHdf5 quiet;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || H5Fis_hdf5(path.c_str()) <= 0) return false;
+  try {
+    Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open");
+    return H5Aexists(file.get(), "format") > 0 && read_string_attribute(file.get(), "format") == kSnapshotFormatName;
+  } catch (const H5Failure&) {
+    return false;
+  }
+}
+
+
 void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   try {
-    check_sizes(set);
+    check_snapshot_set(set);
   } catch (const Error& e) {
     throw Error("cannot write snapshot file '" + path + "': " + e.what());
   }
@@ -403,9 +658,15 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   try {
     Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                 "cannot create the file (is the directory there and writable?)");
-    write_contents(file.get(), set);
+    FileWriter w;
+    write_contents(file.get(), set, w);
+    write_checksum(file.get(), w.checksum());
     // Written last: a file without it is an interrupted write.
-    write_attribute(file.get(), "complete", 1);
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
+    Handle attr(H5Acreate2(file.get(), "complete", H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                "cannot create attribute 'complete'");
+    const int complete = 1;
+    check(H5Awrite(attr.get(), H5T_NATIVE_INT, &complete), "cannot write attribute 'complete'");
     file.close("cannot flush and close the file");
   } catch (const H5Failure& f) {
     std::error_code ignored;
@@ -440,6 +701,10 @@ SnapshotSet read_snapshot_file(const std::string& path) {
       throw Error(name + " is truncated or damaged: " + f.what);
     }
     if (H5Aexists(file.get(), "format") <= 0) {
+      if (has_model_format(file.get())) {
+        throw Error(name + " is a contactrb reduced model file, not a snapshot file (a model is read by `contactrb "
+                    "online` and `contactrb evaluate`)");
+      }
       throw Error(name + " is an HDF5 file but not a contactrb snapshot file (no 'format' attribute)");
     }
     std::string format;
@@ -461,14 +726,31 @@ SnapshotSet read_snapshot_file(const std::string& path) {
       throw Error(name + " has snapshot format version " + std::to_string(version) + "; this contactrb reads version " +
                   std::to_string(kSnapshotFormatVersion));
     }
+    // `complete` = 1 is written last; any other value (0, a damaged one) is not a finished write.
     if (H5Aexists(file.get(), "complete") <= 0 || read_int_attribute(file.get(), "complete") != 1) {
       throw Error(name + " is incomplete (the run that wrote it was interrupted): generate it again");
     }
+    SnapshotSet set;
     try {
-      return read_contents(file.get());
+      const std::uint64_t stored = read_checksum(file.get());
+      FileReader r;
+      std::string inconsistency;
+      set = read_contents(file.get(), r, inconsistency);
+      if (stored != r.checksum()) {
+        throw H5Failure{"checksum mismatch: the file was modified or damaged after it was written"};
+      }
+      if (!inconsistency.empty()) throw H5Failure{inconsistency};
     } catch (const H5Failure& f) {
       throw Error(name + " is truncated or damaged: " + f.what);
     }
+    // A file with a valid checksum may still come from a faulty writer or be crafted: no index,
+    // size or value is used before it is checked.
+    try {
+      check_snapshot_set(set);
+    } catch (const Error& e) {
+      throw Error(name + " is damaged: " + e.what());
+    }
+    return set;
   } catch (const H5Failure& f) {
     throw Error(name + ": " + f.what);
   }

@@ -14,7 +14,9 @@
 namespace contactrb::io {
 
 inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
-inline constexpr int kSnapshotFormatVersion = 1;
+// Version 2: a checksum over every field and every index and value checked on reading
+// (version 1 files are refused: generate them again).
+inline constexpr int kSnapshotFormatVersion = 2;
 
 // The outcome of one HF solve at one parameter value. A failed solve keeps whatever the
 // solver returned (a non-converged solve: its last iterate; an exception: no arrays).
@@ -78,8 +80,25 @@ struct SnapshotSet {
 void write_snapshot_file(const SnapshotSet& set, const std::string& path);
 
 // Reads a file written by write_snapshot_file. Throws contactrb::Error naming `path` for a
-// missing file, a file that is not HDF5, an HDF5 file of another format, another format
-// version, a truncated or damaged file, or an incomplete one (an interrupted write).
+// missing file, a file that is not HDF5, an HDF5 file of another format (a reduced model
+// file is named as such), another format version, an incomplete one (an interrupted write:
+// `complete` missing or not 1), a truncated or damaged file (a group, dataset or attribute
+// missing or of the wrong shape, a checksum mismatch), or contents that fail
+// check_snapshot_set.
 SnapshotSet read_snapshot_file(const std::string& path);
+
+// Throws contactrb::Error naming the first field (by its path in the file) that is
+// inconsistent: an index of free_dofs, slave or master outside its range, negative or
+// repeated; contact_dofs other than both components of the contact nodes, ascending; an
+// array size against num_dofs, free_dofs, contact_dofs or the slave chain; a non-finite value
+// in an array of a converged snapshot; a mu outside [parameter_min, parameter_max] or a
+// domain that is not an interval; a status that disagrees with `converged`; invalid Kacanov
+// settings. Run by the writer, the reader and rb::build_reduced_model.
+void check_snapshot_set(const SnapshotSet& set);
+
+// True when `path` is an HDF5 file whose root attribute `format` is kSnapshotFormatName
+// (whatever its version or state); false otherwise, never throws. Lets other readers say
+// what a file is when it is given in the wrong place.
+bool is_snapshot_file(const std::string& path);
 
 }  // namespace contactrb::io

@@ -1,10 +1,12 @@
 #include "contactrb/rb/offline_builder.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
@@ -150,9 +152,33 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   check_settings(settings);
   const int P = static_cast<int>(set.snapshots.size());
   require(P >= 1, "offline: the snapshot set is empty");
+  // A library entry point: the set may not come from read_snapshot_file, and every index below
+  // (free_selection, restrict_to, the contact surface) is used unchecked.
+  try {
+    io::check_snapshot_set(set);
+  } catch (const Error& e) {
+    throw Error(std::string("offline: inconsistent snapshot set: ") + e.what());
+  }
   for (const io::Snapshot& s : set.snapshots) {
     require(s.converged, "offline: the snapshot at mu = " + std::to_string(s.mu) + " did not converge (" + s.status +
                              ": " + s.message + "); drop it or recompute it");
+  }
+  {
+    // A repeated training value adds no information but one more identical column: with a zero
+    // step the whole set is one value, and the model answered elsewhere with converged = true
+    // and a contact force 45 times the HF one (issue [R] row 7).
+    std::vector<std::pair<double, int>> mus;
+    for (int p = 0; p < P; ++p) mus.emplace_back(set.snapshots[sz(p)].mu, p);
+    std::sort(mus.begin(), mus.end());
+    for (std::size_t i = 1; i < mus.size(); ++i) {
+      if (mus[i].first == mus[i - 1].first) {
+        char text[32];  // shortest round-trip digits: the value exactly as stored
+        const auto end = std::to_chars(text, text + sizeof text, mus[i].first).ptr;
+        throw Error("offline: the training value mu = " + std::string(text, end) + " appears twice (snapshots " +
+                    std::to_string(mus[i - 1].second) + " and " + std::to_string(mus[i].second) +
+                    "): the training values must be distinct");
+      }
+    }
   }
   const int n_free = static_cast<int>(set.free_dofs.size());
   const int n_c = static_cast<int>(set.contact_dofs.size());

@@ -100,8 +100,10 @@ struct OfflineResult {
   OfflineReport report;
 };
 
-// Throws contactrb::Error for a set with a failed snapshot, a set that does not match the spec
-// (DOF counts), or invalid settings.
+// Throws contactrb::Error for a set that fails io::check_snapshot_set (an index out of range,
+// negative or repeated, inconsistent sizes, a non-finite value: checked before any index is
+// used), a set with a failed snapshot or a repeated training value, a set that does not match
+// the spec (DOF counts), or invalid settings.
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {});
 

@@ -313,6 +313,12 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
       result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
       return result;
     }
+    if (!result.u_bar.allFinite() || !result.lambda_bar.allFinite()) {  // a NaN passes no test: stop here
+      result.status = solve::KacanovStatus::NonFinite;
+      result.iterations = k;
+      result.message = "Kacanov iteration " + std::to_string(k) + ": the reduced solution is not finite";
+      return result;
+    }
     r_ = result.u_bar - u_;
     const double r_norm = r_.norm();
     // (63) at alpha = 1 (see OnlineIteration::Accelerated).
@@ -433,6 +439,12 @@ OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
     force += weight_kept_(static_cast<Eigen::Index>(i)) * Xi_.row(static_cast<Eigen::Index>(i)).dot(sol.lambda_hat);
   }
   sol.contact_force = force;
+  // A finite reduced solution can still overflow the energy: not an answer, never "converged".
+  if (sol.converged() && (!std::isfinite(sol.energy) || !std::isfinite(sol.contact_force))) {
+    sol.status = solve::KacanovStatus::NonFinite;
+    sol.message = "the energy or the contact force of the reduced solution is not finite (energy " +
+                  std::to_string(sol.energy) + ", contact force " + std::to_string(sol.contact_force) + ")";
+  }
   // The estimate at the last linearization (phi_, phi_gamma_ of the last step), as the returned
   // pair is that linearization's solution.
   if (settings.error_estimate && sol.converged()) {

@@ -209,6 +209,7 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   r.set_name = values ? "custom" : set_name;
   r.mu = values ? *values : spec.parameter.set(set_name);
   for (double mu : r.mu) spec.parameter.check(mu, "case '" + spec.name + "'");
+  if (values) cases::check_increasing(*values, "the explicit parameter values");
   // One reference mesh, shared read-only by every worker.
   auto reference = std::make_shared<const mesh::Mesh>(cases::reference_mesh(spec, level));
   r.make_problem = [spec, reference, constraint](double mu) {

@@ -21,6 +21,7 @@ const char* to_string(KacanovStatus status) {
     case KacanovStatus::Converged: return "converged";
     case KacanovStatus::MaxIterations: return "max_iterations";
     case KacanovStatus::StepFailed: return "step_failed";
+    case KacanovStatus::NonFinite: return "non_finite";
   }
   return "unknown";
 }
@@ -48,6 +49,18 @@ KacanovResult kacanov(const KacanovStep& step, Eigen::VectorXd u, Eigen::VectorX
       result.u = std::move(u);
       result.lambda = std::move(lambda);
       result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
+      return result;
+    }
+    // A NaN increment fails every comparison, so max(du, NaN) could pass the test below: a
+    // non-finite step ends the iteration with its own status instead.
+    if (!result.u_bar.allFinite() || !result.lambda_bar.allFinite()) {
+      result.status = KacanovStatus::NonFinite;
+      result.iterations = k;
+      result.u = std::move(u);
+      result.lambda = std::move(lambda);
+      result.message = std::string("Kacanov iteration ") + std::to_string(k) + ": the linearized solution is not finite (" +
+                       (result.u_bar.allFinite() ? "multipliers" : "displacement") +
+                       "): the data overflow double precision";
       return result;
     }
     // (63) on the UNRELAXED step: |u_bar^k - u^{k-1}| / |u^{k-1}| (same for lambda). The relaxed

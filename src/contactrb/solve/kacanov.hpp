@@ -19,7 +19,9 @@ struct KacanovSettings {
 // (all finite), naming the setting and its value.
 void check_settings(const KacanovSettings& settings);
 
-enum class KacanovStatus { Converged, MaxIterations, StepFailed };
+// NonFinite: a step returned NaN or inf (data whose magnitudes overflow double precision), or
+// the caller found a non-finite result (energy, force); never reported as converged.
+enum class KacanovStatus { Converged, MaxIterations, StepFailed, NonFinite };
 const char* to_string(KacanovStatus status);
 
 // Stopping test (63), applied to the unrelaxed step so that it does not depend on alpha:
