@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/common/version.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
 
@@ -386,8 +388,12 @@ SnapshotSet read_contents(hid_t file) {
   return set;
 }
 
+// A new temporary file next to the target (common/output_file.hpp); temporaries of killed
+// writers are removed first.
 std::string temporary_name(const std::string& path) {
-  return path + ".partial-" + std::to_string(static_cast<long>(::getpid()));
+  check_output_target(path);
+  remove_stale_temporaries(path);
+  return temporary_path(path).string();
 }
 
 }  // namespace
@@ -401,7 +407,7 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   const QuietHdf5 quiet;
   const std::string tmp = temporary_name(path);
   try {
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                 "cannot create the file (is the directory there and writable?)");
     write_contents(file.get(), set);
     // Written last: a file without it is an interrupted write.
@@ -412,20 +418,16 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
     std::filesystem::remove(tmp, ignored);
     throw Error("cannot write snapshot file '" + path + "': " + f.what);
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw Error("cannot write snapshot file '" + path + "': rename from '" + tmp + "' failed (" + ec.message() + ")");
+  try {
+    commit_temporary(tmp, path);
+  } catch (const Error& e) {
+    throw Error("cannot write snapshot file '" + path + "': " + e.what());
   }
 }
 
 SnapshotSet read_snapshot_file(const std::string& path) {
   const std::string name = "snapshot file '" + path + "'";
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(name + " does not exist");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(name + " is not a regular file");
+  check_input_file(path, "snapshot file", InputKind::Hdf5);  // a regular file below the size limit
   const QuietHdf5 quiet;
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 == 0) throw Error(name + " is not an HDF5 file (expected a file written by `contactrb snapshots`)");
