@@ -335,4 +335,15 @@ TEST_F(CliFileSafety, NegativeSizesAreRefusedAlike) {
   EXPECT_EQ(run_cli(m).exit_code, 0);
 }
 
+// Found by the fuzz suite: a snapshot dataset whose damaged header declares more elements
+// than the file holds was allocated for, and ended in "internal error: std::bad_alloc".
+TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
+  const contactrb::test::TempDir dir("huge_dataset");
+  const CliResult r = run_cli("offline --snapshots " + shell_quote(data("h5/snapshot_huge_dataset.h5")) + " --out " +
+                              shell_quote(dir.file("model.h5")));
+  expect_user_error(r, {"snapshot file", "snapshot_huge_dataset.h5"});
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "model.h5"));
+}
+
 }  // namespace

@@ -62,8 +62,8 @@ std::vector<hsize_t> read_raw(hid_t file, const std::string& name, int rank, hid
   if (H5Sget_simple_extent_ndims(space.get()) != rank) throw H5Failure{"dataset '" + name + "' has the wrong rank"};
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "cannot read the shape of '" + name + "'");
-  hsize_t total = 1;
-  for (hsize_t d : dims) total *= d;
+  // Bounded by the file's size before anything is allocated (a damaged header).
+  const hsize_t total = hdf5::checked_element_count(set.get(), dims.data(), rank, H5Tget_size(mem_type), name);
   void* buffer = resize(static_cast<std::size_t>(total), dims);
   if (total > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer), "cannot read '" + name + "' (truncated or damaged)");
   return dims;

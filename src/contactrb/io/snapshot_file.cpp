@@ -250,6 +250,8 @@ Handle open_dataset(hid_t loc, const std::string& name, int rank, H5T_class_t ex
   check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), "cannot read the shape of dataset '" + name + "'");
   Handle type(H5Dget_type(set.get()), H5Tclose, "cannot read the type of dataset '" + name + "'");
   if (H5Tget_class(type.get()) != expected) throw H5Failure{"dataset '" + name + "' has the wrong type"};
+  // Before the caller allocates dims' worth of memory (4 bytes: the smallest element we read).
+  hdf5::checked_element_count(set.get(), dims, rank, 4, name);
   return set;
 }
 
