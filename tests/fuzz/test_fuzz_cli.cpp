@@ -6,9 +6,11 @@
 // reproduce it alone (--fuzz-seed S --fuzz-case K).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
