@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/evaluation.hpp"
 #include "contactrb/rb/offline_builder.hpp"
@@ -66,6 +67,7 @@ int run_demo(const DemoOptions& opt) {
   const std::string model_path = (fs::path(opt.out) / "model.h5").string();
   const std::string csv_path = (fs::path(opt.out) / "evaluation.csv").string();
   check_output_file(model_path);
+  check_file_roles({}, {{"model.h5 in --out", model_path}, {"evaluation.csv in --out", csv_path}});
   const rb::ProgressMode progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
   const auto step = [&](const std::string& text) {
     if (!opt.quiet) std::cerr << "demo: " << text << std::endl;
@@ -95,6 +97,8 @@ int run_demo(const DemoOptions& opt) {
   const rb::OfflineSettings settings = demo_settings();
   const rb::OfflineResult off = rb::build_reduced_model(set, spec, settings);
   const double offline_s = seconds(t0);
+  // Held to the end: the files of one demo run are never mixed with those of another.
+  const OutputLock lock(opt.out);
   io::write_reduced_model_file(off.model, off.reconstruction, model_path);
 
   step("[3/3] online stage on the verification set against the HF solver");

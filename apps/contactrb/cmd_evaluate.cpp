@@ -19,6 +19,9 @@
 #include "commands.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
+#include "contactrb/common/output_file.hpp"
+#include "contactrb/common/printable.hpp"
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/evaluation.hpp"
@@ -33,7 +36,7 @@ struct EvaluateOptions {
   std::string model;
   std::string set = "verification";
   std::string out;
-  int n = -1, r = -1, mk = -1, mg = -1;
+  SizeFlags sizes;  // --n, --r, --mk, --mg
   int jobs = 1;
   int repeats = 5;
   std::vector<double> multipliers;
@@ -46,11 +49,11 @@ std::vector<double> parameter_values(const cases::CaseSpec& spec, const std::str
   std::string names;
   for (const cases::ParameterSet& s : spec.parameter.sets) names += (names.empty() ? "" : ", ") + s.name;
   std::error_code ec;
-  require(std::filesystem::is_regular_file(set, ec),
-          "--set '" + set + "' is neither a parameter set of case '" + spec.name + "' (" + names +
+  require(std::filesystem::exists(set, ec),
+          "--set '" + printable(set) + "' is neither a parameter set of case '" + spec.name + "' (" + names +
               ") nor a file of parameter values");
-  std::ifstream in(set);
-  require(in.good(), "cannot open the parameter file '" + set + "'");
+  // A regular file below the size limit (a device or FIFO would be read without end).
+  std::istringstream in(read_text_input(set, "parameter file"));
   std::vector<double> values;
   std::string line;
   int k = 0;
@@ -140,8 +143,7 @@ void print_table(const rb::Evaluation& e) {
 }
 
 int run_evaluate(const EvaluateOptions& opt) {
-  const rb::OnlineSizes sizes{opt.n, opt.r, opt.mk, opt.mg};
-  check_size_flags(sizes);
+  const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
@@ -149,6 +151,12 @@ int run_evaluate(const EvaluateOptions& opt) {
   const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
   const cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
   const std::vector<double> mus = parameter_values(spec, opt.set);
+  {
+    const std::filesystem::path d(opt.out);
+    check_file_roles({{"--model", opt.model}, {"--set", spec.parameter.has_set(opt.set) ? std::string() : opt.set}},
+                     {{"evaluation.csv in --out", (d / "evaluation.csv").string()},
+                      {"evaluation.json in --out", (d / "evaluation.json").string()}});
+  }
   ensure_output_directory(opt.out);
 
   rb::EvaluationOptions options;
@@ -160,6 +168,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   const rb::Evaluation e = rb::evaluate_model(model, rec, spec, mus, options);
 
   const std::filesystem::path dir(opt.out);
+  const OutputLock lock(dir);  // one run's files, never mixed with another's
   const std::string csv_path = (dir / "evaluation.csv").string();
   const std::string json_path = (dir / "evaluation.json").string();
   rb::write_evaluation_csv(e, csv_path);
@@ -212,10 +221,10 @@ Command add_evaluate_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Output directory (evaluation.csv, evaluation.json, multipliers_mu*.csv)")
       ->required();
-  sub->add_option("--n", opt->n, "Primal size N (default: the model's N_max)");
-  sub->add_option("--r", opt->r, "Dual size R (default: R_max)");
-  sub->add_option("--mk", opt->mk, "EIM size of kappa (default: Mk_max)");
-  sub->add_option("--mg", opt->mg, "EIM size of gamma (default: Mg_max)");
+  sub->add_option("--n", opt->sizes.n, "Primal size N (default: the model's N_max)");
+  sub->add_option("--r", opt->sizes.r, "Dual size R (default: R_max)");
+  sub->add_option("--mk", opt->sizes.mk, "EIM size of kappa (default: Mk_max)");
+  sub->add_option("--mg", opt->sizes.mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
   sub->add_option("--repeats", opt->repeats, "Online solves per value (the time is their median)")
       ->capture_default_str();

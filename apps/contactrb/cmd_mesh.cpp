@@ -7,6 +7,8 @@
 
 #include "commands.hpp"
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/vtu_writer.hpp"
 #include "contactrb/mesh/msh_io.hpp"
 
@@ -32,6 +34,10 @@ Eigen::VectorXd indicator(const mesh::Mesh& m, const std::string& group) {
 int run_mesh(const MeshOptions& opt) {
   mesh::Mesh m;
   std::string source;
+  const std::string vtu = opt.out_dir + "/mesh.vtu";
+  const std::string msh = opt.out_dir + "/mesh.msh";
+  // `--msh D/mesh.msh --out D` would replace the input by its own rewrite.
+  check_file_roles({{"--msh", opt.msh_file}}, {{"mesh.vtu in --out", vtu}, {"mesh.msh in --out", msh}});
   // Cheap checks first (case name, output directory), then the mesh generation.
   if (!opt.case_name.empty()) {
     cases::find_case(opt.case_name);
@@ -44,9 +50,15 @@ int run_mesh(const MeshOptions& opt) {
     ensure_output_directory(opt.out_dir);
   }
   mesh::validate(m);
+  // `solve` needs both contact boundaries: a mesh whose slave or master group has no edge
+  // would be written here and refused there.
+  for (const char* group : {mesh::kSlaveBoundary, mesh::kMasterBoundary}) {
+    require(!mesh::boundary_nodes(m, group).empty(),
+            "the 1D physical group '" + std::string(group) + "' of " + source +
+                " has no edge: contact needs a non-empty slave and master boundary");
+  }
 
-  const std::string vtu = opt.out_dir + "/mesh.vtu";
-  const std::string msh = opt.out_dir + "/mesh.msh";
+  const OutputLock lock(opt.out_dir);  // the two files of one run, never mixed with another's
   io::VtuWriter(m)
       .add_point_scalar(mesh::kSlaveBoundary, indicator(m, mesh::kSlaveBoundary))
       .add_point_scalar(mesh::kMasterBoundary, indicator(m, mesh::kMasterBoundary))

@@ -22,6 +22,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
@@ -51,12 +52,12 @@ struct OfflineOptions {
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   bool quiet = false;
   double eps_pod = rb::OfflineSettings{}.eps_pod;
-  int n = -1;
+  std::optional<int> n;  // absent: --eps-pod decides
   std::string inner_product = "energy";
   std::string dual = "cpg";
   double eps_du = rb::OfflineSettings{}.eps_du;
   bool eps_du_relative = false;  // the default anyway; kept for scripts that pass it
-  int r = -1;
+  std::optional<int> r;  // absent: --eps-du decides
   double eps_eim_k = rb::OfflineSettings{}.eps_eim_k;
   double eps_eim_g = rb::OfflineSettings{}.eps_eim_g;
   // Tolerances are relative by default; these make all of them, or one, absolute.
@@ -76,7 +77,9 @@ std::string sibling_path(const std::string& model_path, const char* name) {
 }
 
 // --case/--case-file: the HF snapshots of the set, written to snapshots.h5 next to the model.
-io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path) {
+// `lock` is taken before the file is written and kept by the caller until the model and
+// offline.json are written too (one run's three files, never mixed with another run's).
+io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path, std::optional<OutputLock>& lock) {
   const cases::CaseSpec spec =
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
@@ -94,6 +97,7 @@ io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& 
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
   io::SnapshotSet set = rb::generate_snapshots(request, run);
+  if (!lock) lock.emplace(std::filesystem::path(path).parent_path());
   io::write_snapshot_file(set, path);
   return set;
 }
@@ -112,7 +116,7 @@ std::string failure_report(const io::SnapshotSet& set, const std::string& path) 
 rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   rb::OfflineSettings s;
   s.eps_pod = opt.eps_pod;
-  s.pod_modes = opt.n;
+  s.pod_modes = opt.n.value_or(-1);
   if (opt.inner_product == "energy") {
     s.inner_product = rb::InnerProduct::Energy;
   } else if (opt.inner_product == "h1") {
@@ -129,8 +133,9 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   } else {
     throw Error("--dual must be 'cpg', 'angle' or 'nmf', got '" + opt.dual + "'");
   }
-  require(opt.n == -1 || opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n) + ")");
-  require(opt.r == -1 || opt.r >= 1, "--r must be >= 1 (got " + std::to_string(opt.r) + ")");
+  // Every value given is checked: -1 used to pass as "no fixed size" while -3 was refused.
+  require(!opt.n || *opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n.value_or(0)) + ")");
+  require(!opt.r || *opt.r >= 1, "--r must be >= 1 (got " + std::to_string(opt.r.value_or(0)) + ")");
   require(opt.eps_pod >= 0.0, "--eps-pod must be >= 0");
   require(opt.eps_du >= 0.0, "--eps-du must be >= 0");
   require(opt.eps_eim_k >= 0.0, "--eps-eim-k must be >= 0");
@@ -142,7 +147,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   s.eps_du_relative = !(opt.absolute_tolerances || opt.eps_du_absolute);
   s.eps_eim_k_relative = !(opt.absolute_tolerances || opt.eps_eim_k_absolute);
   s.eps_eim_g_relative = !(opt.absolute_tolerances || opt.eps_eim_g_absolute);
-  s.dual_size = opt.r;
+  s.dual_size = opt.r.value_or(-1);
   s.eps_eim_k = opt.eps_eim_k;
   s.eps_eim_g = opt.eps_eim_g;
   s.compression = !opt.no_compression;
@@ -171,7 +176,17 @@ int run_offline(const OfflineOptions& opt) {
   const std::string snapshots_path = compute ? sibling_path(opt.out, "snapshots.h5") : opt.snapshots;
 
   const auto t0 = Clock::now();
-  const io::SnapshotSet set = compute ? compute_snapshots(opt, snapshots_path) : io::read_snapshot_file(snapshots_path);
+  std::vector<FileRole> inputs{{"--snapshots", opt.snapshots}, {"--case-file", opt.case_file}};
+  if (!opt.case_file.empty()) {
+    inputs.push_back({"the case's mesh file", cases::case_from_toml_file(opt.case_file).mesh.msh_file});
+  }
+  std::vector<FileRole> outputs{{"--out", opt.out}, {"offline.json next to --out", json_path}};
+  if (compute) outputs.push_back({"snapshots.h5 next to --out", snapshots_path});
+  check_file_roles(inputs, outputs);
+  std::optional<OutputLock> lock;
+
+  const io::SnapshotSet set =
+      compute ? compute_snapshots(opt, snapshots_path, lock) : io::read_snapshot_file(snapshots_path);
   if (set.num_failed() > 0) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
     return kExitSolveFailed;
@@ -180,6 +195,7 @@ int run_offline(const OfflineOptions& opt) {
   const auto t1 = Clock::now();
   const rb::OfflineResult result = rb::build_reduced_model(set, spec, settings);
   const auto t2 = Clock::now();
+  if (!lock) lock.emplace(std::filesystem::path(opt.out).parent_path());
   io::write_reduced_model_file(result.model, result.reconstruction, opt.out);
   const auto t3 = Clock::now();
   const rb::OfflineReport& rep = result.report;

@@ -8,6 +8,7 @@
 // DIR/solution_deformed.vtu, DIR/multipliers.csv; their paths are listed in the JSON ("files").
 // Exit codes: 0 all answered and converged; 1 a user error (or, in batch mode, some bad line);
 // 3 some solve did not converge (and, in batch mode, no bad line).
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -18,6 +19,9 @@
 #include "commands.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
+#include "contactrb/common/input_file.hpp"
+#include "contactrb/common/printable.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/online_solver.hpp"
 #include "contactrb/rb/reconstruction.hpp"
@@ -34,7 +38,7 @@ struct OnlineOptions {
   std::string model;
   std::optional<std::string> mu;  // as given: parse_mu_option (CLI11 reads '' as 0)
   std::string batch;
-  int n = -1, r = -1, mk = -1, mg = -1;
+  SizeFlags sizes;  // --n, --r, --mk, --mg
   std::optional<double> alpha;
   std::optional<double> tolerance;
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
@@ -75,30 +79,58 @@ nlohmann::json solution_json(double mu, const rb::OnlineSolver& solver, const rb
   return j;
 }
 
+// Batch lines are bytes: no line can hold a parameter value beyond this length, and a longer
+// one (/dev/zero through a pipe has no newline at all) must not be buffered without bound.
+constexpr std::size_t kMaxBatchLineBytes = 4096;
+
+// Reads the next line (without its '\n') into `line`, at most kMaxBatchLineBytes of it; the
+// rest of a longer line is consumed and `too_long` set. False at the end of the input.
+bool read_batch_line(std::streambuf& in, std::string& line, bool& too_long) {
+  line.clear();
+  too_long = false;
+  int c = in.sbumpc();
+  if (c == std::char_traits<char>::eof()) return false;
+  for (; c != std::char_traits<char>::eof() && c != '\n'; c = in.sbumpc()) {
+    if (line.size() < kMaxBatchLineBytes) {
+      line += static_cast<char>(c);
+    } else {
+      too_long = true;
+    }
+  }
+  return true;
+}
+
 int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::OnlineSettings& settings) {
   std::ifstream file;
   std::istream* in = &std::cin;
   if (opt.batch != "-") {
-    file.open(opt.batch);
-    require(file.good(), "cannot open batch file '" + opt.batch + "'");
+    // A regular file below the size limit: a directory would answer nothing and exit 0, a
+    // device such as /dev/urandom would be answered forever.
+    check_input_file(opt.batch, "batch file", InputKind::Text);
+    file.open(opt.batch, std::ios::binary);
+    require(file.good(), "cannot open batch file '" + printable(opt.batch) + "'");
     in = &file;
   }
   int bad = 0, not_converged = 0, k = 0;
   std::string line;
-  while (std::getline(*in, line)) {
+  bool too_long = false;
+  while (read_batch_line(*in->rdbuf(), line, too_long)) {
     ++k;
     nlohmann::json j;
     try {
+      require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected one number)");
       const double mu = parse_mu_line(line);
       const rb::OnlineSolution s = solver.solve(mu, settings);
       j = {{"line", k}};
       j.update(solution_json(mu, solver, s));
       if (!s.converged()) ++not_converged;
     } catch (const Error& e) {
-      j = {{"line", k}, {"error", e.what()}};
+      // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
+      j = {{"line", k}, {"error", printable_line(e.what())}};
       ++bad;
     }
-    std::cout << j.dump() << std::endl;  // flushed: answers stream through pipes
+    // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
+    std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // flushed: answers stream through pipes
   }
   if (bad > 0) {
     std::cerr << "contactrb: error: " << bad << " of " << k << " batch lines could not be answered\n";
@@ -114,8 +146,7 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
 int run_online(const OnlineOptions& opt) {
   const bool single = opt.mu.has_value();  // --mu, else --batch
   const double mu = single ? parse_mu_option(*opt.mu, "--mu") : 0.0;
-  const rb::OnlineSizes sizes{opt.n, opt.r, opt.mk, opt.mg};
-  check_size_flags(sizes);
+  const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
   require(opt.out.empty() || single,
           "--out is not available with --batch (one output directory per --mu: run one online --mu per value, "
           "or `contactrb evaluate`)");
@@ -145,6 +176,10 @@ int run_online(const OnlineOptions& opt) {
   std::optional<cases::CaseSpec> spec;
   std::optional<mesh::Mesh> reference;
   if (!opt.out.empty()) {
+    const std::filesystem::path d(opt.out);
+    check_file_roles({{"--model", opt.model}}, {{"solution.vtu in --out", (d / "solution.vtu").string()},
+                                                {"solution_deformed.vtu in --out", (d / "solution_deformed.vtu").string()},
+                                                {"multipliers.csv in --out", (d / "multipliers.csv").string()}});
     ensure_output_directory(opt.out);
     rec = io::read_reconstruction(opt.model);
     rb::check_reconstruction(model, *rec);
@@ -155,6 +190,7 @@ int run_online(const OnlineOptions& opt) {
   const rb::OnlineSolution s = solver.solve(mu, settings);
   nlohmann::json j = solution_json(mu, solver, s);
   if (rec) {
+    const OutputLock lock(opt.out);  // the three files of one run, never mixed with another's
     const rb::SolutionFiles files = rb::write_solution_fields(
         *spec, *reference, mu, model.surface.discretization, rb::reconstruct_displacement(*rec, mu, s.u_hat),
         rb::reconstruct_multipliers(*rec, s.lambda_hat), opt.out);
@@ -178,10 +214,10 @@ Command add_online_command(CLI::App& app) {
   what->add_option("--mu", opt->mu, "One parameter value (inside the model's domain)");
   what->add_option("--batch", opt->batch, "File with one parameter value per line, or - for stdin");
   what->require_option(1);
-  sub->add_option("--n", opt->n, "Primal size N (default: the model's N_max)");
-  sub->add_option("--r", opt->r, "Dual size R (default: R_max)");
-  sub->add_option("--mk", opt->mk, "EIM size of kappa (default: Mk_max)");
-  sub->add_option("--mg", opt->mg, "EIM size of gamma (default: Mg_max)");
+  sub->add_option("--n", opt->sizes.n, "Primal size N (default: the model's N_max)");
+  sub->add_option("--r", opt->sizes.r, "Dual size R (default: R_max)");
+  sub->add_option("--mk", opt->sizes.mk, "EIM size of kappa (default: Mk_max)");
+  sub->add_option("--mg", opt->sizes.mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1] (default: the snapshots')");
   sub->add_option("--tol", opt->tolerance, "Kacanov tolerance eps_KA, > 0 (default: the snapshots')");
   sub->add_option("--start", opt->start,

@@ -148,6 +148,9 @@ int run_report(const ReportOptions& opt) {
   s.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
   rb::check_settings(s);
   const std::string out = opt.out.empty() ? "out/report-" + spec.name : opt.out;
+  check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
+                   {{"report.md in --out", (fs::path(out) / "report.md").string()},
+                    {"study.json in --out", (fs::path(out) / "study.json").string()}});
   ensure_output_directory(out);
   require(::access(out.c_str(), W_OK) == 0, "output directory '" + out + "' is not writable");
   // Find the plotter before the long work, so that a broken installation fails at once.
@@ -155,6 +158,8 @@ int run_report(const ReportOptions& opt) {
   if (!opt.no_plots) script = find_plot_script();
 
   const rb::StudyResult r = rb::run_study(spec, s);
+  // Held to the end (figures included): one run's files, never mixed with another's.
+  const OutputLock lock(out);
   const std::vector<std::string> files = rb::write_study_files(r, out);
   const std::string report_md = (fs::path(out) / "report.md").string();
   write_text(report_md, rb::study_markdown(r, {}));  // without figures until they exist

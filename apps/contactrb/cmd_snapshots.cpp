@@ -17,6 +17,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
 
@@ -57,6 +58,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
   check_output_file(opt.out);
+  check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
   std::optional<std::vector<double>> values;
   if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
 
@@ -71,7 +73,10 @@ int run_snapshots(const SnapshotsOptions& opt) {
   const auto t1 = Clock::now();
   const io::SnapshotSet set = rb::generate_snapshots(request, run);
   const auto t2 = Clock::now();
-  io::write_snapshot_file(set, opt.out);
+  {
+    const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // as every output set
+    io::write_snapshot_file(set, opt.out);
+  }
   const auto t3 = Clock::now();
   const double solves_wall = seconds(t1, t2);
 

@@ -4,6 +4,8 @@
 // DIR/solution_deformed.vtu (the deformed configuration) (docs/user-guide.md). A solve that does not converge still writes solution.json
 // (converged = false) and exits with code 3.
 #include <Eigen/Core>
+#include <filesystem>
+#include <system_error>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -17,6 +19,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
@@ -110,6 +113,15 @@ int run_solve(SolveOptions opt) {
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  const std::string json_path = opt.out_dir + "/solution.json";
+  const std::string csv_path = opt.out_dir + "/multipliers.csv";
+  const std::string vtu_path = opt.out_dir + "/solution.vtu";
+  const std::string deformed_path = opt.out_dir + "/solution_deformed.vtu";
+  check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
+                   {{"solution.json in --out", json_path},
+                    {"multipliers.csv in --out", csv_path},
+                    {"solution.vtu in --out", vtu_path},
+                    {"solution_deformed.vtu in --out", deformed_path}});
   ensure_output_directory(opt.out_dir);
 
   const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
@@ -117,13 +129,18 @@ int run_solve(SolveOptions opt) {
   const hf::HFSolution s = solver.solve(settings);
   const mesh::Mesh& m = solver.problem().mesh;
 
-  const std::string json_path = opt.out_dir + "/solution.json";
+  // The four files of one run are written under a lock on DIR: two runs to the same --out
+  // leave the files of one of them, never a mix (the writes are atomic one by one).
+  const OutputLock lock(opt.out_dir);
   io::write_json(solution_json(opt, solver, s, settings), json_path);
 
-  const std::string csv_path = opt.out_dir + "/multipliers.csv";
-  const std::string vtu_path = opt.out_dir + "/solution.vtu";
-  const std::string deformed_path = opt.out_dir + "/solution_deformed.vtu";
-  if (s.rows.K.rows() == s.lambda.size() && s.lambda.size() > 0) {
+  if (s.rows.K.rows() != s.lambda.size() || s.lambda.size() == 0) {
+    // No fields of this run: the files of an earlier run would sit beside its solution.json.
+    for (const std::string& stale : {csv_path, vtu_path, deformed_path}) {
+      std::error_code ignored;
+      std::filesystem::remove(stale, ignored);
+    }
+  } else {
     io::CsvWriter csv({"r", "abscissa", "x", "y", "gap", "pressure", "weight"});
     const Eigen::VectorXd slack = s.rows.g - s.rows.K * s.u;  // integrated deformed gap
     const auto& q = solver.quadrature();

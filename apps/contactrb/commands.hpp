@@ -6,6 +6,7 @@
 // "contactrb: error: ..." on stderr and exit code 1.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,20 @@ void ensure_output_directory(const std::string& dir);
 // work starts); throws contactrb::Error naming --out otherwise.
 void check_output_file(const std::string& path);
 
+// A file a command reads or writes, with the words that name it in a message
+// ("--snapshots", "offline.json next to --out").
+struct FileRole {
+  std::string role;
+  std::string path;
+};
+
+// Output safety before any work starts (docs/user-guide.md, "Output files"): throws
+// contactrb::Error naming both roles when an output is the same file as an input (it would be
+// destroyed) or as another output of the command (one would overwrite the other), and when an
+// output path is a symbolic link, device, FIFO or directory. Paths that do not exist yet are
+// compared after resolving "..", "." and the links of their existing part.
+void check_file_roles(const std::vector<FileRole>& inputs, const std::vector<FileRole>& outputs);
+
 // One parameter value per line (online --batch, evaluate --set FILE): a number with optional
 // surrounding blanks, nothing else. Throws contactrb::Error saying what is wrong.
 double parse_mu_line(const std::string& line);
@@ -53,9 +68,15 @@ double parse_mu_option(const std::string& text, const std::string& flag);
 // naming `flag` and the position.
 std::vector<double> parse_values_option(const std::vector<std::string>& items, const std::string& flag);
 
-// --n, --r, --mk, --mg (online_sizes.cpp): signs first (-1: the model's maximum), then the
+// --n, --r, --mk, --mg as given (absent: the model's maximum).
+struct SizeFlags {
+  std::optional<int> n, r, mk, mg;
+};
+
+// online_sizes.cpp: the given sizes checked (N >= 1, R, Mk, Mg >= 0; a negative value is
+// refused whatever it is), then as OnlineSizes (-1: the model's maximum), and against the
 // maxima stored in the model read from `path`. Throw contactrb::Error naming the flag.
-void check_size_flags(const rb::OnlineSizes& sizes);
+rb::OnlineSizes checked_size_flags(const SizeFlags& flags);
 void check_sizes_against(const rb::OnlineSizes& sizes, const rb::ReducedModel& model, const std::string& path);
 
 }  // namespace contactrb::app

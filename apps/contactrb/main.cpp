@@ -4,10 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <sstream>
 #include <vector>
 
 #include "commands.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/printable.hpp"
 #include "contactrb/common/version.hpp"
 
 int main(int argc, char** argv) {
@@ -28,7 +30,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 quotes the offending argument: escaped like our own messages (help text and
+    // --version go to stdout untouched).
+    std::ostringstream err;
+    const int code = app.exit(e, std::cout, err);
+    std::cerr << contactrb::printable(err.str());
+    return code;
   }
   try {
     for (const auto& command : commands) {
@@ -37,10 +44,12 @@ int main(int argc, char** argv) {
     std::cout << app.help();
     return 0;
   } catch (const contactrb::Error& e) {
-    std::cerr << "contactrb: error: " << e.what() << "\n";
+    // Messages quote the user's input (paths, lines): escaped so that a control character
+    // cannot act on the terminal.
+    std::cerr << "contactrb: error: " << contactrb::printable(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "contactrb: internal error: " << e.what() << "\n";
+    std::cerr << "contactrb: internal error: " << contactrb::printable(e.what()) << "\n";
     return 2;
   } catch (...) {
     std::cerr << "contactrb: internal error: unknown exception\n";

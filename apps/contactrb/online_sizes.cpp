@@ -9,11 +9,16 @@
 
 namespace contactrb::app {
 
-void check_size_flags(const rb::OnlineSizes& s) {
-  require(s.N == -1 || s.N >= 1, "--n must be >= 1 (got " + std::to_string(s.N) + ")");
-  require(s.R == -1 || s.R >= 0, "--r must be >= 0 (got " + std::to_string(s.R) + ")");
-  require(s.Mk == -1 || s.Mk >= 0, "--mk must be >= 0 (got " + std::to_string(s.Mk) + ")");
-  require(s.Mg == -1 || s.Mg >= 0, "--mg must be >= 0 (got " + std::to_string(s.Mg) + ")");
+rb::OnlineSizes checked_size_flags(const SizeFlags& f) {
+  // -1 used to slip through as "the maximum" while -3 was refused: every negative value given
+  // is refused; leaving the flag out is the way to ask for the maximum.
+  const auto size = [](const char* flag, const std::optional<int>& v, int min) {
+    if (!v) return -1;
+    require(*v >= min, std::string(flag) + " must be >= " + std::to_string(min) + " (got " + std::to_string(*v) +
+                           "; leave it out for the model's maximum)");
+    return *v;
+  };
+  return rb::OnlineSizes{size("--n", f.n, 1), size("--r", f.r, 0), size("--mk", f.mk, 0), size("--mg", f.mg, 0)};
 }
 
 void check_sizes_against(const rb::OnlineSizes& s, const rb::ReducedModel& model, const std::string& path) {

@@ -111,7 +111,7 @@ TEST(CliCaseFile, MissingMshIsNamedWithTheFile) {
 
 TEST(CliCaseFile, MissingCaseFileAndMuOutsideTheDomain) {
   contactrb::test::TempDir dir("case_file_other");
-  expect_user_error(solve(dir.path() / "nope.toml", dir.path() / "out"), {"cannot open case file", "nope.toml"});
+  expect_user_error(solve(dir.path() / "nope.toml", dir.path() / "out"), {"case file", "nope.toml", "does not exist"});
   const fs::path f = edited_case(dir.path(), "", "");
   const CliResult r = run_cli("solve --case-file " + shell_quote(f.string()) + " --mu 0.5 --out " +
                               shell_quote((dir.path() / "out").string()));

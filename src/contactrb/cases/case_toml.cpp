@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
 
 namespace contactrb::cases {
 
@@ -396,11 +397,7 @@ CaseSpec case_from_toml_string(const std::string& text, const std::string& origi
 }
 
 CaseSpec case_from_toml_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  require(in.good() && fs::is_regular_file(path), "cannot open case file " + path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return case_from_toml_string(ss.str(), path);
+  return case_from_toml_string(read_text_input(path, "case file"), path);
 }
 
 std::string to_toml(const CaseSpec& c) {

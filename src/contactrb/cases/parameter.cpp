@@ -1,13 +1,29 @@
 #include "contactrb/cases/parameter.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <string>
+#include <system_error>
 #include <set>
 #include <sstream>
 
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::cases {
+
+namespace {
+
+// The shortest text that reads back to the same double: a value just outside the domain must
+// not print as its bound ("0.45 is outside [0.15, 0.45]" for 0.4500000001).
+std::string exact_text(double v) {
+  std::array<char, 32> buf{};
+  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  if (ec != std::errc()) return std::to_string(v);
+  return std::string(buf.data(), end);
+}
+
+}  // namespace
 
 const char* to_string(ParameterKind kind) {
   switch (kind) {
@@ -50,7 +66,8 @@ const std::vector<double>& ParameterSpec::set(const std::string& set_name) const
 void ParameterSpec::check(double mu, const std::string& context) const {
   if (!std::isfinite(mu) || mu < min || mu > max) {
     std::ostringstream os;
-    os << "parameter mu = " << mu << " (" << name << ") is outside the domain [" << min << ", " << max << "] of "
+    os << "parameter mu = " << exact_text(mu) << " (" << name << ") is outside the domain [" << exact_text(min) << ", "
+       << exact_text(max) << "] of "
        << context;
     throw Error(os.str());
   }

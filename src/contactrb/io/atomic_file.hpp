@@ -1,17 +1,12 @@
 #pragma once
-// Writing a file so that readers never see a half-written one: the content goes to a
+// Writing a file so that readers never see a half-written one: the content goes to a new
 // temporary file in the same directory, which is renamed over the target only once it is
-// complete and flushed (rename is atomic within one file system).
-#include <functional>
-#include <ostream>
-#include <string>
+// complete and flushed (rename is atomic within one file system). The implementation lives in
+// common/output_file.hpp, which the mesh writer shares; io keeps its historical name.
+#include "contactrb/common/output_file.hpp"
 
 namespace contactrb::io {
 
-// Calls write(stream) on a temporary file next to `path`, then renames it to `path`.
-// Throws contactrb::Error naming `path` when the directory is not writable, the stream
-// fails, or the rename fails; the temporary file is removed and `path` is left untouched.
-// An exception thrown by `write` itself also removes the temporary file and propagates.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+using contactrb::write_file_atomically;
 
 }  // namespace contactrb::io

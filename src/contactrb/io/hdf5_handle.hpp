@@ -5,6 +5,7 @@
 // Internal to io/: include only from io/*.cpp (io links HDF5 privately).
 #include <hdf5.h>
 
+#include <cstddef>
 #include <string>
 #include <utility>
 
@@ -53,6 +54,27 @@ inline Failure failure(const std::string& what) {
 
 inline void check(herr_t status, const std::string& what) {
   if (status < 0) throw failure(what);
+}
+
+// The element count of a dataset of shape dims[0..rank), checked before anything is
+// allocated for it: our files store every dataset contiguous and uncompressed, so a dataset
+// cannot hold more bytes than its file; a damaged header declaring more (or a count that
+// overflows) would otherwise end in an allocation failure. Throws Failure naming the dataset.
+inline hsize_t checked_element_count(hid_t dataset, const hsize_t* dims, int rank, std::size_t element_size,
+                                     const std::string& name) {
+  hsize_t file_size = 0;
+  const hid_t file = H5Iget_file_id(dataset);
+  if (file < 0 || H5Fget_filesize(file, &file_size) < 0) file_size = 0;
+  if (file >= 0) H5Fclose(file);  // H5Iget_file_id opened a new reference
+  const hsize_t limit = file_size / element_size;
+  hsize_t total = 1;
+  for (int i = 0; i < rank; ++i) {
+    if (dims[i] != 0 && total > limit / dims[i]) {
+      throw Failure{"dataset '" + name + "' declares more elements than the file can hold (damaged file)"};
+    }
+    total *= dims[i];
+  }
+  return total;
 }
 
 // An HDF5 identifier closed by `close` on destruction.

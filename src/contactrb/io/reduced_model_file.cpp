@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 
@@ -61,8 +63,8 @@ std::vector<hsize_t> read_raw(hid_t file, const std::string& name, int rank, hid
   if (H5Sget_simple_extent_ndims(space.get()) != rank) throw H5Failure{"dataset '" + name + "' has the wrong rank"};
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "cannot read the shape of '" + name + "'");
-  hsize_t total = 1;
-  for (hsize_t d : dims) total *= d;
+  // Bounded by the file's size before anything is allocated (a damaged header).
+  const hsize_t total = hdf5::checked_element_count(set.get(), dims.data(), rank, H5Tget_size(mem_type), name);
   void* buffer = resize(static_cast<std::size_t>(total), dims);
   if (total > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer), "cannot read '" + name + "' (truncated or damaged)");
   return dims;
@@ -373,10 +375,12 @@ void write_reconstruction_group(hid_t file, const rb::ReducedReconstruction& rec
 void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction* reconstruction,
                       const std::string& path) {
   QuietHdf5 quiet;
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  check_output_target(path);
+  remove_stale_temporaries(path);
+  const std::string tmp = temporary_path(path).string();
   try {
     {
-      Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "cannot create the file");
+      Id file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "cannot create the file");
       Writer w(file.get());
       std::string format = kReducedModelFormatName;
       w.str("format", format);
@@ -391,9 +395,7 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
       write_raw(file.get(), "complete", &complete, 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
       file.close("cannot close (flush) the file");
     }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw H5Failure{"cannot rename the temporary file: " + ec.message()};
+    commit_temporary(tmp, path);  // removes tmp itself when it fails
   } catch (const H5Failure& e) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
@@ -408,6 +410,7 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
 // The cheap checks before opening a file (as read_reduced_model_file).
 void check_model_path(const std::string& path, const std::string& where) {
   require(std::filesystem::exists(path), where + "no such file");
+  check_input_file(path, "reduced model file", InputKind::Hdf5);  // a regular file below the size limit
   require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
 }
 Id open_model_file(const std::string& path) {
@@ -430,6 +433,7 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
   require(std::filesystem::exists(path), where + "no such file");
+  check_input_file(path, "reduced model file", InputKind::Hdf5);  // a regular file below the size limit
   require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
   try {
     Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,

@@ -15,6 +15,8 @@
 #include <utility>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/common/version.hpp"
 #include "contactrb/io/field_checksum.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
@@ -274,6 +276,8 @@ Handle open_dataset(hid_t loc, const std::string& name, int rank, H5T_class_t ex
   check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), "cannot read the shape of dataset '" + name + "'");
   Handle type(H5Dget_type(set.get()), H5Tclose, "cannot read the type of dataset '" + name + "'");
   if (H5Tget_class(type.get()) != expected) throw H5Failure{"dataset '" + name + "' has the wrong type"};
+  // Before the caller allocates dims' worth of memory (4 bytes: the smallest element we read).
+  hdf5::checked_element_count(set.get(), dims, rank, 4, name);
   return set;
 }
 
@@ -468,8 +472,12 @@ bool has_model_format(hid_t file) {
   }
 }
 
+// A new temporary file next to the target (common/output_file.hpp); temporaries of killed
+// writers are removed first.
 std::string temporary_name(const std::string& path) {
-  return path + ".partial-" + std::to_string(static_cast<long>(::getpid()));
+  check_output_target(path);
+  remove_stale_temporaries(path);
+  return temporary_path(path).string();
 }
 
 }  // namespace
@@ -656,7 +664,7 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   const QuietHdf5 quiet;
   const std::string tmp = temporary_name(path);
   try {
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                 "cannot create the file (is the directory there and writable?)");
     FileWriter w;
     write_contents(file.get(), set, w);
@@ -673,20 +681,16 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
     std::filesystem::remove(tmp, ignored);
     throw Error("cannot write snapshot file '" + path + "': " + f.what);
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw Error("cannot write snapshot file '" + path + "': rename from '" + tmp + "' failed (" + ec.message() + ")");
+  try {
+    commit_temporary(tmp, path);
+  } catch (const Error& e) {
+    throw Error("cannot write snapshot file '" + path + "': " + e.what());
   }
 }
 
 SnapshotSet read_snapshot_file(const std::string& path) {
   const std::string name = "snapshot file '" + path + "'";
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(name + " does not exist");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(name + " is not a regular file");
+  check_input_file(path, "snapshot file", InputKind::Hdf5);  // a regular file below the size limit
   const QuietHdf5 quiet;
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 == 0) throw Error(name + " is not an HDF5 file (expected a file written by `contactrb snapshots`)");

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/input_file.hpp"
 #include "contactrb/mesh/msh_io.hpp"
 
 namespace contactrb::mesh {
@@ -240,13 +241,8 @@ void read_elements(Tokens& in, MshContent& c) {
 }
 
 MshContent parse(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("mesh file '" + path + "' does not exist");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error("mesh file '" + path + "' cannot be opened for reading");
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  Tokens in(buffer.str(), path);
+  // A regular file below the size limit: /dev/zero or a FIFO would be read without end.
+  Tokens in(read_text_input(path, "mesh file"), path);
   if (in.at_end() || in.next("header") != "$MeshFormat") {
     throw Error("mesh file '" + path + "' is not a Gmsh mesh (it does not start with $MeshFormat)");
   }

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/mesh/msh_io.hpp"
 
 namespace contactrb::mesh {
@@ -46,73 +47,73 @@ void write_msh(const Mesh& mesh, const std::string& path) {
     body_box[b].add(mesh.nodes[static_cast<std::size_t>(v)]);
   }
 
-  std::ofstream out(path);
-  require(static_cast<bool>(out), "write_msh: cannot open '" + path + "' for writing");
-  out.precision(std::numeric_limits<double>::max_digits10);
-  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  // Atomic (temporary file + rename): an interrupted write never leaves half a mesh, and a
+  // link or device at `path` is refused (common/output_file.hpp).
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.precision(std::numeric_limits<double>::max_digits10);
+    out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 
-  const int groups = static_cast<int>(mesh.boundaries.size());
-  out << "$PhysicalNames\n" << bodies + groups << '\n';
-  {
-    int tag = 1;
-    for (const auto& [name, edges] : mesh.boundaries) out << "1 " << tag++ << " \"" << name << "\"\n";
-    for (int b = 0; b < bodies; ++b) out << "2 " << b + 1 << " \"body" << b + 1 << "\"\n";
-  }
-  out << "$EndPhysicalNames\n";
+    const int groups = static_cast<int>(mesh.boundaries.size());
+    out << "$PhysicalNames\n" << bodies + groups << '\n';
+    {
+      int tag = 1;
+      for (const auto& [name, edges] : mesh.boundaries) out << "1 " << tag++ << " \"" << name << "\"\n";
+      for (int b = 0; b < bodies; ++b) out << "2 " << b + 1 << " \"body" << b + 1 << "\"\n";
+    }
+    out << "$EndPhysicalNames\n";
 
-  out << "$Entities\n0 " << groups << ' ' << bodies << " 0\n";
-  {
-    int tag = 1;
-    for (const auto& [name, edges] : mesh.boundaries) {
-      Box box;
-      for (const Edge& e : edges) {
-        box.add(mesh.nodes[static_cast<std::size_t>(e.a)]);
-        box.add(mesh.nodes[static_cast<std::size_t>(e.b)]);
+    out << "$Entities\n0 " << groups << ' ' << bodies << " 0\n";
+    {
+      int tag = 1;
+      for (const auto& [name, edges] : mesh.boundaries) {
+        Box box;
+        for (const Edge& e : edges) {
+          box.add(mesh.nodes[static_cast<std::size_t>(e.a)]);
+          box.add(mesh.nodes[static_cast<std::size_t>(e.b)]);
+        }
+        if (edges.empty()) box = Box{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+        out << tag << ' ' << box << " 1 " << tag << " 0\n";
+        ++tag;
       }
-      if (edges.empty()) box = Box{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
-      out << tag << ' ' << box << " 1 " << tag << " 0\n";
-      ++tag;
+      for (int b = 0; b < bodies; ++b) out << b + 1 << ' ' << body_box[static_cast<std::size_t>(b)] << " 1 " << b + 1 << " 0\n";
     }
-    for (int b = 0; b < bodies; ++b) out << b + 1 << ' ' << body_box[static_cast<std::size_t>(b)] << " 1 " << b + 1 << " 0\n";
-  }
-  out << "$EndEntities\n";
+    out << "$EndEntities\n";
 
-  out << "$Nodes\n" << bodies << ' ' << mesh.num_nodes() << " 1 " << mesh.num_nodes() << '\n';
-  for (int b = 0; b < bodies; ++b) {
-    const auto& nodes = body_nodes[static_cast<std::size_t>(b)];
-    out << "2 " << b + 1 << " 0 " << nodes.size() << '\n';
-    for (int v : nodes) out << v + 1 << '\n';
-    for (int v : nodes) {
-      const auto& p = mesh.nodes[static_cast<std::size_t>(v)];
-      out << p.x() << ' ' << p.y() << " 0\n";
+    out << "$Nodes\n" << bodies << ' ' << mesh.num_nodes() << " 1 " << mesh.num_nodes() << '\n';
+    for (int b = 0; b < bodies; ++b) {
+      const auto& nodes = body_nodes[static_cast<std::size_t>(b)];
+      out << "2 " << b + 1 << " 0 " << nodes.size() << '\n';
+      for (int v : nodes) out << v + 1 << '\n';
+      for (int v : nodes) {
+        const auto& p = mesh.nodes[static_cast<std::size_t>(v)];
+        out << p.x() << ' ' << p.y() << " 0\n";
+      }
     }
-  }
-  out << "$EndNodes\n";
+    out << "$EndNodes\n";
 
-  std::size_t edge_count = 0;
-  for (const auto& [name, edges] : mesh.boundaries) edge_count += edges.size();
-  const std::size_t elements = edge_count + mesh.triangles.size();
-  out << "$Elements\n" << groups + bodies << ' ' << elements << " 1 " << elements << '\n';
-  std::size_t element = 1;
-  {
-    int tag = 1;
-    for (const auto& [name, edges] : mesh.boundaries) {
-      out << "1 " << tag++ << " 1 " << edges.size() << '\n';
-      for (const Edge& e : edges) out << element++ << ' ' << e.a + 1 << ' ' << e.b + 1 << '\n';
+    std::size_t edge_count = 0;
+    for (const auto& [name, edges] : mesh.boundaries) edge_count += edges.size();
+    const std::size_t elements = edge_count + mesh.triangles.size();
+    out << "$Elements\n" << groups + bodies << ' ' << elements << " 1 " << elements << '\n';
+    std::size_t element = 1;
+    {
+      int tag = 1;
+      for (const auto& [name, edges] : mesh.boundaries) {
+        out << "1 " << tag++ << " 1 " << edges.size() << '\n';
+        for (const Edge& e : edges) out << element++ << ' ' << e.a + 1 << ' ' << e.b + 1 << '\n';
+      }
     }
-  }
-  for (int b = 0; b < bodies; ++b) {
-    const auto count = std::count(mesh.body.begin(), mesh.body.end(), b);
-    out << "2 " << b + 1 << " 2 " << count << '\n';
-    for (int t = 0; t < mesh.num_triangles(); ++t) {
-      if (mesh.body[static_cast<std::size_t>(t)] != b) continue;
-      const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
-      out << element++ << ' ' << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << '\n';
+    for (int b = 0; b < bodies; ++b) {
+      const auto count = std::count(mesh.body.begin(), mesh.body.end(), b);
+      out << "2 " << b + 1 << " 2 " << count << '\n';
+      for (int t = 0; t < mesh.num_triangles(); ++t) {
+        if (mesh.body[static_cast<std::size_t>(t)] != b) continue;
+        const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
+        out << element++ << ' ' << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << '\n';
+      }
     }
-  }
-  out << "$EndElements\n";
-  out.flush();
-  require(static_cast<bool>(out), "write_msh: error while writing '" + path + "'");
+    out << "$EndElements\n";
+  });
 }
 
 }  // namespace contactrb::mesh

@@ -1,0 +1,61 @@
+#pragma once
+// Writing outputs without ever losing a file (docs/user-guide.md, "Output files"):
+// - an output replaces only a regular file: a symbolic link, a device (/dev/null, /dev/full),
+//   a FIFO or a directory at the output path is refused, never followed or replaced;
+// - the content goes to a new temporary file next to the target (created exclusively, so an
+//   existing file or link of that name is never opened), renamed over the target once it is
+//   complete (rename is atomic within one file system);
+// - temporary files of processes that died (SIGKILL, power loss) are removed the next time
+//   the same target is written;
+// - OutputLock serializes the writing of a set of files into one directory, so that two
+//   concurrent runs never leave files of one beside files of the other.
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace contactrb {
+
+// True when `a` and `b` name the same file: the same inode when both exist (hard links and
+// symbolic links included), otherwise the same absolute path after resolving the part that
+// exists (a path that does not exist yet: "d/../x" and "x").
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+// Throws contactrb::Error naming `path` when it exists and is not a regular file (checked
+// without following a symbolic link).
+void check_output_target(const std::filesystem::path& path);
+
+// A fresh temporary name next to `target`: "<target>.contactrb-tmp.<pid>.<counter>".
+std::filesystem::path temporary_path(const std::filesystem::path& target);
+
+// Removes the temporary files of `target` (temporary_path's form) whose process is gone.
+// Files of a running process are left alone; errors are ignored (a cleanup, not a step).
+void remove_stale_temporaries(const std::filesystem::path& target);
+
+// Renames the complete temporary file `tmp` to `target` after check_output_target(target);
+// removes `tmp` and throws contactrb::Error naming `target` when that fails.
+void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::path& target);
+
+// Calls write(stream) on a new temporary file next to `path`, then renames it to `path`.
+// Throws contactrb::Error naming `path` when the target is not a regular file, the directory
+// is not writable, the stream fails, or the rename fails; the temporary file is removed and
+// `path` is left untouched. An exception thrown by `write` itself also removes the temporary
+// file and propagates.
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+// An exclusive advisory lock (flock) on a directory, held for the lifetime of the object;
+// released by the kernel when the process dies, so a killed run never blocks the next one.
+// Waits up to `wait_seconds` for another holder, then throws contactrb::Error. On a file
+// system without flock support the lock is skipped (the outputs are still atomic one by one).
+class OutputLock {
+ public:
+  explicit OutputLock(const std::filesystem::path& directory, double wait_seconds = 600.0);
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace contactrb

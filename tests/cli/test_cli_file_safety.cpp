@@ -1,0 +1,349 @@
+// Issue [R], rows 8-14: no lost file, no unbounded read, no mixed output set, no raw control
+// character on the terminal. Each test is the reproducer of one row of the issue's table.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::test::CliResult;
+using contactrb::test::run_cli;
+using contactrb::test::shell_quote;
+using nlohmann::json;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(CONTACTRB_SOURCE_DIR) + "/tests/data/" + name; }
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_bytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary);
+  out << bytes;
+}
+
+int count_lines_starting(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return n;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
+}
+
+// Exit 1 and exactly one "contactrb: error:" line that holds every word of `words`.
+void expect_user_error(const CliResult& r, const std::vector<std::string>& words) {
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(count_lines_starting(r.err, "contactrb: error: "), 1) << r.err;
+  for (const std::string& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "missing '" << w << "' in " << r.err;
+}
+
+// A small hertz-a snapshot file and model, made once for the suite.
+class CliFileSafety : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<contactrb::test::TempDir>("file_safety");
+    snapshots_ = dir_->file("s.h5");
+    model_ = dir_->file("model.h5");
+    const CliResult s =
+        run_cli("snapshots --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(snapshots_));
+    ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
+    const CliResult o = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(model_));
+    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  static std::unique_ptr<contactrb::test::TempDir> dir_;
+  static std::string snapshots_, model_;
+};
+std::unique_ptr<contactrb::test::TempDir> CliFileSafety::dir_;
+std::string CliFileSafety::snapshots_, CliFileSafety::model_;
+
+// Row 8: a batch line with the byte 0xFF ended the run with "internal error: invalid UTF-8"
+// and the lines after it were never answered.
+TEST_F(CliFileSafety, BatchLineWithInvalidBytesIsAnsweredAndTheRestGoOn) {
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(data("batch/bad_bytes.txt")));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines_starting(r.err, "contactrb: error: "), 1) << r.err;
+  EXPECT_NE(r.err.find("2 of 4 batch lines"), std::string::npos) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 4u) << r.out;
+  std::vector<json> answers;
+  for (const std::string& l : lines) answers.push_back(json::parse(l));  // every line valid JSON (UTF-8)
+  EXPECT_TRUE(answers[0].contains("energy")) << lines[0];
+  EXPECT_NE(answers[1].at("error").get<std::string>().find("\\xff"), std::string::npos) << lines[1];
+  // The escape sequence of line 3 is quoted escaped, never as the raw ESC byte.
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+  EXPECT_NE(answers[2].at("error").get<std::string>().find("\\x1b"), std::string::npos) << lines[2];
+  EXPECT_EQ(answers[3].at("line").get<int>(), 4);
+  EXPECT_TRUE(answers[3].contains("energy")) << lines[3];
+}
+
+// Row 12 (batch from a pipe): /dev/zero has no newline; the line is bounded (never buffered
+// whole), answered by one error line, and the next line is still answered.
+TEST_F(CliFileSafety, EndlessBatchLineFromStdinIsBounded) {
+  const std::string input = dir_->file("zeros_then_value.txt");
+  write_bytes(input, std::string(20 * 1024 * 1024, '\0') + "\n0.3\n");
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch - < " + shell_quote(input));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(count_lines_starting(r.err, "contactrb: error: "), 1) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 2u) << r.out.substr(0, 1000);
+  EXPECT_NE(json::parse(lines[0]).at("error").get<std::string>().find("longer than"), std::string::npos);
+  EXPECT_LT(lines[0].size(), 1000u);  // the message does not quote 20 MB of zeros
+  EXPECT_TRUE(json::parse(lines[1]).contains("energy")) << lines[1];
+}
+
+// Rows 12 and 14: a device or a directory as a batch file (a directory was answered by
+// nothing and exit 0; /dev/urandom was answered without end).
+TEST_F(CliFileSafety, BatchFileMustBeARegularFile) {
+  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch /dev/urandom"),
+                    {"batch file '/dev/urandom'", "not a regular file"});
+  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(dir_->path().string())),
+                    {"batch file", "is a directory"});
+}
+
+// Row 12: /dev/zero as a mesh was read without end; a file above the input limit is refused
+// before it is read, naming the variable that raises the limit.
+TEST(CliInputBounds, MeshMustBeARegularFileBelowTheLimit) {
+  const contactrb::test::TempDir dir("input_bounds");
+  const std::string out = " --out " + shell_quote(dir.file("m"));
+  expect_user_error(run_cli("mesh --msh /dev/zero" + out), {"mesh file '/dev/zero'", "not a regular file"});
+  const std::string junk = dir.file("junk.msh");
+  write_bytes(junk, "$MeshFormat\n" + std::string(3 * 1024 * 1024, 'x') + "\n");
+  // Under the default limit (256 MiB) the junk is read and refused as junk.
+  const CliResult read = run_cli("mesh --msh " + shell_quote(junk) + out);
+  expect_user_error(read, {"junk.msh"});
+  EXPECT_EQ(read.err.find("above the input limit"), std::string::npos) << read.err;
+  // With a 2 MiB limit it is refused by its size.
+  expect_user_error(run_cli("mesh --msh " + shell_quote(junk) + out, "", "CONTACTRB_MAX_TEXT_INPUT_MB=2"),
+                    {"junk.msh", "3.0 MiB", "above the input limit of 2.0 MiB", "CONTACTRB_MAX_TEXT_INPUT_MB"});
+  // A valid mesh under a raised limit reads as before; a limit that is not a number is refused.
+  const CliResult good = run_cli("mesh --msh " + shell_quote(data("msh/two_squares.msh")) + out, "",
+                                 "CONTACTRB_MAX_TEXT_INPUT_MB=4096");
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  expect_user_error(run_cli("mesh --msh " + shell_quote(data("msh/two_squares.msh")) + out, "",
+                            "CONTACTRB_MAX_TEXT_INPUT_MB=-1"),
+                    {"CONTACTRB_MAX_TEXT_INPUT_MB must be a positive whole number"});
+  // The same bound on the other text readers: a TOML case file, a parameter file.
+  expect_user_error(run_cli("solve --case-file /dev/zero --mu 0.02" + out), {"case file '/dev/zero'", "not a regular file"});
+}
+
+// Row 9: an output equal to an input destroyed the input.
+TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
+  const contactrb::test::TempDir dir("out_is_input");
+  const fs::path s = dir.path() / "s.h5";
+  fs::copy_file(snapshots_, s);
+  const std::string before = read_bytes(s);
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " + shell_quote(s.string())),
+                    {"--out", "is the input --snapshots", "would destroy the input"});
+  // The same file under another spelling, and through a hard link.
+  fs::create_directory(dir.path() / "sub");
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
+                            shell_quote((dir.path() / "sub" / ".." / "s.h5").string())),
+                    {"is the input --snapshots"});
+  fs::create_hard_link(s, dir.path() / "sub" / "hard.h5");
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
+                            shell_quote((dir.path() / "sub" / "hard.h5").string())),
+                    {"is the input --snapshots"});
+  EXPECT_EQ(read_bytes(s), before);
+
+  const fs::path toml = dir.path() / "case.toml";
+  fs::copy_file(std::string(CONTACTRB_SOURCE_DIR) + "/examples/two-block-patch/case.toml", toml);
+  std::string text = read_bytes(toml);
+  // The case's mesh path is relative to the TOML file: point it at the example's mesh.
+  const std::string example_dir = std::string(CONTACTRB_SOURCE_DIR) + "/examples/two-block-patch/";
+  const std::size_t key = text.find("file = \"");
+  ASSERT_NE(key, std::string::npos) << text;
+  text.insert(key + 8, example_dir);
+  write_bytes(toml, text);
+  expect_user_error(run_cli("snapshots --case-file " + shell_quote(toml.string()) + " --values 0.02 -q --out " +
+                            shell_quote(toml.string())),
+                    {"is the input --case-file"});
+  EXPECT_EQ(read_bytes(toml), text);
+  // mesh --msh D/mesh.msh --out D rewrote its own input.
+  const fs::path msh = dir.path() / "mesh.msh";
+  fs::copy_file(data("msh/two_squares.msh"), msh);
+  expect_user_error(run_cli("mesh --msh " + shell_quote(msh.string()) + " --out " + shell_quote(dir.path().string())),
+                    {"is the input --msh"});
+  EXPECT_EQ(read_bytes(msh), read_bytes(data("msh/two_squares.msh")));
+}
+
+// Row 10: the model named like its sibling offline.json or snapshots.h5 was overwritten by it,
+// and "wrote" was printed for both.
+TEST(CliOutputSafety, ModelNamedLikeItsSiblingIsRefused) {
+  const contactrb::test::TempDir dir("sibling");
+  for (const std::string name : {"offline.json", "snapshots.h5"}) {
+    const CliResult r = run_cli("offline --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(dir.file(name)));
+    expect_user_error(r, {"the outputs --out", name + " next to --out", "are the same file"});
+    EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir.path() / name));
+  }
+}
+
+// Row 11: a symbolic link, FIFO or device at the output path was replaced by a regular file
+// (as root, /dev/null itself; offline.json then went to /dev).
+TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
+  const contactrb::test::TempDir dir("special_out");
+  const fs::path target = dir.path() / "precious.h5";
+  write_bytes(target, "keep me");
+  const fs::path link = dir.path() / "link.h5";
+  fs::create_symlink(target, link);
+  expect_user_error(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(link.string())),
+                    {"link.h5", "symbolic link"});
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_bytes(target), "keep me");
+
+  const fs::path fifo = dir.path() / "fifo.h5";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_user_error(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(fifo.string())),
+                    {"fifo.h5", "not a regular file"});
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+
+  // A character device: never /dev/null itself (a failing run as root would replace the
+  // system's /dev/null and write offline.json into /dev); the same device node made in the
+  // test directory when the test may create one (root), where a failure harms nothing.
+  const fs::path device = dir.path() / "null";
+  if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {
+    const CliResult r = run_cli("offline --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(device.string()));
+    expect_user_error(r, {"null'", "not a regular file"});
+    EXPECT_EQ(fs::symlink_status(device).type(), fs::file_type::character);
+    EXPECT_FALSE(fs::exists(dir.path() / "offline.json"));
+    EXPECT_FALSE(fs::exists(dir.path() / "snapshots.h5"));
+  }
+
+  // A link in an output directory (solve writes solution.json there).
+  const fs::path out = dir.path() / "solve";
+  fs::create_directory(out);
+  fs::create_symlink(target, out / "solution.json");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(out.string())),
+                    {"solution.json", "symbolic link"});
+  EXPECT_EQ(read_bytes(target), "keep me");
+}
+
+// Row 13: two solve runs to the same --out at once left solution.vtu of one beside the json
+// and csv of the other (1 in 10). Each file set must be that of one run.
+TEST(CliOutputSafety, ConcurrentRunsToOneDirectoryNeverMix) {
+  const contactrb::test::TempDir dir("concurrent");
+  const std::vector<std::string> mus{"0.2", "0.4"};
+  // Reference sets, one run each.
+  std::vector<std::string> ref_csv, ref_vtu;
+  for (const std::string& mu : mus) {
+    const std::string out = dir.file("ref" + mu);
+    const CliResult r = run_cli("solve --case hertz-a --mu " + mu + " --out " + shell_quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ref_csv.push_back(read_bytes(out + "/multipliers.csv"));
+    ref_vtu.push_back(read_bytes(out + "/solution.vtu"));
+  }
+  const std::string shared = dir.file("shared");
+  constexpr int kRounds = 12;
+  for (int round = 0; round < kRounds; ++round) {
+    auto a = std::async(std::launch::async, [&] { return run_cli("solve --case hertz-a --mu 0.2 --out " + shell_quote(shared)); });
+    auto b = std::async(std::launch::async, [&] { return run_cli("solve --case hertz-a --mu 0.4 --out " + shell_quote(shared)); });
+    ASSERT_EQ(a.get().exit_code, 0);
+    ASSERT_EQ(b.get().exit_code, 0);
+    std::ifstream in(shared + "/solution.json");
+    const double mu = json::parse(in).at("mu").get<double>();
+    const std::size_t k = mu < 0.3 ? 0 : 1;
+    EXPECT_EQ(read_bytes(shared + "/multipliers.csv"), ref_csv[k]) << "round " << round << ": csv of the other run";
+    EXPECT_EQ(read_bytes(shared + "/solution.vtu"), ref_vtu[k]) << "round " << round << ": vtu of the other run";
+  }
+  // No temporary file is left behind.
+  for (const fs::directory_entry& e : fs::directory_iterator(shared)) {
+    EXPECT_EQ(e.path().filename().string().find("tmp"), std::string::npos) << e.path();
+  }
+}
+
+// Row 14: temporary files of a killed run stayed forever; the next run to the same target
+// removes those of dead processes and leaves those of live ones.
+TEST(CliOutputSafety, StaleTemporaryFilesOfDeadRunsAreRemoved) {
+  const contactrb::test::TempDir dir("stale");
+  const fs::path out = dir.path() / "out";
+  fs::create_directory(out);
+  // 999999999 is above any pid_max (2^22): no such process.
+  const fs::path dead = out / "solution.json.contactrb-tmp.999999999.0";
+  const fs::path live = out / ("solution.json.contactrb-tmp." + std::to_string(::getpid()) + ".0");
+  write_bytes(dead, "partial");
+  write_bytes(live, "partial");
+  const CliResult r = run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));
+}
+
+// Row 14: control characters of the input were echoed raw (an escape sequence cleared the
+// terminal).
+TEST(CliMessages, ControlCharactersAreEscaped) {
+  const contactrb::test::TempDir dir("control");
+  const CliResult r = run_cli("mesh --msh " + shell_quote("a\x1b[2J\x07" "b.msh") + " --out " + shell_quote(dir.file("m")));
+  expect_user_error(r, {"a\\x1b[2J\\x07b.msh"});
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos);
+  EXPECT_EQ(r.err.find('\x07'), std::string::npos);
+}
+
+// Row 14: the out-of-domain message rounded mu to the bound ("0.45 is outside [0.15, 0.45]").
+TEST(CliMessages, OutOfDomainValueIsPrintedExactly) {
+  const contactrb::test::TempDir dir("domain");
+  expect_user_error(run_cli("solve --case hertz-a --mu 0.4500000001 --out " + shell_quote(dir.file("o"))),
+                    {"mu = 0.4500000001", "outside the domain [0.15, 0.45]"});
+}
+
+// Row 14: `mesh` wrote a mesh whose slave group is empty, which `solve` then refused.
+TEST(CliMessages, MeshWithAnEmptySlaveGroupIsRefused) {
+  const contactrb::test::TempDir dir("empty_slave");
+  const CliResult r = run_cli("mesh --msh " + shell_quote(data("msh/empty_slave.msh")) + " --out " + shell_quote(dir.file("m")));
+  expect_user_error(r, {"empty_slave.msh", "slave"});
+  EXPECT_FALSE(fs::exists(dir.path() / "m" / "mesh.msh"));
+}
+
+// Row 14: `--n -1` was taken as "the maximum" while `--mg -3` was refused: every negative size
+// given is refused, leaving the flag out asks for the maximum.
+TEST_F(CliFileSafety, NegativeSizesAreRefusedAlike) {
+  const std::string m = "online --model " + shell_quote(model_) + " --mu 0.3";
+  for (const std::string flag : {"--n", "--r", "--mk", "--mg"}) {
+    expect_user_error(run_cli(m + " " + flag + " -1"), {flag + " must be >= ", "got -1", "leave it out"});
+    expect_user_error(run_cli(m + " " + flag + " -3"), {flag + " must be >= ", "got -3"});
+  }
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n -1 --out " +
+                            shell_quote(dir_->file("n.h5"))),
+                    {"--n must be >= 1", "got -1"});
+  EXPECT_EQ(run_cli(m).exit_code, 0);
+}
+
+// Found by the fuzz suite: a snapshot dataset whose damaged header declares more elements
+// than the file holds was allocated for, and ended in "internal error: std::bad_alloc".
+TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
+  const contactrb::test::TempDir dir("huge_dataset");
+  const CliResult r = run_cli("offline --snapshots " + shell_quote(data("h5/snapshot_huge_dataset.h5")) + " --out " +
+                              shell_quote(dir.file("model.h5")));
+  expect_user_error(r, {"snapshot file", "snapshot_huge_dataset.h5"});
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "model.h5"));
+}
+
+}  // namespace

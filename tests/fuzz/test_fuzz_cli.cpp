@@ -1,0 +1,275 @@
+// The CLI fuzz suite (issue [R], item 6; docs/testing.md): mutated .msh, TOML, snapshot and
+// model HDF5 files and batch lines, each run through the contactrb executable. Every case
+// must end with exit code 0, or 1 or 3 with exactly one "contactrb: error:" line on stderr;
+// never a signal, never the time limit, never a sanitizer report, never an internal error.
+// A failing case is written to the failures directory with its seed and index, which
+// reproduce it alone (--fuzz-seed S --fuzz-case K).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fuzz/mutator.hpp"
+#include "fuzz/process.hpp"
+#include "fuzz_options.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::fuzz::RunResult;
+
+namespace {
+
+std::string source(const std::string& path) { return std::string(CONTACTRB_SOURCE_DIR) + "/" + path; }
+
+void write_bytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
+int count_lines_starting(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return n;
+}
+
+// Why a run breaks the contract, or "" when it keeps it.
+std::string verdict(const RunResult& r, double timeout_s) {
+  if (r.timed_out) return "no end within " + std::to_string(timeout_s) + " s (a hang)";
+  if (r.signal != 0) return "killed by signal " + std::to_string(r.signal) + " (" + strsignal(r.signal) + ")";
+  if (r.err.find("Sanitizer") != std::string::npos || r.err.find("runtime error:") != std::string::npos) {
+    return "sanitizer report";
+  }
+  if (r.err.find("internal error") != std::string::npos) return "internal error (exit " + std::to_string(r.exit_code) + ")";
+  if (r.exit_code != 0 && r.exit_code != 1 && r.exit_code != 3) return "exit code " + std::to_string(r.exit_code);
+  const int errors = count_lines_starting(r.err, "contactrb: error: ");
+  if (r.exit_code != 0 && errors != 1) return std::to_string(errors) + " 'contactrb: error:' lines with exit code " + std::to_string(r.exit_code);
+  if (r.exit_code == 0 && errors != 0) return "an error line with exit code 0";
+  return "";
+}
+
+// One fuzz target: a name, the inputs it mutates and the command it runs on a mutated input.
+struct Target {
+  std::string name;
+  std::string extension;                                      // of the saved failing input
+  std::size_t default_cases = 0;                              // cases in the Release ctest run
+  std::function<std::string(contactrb::fuzz::Mutator&, std::uint64_t)> make_input;  // the mutated bytes
+  // Writes the input where the command reads it and returns the arguments.
+  std::function<std::vector<std::string>(const std::string&, const fs::path&, std::uint64_t)> command;
+  // Extra checks of a run that kept the contract ("" when fine), e.g. one answer per batch line.
+  std::function<std::string(const std::string&, const RunResult&)> extra;
+};
+
+class FuzzCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<contactrb::test::TempDir>("fuzz");
+    const fs::path d = dir_->path();
+    // The two-block patch case (a small mesh, fast solves) with its mesh path made absolute,
+    // so that a copy of the TOML anywhere still finds it.
+    std::string toml = contactrb::fuzz::slurp(source("examples/two-block-patch/case.toml"));
+    const std::string key = "file = \"";
+    const std::size_t at = toml.find(key);
+    ASSERT_NE(at, std::string::npos);
+    toml.insert(at + key.size(), source("examples/two-block-patch/"));
+    case_toml_ = toml;
+    write_bytes(d / "case.toml", toml);
+    const double t = contactrb::fuzz::options().timeout_s;
+    const RunResult s = contactrb::fuzz::run_with_timeout(
+        CONTACTRB_CLI, {"snapshots", "--case-file", (d / "case.toml").string(), "--values", "0.01,0.02,0.03", "-q", "--out", (d / "s.h5").string()}, d, t);
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const RunResult o = contactrb::fuzz::run_with_timeout(
+        CONTACTRB_CLI, {"offline", "--snapshots", (d / "s.h5").string(), "--out", (d / "model.h5").string()}, d, t);
+    ASSERT_EQ(o.exit_code, 0) << o.err;
+    snapshots_ = contactrb::fuzz::slurp(d / "s.h5");
+    model_ = contactrb::fuzz::slurp(d / "model.h5");
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  // Runs the target's cases; reports every failing case (seed, index, saved input).
+  static void run_target(const Target& target) {
+    const contactrb::fuzz::Options& opt = contactrb::fuzz::options();
+    const fs::path work = dir_->path() / target.name;
+    fs::create_directories(work);
+    std::size_t first = 0, last = opt.cases.value_or(target.default_cases);
+    if (opt.single_case) {
+      first = *opt.single_case;
+      last = first + 1;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::size_t ran = 0, failed = 0;
+    for (std::size_t k = first; k < last; ++k) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!opt.single_case && elapsed > opt.budget_s) break;  // the suite's time budget holds first
+      contactrb::fuzz::Mutator m(contactrb::fuzz::case_seed(opt.seed, target.name, k));
+      const std::string input = target.make_input(m, k);
+      const fs::path case_dir = work / "case";
+      fs::remove_all(case_dir);
+      fs::create_directories(case_dir);
+      const std::vector<std::string> args = target.command(input, case_dir, k);
+      const fs::path stdin_file = case_dir / "stdin.txt";  // written by the batch target only
+      const RunResult r = contactrb::fuzz::run_with_timeout(CONTACTRB_CLI, args, case_dir, opt.timeout_s,
+                                                            fs::exists(stdin_file) ? stdin_file.string() : "/dev/null");
+      ++ran;
+      std::string why = verdict(r, opt.timeout_s);
+      if (why.empty() && target.extra) why = target.extra(input, r);
+      if (why.empty()) continue;
+      ++failed;
+      const fs::path saved = save_failure(target, k, input, args, r, why);
+      ADD_FAILURE() << target.name << " case " << k << " (--fuzz-seed " << opt.seed << " --fuzz-case " << k
+                    << "): " << why << "\n  input saved to " << saved.string() << "\n  stderr: " << r.err.substr(0, 2000);
+      if (failed >= 10) break;  // enough to act on; the rest would repeat them
+    }
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "fuzz " << target.name << ": " << ran << " cases in " << total << " s (seed " << opt.seed << ", "
+              << failed << " failed)" << std::endl;
+    RecordProperty("cases", static_cast<int>(ran));
+  }
+
+  static fs::path save_failure(const Target& target, std::size_t k, const std::string& input,
+                               const std::vector<std::string>& args, const RunResult& r, const std::string& why) {
+    const contactrb::fuzz::Options& opt = contactrb::fuzz::options();
+    fs::create_directories(opt.failures_dir);
+    const std::string stem = target.name + "-seed" + std::to_string(opt.seed) + "-case" + std::to_string(k);
+    const fs::path input_path = fs::absolute(opt.failures_dir / (stem + target.extension));
+    write_bytes(input_path, input);
+    std::ostringstream report;
+    report << "why: " << why << "\nreproduce: test_fuzz --gtest_filter=*" << target.name << "* --fuzz-seed " << opt.seed
+           << " --fuzz-case " << k << "\ncommand (input at the case's path):";
+    for (const std::string& a : args) report << " " << a;
+    report << "\nexit code: " << r.exit_code << ", signal: " << r.signal << ", timed out: " << r.timed_out
+           << "\n--- stdout ---\n" << r.out.substr(0, 20000) << "\n--- stderr ---\n" << r.err.substr(0, 20000) << "\n";
+    write_bytes(opt.failures_dir / (stem + ".txt"), report.str());
+    return input_path;
+  }
+
+  static std::unique_ptr<contactrb::test::TempDir> dir_;
+  static std::string case_toml_, snapshots_, model_;
+};
+std::unique_ptr<contactrb::test::TempDir> FuzzCli::dir_;
+std::string FuzzCli::case_toml_, FuzzCli::snapshots_, FuzzCli::model_;
+
+// .msh files: `mesh --msh` on the two-squares fixture (groups body1/body2/slave/master), and
+// `solve --case-file` on the two-block patch with its mesh mutated (named groups).
+TEST_F(FuzzCli, MeshFiles) {
+  const std::string squares = contactrb::fuzz::slurp(source("tests/data/msh/two_squares.msh"));
+  const std::string patch = contactrb::fuzz::slurp(source("examples/two-block-patch/two-block-patch.msh"));
+  Target t;
+  t.name = "msh";
+  t.extension = ".msh";
+  t.default_cases = 150;
+  t.make_input = [&](contactrb::fuzz::Mutator& m, std::uint64_t k) { return m.mutate(k % 2 == 0 ? squares : patch, true); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
+    write_bytes(d / "mesh.in.msh", input);
+    if (k % 2 == 0) return {"mesh", "--msh", (d / "mesh.in.msh").string(), "--out", (d / "out").string()};
+    std::string toml = case_toml_;
+    const std::size_t at = toml.find("file = \"");
+    const std::size_t end = toml.find('"', at + 8);
+    toml.replace(at + 8, end - at - 8, (d / "mesh.in.msh").string());
+    write_bytes(d / "case.toml", toml);
+    return {"solve", "--case-file", (d / "case.toml").string(), "--mu", "0.02", "--out", (d / "out").string()};
+  };
+  run_target(t);
+}
+
+// TOML case files: `solve --case-file` at a value of the original domain.
+TEST_F(FuzzCli, CaseFiles) {
+  Target t;
+  t.name = "toml";
+  t.extension = ".toml";
+  t.default_cases = 150;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) { return m.mutate(case_toml_, true); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t) -> std::vector<std::string> {
+    write_bytes(d / "case.toml", input);
+    return {"solve", "--case-file", (d / "case.toml").string(), "--mu", "0.02", "--out", (d / "out").string()};
+  };
+  run_target(t);
+}
+
+// Snapshot files: `offline --snapshots`. Before the snapshot reader validated every index
+// (issue [R] row 1), cases 89 and 107 of the default seed ended in SIGSEGV in the offline
+// builder's free_selection (free_dofs out of range).
+TEST_F(FuzzCli, SnapshotFiles) {
+  Target t;
+  t.name = "snapshot";
+  t.extension = ".h5";
+  t.default_cases = 120;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) { return m.mutate(snapshots_, false); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t) -> std::vector<std::string> {
+    write_bytes(d / "s.h5", input);
+    return {"offline", "--snapshots", (d / "s.h5").string(), "--out", (d / "model.h5").string()};
+  };
+  run_target(t);
+}
+
+// Model files: `online --model` (one case in four also reconstructs the fields with --out).
+TEST_F(FuzzCli, ModelFiles) {
+  Target t;
+  t.name = "model";
+  t.extension = ".h5";
+  t.default_cases = 150;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) { return m.mutate(model_, false); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
+    write_bytes(d / "model.h5", input);
+    std::vector<std::string> args{"online", "--model", (d / "model.h5").string(), "--mu", "0.015"};
+    if (k % 4 == 0) args.insert(args.end(), {"--out", (d / "out").string()});
+    return args;
+  };
+  run_target(t);
+}
+
+// Batch lines: `online --batch -` on 40 mutated lines; every line gets one JSON answer.
+TEST_F(FuzzCli, BatchLines) {
+  Target t;
+  t.name = "batch";
+  t.extension = ".txt";
+  t.default_cases = 120;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) {
+    std::string lines;
+    for (int i = 0; i < 40; ++i) {
+      std::string l = m.batch_line();
+      // A '\n' inside a line would split it: the answers are counted per newline below.
+      for (char& c : l) c = c == '\n' ? ' ' : c;
+      lines += l + "\n";
+    }
+    return lines;
+  };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t) -> std::vector<std::string> {
+    write_bytes(d / "stdin.txt", input);
+    return {"online", "--model", (dir_->path() / "model.h5").string(), "--batch", "-"};
+  };
+  t.extra = [](const std::string& input, const RunResult& r) -> std::string {
+    std::istringstream out(r.out);
+    std::string line;
+    std::size_t answers = 0;
+    while (std::getline(out, line)) {
+      ++answers;
+      try {
+        const nlohmann::json j = nlohmann::json::parse(line);
+        if (!j.is_object() || j.at("line").get<std::size_t>() != answers) return "answer " + std::to_string(answers) + " out of order: " + line;
+      } catch (const std::exception& e) {
+        return "answer " + std::to_string(answers) + " is not a JSON object (" + e.what() + ")";
+      }
+    }
+    const auto expected = static_cast<std::size_t>(std::count(input.begin(), input.end(), '\n'));
+    if (answers != expected) return std::to_string(answers) + " answers to " + std::to_string(expected) + " lines";
+    return "";
+  };
+  run_target(t);
+}
+
+}  // namespace
