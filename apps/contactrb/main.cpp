@@ -2,15 +2,47 @@
 // Exit codes: 0 success, 1 an error the user can fix (one line on stderr), CLI11's own
 // non-zero codes for usage errors, 2 an internal error (a bug: please report it).
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/common/version.hpp"
+
+namespace {
+
+// CLI11 reads an empty value ('') of a numeric option as 0, and strtod reads '1e-400' as 0:
+// `--eps-pod ''` silently became eps_pod = 0 (issue [R] row 6). Every numeric option of every
+// subcommand refuses both as a usage error. (--mu and --values are read as text and parsed
+// by parse_mu_option, which gives `contactrb: error:` messages.)
+std::string empty_or_underflow(std::string& text) {
+  if (text.find_first_not_of(" \t") == std::string::npos) return "the value is empty (expected a number)";
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && errno == ERANGE && std::abs(x) < 1.0) {
+    return "'" + text + "' is below the smallest normal double (2.2e-308) and would be read as 0";
+  }
+  return "";
+}
+
+void refuse_empty_numbers(CLI::App& app, const CLI::Validator& check) {
+  for (CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name();
+    if (type.find("FLOAT") != std::string::npos || type.find("INT") != std::string::npos) o->check(check);
+  }
+  // Option groups are nameless subcommands: recurse into them as well.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_numbers(*sub, check);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"contactrb: reduced-basis models of parametrized elastic frictionless contact"};
@@ -27,6 +59,7 @@ int main(int argc, char** argv) {
       contactrb::app::add_report_command(app),
       contactrb::app::add_demo_command(app),
   };
+  refuse_empty_numbers(app, CLI::Validator(empty_or_underflow, "", "number"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

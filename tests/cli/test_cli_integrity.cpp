@@ -155,3 +155,24 @@ TEST_F(CliIntegrity, DegenerateOrOverflowingCaseDataAreRefused) {
                     "the Young's moduli of the two bodies (15, 1e-12) differ by a factor 1.5e+13 above 1e12");
   EXPECT_FALSE(fs::exists(dir_->file("d")));
 }
+
+// Row 6 beyond --mu: every numeric option read '' as 0 (`--eps-pod ''` built a model at
+// eps_pod = 0) and '1e-400' as 0. Both are usage errors now (CLI11's validation code, 105).
+TEST_F(CliIntegrity, EmptyAndUnderflowingNumericOptionsAreUsageErrors) {
+  const auto expect_usage_error = [](const CliResult& r, const std::string& words) {
+    EXPECT_EQ(r.exit_code, 105) << r.out << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+  };
+  const std::string out = " -q --out " + shell_quote(dir_->file("u.h5"));
+  expect_usage_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --eps-pod ''" + out),
+                     "--eps-pod: the value is empty (expected a number)");
+  expect_usage_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --eps-du 1e-400" + out),
+                     "--eps-du: '1e-400' is below the smallest normal double");
+  expect_usage_error(run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --n ''"),
+                     "--n: the value is empty");
+  expect_usage_error(run_cli("snapshots --case hertz-a --values 0.2 --jobs ''" + out), "--jobs: the value is empty");
+  EXPECT_FALSE(fs::exists(dir_->file("u.h5")));
+  // Ordinary values still pass (a negative size is refused like any other: issue [R] row 14).
+  const CliResult ok = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --n 1 --tol 1e-4");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}

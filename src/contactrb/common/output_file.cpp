@@ -24,7 +24,13 @@ namespace {
 
 constexpr const char* kTemporaryMarker = ".contactrb-tmp.";
 
-std::string quoted(const fs::path& p) { return "'" + printable(p.string()) + "'"; }
+// Built by appending: g++ 12 warns (-Wrestrict, a false positive) on "'" + std::string + "'".
+std::string quoted(const fs::path& p) {
+  std::string out(1, '\'');
+  out += printable(p.string());
+  out += '\'';
+  return out;
+}
 
 void remove_quietly(const fs::path& p) {
   std::error_code ignored;
