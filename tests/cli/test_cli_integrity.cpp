@@ -173,6 +173,6 @@ TEST_F(CliIntegrity, EmptyAndUnderflowingNumericOptionsAreUsageErrors) {
   expect_usage_error(run_cli("snapshots --case hertz-a --values 0.2 --jobs ''" + out), "--jobs: the value is empty");
   EXPECT_FALSE(fs::exists(dir_->file("u.h5")));
   // Ordinary values still pass (a negative size is refused like any other: issue [R] row 14).
-  const CliResult ok = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --n 1 --tol 1e-4");
+  const CliResult ok = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --tol 1e-4");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
