@@ -3,10 +3,13 @@
 // model (HDF5, io/reduced_model_file.hpp) and, in the same directory, offline.json (the
 // histories of each step and their times). With --case/--case-file instead of --snapshots,
 // the training snapshots are computed first (as `contactrb snapshots` would) and kept next to
-// the model as snapshots.h5.
+// the model as snapshots.h5. With --greedy (and --case/--case-file), the weak greedy on the error
+// estimate (rb/offline_greedy.hpp) solves HF only at the points it selects; it writes the model,
+// the selected snapshots (snapshots.h5), greedy.csv and greedy.json next to the model.
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -27,6 +30,7 @@
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/rb/offline_builder.hpp"
+#include "contactrb/rb/offline_greedy.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
 
@@ -68,6 +72,10 @@ struct OfflineOptions {
   bool eps_eim_g_absolute = false;
   bool no_compression = false;
   bool no_supremizers = false;
+  // --greedy (rb::run_offline_greedy): tolerance on the max relative estimate, HF budget.
+  bool greedy = false;
+  double greedy_tol = rb::GreedyOfflineSettings{}.tolerance;
+  int max_hf = rb::GreedyOfflineSettings{}.max_hf;
   std::string out;
 };
 
@@ -166,7 +174,111 @@ nlohmann::json to_json(const Eigen::VectorXd& v) {
   return a;
 }
 
+// --greedy: the weak greedy over the set's points (or --values), then the same model file as
+// the POD path; the per-step table goes to greedy.csv and greedy.json, the selected HF snapshots to
+// snapshots.h5 (so that evaluate / report can rebuild or compare).
+int run_greedy(const OfflineOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  require(!opt.case_name.empty() || !opt.case_file.empty(), "--greedy needs --case or --case-file (it computes its own snapshots)");
+  require(std::isfinite(opt.greedy_tol) && opt.greedy_tol > 0.0, "--greedy-tol must be a finite number > 0");
+  require(opt.max_hf >= 1, "--max-hf must be >= 1 (got " + std::to_string(opt.max_hf) + ")");
+  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
+  require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  rb::GreedyOfflineSettings gs;
+  gs.offline = settings_from(opt);
+  gs.offline.compression = false;  // the greedy's default (offline_greedy.hpp: a sparse selection misses rows)
+  gs.tolerance = opt.greedy_tol;
+  gs.max_hf = opt.max_hf;
+  gs.jobs = opt.jobs;
+  gs.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  rb::check_settings(gs);
+  check_output_file(opt.out);
+  const std::string snapshots_path = sibling_path(opt.out, "snapshots.h5");
+  const std::string csv_path = sibling_path(opt.out, "greedy.csv");
+  const std::string json_path = sibling_path(opt.out, "greedy.json");
+  const cases::CaseSpec spec =
+      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+  std::vector<FileRole> inputs{{"--case-file", opt.case_file}};
+  if (!opt.case_file.empty()) inputs.push_back({"the case's mesh file", spec.mesh.msh_file});
+  check_file_roles(inputs, {{"--out", opt.out},
+                            {"snapshots.h5 next to --out", snapshots_path},
+                            {"greedy.csv next to --out", csv_path},
+                            {"greedy.json next to --out", json_path}});
+  std::optional<contact::Discretization> constraint;
+  if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
+  std::optional<std::vector<double>> values;
+  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
+  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  request.settings.kacanov.alpha = opt.alpha;
+  request.settings.kacanov.tolerance = opt.tolerance;
+  request.settings.kacanov.max_iterations = opt.max_iterations;
+  solve::check_settings(request.settings.kacanov);
+
+  const auto t0 = Clock::now();
+  const rb::GreedyOfflineResult g = rb::run_offline_greedy(spec, request, gs);
+  const auto t1 = Clock::now();
+  {
+    const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // one run's files together
+    io::write_snapshot_file(g.snapshots, snapshots_path);
+    io::write_reduced_model_file(g.offline.model, g.offline.reconstruction, opt.out);
+    rb::write_greedy_csv(g, csv_path);
+    nlohmann::json j;
+    j["case"] = spec.name;
+    j["level"] = opt.level;
+    j["training"] = {{"set", request.set_name}, {"count", request.mu.size()}};
+    j["tolerance"] = gs.tolerance;
+    j["max_hf"] = gs.max_hf;
+    j["status"] = rb::to_string(g.status);
+    j["hf_solves"] = g.hf_solves;
+    const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    nlohmann::json selected = nlohmann::json::array(), excluded = nlohmann::json::array();
+    for (int i : g.selected) selected.push_back(request.mu[static_cast<std::size_t>(i)]);
+    for (int i : g.excluded) excluded.push_back(request.mu[static_cast<std::size_t>(i)]);
+    j["start"] = request.mu[static_cast<std::size_t>(g.start)];
+    j["selected"] = selected;
+    j["excluded"] = excluded;
+    j["sizes"] = {{"N", g.offline.model.N_max}, {"R", g.offline.model.R_max}, {"Mk", g.offline.model.Mk_max},
+                  {"Mg", g.offline.model.Mg_max}};
+    nlohmann::json steps = nlohmann::json::array();
+    for (const rb::GreedyStep& r : g.steps) {
+      steps.push_back({{"step", r.step},
+                       {"snapshots", r.snapshots},
+                       {"hf_solves", r.hf_solves},
+                       {"N", r.N},
+                       {"R", r.R},
+                       {"Mk", r.Mk},
+                       {"Mg", r.Mg},
+                       {"max_estimate", finite_or_null(r.max_estimate)},  // null: +inf (an online failure)
+                       {"argmax_mu", r.argmax_mu},
+                       {"online_failures", r.online_failures},
+                       {"chosen_mu", finite_or_null(r.chosen_mu)},
+                       {"hf_status", r.hf_status},
+                       {"true_error", finite_or_null(r.true_error)},
+                       {"true_e_press", finite_or_null(r.true_e_press)},
+                       {"times_s", {{"build", r.build_s}, {"sweep", r.sweep_s}, {"hf", r.hf_s}, {"step", r.step_s}}}});
+    }
+    j["steps"] = steps;
+    j["times_s"] = {{"start_hf", g.start_hf_s}, {"greedy", g.total_s}, {"total", seconds(t0, Clock::now())}};
+    io::write_json(j, json_path);
+  }
+  const rb::GreedyStep& last = g.steps.back();
+  std::cout << "case " << spec.name << ", greedy over " << request.mu.size() << " points (set " << request.set_name
+            << "), tolerance " << gs.tolerance << ", budget " << gs.max_hf << " HF solves\n"
+            << "status: " << rb::to_string(g.status) << " after " << g.steps.size() << " steps, " << g.hf_solves
+            << " HF solves" << (g.excluded.empty() ? "" : " (" + std::to_string(g.excluded.size()) + " failed)")
+            << "\nmax relative estimate: " << last.max_estimate
+            << (g.status == rb::GreedyOfflineStatus::ToleranceReached ? "" : " (tolerance NOT reached)") << "\n"
+            << "sizes: N " << last.N << ", R " << last.R << ", Mk " << last.Mk << ", Mg " << last.Mg << "\n"
+            << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (greedy "
+            << seconds(t0, t1) << ")\n"
+            << std::defaultfloat << "wrote " << opt.out << "\nwrote " << snapshots_path << "\nwrote " << csv_path
+            << "\nwrote " << json_path << "\n";
+  return 0;
+}
+
 int run_offline(const OfflineOptions& opt) {
+  if (opt.greedy) return run_greedy(opt);
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   const rb::OfflineSettings settings = settings_from(opt);
@@ -367,7 +479,21 @@ Command add_offline_command(CLI::App& app) {
   sub->add_flag("--no-supremizers", opt->no_supremizers,
                 "Primal basis: the POD modes only (no supremizer per dual generator; lambda_hat may then be "
                 "undetermined when R > N)");
-  sub->add_option("--out", opt->out, "Output model file (HDF5); offline.json goes to the same directory")
+  CLI::Option* greedy_opt = sub->add_flag(
+      "--greedy", opt->greedy,
+      "With --case/--case-file: weak greedy on the error estimate over the set's points, HF solves only at the "
+      "selected ones (writes snapshots.h5, greedy.csv, greedy.json next to the model; no compression)");
+  greedy_opt->excludes(snapshots_opt);
+  sub->add_option("--greedy-tol", opt->greedy_tol,
+                  "With --greedy: stop when the max over the set of estimate / |u_rb|_A is <= this")
+      ->capture_default_str()
+      ->needs(greedy_opt);
+  sub->add_option("--max-hf", opt->max_hf, "With --greedy: budget of HF solves (the start point's included)")
+      ->capture_default_str()
+      ->needs(greedy_opt);
+  sub->add_option("--out", opt->out,
+                  "Output model file (HDF5); offline.json (greedy.csv, greedy.json with --greedy) goes to the same "
+                  "directory")
       ->required();
   return {sub, [opt] { return run_offline(*opt); }};
 }

@@ -42,7 +42,11 @@ inline OfflineSettings greedy_offline_defaults() {
 
 struct GreedyOfflineSettings {
   // Stop when max_mu Delta_u(mu) / |u_rb(mu)|_A(mu) <= tolerance (unit-free; relative_estimate()).
-  double tolerance = 1e-3;
+  // 1e-2: the estimate overestimates the relative energy-norm error 5-20 times on the built-in
+  // cases and has a floor near 1e-2 on hertz-a at the default offline tolerances (the square root
+  // of the interpenetration term); 1e-2 gave max e_displ ~1e-3 on the verification sets
+  // (docs/offline-online.md, "Greedy sampling").
+  double tolerance = 1e-2;
   // Budget of HF solves, the start point's included (>= 1). A failed HF solve counts.
   int max_hf = 50;
   // Threads of the estimate sweep (one OnlineSolver each; the result does not depend on it).
