@@ -1,0 +1,227 @@
+// Weak greedy on the error estimate (issue [B] item 4, rb/offline_greedy.hpp): on hertz-a level 0
+// with 61 equispaced training values the max relative estimate falls (trend asserted, a few
+// non-monotone steps allowed), the greedy stops at its tolerance with fewer HF solves than
+// training values, the estimate at each chosen point is not below the true error measured there
+// against the new HF snapshot, and the final model meets the tolerance on the verification set
+// (e_displ of the evaluation module). Also: the reduced energy norm against the HF-size one, a
+// deterministic result whatever the number of threads, the Budget status, builds from 1, 2 and 3
+// snapshots, the start point, and the bad settings.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/parameter.hpp"
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/rb/evaluation.hpp"
+#include "contactrb/rb/offline_greedy.hpp"
+#include "contactrb/rb/reconstruction.hpp"
+
+namespace {
+
+using contactrb::rb::GreedyOfflineResult;
+using contactrb::rb::GreedyOfflineSettings;
+using contactrb::rb::GreedyOfflineStatus;
+
+// A tolerance the hertz-a estimate reaches in about 25 steps (its floor is near 1.4e-2 at the
+// default offline tolerances: docs/offline-online.md, "Greedy sampling").
+constexpr double kTolerance = 5e-2;
+constexpr int kTrainingSize = 61;
+
+const contactrb::cases::CaseSpec& spec() {
+  static const contactrb::cases::CaseSpec s = contactrb::cases::builtin_case_spec("hertz-a");
+  return s;
+}
+
+std::vector<double> dense_training() {
+  std::vector<double> v = contactrb::cases::arithmetic_set(0.15, 0.3 / (kTrainingSize - 1), kTrainingSize);
+  v.back() = 0.45;
+  return v;
+}
+
+const contactrb::rb::SnapshotRequest& request() {
+  static const contactrb::rb::SnapshotRequest r =
+      contactrb::rb::make_snapshot_request(spec(), "training", 0, std::nullopt, dense_training());
+  return r;
+}
+
+const GreedyOfflineResult& greedy() {
+  static std::unique_ptr<GreedyOfflineResult> result;
+  if (!result) {
+    GreedyOfflineSettings s;
+    s.tolerance = kTolerance;
+    s.jobs = 2;
+    result = std::make_unique<GreedyOfflineResult>(contactrb::rb::run_offline_greedy(spec(), request(), s));
+  }
+  return *result;
+}
+
+TEST(OfflineGreedy, EstimateFallsAndStopsAtTheTolerance) {
+  const GreedyOfflineResult& g = greedy();
+  ASSERT_EQ(g.status, GreedyOfflineStatus::ToleranceReached);
+  ASSERT_GE(g.steps.size(), 3u);
+  const double first = g.steps.front().max_estimate, last = g.steps.back().max_estimate;
+  EXPECT_LE(last, kTolerance);
+  for (std::size_t k = 0; k + 1 < g.steps.size(); ++k) EXPECT_GT(g.steps[k].max_estimate, kTolerance) << k;
+  // Trend: a tenth of the first max at least, at most 3 steps where the max grows.
+  EXPECT_LT(last, first / 10.0);
+  int rises = 0;
+  for (std::size_t k = 1; k < g.steps.size(); ++k) rises += g.steps[k].max_estimate > g.steps[k - 1].max_estimate;
+  EXPECT_LE(rises, 3);
+  // Fewer HF solves than training values; one snapshot per converged solve, distinct points.
+  EXPECT_LT(g.hf_solves, kTrainingSize / 2);
+  EXPECT_EQ(g.hf_solves, static_cast<int>(g.selected.size() + g.excluded.size()));
+  EXPECT_EQ(g.snapshots.snapshots.size(), g.selected.size());
+  EXPECT_EQ(g.offline.model.training_mu.size(), g.selected.size());
+  std::vector<int> sorted = g.selected;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+  // The start: the training value nearest the domain centre 0.3.
+  EXPECT_NEAR(request().mu[static_cast<std::size_t>(g.start)], 0.3, 1e-12);
+  // Sizes grow with the snapshots; the step's model is the one the table reports.
+  EXPECT_EQ(g.steps.back().N, g.offline.model.N_max);
+  EXPECT_EQ(g.steps.back().snapshots, static_cast<int>(g.selected.size()));
+}
+
+TEST(OfflineGreedy, EstimateAtTheChosenPointIsNotBelowTheTrueError) {
+  // The true error comes from the new HF snapshot (|u_rb - u_hf|_A / |u_hf|_A), the estimate from
+  // reduced quantities only; the docs measured effectivities >= 0.98 (the lambda_rb in place of
+  // lambda makes it an estimate, not a bound: 10 % slack). It also falls: the last chosen point's
+  // true error is a tenth of the first's at least.
+  const GreedyOfflineResult& g = greedy();
+  double first = std::numeric_limits<double>::quiet_NaN(), last = first;
+  for (const auto& r : g.steps) {
+    if (r.chosen < 0) continue;
+    ASSERT_TRUE(r.hf_converged) << r.step;
+    ASSERT_TRUE(std::isfinite(r.true_error)) << r.step;
+    EXPECT_GT(r.true_error, 0.0) << r.step;
+    EXPECT_LE(r.true_error, 1.1 * r.max_estimate) << "step " << r.step;
+    EXPECT_TRUE(std::isfinite(r.true_e_press)) << r.step;
+    if (std::isnan(first)) first = r.true_error;
+    last = r.true_error;
+  }
+  EXPECT_LT(last, first / 10.0);
+}
+
+TEST(OfflineGreedy, ModelMeetsTheToleranceOnTheVerificationSet) {
+  const GreedyOfflineResult& g = greedy();
+  contactrb::rb::EvaluationOptions options;
+  options.online_repeats = 1;
+  options.jobs = 2;
+  const auto ev = contactrb::rb::evaluate_model(g.offline.model, g.offline.reconstruction, spec(),
+                                                spec().parameter.set("verification"), options);
+  EXPECT_EQ(ev.summary.rb_failures, 0);
+  EXPECT_EQ(ev.summary.hf_failures, 0);
+  // e_displ (65) is an H1 error, the tolerance is on the energy-norm estimate: measured 5e-3 for
+  // 5e-2; asserted below the tolerance itself.
+  EXPECT_LE(ev.summary.max_e_displ, kTolerance);
+  EXPECT_LE(ev.summary.max_e_displ, 1e-2);
+}
+
+TEST(OfflineGreedy, ReducedEnergyNormEqualsTheHighFidelityOne) {
+  // |u_D(mu) + P Theta u_hat|_A(mu) from the model's reduced arrays against sqrt(u'A u) with the
+  // reconstructed HF-size u and A assembled independently on the reference mesh.
+  const GreedyOfflineResult& g = greedy();
+  const auto& model = g.offline.model;
+  const auto mesh = contactrb::cases::reference_mesh(spec(), 0);
+  const auto terms = contactrb::cases::assemble_affine_terms(spec(), mesh);
+  const auto thetas = contactrb::cases::theta_functions(spec());
+  contactrb::rb::OnlineSolver solver(model);
+  for (double mu : {0.152, 0.3, 0.447}) {
+    const auto s = solver.solve(mu);
+    ASSERT_TRUE(s.converged());
+    const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(g.offline.reconstruction, mu, s.u_hat);
+    const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(thetas.a, mu));
+    const double hf = std::sqrt(u.dot(A * u));
+    EXPECT_NEAR(contactrb::rb::reduced_energy_norm(model, mu, s.u_hat), hf, 1e-10 * hf) << mu;
+    // The criterion is the estimate over that norm.
+    EXPECT_NEAR(contactrb::rb::relative_estimate(model, mu, s), s.estimate.energy / hf, 1e-10) << mu;
+  }
+  contactrb::rb::OnlineSolution failed;  // not converged: +inf, picked first
+  EXPECT_EQ(contactrb::rb::relative_estimate(model, 0.3, failed), std::numeric_limits<double>::infinity());
+}
+
+TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
+  // Budget 3: the builds from 1, 2 and 3 snapshots, then a stop with status Budget.
+  GreedyOfflineSettings s;
+  s.tolerance = 1e-6;
+  s.max_hf = 3;
+  s.jobs = 1;
+  const GreedyOfflineResult a = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  s.jobs = 3;
+  const GreedyOfflineResult b = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  EXPECT_EQ(a.status, GreedyOfflineStatus::Budget);
+  EXPECT_EQ(a.hf_solves, 3);
+  ASSERT_EQ(a.steps.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.steps[static_cast<std::size_t>(k)].snapshots, k + 1);
+    EXPECT_GE(a.steps[static_cast<std::size_t>(k)].N, k + 1);
+    EXPECT_GE(a.steps[static_cast<std::size_t>(k)].R, 1);
+  }
+  EXPECT_EQ(a.steps.back().chosen, -1);  // stopped: no HF solve in the last step
+  EXPECT_EQ(a.selected, b.selected);
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  for (std::size_t k = 0; k < a.steps.size(); ++k) {
+    EXPECT_EQ(a.steps[k].max_estimate, b.steps[k].max_estimate) << k;  // bitwise: same solves
+    EXPECT_EQ(a.steps[k].argmax, b.steps[k].argmax) << k;
+  }
+  // The first greedy run chose the same first three points.
+  ASSERT_GE(greedy().selected.size(), 3u);
+  EXPECT_EQ(std::vector<int>(greedy().selected.begin(), greedy().selected.begin() + 3), a.selected);
+}
+
+TEST(OfflineGreedy, StartIsTheTrainingPointNearestTheCentre) {
+  contactrb::cases::ParameterSpec p;
+  p.min = 1.0;
+  p.max = 3.0;
+  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {1.0, 1.5, 2.4, 2.6}), 2);
+  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {1.5, 2.5}), 0);  // a tie: the smallest index
+  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {3.0}), 0);
+  EXPECT_THROW(contactrb::rb::greedy_start_index(p, {}), contactrb::Error);
+}
+
+TEST(OfflineGreedy, BadSettingsAreRefused) {
+  const auto refused = [](const GreedyOfflineSettings& s, const std::string& words) {
+    try {
+      contactrb::rb::check_settings(s);
+      ADD_FAILURE() << "accepted: " << words;
+    } catch (const contactrb::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  GreedyOfflineSettings s;
+  s.tolerance = 0.0;
+  refused(s, "tolerance");
+  s.tolerance = std::numeric_limits<double>::quiet_NaN();
+  refused(s, "tolerance");
+  s.tolerance = std::numeric_limits<double>::infinity();
+  refused(s, "tolerance");
+  s = {};
+  s.max_hf = 0;
+  refused(s, "budget");
+  s = {};
+  s.jobs = 0;
+  refused(s, "jobs");
+  s = {};
+  s.offline.eps_pod = -1.0;
+  refused(s, "eps_pod");
+  // An empty training set, before any HF solve.
+  contactrb::rb::SnapshotRequest empty = request();
+  empty.mu.clear();
+  try {
+    contactrb::rb::run_offline_greedy(spec(), empty, {});
+    ADD_FAILURE() << "an empty training set was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
