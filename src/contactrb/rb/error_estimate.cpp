@@ -263,7 +263,7 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   lam_.resize(m.R_kept());
 }
 
-ErrorEstimate ErrorEstimator::evaluate(double mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
+ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
                                        const Eigen::VectorXd& phi, const Eigen::VectorXd& phi_gamma,
                                        const Eigen::VectorXd& weight_kept) {
   ErrorEstimate est;
