@@ -148,12 +148,18 @@ class SetReader {
       fail(&n, "key '" + key + "' must be " + expected + ", got " + std::to_string(a->size()) + " entries");
     }
     std::vector<std::vector<double>> axes;
-    for (std::size_t k = 0; k < a->size(); ++k) axes.push_back(axis(*a->get(k), element(key, k), static_cast<int>(k)));
-    try {
-      return tensor_grid(axes);
-    } catch (const Error& e) {
-      fail(&n, "key '" + key + "': " + e.what());
+    long long total = 1;
+    std::string sizes;
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      axes.push_back(axis(*a->get(k), element(key, k), static_cast<int>(k)));
+      total *= static_cast<long long>(axes.back().size());  // each factor <= 1e7, checked at every step
+      sizes += (k > 0 ? " x " : "") + std::to_string(axes.back().size());
+      if (total > kMaxParameterSetSize) {
+        fail(&n, "key '" + key + "' gives more than " + std::to_string(kMaxParameterSetSize) + " points (" + sizes +
+                     (k + 1 < a->size() ? " x ..." : "") + ")");
+      }
     }
+    return tensor_grid(axes);
   }
 
   // One grid axis: a count of uniform values, or the values themselves.
