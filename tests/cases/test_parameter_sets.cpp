@@ -308,7 +308,7 @@ TEST_F(CsvFiles, HeaderMistakesAreNamedTogether) {
   expect_mentions(m, {"p.csv:2:", "exactly once", "missing: 'a', 'c'", "unknown: 'd', 'e'", "repeated: 'b'"});
   expect_mentions(read_error("0.5, x\n", box2()), {"p.csv:1:", "unknown: '0.5', 'x'", "read as a header"});
   expect_mentions(read_error("\"a, b\n", box2()), {"p.csv:1:", "no closing quote"});
-  expect_mentions(read_error("\"a\" x, b\n", box2()), {"p.csv:1:", "text after a quoted field"});
+  expect_mentions(read_error("\"a\" x, b\n", box2()), {"p.csv:1:", "text after the quoted field \"a\""});
 }
 
 TEST_F(CsvFiles, ValueMistakesNameTheLineAndTheParameter) {
@@ -316,6 +316,10 @@ TEST_F(CsvFiles, ValueMistakesNameTheLineAndTheParameter) {
   expect_mentions(read_error("b,a\n1.5,0.5\n1.5\n", box), {"p.csv:3:", "1 values, expected 2", "'a', 'b'"});
   expect_mentions(read_error("b,a\n1.5,0.5,1\n", box), {"p.csv:2:", "3 values, expected 2"});
   expect_mentions(read_error("b,a\n1.5, 0.5x\n", box), {"p.csv:2:", "parameter 'a'", "'0.5x'", "not a number"});
+  // File content echoed in a message is made printable (no terminal escape sequences).
+  const std::string esc = read_error("b,a\n1.5,\x1b[2J\n", box);
+  expect_mentions(esc, {"p.csv:2:", "'\\x1b[2J'", "not a number"});
+  EXPECT_EQ(esc.find('\x1b'), std::string::npos);
   expect_mentions(read_error("b,a\n1.5,\n", box), {"p.csv:2:", "parameter 'a'", "''", "not a number"});
   expect_mentions(read_error("b,a\n\n1.5,nan\n", box), {"p.csv:3:", "parameter 'a' is nan", "not a finite"});
   expect_mentions(read_error("b,a\n2.5,0.5\n", box), {"p.csv:2:", "parameter 'b' = 2.5", "outside", "[1, 2]"});

@@ -4,6 +4,7 @@
 
 #include "contactrb/cases/parameter_sets_detail.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/printable.hpp"
 
 namespace contactrb::cases {
 
@@ -111,7 +112,7 @@ class SetReader {
         form = f;
       }
       if (!known) {
-        fail(&v, "unknown key '" + key + "." + std::string(k.str()) +
+        fail(&v, "unknown key '" + key + "." + printable_line(std::string(k.str())) +
                      "' (allowed: grid, latin-hypercube, random, seed, file, points)");
       }
     }
