@@ -140,7 +140,8 @@ TEST(ParameterSetToml, GridMistakes) {
   const ParameterBox box = box2();
   expect_mentions(training_error("{ grid = 5 }", box),
                   {"case.toml:3:", "'sets.training.grid' must be an array of 2 counts", "'a', 'b'", "got an integer"});
-  expect_mentions(training_error("{ grid = [5] }", box), {"'sets.training.grid' must be an array of 2", "got 1 entries"});
+  expect_mentions(training_error("{ grid = [5] }", box),
+                  {"'sets.training.grid' must be an array of 2", "got 1 entries"});
   expect_mentions(training_error("{ grid = [5, 0] }", box),
                   {"case.toml:3:", "'sets.training.grid[2]' must be in [1, 10000000], got 0"});
   expect_mentions(training_error("{ grid = [2.5, 2] }", box),
@@ -154,7 +155,8 @@ TEST(ParameterSetToml, GridMistakes) {
   expect_mentions(training_error("{ grid = [2, [1.5, 2.5]] }", box),
                   {"'sets.training.grid[2][2]'", "parameter 'b' = 2.5 is outside its domain [1, 2]"});
   expect_mentions(training_error("{ grid = [5000, 5000, 3] }", box3()), {"(5000 x 5000 x ...)"});
-  expect_mentions(training_error("{ grid = [4000, 4000] }", box), {"case.toml:3:", "'sets.training.grid' gives more than 10000000 points (4000 x 4000)"});
+  expect_mentions(training_error("{ grid = [4000, 4000] }", box),
+                  {"case.toml:3:", "'sets.training.grid' gives more than 10000000 points (4000 x 4000)"});
 }
 
 TEST(ParameterSetToml, CountMistakes) {
@@ -181,7 +183,8 @@ TEST(ParameterSetToml, PointMistakesNameTheElementAndItsLine) {
   expect_mentions(training_error("{ points = 0.5 }", box), {"'sets.training.points' must be an array of points"});
   expect_mentions(training_error("[[0.2, 1.0], [0.3]]", box),
                   {"'sets.training[2]' must be an array of 2 numbers ('a', 'b'), got 1 values"});
-  expect_mentions(training_error("[[0.2, 1.0], 0.3]", box), {"'sets.training[2]' must be an array of 2", "got a float"});
+  expect_mentions(training_error("[[0.2, 1.0], 0.3]", box),
+                  {"'sets.training[2]' must be an array of 2", "got a float"});
   expect_mentions(training_error("[[0.2, \"x\"]]", box), {"'sets.training[1][2]' must be a number, got a string"});
   expect_mentions(training_error("[0.5]", box1()), {"'sets.training[1]': parameter 'mu' = 0.5", "[0.15, 0.45]"});
   const std::string multiline = "training = [\n  [0.2, 1.0],\n  [0.3, 1.0],\n  [0.3, 5.0],\n]";

@@ -235,7 +235,10 @@ class SetReader {
     if (static_cast<int>(a->size()) != p) {
       fail(&n, "key '" + key + "' must be " + expected + ", got " + std::to_string(a->size()) + " values");
     }
-    for (int k = 0; k < p; ++k) mu[k] = value(*a->get(static_cast<std::size_t>(k)), element(key, static_cast<std::size_t>(k)), k);
+    for (int k = 0; k < p; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      mu[k] = value(*a->get(i), element(key, i), k);
+    }
     return mu;
   }
 
