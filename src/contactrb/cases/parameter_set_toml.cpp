@@ -4,6 +4,7 @@
 
 #include "contactrb/cases/parameter_sets_detail.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/printable.hpp"
 
 namespace contactrb::cases {
 
@@ -111,7 +112,7 @@ class SetReader {
         form = f;
       }
       if (!known) {
-        fail(&v, "unknown key '" + key + "." + std::string(k.str()) +
+        fail(&v, "unknown key '" + key + "." + printable_line(std::string(k.str())) +
                      "' (allowed: grid, latin-hypercube, random, seed, file, points)");
       }
     }
@@ -148,12 +149,18 @@ class SetReader {
       fail(&n, "key '" + key + "' must be " + expected + ", got " + std::to_string(a->size()) + " entries");
     }
     std::vector<std::vector<double>> axes;
-    for (std::size_t k = 0; k < a->size(); ++k) axes.push_back(axis(*a->get(k), element(key, k), static_cast<int>(k)));
-    try {
-      return tensor_grid(axes);
-    } catch (const Error& e) {
-      fail(&n, "key '" + key + "': " + e.what());
+    long long total = 1;
+    std::string sizes;
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      axes.push_back(axis(*a->get(k), element(key, k), static_cast<int>(k)));
+      total *= static_cast<long long>(axes.back().size());  // each factor <= 1e7, checked at every step
+      sizes += (k > 0 ? " x " : "") + std::to_string(axes.back().size());
+      if (total > kMaxParameterSetSize) {
+        fail(&n, "key '" + key + "' gives more than " + std::to_string(kMaxParameterSetSize) + " points (" + sizes +
+                     (k + 1 < a->size() ? " x ..." : "") + ")");
+      }
     }
+    return tensor_grid(axes);
   }
 
   // One grid axis: a count of uniform values, or the values themselves.
@@ -228,7 +235,10 @@ class SetReader {
     if (static_cast<int>(a->size()) != p) {
       fail(&n, "key '" + key + "' must be " + expected + ", got " + std::to_string(a->size()) + " values");
     }
-    for (int k = 0; k < p; ++k) mu[k] = value(*a->get(static_cast<std::size_t>(k)), element(key, static_cast<std::size_t>(k)), k);
+    for (int k = 0; k < p; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      mu[k] = value(*a->get(i), element(key, i), k);
+    }
     return mu;
   }
 

@@ -32,7 +32,7 @@
 //   short        = [[0.2, 1.0], [0.3, 1.2]]
 //   scalar       = [0.15, 0.2, 0.25]          # one parameter only
 //
-// Counts and sizes are at most 10^7 points in all (a grid: the product of its counts).
+// A set holds at most 10^7 points (a grid: the product of its counts; a CSV file: its lines).
 //
 // The CSV file: a header line naming every parameter exactly once, in any order, then one
 // point per line, values separated by commas:

@@ -65,7 +65,7 @@ std::vector<Eigen::VectorXd> uniform_random(const ParameterBox& box, int n, std:
 //    holds the p values in parameter order (so a one-parameter file can be one number a line;
 //    a parameter whose name reads as a number cannot be named in a header);
 //  - every value is a finite decimal number inside its parameter's domain; no point twice;
-//    at least one point.
+//    at least one point, at most kMaxParameterSetSize.
 // Throws contactrb::Error naming the file, the line and, for a value, the parameter and its
 // domain; a header that does not match names every missing, unknown and repeated name.
 std::vector<Eigen::VectorXd> read_points_csv(const std::string& path, const ParameterBox& box);

@@ -9,6 +9,7 @@
 #include "contactrb/cases/parameter_sets_detail.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/input_file.hpp"
+#include "contactrb/common/printable.hpp"
 
 namespace contactrb::cases {
 
@@ -75,7 +76,9 @@ std::vector<Field> split_fields(std::string_view line, const std::string& where)
       f.quoted = true;
       pos = read_quoted(line, pos, f.text, where);
       while (pos < line.size() && is_blank(line[pos])) ++pos;
-      if (pos < line.size() && line[pos] != ',') throw Error(where + ": text after a quoted field: " + f.text);
+      if (pos < line.size() && line[pos] != ',') {
+        throw Error(where + ": text after the quoted field \"" + printable_line(f.text) + "\"");
+      }
     } else {
       const std::size_t end = std::min(line.find(',', pos), line.size());
       f.text = std::string(trimmed(line.substr(pos, end - pos)));
@@ -121,9 +124,9 @@ std::vector<int> header_columns(const std::vector<Field>& header, const Paramete
   for (std::size_t c = 0; c < header.size(); ++c) {
     const auto it = index.find(header[c].text);
     if (it == index.end()) {
-      unknown.push_back(header[c].text);
+      unknown.push_back(printable_line(header[c].text));  // file content, echoed
     } else if (++count[static_cast<std::size_t>(it->second)] == 2) {
-      repeated.push_back(header[c].text);
+      repeated.push_back(printable_line(header[c].text));
     }
     if (it != index.end()) column[c] = it->second;
   }
@@ -153,7 +156,7 @@ Eigen::VectorXd read_point(const std::vector<Field>& fields, const std::vector<i
     const std::optional<double> v = number_of(fields[c].text);
     if (!v) {
       throw Error(where + ": the value of parameter '" + box.names[static_cast<std::size_t>(k)] + "' ('" +
-                  fields[c].text + "') is not a number");
+                  printable_line(fields[c].text) + "') is not a number");
     }
     if (!(*v >= box.min[k] && *v <= box.max[k])) throw Error(where + ": " + detail::value_error(box, k, *v));
     mu[k] = *v;
@@ -173,9 +176,10 @@ std::string header_field(const std::string& name) {
 
 }  // namespace
 
-std::vector<Eigen::VectorXd> read_points_csv(const std::string& path, const ParameterBox& box) {
+std::vector<Eigen::VectorXd> read_points_csv(const std::string& file, const ParameterBox& box) {
+  const std::string path = printable_line(file);  // as shown in messages
   check_parameter_box(box, "points file '" + path + "'");
-  const std::string text = read_text_input(path, "points file");
+  const std::string text = read_text_input(file, "points file");
   const std::vector<Line> lines = content_lines(text);
   if (lines.empty()) throw Error(path + ": no point (the file holds no line other than blanks and comments)");
 
@@ -188,6 +192,9 @@ std::vector<Eigen::VectorXd> read_points_csv(const std::string& path, const Para
     first_data = 1;
   }
   if (first_data == lines.size()) throw Error(path + ": no point after the header");
+  if (static_cast<long long>(lines.size() - first_data) > kMaxParameterSetSize) {
+    throw Error(path + ": more than " + std::to_string(kMaxParameterSetSize) + " points");
+  }
 
   std::vector<Eigen::VectorXd> points;
   points.reserve(lines.size() - first_data);
