@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/geometries.hpp"
 
@@ -97,6 +98,50 @@ CaseSpec hertz_b() {
   // 1.125, outside P. We keep the 22 points inside P (docs/cases.md).
   const std::vector<double> training = arithmetic_set(0.905, 0.01, 22);
   c.sets = sets_1d(training, midpoints(training));
+  return c;
+}
+
+// A three-parameter Hertz case (docs/cases.md, "hertz-3p"): hertz-a's imposed displacement,
+// hertz-b's lower radius, and the lower body's Young's modulus. Its sets are generated (the
+// paper's cases list theirs): a Latin hypercube for the greedy, a tensor grid for POD, random
+// verification points.
+CaseSpec hertz_3p() {
+  CaseSpec c;
+  c.name = "hertz-3p";
+  c.description = "two half-disks: imposed displacement delta x lower radius R2 x lower modulus E2, collocation";
+  c.mesh.generator = "hertz";
+  c.bodies = {BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}, BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"top", constant(0.0), AffineValue{0.0, -0.5, 0}}, {"bottom", constant(0.0), AffineValue{0.0, 0.5, 0}}};
+  c.constraint = contact::Discretization::Collocation;
+  ParameterSpec delta, radius, modulus;  // pushed at the end (a reference into the vector would dangle)
+  delta.name = "delta";
+  delta.kind = ParameterKind::DirichletScale;
+  delta.min = 0.15;
+  delta.max = 0.45;
+  delta.reference = 0.3;
+  const mesh::HertzGeometry g;
+  radius.name = "R2";
+  radius.kind = ParameterKind::BodyScaling;
+  radius.min = 0.9;
+  radius.max = 1.12;
+  radius.reference = g.R2;
+  radius.body = mesh::kMasterBody;
+  radius.center = Eigen::Vector2d(0.0, -0.5 * g.gap);
+  modulus.name = "E2";
+  modulus.kind = ParameterKind::YoungModulus;
+  modulus.body = mesh::kMasterBody;
+  modulus.min = 0.5 * kHertzE;
+  modulus.max = 2.0 * kHertzE;
+  modulus.reference = kHertzE;
+  c.parameters = {delta, radius, modulus};
+  ParameterBox box;
+  box.names = {delta.name, radius.name, modulus.name};
+  box.min = Eigen::Vector3d(delta.min, radius.min, modulus.min);
+  box.max = Eigen::Vector3d(delta.max, radius.max, modulus.max);
+  c.sets = {{"training", latin_hypercube(box, 1000, 1)},
+            {"grid", tensor_grid({uniform_axis(delta.min, delta.max, 7), uniform_axis(radius.min, radius.max, 5),
+                                  uniform_axis(modulus.min, modulus.max, 5)})},
+            {"verification", uniform_random(box, 200, 2)}};
   return c;
 }
 
@@ -295,7 +340,10 @@ int CaseSpec::parameter_of_body(ParameterKind kind, int body) const {
 
 CaseSpec builtin_case_spec(const std::string& name) {
   find_case(name);  // throws naming the unknown case
-  CaseSpec c = name == "hertz-a" ? hertz_a() : name == "hertz-b" ? hertz_b() : ring_block();
+  CaseSpec c = name == "hertz-a"    ? hertz_a()
+               : name == "hertz-b"  ? hertz_b()
+               : name == "hertz-3p" ? hertz_3p()
+                                    : ring_block();
   c.origin = kBuiltin;
   return c;
 }
