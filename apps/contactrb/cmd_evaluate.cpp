@@ -117,7 +117,7 @@ void print_table(const rb::Evaluation& e) {
   std::cout << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
             << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms"
             << std::setw(12) << "online us" << std::setw(10) << "speed-up" << std::setw(12) << "|e|_A" << std::setw(12)
-            << "estimate" << std::setw(8) << "eff." << "\n";
+            << "estimate" << std::setw(10) << "eff." << "\n";
   for (const rb::EvaluationRow& r : e.rows) {
     for (Eigen::Index k = 0; k < r.mu.size(); ++k) {
       const int width = e.parameter_names.size() > 1
@@ -130,8 +130,8 @@ void print_table(const rb::Evaluation& e) {
               << r.e_press << std::setw(12) << r.e_force << std::fixed
               << std::setprecision(1) << std::setw(10) << r.hf_time_s * 1e3 << std::setw(12) << r.online_time_s * 1e6
               << std::setprecision(0) << std::setw(10) << r.speedup << std::scientific << std::setprecision(3)
-              << std::setw(12) << r.e_energy_norm << std::setw(12) << r.estimate << std::fixed << std::setprecision(2)
-              << std::setw(8) << r.effectivity << std::defaultfloat;
+              << std::setw(12) << r.e_energy_norm << std::setw(12) << r.estimate << std::defaultfloat << std::setprecision(3)
+              << std::setw(10) << r.effectivity;
     if (!r.hf_converged) std::cout << "  HF " << r.hf_status;
     if (!r.rb_converged) std::cout << "  online " << r.rb_status;
     std::cout << "\n";
