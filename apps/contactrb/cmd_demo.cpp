@@ -75,8 +75,8 @@ int run_demo(const DemoOptions& opt) {
 
   const auto t_start = Clock::now();
   const cases::CaseSpec spec = cases::builtin_case_spec("hertz-b");
-  const std::vector<double>& verification = spec.parameter.set("verification");
-  step("case hertz-b (" + spec.parameter.name + "), " + std::to_string(spec.parameter.set("training").size()) +
+  const std::vector<cases::Mu>& verification = spec.set("verification");
+  step("case hertz-b (" + spec.parameters.front().name + "), " + std::to_string(spec.set("training").size()) +
        " training values, " + std::to_string(verification.size()) + " verification values, " +
        std::to_string(opt.jobs) + " job(s)");
 
@@ -88,7 +88,7 @@ int run_demo(const DemoOptions& opt) {
   const io::SnapshotSet set = rb::generate_snapshots(rb::make_snapshot_request(spec, "training"), run);
   const double snapshots_s = seconds(t0);
   for (const io::Snapshot& s : set.snapshots) {
-    require(s.converged, "demo: the HF solve at mu = " + fmt("%.6g", s.mu) + " failed (" + s.status + ": " +
+    require(s.converged, "demo: the HF solve at mu = " + cases::mu_values_text(s.mu) + " failed (" + s.status + ": " +
                              s.message + ")");
   }
 

@@ -5,6 +5,7 @@
 // table in which every speed-up has the errors of the same solve beside it.
 // Exit codes: 0 every solve converged; 1 a user error; 3 some HF or online solve did not
 // converge (the outputs are still written).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -43,25 +44,26 @@ struct EvaluateOptions {
   bool quiet = false;
 };
 
-// A named set of the case, or else a file with one mu per line (blank lines skipped).
-std::vector<double> parameter_values(const cases::CaseSpec& spec, const std::string& set) {
-  if (spec.parameter.has_set(set)) return spec.parameter.set(set);
+// A named set of the case, or else a file with one point per line (parse_mu_line; blank lines
+// skipped).
+std::vector<cases::Mu> parameter_values(const cases::CaseSpec& spec, const std::string& set) {
+  if (spec.has_set(set)) return spec.set(set);
   std::string names;
-  for (const cases::ParameterSet& s : spec.parameter.sets) names += (names.empty() ? "" : ", ") + s.name;
+  for (const cases::ParameterSet& s : spec.sets) names += (names.empty() ? "" : ", ") + s.name;
   std::error_code ec;
   require(std::filesystem::exists(set, ec),
           "--set '" + printable(set) + "' is neither a parameter set of case '" + spec.name + "' (" + names +
               ") nor a file of parameter values");
   // A regular file below the size limit (a device or FIFO would be read without end).
   std::istringstream in(read_text_input(set, "parameter file"));
-  std::vector<double> values;
+  std::vector<cases::Mu> values;
   std::string line;
   int k = 0;
   while (std::getline(in, line)) {
     ++k;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     try {
-      values.push_back(parse_mu_line(line));
+      values.push_back(parse_mu_line(line, spec.parameters));
     } catch (const Error& e) {
       throw Error("parameter file '" + set + "', line " + std::to_string(k) + ": " + e.what());
     }
@@ -107,18 +109,29 @@ nlohmann::json summary_json(const rb::EvaluationSummary& s) {
 }
 
 void print_table(const rb::Evaluation& e) {
-  std::cout << std::setw(10) << "mu" << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
+  if (e.parameter_names.size() > 1) {
+    for (const std::string& name : e.parameter_names) std::cout << std::setw(std::max<int>(10, static_cast<int>(name.size()) + 1)) << name;
+  } else {
+    std::cout << std::setw(10) << "mu";
+  }
+  std::cout << std::setw(12) << "e_ener" << std::setw(12) << "e_displ" << std::setw(12)
             << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms"
             << std::setw(12) << "online us" << std::setw(10) << "speed-up" << std::setw(12) << "|e|_A" << std::setw(12)
-            << "estimate" << std::setw(8) << "eff." << "\n";
+            << "estimate" << std::setw(10) << "eff." << "\n";
   for (const rb::EvaluationRow& r : e.rows) {
-    std::cout << std::setw(10) << std::setprecision(6) << r.mu << std::scientific << std::setprecision(3)
+    for (Eigen::Index k = 0; k < r.mu.size(); ++k) {
+      const int width = e.parameter_names.size() > 1
+                            ? std::max<int>(10, static_cast<int>(e.parameter_names[static_cast<std::size_t>(k)].size()) + 1)
+                            : 10;
+      std::cout << std::setw(width) << std::setprecision(6) << r.mu(k);
+    }
+    std::cout << std::scientific << std::setprecision(3)
               << std::setw(12) << r.e_ener << std::setw(12) << r.e_displ << std::setw(12) << r.e_inter << std::setw(12)
               << r.e_press << std::setw(12) << r.e_force << std::fixed
               << std::setprecision(1) << std::setw(10) << r.hf_time_s * 1e3 << std::setw(12) << r.online_time_s * 1e6
               << std::setprecision(0) << std::setw(10) << r.speedup << std::scientific << std::setprecision(3)
-              << std::setw(12) << r.e_energy_norm << std::setw(12) << r.estimate << std::fixed << std::setprecision(2)
-              << std::setw(8) << r.effectivity << std::defaultfloat;
+              << std::setw(12) << r.e_energy_norm << std::setw(12) << r.estimate << std::defaultfloat << std::setprecision(3)
+              << std::setw(10) << r.effectivity;
     if (!r.hf_converged) std::cout << "  HF " << r.hf_status;
     if (!r.rb_converged) std::cout << "  online " << r.rb_status;
     std::cout << "\n";
@@ -150,10 +163,10 @@ int run_evaluate(const EvaluateOptions& opt) {
   check_sizes_against(sizes, model, opt.model);
   const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
   const cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
-  const std::vector<double> mus = parameter_values(spec, opt.set);
+  const std::vector<cases::Mu> mus = parameter_values(spec, opt.set);
   {
     const std::filesystem::path d(opt.out);
-    check_file_roles({{"--model", opt.model}, {"--set", spec.parameter.has_set(opt.set) ? std::string() : opt.set}},
+    check_file_roles({{"--model", opt.model}, {"--set", spec.has_set(opt.set) ? std::string() : opt.set}},
                      {{"evaluation.csv in --out", (d / "evaluation.csv").string()},
                       {"evaluation.json in --out", (d / "evaluation.json").string()}});
   }
@@ -164,7 +177,9 @@ int run_evaluate(const EvaluateOptions& opt) {
   options.online_repeats = opt.repeats;
   options.jobs = opt.jobs;
   options.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  options.multiplier_mus = opt.multipliers;
+  require(opt.multipliers.empty() || spec.num_parameters() == 1,
+          "--multipliers is for one-parameter models (this one has " + std::to_string(spec.num_parameters()) + ")");
+  options.multiplier_mus = cases::points_1d(opt.multipliers);
   const rb::Evaluation e = rb::evaluate_model(model, rec, spec, mus, options);
 
   const std::filesystem::path dir(opt.out);
@@ -176,9 +191,9 @@ int run_evaluate(const EvaluateOptions& opt) {
   nlohmann::json multiplier_files = nlohmann::json::array();
   for (const rb::EvaluationRow& r : e.rows) {
     if (r.multipliers.abscissa.empty()) continue;
-    const std::string path = (dir / ("multipliers_mu" + value_text(r.mu) + ".csv")).string();
+    const std::string path = (dir / ("multipliers_mu" + value_text(r.mu(0)) + ".csv")).string();
     rb::write_multiplier_csv(r.multipliers, path);
-    multiplier_files.push_back({{"mu", r.mu}, {"file", path}});
+    multiplier_files.push_back({{"mu", r.mu(0)}, {"file", path}});
     written.push_back(path);
   }
   nlohmann::json j;
@@ -186,7 +201,12 @@ int run_evaluate(const EvaluateOptions& opt) {
   j["case"] = model.case_name;
   j["level"] = model.level;
   j["set"] = opt.set;
-  j["values"] = mus;
+  nlohmann::json values = nlohmann::json::array();
+  for (const cases::Mu& mu : mus) values.push_back(mu_json(model.parameters, mu));
+  j["values"] = values;
+  nlohmann::json names = nlohmann::json::array();
+  for (const cases::ParameterSpec& p : model.parameters) names.push_back(p.name);
+  j["parameters"] = names;
   j["sizes"] = {{"N", e.N}, {"R", e.R}, {"Mk", e.Mk}, {"Mg", e.Mg}};
   j["max_sizes"] = {{"N", model.N_max}, {"R", model.R_max}, {"Mk", model.Mk_max}, {"Mg", model.Mg_max}};
   j["kacanov"] = {{"alpha", model.kacanov_alpha},

@@ -94,8 +94,7 @@ io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& 
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
-  std::optional<std::vector<double>> values;
-  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
+  const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
   rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   request.settings.kacanov.alpha = opt.alpha;
   request.settings.kacanov.tolerance = opt.tolerance;
@@ -116,7 +115,7 @@ std::string failure_report(const io::SnapshotSet& set, const std::string& path) 
   os << set.num_failed() << " of " << set.snapshots.size() << " snapshot solves failed (recorded in " << path
      << "); no model written:";
   for (const io::Snapshot& snap : set.snapshots) {
-    if (!snap.converged) os << "\n  mu = " << snap.mu << ": " << snap.status << ": " << snap.message;
+    if (!snap.converged) os << "\n  mu = " << cases::mu_values_text(snap.mu) << ": " << snap.status << ": " << snap.message;
   }
   return os.str();
 }
@@ -321,9 +320,20 @@ int run_offline(const OfflineOptions& opt) {
   j["case_kind"] = set.case_kind;
   j["level"] = set.level;
   j["constraint"] = set.constraint;
-  j["parameter"] = {{"name", set.parameter_name}, {"min", set.parameter_min}, {"max", set.parameter_max}};
+  nlohmann::json params = nlohmann::json::array();
+  for (const io::SnapshotParameter& q : set.parameters) {
+    params.push_back({{"name", q.name}, {"kind", q.kind}, {"units", q.units}, {"min", q.min}, {"max", q.max}});
+  }
+  if (set.parameters.size() == 1) j["parameter"] = params.front();
+  j["parameters"] = params;
   nlohmann::json mus = nlohmann::json::array();
-  for (const auto& s : set.snapshots) mus.push_back(s.mu);
+  for (const auto& s : set.snapshots) {
+    if (s.mu.size() == 1) {
+      mus.push_back(s.mu(0));
+    } else {
+      mus.push_back(std::vector<double>(s.mu.data(), s.mu.data() + s.mu.size()));
+    }
+  }
   j["training"] = {{"set", set.set_name}, {"values", mus}, {"count", set.snapshots.size()}};
   j["snapshot_kacanov"] = {{"alpha", set.kacanov_alpha},
                            {"tolerance", set.kacanov_tolerance},

@@ -51,9 +51,10 @@ nlohmann::json to_json(const Eigen::VectorXd& v) {
   return a;
 }
 
-nlohmann::json solution_json(double mu, const rb::OnlineSolver& solver, const rb::OnlineSolution& s) {
+nlohmann::json solution_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu,
+                             const rb::OnlineSolver& solver, const rb::OnlineSolution& s) {
   nlohmann::json j;
-  j["mu"] = mu;
+  j["mu"] = mu_json(parameters, mu);
   j["converged"] = s.converged();
   j["status"] = solve::to_string(s.status);
   if (!s.message.empty()) j["message"] = s.message;
@@ -100,7 +101,8 @@ bool read_batch_line(std::streambuf& in, std::string& line, bool& too_long) {
   return true;
 }
 
-int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::OnlineSettings& settings) {
+int run_batch(const OnlineOptions& opt, const std::vector<cases::ParameterSpec>& parameters, rb::OnlineSolver& solver,
+              const rb::OnlineSettings& settings) {
   std::ifstream file;
   std::istream* in = &std::cin;
   if (opt.batch != "-") {
@@ -118,11 +120,12 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
     ++k;
     nlohmann::json j;
     try {
-      require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected one number)");
-      const double mu = parse_mu_line(line);
+      require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
+                             (parameters.size() == 1 ? std::string("one number") : "one parameter point") + ")");
+      const cases::Mu mu = parse_mu_line(line, parameters);
       const rb::OnlineSolution s = solver.solve(mu, settings);
       j = {{"line", k}};
-      j.update(solution_json(mu, solver, s));
+      j.update(solution_json(parameters, mu, solver, s));
       if (!s.converged()) ++not_converged;
     } catch (const Error& e) {
       // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
@@ -145,7 +148,8 @@ int run_batch(const OnlineOptions& opt, rb::OnlineSolver& solver, const rb::Onli
 
 int run_online(const OnlineOptions& opt) {
   const bool single = opt.mu.has_value();  // --mu, else --batch
-  const double mu = single ? parse_mu_option(*opt.mu, "--mu") : 0.0;
+  // A plain number is checked before the model is read (its errors come first, as for p = 1).
+  if (single && opt.mu->find_first_of("=,") == std::string::npos) (void)parse_mu_option(*opt.mu, "--mu");
   const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
   require(opt.out.empty() || single,
           "--out is not available with --batch (one output directory per --mu: run one online --mu per value, "
@@ -168,8 +172,9 @@ int run_online(const OnlineOptions& opt) {
   rb::OnlineSolver solver(model, sizes);
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
-    return run_batch(opt, solver, settings);
+    return run_batch(opt, model.parameters, solver, settings);
   }
+  const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
 
   // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
   std::optional<rb::ReducedReconstruction> rec;
@@ -188,7 +193,7 @@ int run_online(const OnlineOptions& opt) {
   }
 
   const rb::OnlineSolution s = solver.solve(mu, settings);
-  nlohmann::json j = solution_json(mu, solver, s);
+  nlohmann::json j = solution_json(model.parameters, mu, solver, s);
   if (rec) {
     const OutputLock lock(opt.out);  // the three files of one run, never mixed with another's
     const rb::SolutionFiles files = rb::write_solution_fields(
@@ -211,8 +216,12 @@ Command add_online_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("online", "Reduced solves from a model file (one --mu, or --batch for many)");
   sub->add_option("--model", opt->model, "Reduced model file written by `contactrb offline`")->required();
   CLI::Option_group* what = sub->add_option_group("query", "Parameter values (exactly one)");
-  what->add_option("--mu", opt->mu, "One parameter value (inside the model's domain)");
-  what->add_option("--batch", opt->batch, "File with one parameter value per line, or - for stdin");
+  what->add_option("--mu", opt->mu,
+                   "One parameter point inside the model's domain: a number (one parameter), p numbers "
+                   "separated by commas, or name=value pairs separated by commas");
+  what->add_option("--batch", opt->batch,
+                   "File with one parameter point per line (p numbers separated by blanks or commas, name=value "
+                   "pairs, or a JSON object), or - for stdin");
   what->require_option(1);
   sub->add_option("--n", opt->sizes.n, "Primal size N (default: the model's N_max)");
   sub->add_option("--r", opt->sizes.r, "Dual size R (default: R_max)");

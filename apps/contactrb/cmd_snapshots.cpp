@@ -59,8 +59,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   solve::check_settings(settings.kacanov);
   check_output_file(opt.out);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
-  std::optional<std::vector<double>> values;
-  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
+  const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
 
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
@@ -83,7 +82,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   const rb::SnapshotSummary s = rb::summarize(set);
   const std::size_t rows = set.snapshots.empty() ? 0 : static_cast<std::size_t>(set.snapshots.front().lambda.size());
   std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
-            << set.parameter_name << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
+            << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
             << " constraints, " << opt.jobs << (opt.jobs == 1 ? " job\n" : " jobs\n");
   std::cout << "solves: " << s.solves << "\n"
             << "failures: " << s.failures << "\n";
@@ -103,7 +102,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
     std::ostringstream os;
     os << s.failures << " of " << s.solves << " solves failed (recorded in " << opt.out << "):";
     for (const io::Snapshot& snap : set.snapshots) {
-      if (!snap.converged) os << "\n  mu = " << snap.mu << ": " << snap.status << ": " << snap.message;
+      if (!snap.converged) os << "\n  mu = " << cases::mu_values_text(snap.mu) << ": " << snap.status << ": " << snap.message;
     }
     if (opt.allow_failures) {
       std::cerr << "contactrb: warning: " << os.str() << "\n";

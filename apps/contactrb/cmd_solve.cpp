@@ -33,7 +33,8 @@ struct SolveOptions {
   std::string case_name;
   std::string case_file;
   std::string mu_text;  // --mu as given: parsed by parse_mu_option (CLI11 reads '' as 0)
-  double mu = 0.0;
+  cases::Mu mu;
+  std::vector<cases::ParameterSpec> parameters;
   std::string constraint;  // empty: the case's default
   double alpha = solve::KacanovSettings{}.alpha;
   double tolerance = solve::KacanovSettings{}.tolerance;
@@ -62,7 +63,7 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
   nlohmann::json j;
   j["case"] = opt.case_name;
   if (!opt.case_file.empty()) j["case_file"] = opt.case_file;
-  j["mu"] = opt.mu;
+  j["mu"] = mu_json(opt.parameters, opt.mu);
   j["level"] = opt.level;
   j["constraint"] = contact::to_string(solver.problem().discretization);
   j["alpha"] = settings.kacanov.alpha;
@@ -103,8 +104,10 @@ int run_solve(SolveOptions opt) {
   } else {
     spec = cases::builtin_case_spec(opt.case_name);
   }
-  opt.mu = parse_mu_option(opt.mu_text, "--mu");
-  spec.parameter.check(opt.mu, "case '" + spec.name + "'" + (opt.case_file.empty() ? "" : " (" + opt.case_file + ")"));
+  opt.mu = parse_mu_option(opt.mu_text, "--mu", spec.parameters);
+  opt.parameters = spec.parameters;
+  cases::check_mu(spec.parameters, opt.mu,
+                  "case '" + spec.name + "'" + (opt.case_file.empty() ? "" : " (" + opt.case_file + ")"));
   hf::HFSettings settings;
   settings.kacanov.alpha = opt.alpha;
   settings.kacanov.tolerance = opt.tolerance;
@@ -156,7 +159,9 @@ int run_solve(SolveOptions opt) {
     vtu.deform_by("displacement").write(deformed_path);
   }
 
-  std::cout << "case " << opt.case_name << ", mu = " << opt.mu << ", " << contact::to_string(solver.problem().discretization)
+  std::cout << "case " << opt.case_name << ", " << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu)
+                                                                    : cases::mu_text(opt.parameters, opt.mu))
+            << ", " << contact::to_string(solver.problem().discretization)
             << ", " << m.num_dofs() << " DOFs, " << solver.quadrature().weight.size() << " constraints\n";
   if (!s.converged) {
     std::cerr << "contactrb: error: " << s.message << "\n";
@@ -182,7 +187,10 @@ Command add_solve_command(CLI::App& app) {
   input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
   input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");
   input->require_option(1);
-  sub->add_option("--mu", opt->mu_text, "Parameter value (inside the case's domain)")->required();
+  sub->add_option("--mu", opt->mu_text,
+                  "Parameter point inside the case's domain: a number (one parameter), p numbers separated by "
+                  "commas, or name=value pairs separated by commas")
+      ->required();
   sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();

@@ -6,9 +6,12 @@
 // "contactrb: error: ..." on stderr and exit code 1.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "contactrb/cases/parameter.hpp"
 
 namespace contactrb::rb {
 struct OnlineSizes;
@@ -54,19 +57,34 @@ struct FileRole {
 // compared after resolving "..", "." and the links of their existing part.
 void check_file_roles(const std::vector<FileRole>& inputs, const std::vector<FileRole>& outputs);
 
-// One parameter value per line (online --batch, evaluate --set FILE): a number with optional
-// surrounding blanks, nothing else. Throws contactrb::Error saying what is wrong.
+// One parameter point per line (online --batch, evaluate --set FILE): p numbers separated by
+// blanks or commas, or name=value pairs separated by commas, or a JSON object
+// {"name": value, ...}; with optional surrounding blanks. Throws contactrb::Error saying what
+// is wrong (a wrong count, an unknown or missing name, not a number). The one-value form is
+// parse_mu_line(line) (p = 1).
+cases::Mu parse_mu_line(const std::string& line, const std::vector<cases::ParameterSpec>& parameters);
 double parse_mu_line(const std::string& line);
 
-// The text of a parameter option (--mu): a finite number, not empty (CLI11 turns an empty
-// value into 0) and not an underflow ('1e-400' is 0 to strtod). Throws contactrb::Error
-// naming `flag`.
+// The text of a parameter option (--mu): for p = 1 a finite number; for any p, p numbers
+// separated by commas ("0.3,1.05,20") or name=value pairs ("displacement=0.3,radius=1.05").
+// Each number is finite, not empty (CLI11 turns an empty value into 0) and not an underflow
+// ('1e-400' is 0 to strtod). Throws contactrb::Error naming `flag`.
+cases::Mu parse_mu_option(const std::string& text, const std::string& flag,
+                          const std::vector<cases::ParameterSpec>& parameters);
 double parse_mu_option(const std::string& text, const std::string& flag);
+
+// The JSON of a point: a number for p = 1, an object {"name": value, ...} otherwise.
+nlohmann::json mu_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu);
 
 // The comma-separated items of a list of parameter values (--values): each as
 // parse_mu_option, strictly increasing (a repeated value is refused). Throws contactrb::Error
 // naming `flag` and the position.
 std::vector<double> parse_values_option(const std::vector<std::string>& items, const std::string& flag);
+// The same as points of a one-parameter case (nullopt when `items` is empty); throws
+// contactrb::Error naming `flag` for a case of p > 1 parameters (their points come from a named
+// set: --set).
+std::optional<std::vector<cases::Mu>> parse_values_points(const std::vector<std::string>& items, const std::string& flag,
+                                                           const std::vector<cases::ParameterSpec>& parameters);
 
 // --n, --r, --mk, --mg as given (absent: the model's maximum).
 struct SizeFlags {

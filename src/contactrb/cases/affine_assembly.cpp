@@ -5,19 +5,22 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/fem/dirichlet.hpp"
+#include "contactrb/fem/traction.hpp"
 
 namespace contactrb::cases {
 
 namespace {
 
-// Lift of the part a (or b) of every Dirichlet value; the constrained DOFs are the same.
-Eigen::VectorXd part_lift(const CaseSpec& spec, const mesh::Mesh& reference, bool slope) {
+// Lift of the parts a of every Dirichlet value (parameter -1), or of the parts b of the values
+// that depend on parameter k (0 elsewhere); the constrained DOFs are the same.
+Eigen::VectorXd part_lift(const CaseSpec& spec, const mesh::Mesh& reference, int k) {
+  const auto part = [k](const AffineValue& v) { return k < 0 ? v.a : (v.parameter == k ? v.b : 0.0); };
   std::vector<fem::DirichletCondition> conditions;
   for (const DirichletSpec& d : spec.dirichlet) {
     fem::DirichletCondition c;
     c.group = d.group;
-    if (d.ux) c.ux = slope ? d.ux->b : d.ux->a;
-    if (d.uy) c.uy = slope ? d.uy->b : d.uy->a;
+    if (d.ux) c.ux = part(*d.ux);
+    if (d.uy) c.uy = part(*d.uy);
     conditions.push_back(std::move(c));
   }
   return fem::DofMap(reference, conditions).lift();
@@ -32,15 +35,31 @@ void check_size(std::size_t terms, Eigen::Index theta) {
 
 AffineTerms assemble_affine_terms(const CaseSpec& spec, const mesh::Mesh& reference) {
   check_case_spec(spec);
+  check_tractions(spec, reference);
   AffineTerms t;
-  t.A.push_back(fem::stiffness(reference, materials(spec)));
+  // The order of theta_functions (theta.hpp).
+  const bool E_param = spec.parameter_of_body(ParameterKind::YoungModulus, 0) >= 0 ||
+                       spec.parameter_of_body(ParameterKind::YoungModulus, 1) >= 0;
+  const std::vector<fem::Material> nominal = materials(spec, reference_mu(spec.parameters));
+  if (!E_param) {
+    t.A.push_back(fem::stiffness(reference, nominal));
+  } else {
+    for (int body = 0; body < 2; ++body) {
+      fem::Material m = nominal[static_cast<std::size_t>(body)];
+      if (spec.parameter_of_body(ParameterKind::YoungModulus, body) >= 0) m.E = 1.0;  // theta = E
+      t.A.push_back(fem::stiffness_body(reference, body, m));
+    }
+  }
   for (int body = 0; body < 2; ++body) {
     const Eigen::Vector2d& load = spec.bodies[static_cast<std::size_t>(body)].load;
     if (!load.isZero(0.0)) t.f.push_back(fem::body_load(reference, body, load));
   }
+  for (const TractionSpec& tr : spec.tractions) {
+    t.f.push_back(fem::traction_load(reference, {tr.group, tr.is_pressure, tr.vector, tr.pressure}));
+  }
   if (!spec.dirichlet.empty()) {
-    t.lift.push_back(part_lift(spec, reference, false));
-    if (has_affine_dirichlet(spec)) t.lift.push_back(part_lift(spec, reference, true));
+    t.lift.push_back(part_lift(spec, reference, -1));
+    for (int k : dirichlet_parameters(spec)) t.lift.push_back(part_lift(spec, reference, k));
   }
   return t;
 }

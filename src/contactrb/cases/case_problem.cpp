@@ -5,6 +5,7 @@
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/cases/geometric_map.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/fem/traction.hpp"
 #include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/msh_io.hpp"
 
@@ -12,9 +13,9 @@ namespace contactrb::cases {
 
 namespace {
 
-std::string context(const CaseSpec& spec) {
-  return "case '" + spec.name + "'" + (spec.origin.empty() ? std::string() : " from " + spec.origin);
-}
+std::string context(const CaseSpec& spec) { return spec.context(); }
+
+std::string body_name(int body) { return body == 0 ? "slave" : "master"; }
 
 // Renames the user's contact groups to "slave" / "master" (a swap is allowed).
 void map_contact_groups(mesh::Mesh& m, const MeshSpec& ms) {
@@ -39,14 +40,18 @@ mesh::Mesh reference_mesh(const CaseSpec& spec, int level) {
   if (ms.generator == "hertz") {
     mesh::HertzGeometry geometry;
     geometry.slave_arc_nodes = mesh::hertz_arc_nodes_for_level(level);
-    return mesh::generate_hertz(geometry);
+    mesh::Mesh m = mesh::generate_hertz(geometry);
+    check_tractions(spec, m);
+    return m;
   }
   if (ms.generator == "ring-block") {
     mesh::RingBlockGeometry geometry;
     const int factor = 1 << level;
     geometry.slave_arc_nodes = (geometry.slave_arc_nodes - 1) * factor + 1;
     geometry.master_edge_nodes = (geometry.master_edge_nodes - 1) * factor + 1;
-    return mesh::generate_ring_block(geometry);
+    mesh::Mesh m = mesh::generate_ring_block(geometry);
+    check_tractions(spec, m);
+    return m;
   }
   require(level == 0, "refinement level " + std::to_string(level) + " requested, but the mesh of " + context(spec) +
                           " is the file " + ms.msh_file + " (level 0 only)");
@@ -66,12 +71,30 @@ mesh::Mesh reference_mesh(const CaseSpec& spec, int level) {
     }
   }
   mesh::validate(m);
+  check_tractions(spec, m);
   return m;
 }
 
-mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu) {
+void check_tractions(const CaseSpec& spec, const mesh::Mesh& reference) {
+  for (const TractionSpec& t : spec.tractions) {
+    if (!reference.has_boundary(t.group)) {
+      std::string present;
+      for (const auto& [name, edges] : reference.boundaries) present += " " + name;
+      throw Error("traction group '" + t.group + "' of " + context(spec) + " is not a boundary group of its mesh" +
+                  (spec.mesh.msh_file.empty() ? std::string() : " " + spec.mesh.msh_file) + " (groups:" + present +
+                  ")");
+    }
+    const int body = fem::traction_body(reference, t.group);
+    if (t.body >= 0 && t.body != body) {
+      throw Error("traction group '" + t.group + "' of " + context(spec) + " is on the " + body_name(body) +
+                  " body, but the case gives body = " + body_name(t.body));
+    }
+  }
+}
+
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu) {
   mesh::Mesh m = reference;
-  const std::array<AffineMap, 2> maps = geometric_maps(spec.parameter, mu);
+  const std::array<AffineMap, 2> maps = geometric_maps(spec.parameters, mu);
   for (int body = 0; body < 2; ++body) {
     const AffineMap& h = maps[static_cast<std::size_t>(body)];
     if (!h.is_identity()) mesh::map_body(m, body, h.M, h.b);
@@ -79,7 +102,7 @@ mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double
   return m;
 }
 
-std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, double mu) {
+std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, const Mu& mu) {
   std::vector<fem::DirichletCondition> out;
   out.reserve(spec.dirichlet.size());
   for (const DirichletSpec& d : spec.dirichlet) {
@@ -92,29 +115,53 @@ std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, double m
   return out;
 }
 
-std::vector<fem::Material> materials(const CaseSpec& spec) {
-  return {fem::Material{spec.bodies[0].E, spec.bodies[0].nu}, fem::Material{spec.bodies[1].E, spec.bodies[1].nu}};
+std::vector<fem::Material> materials(const CaseSpec& spec, const Mu& mu) {
+  std::vector<fem::Material> m;
+  for (int body = 0; body < 2; ++body) {
+    const BodySpec& b = spec.bodies[static_cast<std::size_t>(body)];
+    const int k = spec.parameter_of_body(ParameterKind::YoungModulus, body);
+    m.push_back(fem::Material{k >= 0 ? mu(k) : b.E, b.nu});
+  }
+  return m;
 }
 
-hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
+std::vector<Eigen::Vector2d> body_loads_at(const CaseSpec& spec, const Mu& mu) {
+  if (spec.bodies[0].load.isZero(0.0) && spec.bodies[1].load.isZero(0.0)) return {};
+  std::vector<Eigen::Vector2d> loads;
+  for (int body = 0; body < 2; ++body) {
+    const int k = spec.parameter_of_body(ParameterKind::BodyForce, body);
+    loads.push_back(spec.bodies[static_cast<std::size_t>(body)].load * (k >= 0 ? mu(k) : 1.0));
+  }
+  return loads;
+}
+
+std::vector<fem::TractionLoad> tractions_at(const CaseSpec& spec, const Mu& mu) {
+  std::vector<fem::TractionLoad> out;
+  for (const TractionSpec& t : spec.tractions) {
+    const double factor = t.parameter >= 0 ? mu(t.parameter) : 1.0;
+    out.push_back({t.group, t.is_pressure, t.vector * factor, t.pressure * factor});
+  }
+  return out;
+}
+
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu,
                                 std::optional<contact::Discretization> constraint) {
   check_case_spec(spec);
-  spec.parameter.check(mu, context(spec));
+  spec.check_mu(mu);
   hf::ContactProblem p;
   p.mesh = mapped_mesh(spec, reference, mu);
-  p.materials = materials(spec);
-  if (!spec.bodies[0].load.isZero(0.0) || !spec.bodies[1].load.isZero(0.0)) {
-    p.body_loads = {spec.bodies[0].load, spec.bodies[1].load};
-  }
+  p.materials = materials(spec, mu);
+  p.body_loads = body_loads_at(spec, mu);
+  p.tractions = tractions_at(spec, mu);
   p.dirichlet = dirichlet_at(spec, mu);
   p.discretization = constraint ? *constraint : spec.constraint;
   return p;
 }
 
-hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level,
+hf::ContactProblem make_problem(const CaseSpec& spec, const Mu& mu, int level,
                                 std::optional<contact::Discretization> constraint) {
   check_case_spec(spec);
-  spec.parameter.check(mu, context(spec));  // before the (costly) mesh
+  spec.check_mu(mu);  // before the (costly) mesh
   return make_problem(spec, reference_mesh(spec, level), mu, constraint);
 }
 

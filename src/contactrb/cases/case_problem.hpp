@@ -16,19 +16,28 @@ namespace contactrb::cases {
 // the file and the problem (missing file, missing group, level > 0 for a .msh).
 mesh::Mesh reference_mesh(const CaseSpec& spec, int level = 0);
 
+// Throws contactrb::Error naming the case for a traction group missing from `reference`, or
+// on another body than the case says (reference_mesh runs it; for built-in generators too).
+void check_tractions(const CaseSpec& spec, const mesh::Mesh& reference);
+
 // Omega(mu) = h(mu)(reference): the geometric maps applied to a copy of `reference`.
-mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu);
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu);
 
 // The HF problem at mu. `constraint` overrides the case's discretization. Throws
 // contactrb::Error for an invalid spec or mu outside the parameter domain.
-hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level = 0,
+hf::ContactProblem make_problem(const CaseSpec& spec, const Mu& mu, int level = 0,
                                 std::optional<contact::Discretization> constraint = std::nullopt);
 // Same, from a reference mesh built once by reference_mesh(spec, level) (parameter sweeps).
-hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu,
                                 std::optional<contact::Discretization> constraint = std::nullopt);
 
-// Dirichlet conditions at mu (values a + b mu).
-std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, double mu);
-std::vector<fem::Material> materials(const CaseSpec& spec);
+// Dirichlet conditions at mu (values a + b mu_k).
+std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, const Mu& mu);
+// The materials at mu (E of a body with a young-modulus parameter is mu_k).
+std::vector<fem::Material> materials(const CaseSpec& spec, const Mu& mu);
+// The body loads (times their body-force parameters) and the tractions (times their traction
+// parameters) at mu.
+std::vector<Eigen::Vector2d> body_loads_at(const CaseSpec& spec, const Mu& mu);
+std::vector<fem::TractionLoad> tractions_at(const CaseSpec& spec, const Mu& mu);
 
 }  // namespace contactrb::cases

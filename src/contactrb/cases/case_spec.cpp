@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/geometries.hpp"
 
@@ -27,7 +29,12 @@ constexpr double kRingBlockNu = 0.3;
 // 0.2 (the ring thickness) gives 18 and 16 rows (Fig. 18: the zone varies with mu).
 constexpr double kRingPush = 0.2;
 
-AffineValue constant(double a) { return {a, 0.0}; }
+AffineValue constant(double a) { return {a, 0.0, 0}; }
+
+// A one-parameter case's sets: training values and the verification values.
+std::vector<ParameterSet> sets_1d(const std::vector<double>& training, const std::vector<double>& verification) {
+  return {{"training", points_1d(training)}, {"verification", points_1d(verification)}};
+}
 
 // Physically degenerate data (docs/cases.md, "Limits"). Plane strain lambda_L =
 // E nu / ((1 + nu)(1 - 2 nu)) grows like 1/(1 - 2 nu): at nu = 0.5 - 1e-6 lambda_L / mu_L is
@@ -57,14 +64,14 @@ CaseSpec hertz_a() {
   // Section 6.2.1 (a): u = (0, -mu/2) on the upper flat edge, (0, mu/2) on the lower one.
   c.dirichlet = {{"top", constant(0.0), AffineValue{0.0, -0.5}}, {"bottom", constant(0.0), AffineValue{0.0, 0.5}}};
   c.constraint = contact::Discretization::Collocation;
-  ParameterSpec& p = c.parameter;
+  ParameterSpec& p = c.parameters.emplace_back();
   p.name = "imposed displacement";
   p.kind = ParameterKind::DirichletScale;
   p.min = 0.15;
   p.max = 0.45;
   p.reference = 0.3;
   const std::vector<double> training = arithmetic_set(0.15, 0.01, 31);  // 0.15 + 0.01 i, i = 0..30
-  p.sets = {{"training", training}, {"verification", midpoints(training)}};
+  c.sets = sets_1d(training, midpoints(training));
   return c;
 }
 
@@ -76,7 +83,7 @@ CaseSpec hertz_b() {
   c.bodies = {BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}, BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}};
   c.dirichlet = {{"top", constant(0.0), constant(-0.2)}, {"bottom", constant(0.0), constant(0.2)}};
   c.constraint = contact::Discretization::Collocation;
-  ParameterSpec& p = c.parameter;
+  ParameterSpec& p = c.parameters.emplace_back();
   p.name = "lower radius R2";
   p.kind = ParameterKind::BodyScaling;
   p.min = 0.9;
@@ -90,7 +97,51 @@ CaseSpec hertz_b() {
   // The paper writes i = 0..22 but also P = 22 solves and P = [0.9, 1.12]; i = 22 gives
   // 1.125, outside P. We keep the 22 points inside P (docs/cases.md).
   const std::vector<double> training = arithmetic_set(0.905, 0.01, 22);
-  p.sets = {{"training", training}, {"verification", midpoints(training)}};
+  c.sets = sets_1d(training, midpoints(training));
+  return c;
+}
+
+// A three-parameter Hertz case (docs/cases.md, "hertz-3p"): hertz-a's imposed displacement,
+// hertz-b's lower radius, and the lower body's Young's modulus. Its sets are generated (the
+// paper's cases list theirs): a Latin hypercube for the greedy, a tensor grid for POD, random
+// verification points.
+CaseSpec hertz_3p() {
+  CaseSpec c;
+  c.name = "hertz-3p";
+  c.description = "two half-disks: imposed displacement delta x lower radius R2 x lower modulus E2, collocation";
+  c.mesh.generator = "hertz";
+  c.bodies = {BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}, BodySpec{kHertzE, kHertzNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"top", constant(0.0), AffineValue{0.0, -0.5, 0}}, {"bottom", constant(0.0), AffineValue{0.0, 0.5, 0}}};
+  c.constraint = contact::Discretization::Collocation;
+  ParameterSpec delta, radius, modulus;  // pushed at the end (a reference into the vector would dangle)
+  delta.name = "delta";
+  delta.kind = ParameterKind::DirichletScale;
+  delta.min = 0.15;
+  delta.max = 0.45;
+  delta.reference = 0.3;
+  const mesh::HertzGeometry g;
+  radius.name = "R2";
+  radius.kind = ParameterKind::BodyScaling;
+  radius.min = 0.9;
+  radius.max = 1.12;
+  radius.reference = g.R2;
+  radius.body = mesh::kMasterBody;
+  radius.center = Eigen::Vector2d(0.0, -0.5 * g.gap);
+  modulus.name = "E2";
+  modulus.kind = ParameterKind::YoungModulus;
+  modulus.body = mesh::kMasterBody;
+  modulus.min = 0.5 * kHertzE;
+  modulus.max = 2.0 * kHertzE;
+  modulus.reference = kHertzE;
+  c.parameters = {delta, radius, modulus};
+  ParameterBox box;
+  box.names = {delta.name, radius.name, modulus.name};
+  box.min = Eigen::Vector3d(delta.min, radius.min, modulus.min);
+  box.max = Eigen::Vector3d(delta.max, radius.max, modulus.max);
+  c.sets = {{"training", latin_hypercube(box, 1000, 1)},
+            {"grid", tensor_grid({uniform_axis(delta.min, delta.max, 7), uniform_axis(radius.min, radius.max, 5),
+                                  uniform_axis(modulus.min, modulus.max, 5)})},
+            {"verification", uniform_random(box, 200, 2)}};
   return c;
 }
 
@@ -104,7 +155,7 @@ CaseSpec ring_block() {
   c.dirichlet = {{"ring_ends", constant(0.0), constant(-kRingPush)},
                  {"block_bottom", constant(0.0), constant(0.0)}};
   c.constraint = contact::Discretization::LAC;
-  ParameterSpec& p = c.parameter;
+  ParameterSpec& p = c.parameters.emplace_back();
   p.name = "ring radius R1";
   p.kind = ParameterKind::BodyScaling;
   p.min = 0.95;
@@ -117,7 +168,7 @@ CaseSpec ring_block() {
   p.center = Eigen::Vector2d(0.0, g.gap);
   // The paper's verification set is 0.9575 + 0.02 i, i = 0..10, but i = 10 gives 1.1575,
   // outside P = [0.95, 1.15]; we keep the 10 points inside P (docs/cases.md).
-  p.sets = {{"training", arithmetic_set(0.95, 0.01, 21)}, {"verification", arithmetic_set(0.9575, 0.02, 10)}};
+  c.sets = sets_1d(arithmetic_set(0.95, 0.01, 21), arithmetic_set(0.9575, 0.02, 10));
   return c;
 }
 
@@ -169,14 +220,30 @@ void check_case_spec(const CaseSpec& c) {
            " above 1e12: the stiffness matrix is too ill-conditioned for double precision");
     }
   }
+  check_parameter_list(c.parameters, where);
+  const int p = c.num_parameters();
+  std::vector<bool> used(static_cast<std::size_t>(p), false);
   for (const DirichletSpec& d : c.dirichlet) {
     if (d.group.empty()) fail("a Dirichlet condition has no group");
     if (!d.ux && !d.uy) fail("Dirichlet condition on '" + d.group + "' prescribes no component");
     for (const auto& v : {d.ux, d.uy}) {
       if (v && !(std::isfinite(v->a) && std::isfinite(v->b))) fail("Dirichlet data on '" + d.group + "' is not finite");
-      if (!v || !std::isfinite(c.parameter.min) || !std::isfinite(c.parameter.max)) continue;  // domain: below
-      // a + b mu is affine: its largest magnitude over the domain is at an end.
-      const double largest = std::max(std::abs(v->a + v->b * c.parameter.min), std::abs(v->a + v->b * c.parameter.max));
+      if (!v) continue;
+      double largest = std::abs(v->a);
+      if (v->b != 0.0) {
+        if (v->parameter < 0 || v->parameter >= p) {
+          fail("Dirichlet data on '" + d.group + "' depends on parameter " + std::to_string(v->parameter) +
+               ", but the case has " + std::to_string(p));
+        }
+        const ParameterSpec& k = c.parameters[static_cast<std::size_t>(v->parameter)];
+        if (k.kind != ParameterKind::DirichletScale) {
+          fail("Dirichlet data on '" + d.group + "' depends on parameter '" + k.name + "' of kind " +
+               to_string(k.kind) + " (a Dirichlet value a + b mu needs a dirichlet-scale parameter)");
+        }
+        used[static_cast<std::size_t>(v->parameter)] = true;
+        // a + b mu is affine: its largest magnitude over the domain is at an end.
+        largest = std::max(std::abs(v->a + v->b * k.min), std::abs(v->a + v->b * k.max));
+      }
       if (!(largest <= kMaxDataMagnitude)) {
         fail("Dirichlet data on '" + d.group + "' reaches magnitude " + shortest(largest) +
              " on the parameter domain, above 1e50 (energies and distances would overflow double precision: "
@@ -184,22 +251,99 @@ void check_case_spec(const CaseSpec& c) {
       }
     }
   }
-  check_parameter_spec(c.parameter, where);
-  if (c.parameter.kind == ParameterKind::DirichletScale && !has_affine_dirichlet(c)) {
-    fail("parameter kind 'dirichlet-scale' but no Dirichlet value depends on mu (give one as {a, b}: a + b mu)");
+  for (const TractionSpec& t : c.tractions) {
+    if (t.group.empty()) fail("a traction has no group");
+    const std::string on = "traction on '" + t.group + "'";
+    const double size = t.is_pressure ? std::abs(t.pressure) : t.vector.cwiseAbs().maxCoeff();
+    if (!std::isfinite(size)) fail(on + ": the load is not finite");
+    if (!(size <= kMaxDataMagnitude)) fail(on + ": load above 1e50 (change the units)");
+    if (t.body < -1 || t.body > 1) fail(on + ": body must be slave or master");
+    if (t.parameter >= p || t.parameter < -1) fail(on + ": parameter index out of range");
+    if (t.parameter >= 0) {
+      const ParameterSpec& k = c.parameters[static_cast<std::size_t>(t.parameter)];
+      if (k.kind != ParameterKind::Traction) {
+        fail(on + " is scaled by parameter '" + k.name + "' of kind " + to_string(k.kind) +
+             " (a traction load needs a traction parameter)");
+      }
+      used[static_cast<std::size_t>(t.parameter)] = true;
+    }
+    if (t.body == -1) {
+      for (const ParameterSpec& k : c.parameters) {
+        if (k.kind == ParameterKind::BodyScaling) {
+          fail(on + ": give its body (slave or master): the case has a body-scaling parameter, and the load of a "
+                    "scaled body's boundary scales with it");
+        }
+      }
+    }
+  }
+  for (int k = 0; k < p; ++k) {
+    const ParameterSpec& q = c.parameters[static_cast<std::size_t>(k)];
+    if (q.kind == ParameterKind::DirichletScale && !used[static_cast<std::size_t>(k)]) {
+      fail("parameter '" + q.name + "' of kind 'dirichlet-scale' but no Dirichlet value depends on it (give one as "
+           "{a, b}: a + b mu)");
+    }
+    if (q.kind == ParameterKind::Traction && !used[static_cast<std::size_t>(k)]) {
+      fail("parameter '" + q.name + "' of kind 'traction' but no [[traction]] names it");
+    }
+    if (q.kind == ParameterKind::BodyForce && c.bodies[static_cast<std::size_t>(q.body)].load.isZero(0.0)) {
+      fail("parameter '" + q.name + "' of kind 'body-force' on a body without load (give the body a load vector)");
+    }
+  }
+  std::set<std::string> set_names;
+  for (const ParameterSet& s : c.sets) {
+    if (s.name.empty()) fail("a parameter set has no name");
+    if (!set_names.insert(s.name).second) fail("parameter set '" + s.name + "' is defined twice");
+    check_points(c.parameters, s.points, "parameter set '" + s.name + "' (" + where + ")");
   }
 }
 
-bool has_affine_dirichlet(const CaseSpec& spec) {
+bool has_affine_dirichlet(const CaseSpec& spec) { return !dirichlet_parameters(spec).empty(); }
+
+std::vector<int> dirichlet_parameters(const CaseSpec& spec) {
+  std::set<int> k;
   for (const DirichletSpec& d : spec.dirichlet) {
-    if ((d.ux && d.ux->b != 0.0) || (d.uy && d.uy->b != 0.0)) return true;
+    for (const auto& v : {d.ux, d.uy}) {
+      if (v && v->b != 0.0) k.insert(v->parameter);
+    }
+  }
+  return {k.begin(), k.end()};
+}
+
+bool CaseSpec::has_set(const std::string& set_name) const {
+  for (const ParameterSet& s : sets) {
+    if (s.name == set_name) return true;
   }
   return false;
 }
 
+const std::vector<Mu>& CaseSpec::set(const std::string& set_name) const {
+  for (const ParameterSet& s : sets) {
+    if (s.name == set_name) return s.points;
+  }
+  std::string list;
+  for (const ParameterSet& s : sets) list += " " + s.name;
+  throw Error(context() + " has no parameter set '" + set_name + "' (sets:" + list + ")");
+}
+
+std::string CaseSpec::context() const {
+  return "case '" + name + "'" + (origin.empty() ? std::string() : " from " + origin);
+}
+
+void CaseSpec::check_mu(const Mu& mu) const { cases::check_mu(parameters, mu, context()); }
+
+int CaseSpec::parameter_of_body(ParameterKind kind, int body) const {
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    if (parameters[k].kind == kind && parameters[k].body == body) return static_cast<int>(k);
+  }
+  return -1;
+}
+
 CaseSpec builtin_case_spec(const std::string& name) {
   find_case(name);  // throws naming the unknown case
-  CaseSpec c = name == "hertz-a" ? hertz_a() : name == "hertz-b" ? hertz_b() : ring_block();
+  CaseSpec c = name == "hertz-a"    ? hertz_a()
+               : name == "hertz-b"  ? hertz_b()
+               : name == "hertz-3p" ? hertz_3p()
+                                    : ring_block();
   c.origin = kBuiltin;
   return c;
 }

@@ -36,11 +36,12 @@ struct BodySpec {
   Eigen::Vector2d load = Eigen::Vector2d::Zero();
 };
 
-// A Dirichlet value affine in the parameter: a + b mu.
+// A Dirichlet value affine in one dirichlet-scale parameter: a + b mu_parameter.
 struct AffineValue {
   double a = 0.0;
   double b = 0.0;
-  double at(double mu) const { return a + b * mu; }
+  int parameter = 0;  // index in CaseSpec::parameters (used when b != 0)
+  double at(const Mu& mu) const { return b == 0.0 ? a : a + b * mu(parameter); }
 };
 
 // Prescribed displacement on a boundary group of the mesh; an empty component is free.
@@ -50,21 +51,50 @@ struct DirichletSpec {
   std::optional<AffineValue> uy;
 };
 
+// A surface load (Neumann) on a boundary group, per unit length of Omega(mu): a fixed vector
+// t, or a normal pressure p (t = -p n, n the outward normal: p > 0 pushes into the body),
+// optionally times a traction parameter mu_k.
+struct TractionSpec {
+  std::string group;
+  bool is_pressure = false;
+  Eigen::Vector2d vector = Eigen::Vector2d::Zero();  // !is_pressure
+  double pressure = 0.0;                              // is_pressure
+  int parameter = -1;  // index of a traction parameter scaling it, -1: fixed
+  // The body whose boundary holds the group (0 slave, 1 master); -1: found from the mesh.
+  // Needed (and checked against the mesh) when that body has a body-scaling parameter.
+  int body = -1;
+};
+
 struct CaseSpec {
   std::string name;
   std::string description;  // one line
   MeshSpec mesh;
   std::array<BodySpec, 2> bodies;  // 0: slave Omega_1, 1: master Omega_2
   std::vector<DirichletSpec> dirichlet;
+  std::vector<TractionSpec> tractions;
   contact::Discretization constraint = contact::Discretization::Collocation;
-  ParameterSpec parameter;
+  std::vector<ParameterSpec> parameters;  // mu = (mu_1, ..., mu_p), p >= 1
+  std::vector<ParameterSet> sets;         // named point sets: "training", "verification", ...
   std::string origin;  // "built-in" or the TOML file it was read from (for messages)
+
+  int num_parameters() const { return static_cast<int>(parameters.size()); }
+  bool has_set(const std::string& set_name) const;
+  // Throws contactrb::Error naming the set and listing the sets present.
+  const std::vector<Mu>& set(const std::string& set_name) const;
+  // "case 'name'" or "case 'name' from origin" (messages).
+  std::string context() const;
+  // Throws contactrb::Error for mu of the wrong size or outside the domain, naming the case.
+  void check_mu(const Mu& mu) const;
+  // The index of the body-scaling parameter of `body`, -1 if none (same for the other kinds).
+  int parameter_of_body(ParameterKind kind, int body) const;
 };
 
 // Throws contactrb::Error naming the first inconsistency and `spec.origin`: no or two
 // mesh sources, unknown generator, a material out of range, a non-finite value, an empty
-// Dirichlet group name, a Dirichlet condition with no component, a DirichletScale
-// parameter that no Dirichlet value depends on, an inconsistent parameter.
+// Dirichlet group name, a Dirichlet condition with no component, a Dirichlet value that
+// names a parameter that is not dirichlet-scale, a DirichletScale parameter that no
+// Dirichlet value depends on, a traction parameter that no traction names, a body-force
+// parameter of a body without load, an inconsistent parameter list or set.
 // Does not read the mesh (group names are checked by reference_mesh / make_problem).
 void check_case_spec(const CaseSpec& spec);
 
@@ -74,5 +104,7 @@ CaseSpec builtin_case_spec(const std::string& name);
 
 // True when some Dirichlet value depends on mu (b != 0).
 bool has_affine_dirichlet(const CaseSpec& spec);
+// The dirichlet-scale parameters some Dirichlet value depends on, increasing (lift terms 2..).
+std::vector<int> dirichlet_parameters(const CaseSpec& spec);
 
 }  // namespace contactrb::cases

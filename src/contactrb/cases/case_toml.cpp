@@ -11,6 +11,8 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/input_file.hpp"
+#include "contactrb/cases/parameter_set_toml.hpp"
+#include "contactrb/cases/parameter_sets.hpp"
 
 namespace contactrb::cases {
 
@@ -137,15 +139,43 @@ class Reader {
   }
 
   // A Dirichlet value: a number (constant) or an inline table {a, b} (a + b mu).
-  AffineValue affine(const toml::node& n, const std::string& key) const {
-    if (n.is_number()) return {number(n, key), 0.0};
+  // The parameter a value names ({a, b, parameter = "name"}); without the key, the case's only
+  // dirichlet-scale parameter.
+  AffineValue affine(const toml::node& n, const std::string& key, const std::vector<ParameterSpec>& params) const {
+    if (n.is_number()) return {number(n, key), 0.0, 0};
     const auto* t = n.as_table();
     if (t == nullptr) wrong_type(n, key, "a number or a table {a = ..., b = ...} (a + b mu)");
-    check_keys(*t, key, {"a", "b"});
+    check_keys(*t, key, {"a", "b", "parameter"});
     AffineValue v;
     if (const toml::node* a = t->get("a")) v.a = number(*a, key + ".a");
     v.b = number(required(*t, key, "b"), key + ".b");
+    if (const toml::node* pn = t->get("parameter")) {
+      const std::string name = string(*pn, key + ".parameter");
+      v.parameter = parameter_index(params, name);
+      if (v.parameter < 0) fail(pn, "key '" + key + ".parameter' names an unknown parameter '" + name + "'" + names(params));
+      if (params[static_cast<std::size_t>(v.parameter)].kind != ParameterKind::DirichletScale) {
+        fail(pn, "key '" + key + ".parameter' names parameter '" + name + "' of kind " +
+                     to_string(params[static_cast<std::size_t>(v.parameter)].kind) +
+                     " (a Dirichlet value a + b mu needs a dirichlet-scale parameter)");
+      }
+      return v;
+    }
+    int found = -1;
+    for (std::size_t k = 0; k < params.size(); ++k) {
+      if (params[k].kind != ParameterKind::DirichletScale) continue;
+      if (found >= 0) fail(t, "key '" + key + "' depends on mu but the case has several dirichlet-scale parameters: "
+                                  "name one with 'parameter = \"...\"'");
+      found = static_cast<int>(k);
+    }
+    if (found < 0) fail(t, "key '" + key + "' is a + b mu but the case has no dirichlet-scale parameter");
+    v.parameter = found;
     return v;
+  }
+
+  static std::string names(const std::vector<ParameterSpec>& params) {
+    std::string s;
+    for (const ParameterSpec& p : params) s += (s.empty() ? " (parameters: " : ", ") + p.name;
+    return s.empty() ? s : s + ")";
   }
 
   // A parameter set: an array of numbers or {start, step, count}.
@@ -221,7 +251,8 @@ class Reader {
   CaseSpec read(const toml::table& root) const {
     CaseSpec c;
     c.origin = origin_;
-    check_keys(root, "", {"name", "description", "constraint", "mesh", "slave", "master", "dirichlet", "parameter"});
+    check_keys(root, "",
+               {"name", "description", "constraint", "mesh", "slave", "master", "dirichlet", "traction", "parameter", "sets"});
     c.name = string(required(root, "", "name"), "name");
     if (const toml::node* d = root.get("description")) c.description = string(*d, "description");
     if (const toml::node* d = root.get("constraint")) {
@@ -260,6 +291,7 @@ class Reader {
     read_body(root, "slave", 0, c);
     read_body(root, "master", 1, c);
 
+    read_parameters(root, c);
     if (const toml::node* d = root.get("dirichlet")) {
       const auto* arr = d->as_array();
       if (arr == nullptr || !arr->is_array_of_tables()) {
@@ -271,60 +303,167 @@ class Reader {
         check_keys(t, path, {"group", "ux", "uy"});
         DirichletSpec ds;
         ds.group = string(required(t, path, "group"), path + ".group");
-        if (const toml::node* v = t.get("ux")) ds.ux = affine(*v, path + ".ux");
-        if (const toml::node* v = t.get("uy")) ds.uy = affine(*v, path + ".uy");
+        if (const toml::node* v = t.get("ux")) ds.ux = affine(*v, path + ".ux", c.parameters);
+        if (const toml::node* v = t.get("uy")) ds.uy = affine(*v, path + ".uy", c.parameters);
         if (!ds.ux && !ds.uy) fail(&t, "[[dirichlet]] on group '" + ds.group + "' needs 'ux' or 'uy' (" + path + ")");
         c.dirichlet.push_back(std::move(ds));
       }
     }
 
-    const toml::node& par_node = required(root, "", "parameter");
-    const toml::table& par = table(par_node, "parameter");
-    check_keys(par, "parameter",
-               {"name", "kind", "domain", "reference", "body", "center", "training", "verification"});
-    ParameterSpec& p = c.parameter;
-    p.name = string(required(par, "parameter", "name"), "parameter.name");
-    const toml::node& kind = required(par, "parameter", "kind");
-    const std::string kind_name = string(kind, "parameter.kind");
-    try {
-      p.kind = parameter_kind_from_string(kind_name);
-    } catch (const Error&) {
-      fail(&kind, "key 'parameter.kind' must be dirichlet-scale or body-scaling, got '" + kind_name + "'");
-    }
-    const std::vector<double> domain = numbers(required(par, "parameter", "domain"), "parameter.domain", 2);
-    p.min = domain[0];
-    p.max = domain[1];
-    const toml::node* body = par.get("body");
-    const toml::node* center = par.get("center");
-    const toml::node* reference = par.get("reference");
-    if (p.kind == ParameterKind::BodyScaling) {
-      const toml::node& b = required(par, "parameter", "body");
-      const std::string bs = string(b, "parameter.body");
-      if (bs != "slave" && bs != "master") fail(&b, "key 'parameter.body' must be slave or master, got '" + bs + "'");
-      p.body = bs == "slave" ? 0 : 1;
-      p.center = vector2(required(par, "parameter", "center"), "parameter.center");
-      p.reference = number(required(par, "parameter", "reference"), "parameter.reference");
-    } else {
-      for (const toml::node* n : {body, center}) {
-        if (n != nullptr) fail(n, "keys 'parameter.body' and 'parameter.center' need kind = \"body-scaling\"");
-      }
-      p.reference = reference != nullptr ? number(*reference, "parameter.reference") : p.min;
-    }
-    const toml::node& training = required(par, "parameter", "training");
-    p.sets.push_back({"training", parameter_set(training, "parameter.training")});
-    if (training.is_table()) snap_to_domain(p.sets.back().values, p.min, p.max);
-    if (const toml::node* v = par.get("verification")) {
-      p.sets.push_back({"verification", parameter_set(*v, "parameter.verification")});
-      if (v->is_table()) snap_to_domain(p.sets.back().values, p.min, p.max);
-    } else {
-      p.sets.push_back({"verification", midpoints(p.sets.front().values)});
-    }
+    read_sets_and_tractions(root, c);
     try {
       check_case_spec(c);
     } catch (const Error& e) {
       fail(nullptr, e.what());
     }
     return c;
+  }
+
+  // [parameter] (one parameter, with its training and verification values) or [[parameter]]
+  // (p parameters; their sets in [sets]).
+  void read_parameters(const toml::table& root, CaseSpec& c) const {
+    const toml::node& par_node = required(root, "", "parameter");
+    if (const auto* arr = par_node.as_array()) {
+      if (!arr->is_array_of_tables() || arr->empty()) {
+        wrong_type(par_node, "parameter", "a table ([parameter]) or an array of tables ([[parameter]])");
+      }
+      for (std::size_t i = 0; i < arr->size(); ++i) {
+        const toml::table& t = *arr->get(i)->as_table();
+        c.parameters.push_back(read_parameter(t, "parameter[" + std::to_string(i + 1) + "]", false));
+        for (std::size_t j = 0; j + 1 < c.parameters.size(); ++j) {
+          if (c.parameters[j].name == c.parameters.back().name) {
+            fail(&t, "parameter '" + c.parameters.back().name + "' is defined twice (parameter[" + std::to_string(j + 1) +
+                         "] and parameter[" + std::to_string(i + 1) + "])");
+          }
+        }
+      }
+      return;
+    }
+    const toml::table& par = table(par_node, "parameter");
+    c.parameters.push_back(read_parameter(par, "parameter", true));
+    const ParameterSpec& p = c.parameters.back();
+    const toml::node* training = par.get("training");
+    if (training == nullptr) {
+      if (root.get("sets") != nullptr) return;  // the sets are in [sets]
+      required(par, "parameter", "training");
+    }
+    std::vector<double> values = parameter_set(*training, "parameter.training");
+    if (training->is_table()) snap_to_domain(values, p.min, p.max);
+    c.sets.push_back({"training", points_1d(values)});
+    if (const toml::node* v = par.get("verification")) {
+      std::vector<double> w = parameter_set(*v, "parameter.verification");
+      if (v->is_table()) snap_to_domain(w, p.min, p.max);
+      c.sets.push_back({"verification", points_1d(w)});
+    } else {
+      c.sets.push_back({"verification", points_1d(midpoints(values))});
+    }
+  }
+
+  ParameterSpec read_parameter(const toml::table& par, const std::string& path, bool with_sets) const {
+    if (with_sets) {
+      check_keys(par, path,
+                 {"name", "kind", "domain", "reference", "units", "body", "center", "training", "verification"});
+    } else {
+      check_keys(par, path, {"name", "kind", "domain", "reference", "units", "body", "center"});
+    }
+    ParameterSpec p;
+    p.name = string(required(par, path, "name"), path + ".name");
+    if (const toml::node* u = par.get("units")) p.units = string(*u, path + ".units");
+    const toml::node& kind = required(par, path, "kind");
+    const std::string kind_name = string(kind, path + ".kind");
+    try {
+      p.kind = parameter_kind_from_string(kind_name);
+    } catch (const Error&) {
+      fail(&kind, "key '" + path + ".kind' must be dirichlet-scale, body-scaling, young-modulus, traction or "
+                  "body-force, got '" + kind_name + "'");
+    }
+    const toml::node& domain_node = required(par, path, "domain");
+    const std::vector<double> domain = numbers(domain_node, path + ".domain", 2);
+    p.min = domain[0];
+    p.max = domain[1];
+    if (!(p.min <= p.max)) {
+      fail(&domain_node, "key '" + path + ".domain' = [" + shortest(p.min) + ", " + shortest(p.max) +
+                             "] is not an interval (min > max)");
+    }
+    const toml::node* body = par.get("body");
+    const toml::node* center = par.get("center");
+    const toml::node* reference = par.get("reference");
+    if (has_body(p.kind)) {
+      const toml::node& b = required(par, path, "body");
+      const std::string bs = string(b, path + ".body");
+      if (bs != "slave" && bs != "master") fail(&b, "key '" + path + ".body' must be slave or master, got '" + bs + "'");
+      p.body = bs == "slave" ? 0 : 1;
+    } else if (body != nullptr) {
+      fail(body, "key '" + path + ".body' needs kind = \"body-scaling\", \"young-modulus\" or \"body-force\"");
+    }
+    if (p.kind == ParameterKind::BodyScaling) {
+      p.center = vector2(required(par, path, "center"), path + ".center");
+      p.reference = number(required(par, path, "reference"), path + ".reference");
+    } else {
+      if (center != nullptr) fail(center, "key '" + path + ".center' needs kind = \"body-scaling\"");
+      p.reference = reference != nullptr ? number(*reference, path + ".reference") : p.min;
+    }
+    return p;
+  }
+
+  // [[traction]] entries and the [sets] table (after the parameters).
+  void read_sets_and_tractions(const toml::table& root, CaseSpec& c) const {
+    if (const toml::node* d = root.get("traction")) {
+      const auto* arr = d->as_array();
+      if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*d, "traction", "an array of tables ([[traction]])");
+      for (std::size_t i = 0; i < arr->size(); ++i) {
+        const toml::table& t = *arr->get(i)->as_table();
+        const std::string path = "traction[" + std::to_string(i + 1) + "]";
+        check_keys(t, path, {"group", "pressure", "vector", "parameter", "body"});
+        TractionSpec tr;
+        tr.group = string(required(t, path, "group"), path + ".group");
+        if (tr.group.empty()) fail(&t, "key '" + path + ".group' is empty");
+        const toml::node* pressure = t.get("pressure");
+        const toml::node* vector = t.get("vector");
+        if ((pressure == nullptr) == (vector == nullptr)) {
+          fail(&t, "[[traction]] on group '" + tr.group + "' needs exactly one of 'pressure' and 'vector' (" + path + ")");
+        }
+        tr.is_pressure = pressure != nullptr;
+        if (pressure != nullptr) tr.pressure = number(*pressure, path + ".pressure");
+        if (vector != nullptr) tr.vector = vector2(*vector, path + ".vector");
+        if (const toml::node* b = t.get("body")) {
+          const std::string bs = string(*b, path + ".body");
+          if (bs != "slave" && bs != "master") fail(b, "key '" + path + ".body' must be slave or master, got '" + bs + "'");
+          tr.body = bs == "slave" ? 0 : 1;
+        }
+        if (const toml::node* pn = t.get("parameter")) {
+          const std::string name = string(*pn, path + ".parameter");
+          tr.parameter = parameter_index(c.parameters, name);
+          if (tr.parameter < 0) fail(pn, "key '" + path + ".parameter' names an unknown parameter '" + name + "'" + names(c.parameters));
+          if (c.parameters[static_cast<std::size_t>(tr.parameter)].kind != ParameterKind::Traction) {
+            fail(pn, "key '" + path + ".parameter' names parameter '" + name + "' of kind " +
+                         to_string(c.parameters[static_cast<std::size_t>(tr.parameter)].kind) +
+                         " (a traction load is scaled by a parameter of kind traction)");
+          }
+        }
+        c.tractions.push_back(std::move(tr));
+      }
+    }
+    const toml::node* sets_node = root.get("sets");
+    if (sets_node == nullptr) {
+      if (c.sets.empty()) fail(nullptr, "missing table [sets] with the parameter sets (at least 'training')");
+      return;
+    }
+    if (!c.sets.empty()) fail(sets_node, "[sets] and the key 'parameter.training' both give sets: keep one");
+    const toml::table& sets = table(*sets_node, "sets");
+    ParameterBox box;
+    box.min.resize(c.num_parameters());
+    box.max.resize(c.num_parameters());
+    for (int k = 0; k < c.num_parameters(); ++k) {
+      box.names.push_back(c.parameters[static_cast<std::size_t>(k)].name);
+      box.min(k) = c.parameters[static_cast<std::size_t>(k)].min;
+      box.max(k) = c.parameters[static_cast<std::size_t>(k)].max;
+    }
+    for (auto&& [k, v] : sets) {
+      const std::string name(k.str());
+      c.sets.push_back({name, parameter_set_from_toml(v, box, base_dir_, "sets." + name, origin_)});
+    }
+    if (!c.has_set("training")) fail(sets_node, "[sets] has no 'training' set");
   }
 
  private:
@@ -360,20 +499,15 @@ std::string quoted(const std::string& s) {
   return os.str();
 }
 
-std::string list_text(const std::vector<double>& v) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number_text(v[i]);
-  return s + "]";
-}
-
-std::string affine_text(const AffineValue& v) {
+std::string affine_text(const AffineValue& v, const std::vector<ParameterSpec>& params) {
   if (v.b == 0.0) return number_text(v.a);
-  return "{ a = " + number_text(v.a) + ", b = " + number_text(v.b) + " }";
+  return "{ a = " + number_text(v.a) + ", b = " + number_text(v.b) +
+         ", parameter = " + quoted(params[static_cast<std::size_t>(v.parameter)].name) + " }";
 }
 
 bool same_value(const std::optional<AffineValue>& a, const std::optional<AffineValue>& b) {
   if (a.has_value() != b.has_value()) return false;
-  return !a || (a->a == b->a && a->b == b->b);
+  return !a || (a->a == b->a && a->b == b->b && (a->b == 0.0 || a->parameter == b->parameter));
 }
 
 }  // namespace
@@ -425,23 +559,38 @@ std::string to_toml(const CaseSpec& c) {
   }
   for (const DirichletSpec& d : c.dirichlet) {
     os << "\n[[dirichlet]]\ngroup = " << quoted(d.group) << "\n";
-    if (d.ux) os << "ux = " << affine_text(*d.ux) << "\n";
-    if (d.uy) os << "uy = " << affine_text(*d.uy) << "\n";
+    if (d.ux) os << "ux = " << affine_text(*d.ux, c.parameters) << "\n";
+    if (d.uy) os << "uy = " << affine_text(*d.uy, c.parameters) << "\n";
   }
-  const ParameterSpec& p = c.parameter;
-  os << "\n[parameter]\nname = " << quoted(p.name) << "\nkind = " << quoted(to_string(p.kind)) << "\n"
-     << "domain = [" << number_text(p.min) << ", " << number_text(p.max) << "]\n"
-     << "reference = " << number_text(p.reference) << "\n";
-  if (p.kind == ParameterKind::BodyScaling) {
-    os << "body = " << quoted(p.body == 0 ? "slave" : "master") << "\n"
-       << "center = [" << number_text(p.center.x()) << ", " << number_text(p.center.y()) << "]\n";
+  for (const TractionSpec& t : c.tractions) {
+    os << "\n[[traction]]\ngroup = " << quoted(t.group) << "\n";
+    if (t.is_pressure) {
+      os << "pressure = " << number_text(t.pressure) << "\n";
+    } else {
+      os << "vector = [" << number_text(t.vector.x()) << ", " << number_text(t.vector.y()) << "]\n";
+    }
+    if (t.body >= 0) os << "body = " << quoted(t.body == 0 ? "slave" : "master") << "\n";
+    if (t.parameter >= 0) os << "parameter = " << quoted(c.parameters[static_cast<std::size_t>(t.parameter)].name) << "\n";
   }
-  for (const char* set : {"training", "verification"}) {
-    if (p.has_set(set)) os << set << " = " << list_text(p.set(set)) << "\n";
+  for (const ParameterSpec& p : c.parameters) {
+    os << "\n[[parameter]]\nname = " << quoted(p.name) << "\nkind = " << quoted(to_string(p.kind)) << "\n"
+       << "domain = [" << number_text(p.min) << ", " << number_text(p.max) << "]\n"
+       << "reference = " << number_text(p.reference) << "\n";
+    if (!p.units.empty()) os << "units = " << quoted(p.units) << "\n";
+    if (has_body(p.kind)) os << "body = " << quoted(p.body == 0 ? "slave" : "master") << "\n";
+    if (p.kind == ParameterKind::BodyScaling) {
+      os << "center = [" << number_text(p.center.x()) << ", " << number_text(p.center.y()) << "]\n";
+    }
   }
-  for (const ParameterSet& s : p.sets) {
-    require(s.name == "training" || s.name == "verification",
-            "to_toml: parameter set '" + s.name + "' cannot be written (only training and verification)");
+  os << "\n[sets]\n";
+  for (const ParameterSet& set : c.sets) {
+    os << quoted(set.name) << " = { points = [";
+    for (std::size_t i = 0; i < set.points.size(); ++i) {
+      os << (i ? ", " : "") << "[";
+      for (Eigen::Index k = 0; k < set.points[i].size(); ++k) os << (k ? ", " : "") << number_text(set.points[i](k));
+      os << "]";
+    }
+    os << "] }\n";
   }
   return os.str();
 }
@@ -464,15 +613,34 @@ bool same_case(const CaseSpec& a, const CaseSpec& b) {
     const DirichletSpec& y = b.dirichlet[i];
     if (x.group != y.group || !same_value(x.ux, y.ux) || !same_value(x.uy, y.uy)) return false;
   }
-  const ParameterSpec& p = a.parameter;
-  const ParameterSpec& q = b.parameter;
-  if (p.name != q.name || p.kind != q.kind || p.min != q.min || p.max != q.max || p.reference != q.reference) {
-    return false;
+  if (a.tractions.size() != b.tractions.size()) return false;
+  for (std::size_t i = 0; i < a.tractions.size(); ++i) {
+    const TractionSpec& x = a.tractions[i];
+    const TractionSpec& y = b.tractions[i];
+    if (x.group != y.group || x.is_pressure != y.is_pressure || x.vector != y.vector || x.pressure != y.pressure ||
+        x.parameter != y.parameter || x.body != y.body) {
+      return false;
+    }
   }
-  if (p.kind == ParameterKind::BodyScaling && (p.body != q.body || p.center != q.center)) return false;
-  if (p.sets.size() != q.sets.size()) return false;
-  for (std::size_t i = 0; i < p.sets.size(); ++i) {
-    if (p.sets[i].name != q.sets[i].name || p.sets[i].values != q.sets[i].values) return false;
+  if (a.parameters.size() != b.parameters.size()) return false;
+  for (std::size_t i = 0; i < a.parameters.size(); ++i) {
+    const ParameterSpec& p = a.parameters[i];
+    const ParameterSpec& q = b.parameters[i];
+    if (p.name != q.name || p.units != q.units || p.kind != q.kind || p.min != q.min || p.max != q.max ||
+        p.reference != q.reference) {
+      return false;
+    }
+    if (has_body(p.kind) && p.body != q.body) return false;
+    if (p.kind == ParameterKind::BodyScaling && p.center != q.center) return false;
+  }
+  if (a.sets.size() != b.sets.size()) return false;
+  for (std::size_t i = 0; i < a.sets.size(); ++i) {
+    if (a.sets[i].name != b.sets[i].name || a.sets[i].points.size() != b.sets[i].points.size()) return false;
+    for (std::size_t j = 0; j < a.sets[i].points.size(); ++j) {
+      const Mu& x = a.sets[i].points[j];
+      const Mu& y = b.sets[i].points[j];
+      if (x.size() != y.size() || x != y) return false;
+    }
   }
   return true;
 }

@@ -13,6 +13,7 @@ const std::vector<CaseInfo>& builtin_cases() {
       {"hertz-a", "two half-disks R1 = R2 = 1, gap 0.1, imposed displacement mu in [0.15, 0.45], collocation"},
       {"hertz-b", "two half-disks, lower radius R2 = mu in [0.9, 1.12], non-matching meshes, collocation"},
       {"ring-block", "half-ring of radius mu in [0.95, 1.15] pressed on a softer block, LAC"},
+      {"hertz-3p", "two half-disks: imposed displacement delta x lower radius R2 x lower modulus E2, collocation"},
   };
   return cases;
 }

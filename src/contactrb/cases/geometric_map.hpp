@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>  // determinant
 #include <array>
+#include <vector>
 
 #include "contactrb/cases/parameter.hpp"
 
@@ -18,9 +19,11 @@ struct AffineMap {
   bool is_identity() const { return M == Eigen::Matrix2d::Identity() && b.isZero(0.0); }
 };
 
-// h_0(mu), h_1(mu) (body 0 slave, body 1 master). BodyScaling: the scaled body gets
-// M = s I, b = (1 - s) c with s = mu / reference (x -> s (x - c) + c), the other body the
-// identity; DirichletScale: both identities. Exactly the identity at mu = reference.
-std::array<AffineMap, 2> geometric_maps(const ParameterSpec& parameter, double mu);
+// h_0(mu), h_1(mu) (body 0 slave, body 1 master). A body with a BodyScaling parameter k gets
+// M = s I, b = (1 - s) c with s = mu_k / reference (x -> s (x - c) + c); a body without, the
+// identity. Exactly the identity at mu_k = reference. `mu` has one value per parameter.
+std::array<AffineMap, 2> geometric_maps(const std::vector<ParameterSpec>& parameters, const Mu& mu);
+// True when some parameter moves a body (the gap and the contact map depend on mu: EIM).
+bool is_geometric(const std::vector<ParameterSpec>& parameters);
 
 }  // namespace contactrb::cases

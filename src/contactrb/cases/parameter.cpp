@@ -3,10 +3,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <string>
-#include <system_error>
+#include <map>
 #include <set>
 #include <sstream>
+#include <string>
+#include <system_error>
 
 #include "contactrb/common/error.hpp"
 
@@ -31,80 +32,147 @@ const char* to_string(ParameterKind kind) {
       return "dirichlet-scale";
     case ParameterKind::BodyScaling:
       return "body-scaling";
+    case ParameterKind::YoungModulus:
+      return "young-modulus";
+    case ParameterKind::Traction:
+      return "traction";
+    case ParameterKind::BodyForce:
+      return "body-force";
   }
   return "unknown";
 }
 
 ParameterKind parameter_kind_from_string(const std::string& name) {
-  if (name == "dirichlet-scale") return ParameterKind::DirichletScale;
-  if (name == "body-scaling") return ParameterKind::BodyScaling;
-  throw Error("unknown parameter kind '" + name + "' (expected dirichlet-scale or body-scaling)");
-}
-
-double ParameterSpec::scale(double mu) const {
-  return kind == ParameterKind::BodyScaling ? mu / reference : 1.0;
-}
-
-bool ParameterSpec::has_set(const std::string& set_name) const {
-  for (const ParameterSet& s : sets) {
-    if (s.name == set_name) return true;
+  for (ParameterKind k : {ParameterKind::DirichletScale, ParameterKind::BodyScaling, ParameterKind::YoungModulus,
+                          ParameterKind::Traction, ParameterKind::BodyForce}) {
+    if (name == to_string(k)) return k;
   }
-  return false;
+  throw Error("unknown parameter kind '" + name +
+              "' (expected dirichlet-scale, body-scaling, young-modulus, traction or body-force)");
 }
 
-const std::vector<double>& ParameterSpec::set(const std::string& set_name) const {
-  for (const ParameterSet& s : sets) {
-    if (s.name == set_name) return s.values;
-  }
-  std::ostringstream os;
-  os << "parameter '" << name << "' has no set '" << set_name << "' (sets:";
-  for (const ParameterSet& s : sets) os << " " << s.name;
-  os << ")";
-  throw Error(os.str());
+bool has_body(ParameterKind kind) {
+  return kind == ParameterKind::BodyScaling || kind == ParameterKind::YoungModulus || kind == ParameterKind::BodyForce;
 }
 
-void ParameterSpec::check(double mu, const std::string& context) const {
-  if (!std::isfinite(mu) || mu < min || mu > max) {
+double ParameterSpec::scale(double value) const {
+  return kind == ParameterKind::BodyScaling ? value / reference : 1.0;
+}
+
+void ParameterSpec::check(double value, const std::string& context) const {
+  if (!std::isfinite(value) || value < min || value > max) {
     std::ostringstream os;
-    os << "parameter mu = " << exact_text(mu) << " (" << name << ") is outside the domain [" << exact_text(min) << ", "
-       << exact_text(max) << "] of "
-       << context;
+    os << "parameter mu = " << exact_text(value) << " (" << name << ") is outside the domain [" << exact_text(min)
+       << ", " << exact_text(max) << "] of " << context;
     throw Error(os.str());
   }
 }
 
 void check_parameter_spec(const ParameterSpec& p, const std::string& context) {
   const std::string where = " (" + context + ")";
-  require(!p.name.empty(), "the parameter has no name" + where);
+  require(!p.name.empty(), "a parameter has no name" + where);
+  for (char ch : p.name) {
+    const auto u = static_cast<unsigned char>(ch);
+    require(ch != ',' && ch != '=' && ch != '"' && u >= 0x20 && u != 0x7f,
+            "parameter name '" + p.name + "' holds a ',', '=', '\"' or control character (names are used in "
+            "--mu name=value)" + where);
+  }
+  const std::string which = "parameter '" + p.name + "'";
   require(std::isfinite(p.min) && std::isfinite(p.max) && p.min <= p.max,
-          "parameter domain [" + std::to_string(p.min) + ", " + std::to_string(p.max) + "] is not an interval" + where);
+          which + ": domain [" + exact_text(p.min) + ", " + exact_text(p.max) + "] is not an interval" + where);
   require(std::isfinite(p.reference) && p.reference >= p.min && p.reference <= p.max,
-          "parameter reference value " + std::to_string(p.reference) + " is outside the domain" + where);
+          which + ": reference value " + exact_text(p.reference) + " is outside the domain" + where);
+  if (has_body(p.kind)) {
+    require(p.body == 0 || p.body == 1,
+            which + ": the body must be 0 (slave) or 1 (master), got " + std::to_string(p.body) + where);
+  }
   if (p.kind == ParameterKind::BodyScaling) {
-    require(p.min > 0.0, "body-scaling needs a positive domain (the scale mu / reference must be > 0)" + where);
-    require(p.body == 0 || p.body == 1, "scaled body must be 0 (slave) or 1 (master), got " +
-                                            std::to_string(p.body) + where);
-    require(p.center.allFinite(), "scaling center is not finite" + where);
+    require(p.min > 0.0, which + ": body-scaling needs a positive domain (the scale mu / reference must be > 0)" + where);
+    require(p.center.allFinite(), which + ": scaling center is not finite" + where);
   }
+  if (p.kind == ParameterKind::YoungModulus) {
+    require(p.min > 0.0, which + ": young-modulus needs a positive domain (E > 0)" + where);
+  }
+}
+
+void check_parameter_list(const std::vector<ParameterSpec>& parameters, const std::string& context) {
+  require(!parameters.empty(), "the case has no parameter (" + context + ")");
   std::set<std::string> names;
-  for (const ParameterSet& s : p.sets) {
-    require(!s.name.empty(), "a parameter set has no name" + where);
-    require(names.insert(s.name).second, "parameter set '" + s.name + "' is defined twice" + where);
-    for (double mu : s.values) p.check(mu, "parameter set '" + s.name + "'" + where);
-    check_increasing(s.values, "parameter set '" + s.name + "'" + where);
+  std::map<std::pair<ParameterKind, int>, std::string> per_body;
+  for (const ParameterSpec& p : parameters) {
+    check_parameter_spec(p, context);
+    require(names.insert(p.name).second, "parameter '" + p.name + "' is defined twice (" + context + ")");
+    if (has_body(p.kind)) {
+      const auto [it, fresh] = per_body.emplace(std::make_pair(p.kind, p.body), p.name);
+      require(fresh, "parameters '" + it->second + "' and '" + p.name + "' are both of kind " + to_string(p.kind) +
+                         " on the " + (p.body == 0 ? "slave" : "master") + " body (one per body) (" + context + ")");
+    }
   }
+}
+
+void check_mu(const std::vector<ParameterSpec>& parameters, const Mu& mu, const std::string& context) {
+  if (mu.size() != static_cast<Eigen::Index>(parameters.size())) {
+    std::string names;
+    for (const ParameterSpec& p : parameters) names += (names.empty() ? "" : ", ") + p.name;
+    throw Error("a parameter point of " + context + " needs " + std::to_string(parameters.size()) + " value" +
+                (parameters.size() == 1 ? "" : "s") + " (" + names + "), got " + std::to_string(mu.size()));
+  }
+  for (std::size_t k = 0; k < parameters.size(); ++k) parameters[k].check(mu(static_cast<Eigen::Index>(k)), context);
+}
+
+void check_points(const std::vector<ParameterSpec>& parameters, const std::vector<Mu>& points,
+                  const std::string& context) {
+  require(!points.empty(), context + " has no point");
+  for (const Mu& mu : points) check_mu(parameters, mu, context);
+  if (parameters.size() == 1) {
+    check_increasing(values_1d(points), context);
+    return;
+  }
+  std::map<std::vector<double>, std::size_t> seen;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::vector<double> key(points[i].data(), points[i].data() + points[i].size());
+    const auto [it, fresh] = seen.emplace(key, i);
+    require(fresh, context + ": points " + std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
+                       " are the same, " + mu_values_text(points[i]));
+  }
+}
+
+Mu reference_mu(const std::vector<ParameterSpec>& parameters) {
+  Mu mu(static_cast<Eigen::Index>(parameters.size()));
+  for (std::size_t k = 0; k < parameters.size(); ++k) mu(static_cast<Eigen::Index>(k)) = parameters[k].reference;
+  return mu;
+}
+
+int parameter_index(const std::vector<ParameterSpec>& parameters, const std::string& name) {
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    if (parameters[k].name == name) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+std::string mu_text(const std::vector<ParameterSpec>& parameters, const Mu& mu) {
+  std::string s;
+  for (Eigen::Index k = 0; k < mu.size(); ++k) {
+    if (k > 0) s += ", ";
+    if (k < static_cast<Eigen::Index>(parameters.size())) s += parameters[static_cast<std::size_t>(k)].name + " = ";
+    s += exact_text(mu(k));
+  }
+  return s;
+}
+
+std::string mu_values_text(const Mu& mu) {
+  if (mu.size() == 1) return exact_text(mu(0));
+  std::string s = "(";
+  for (Eigen::Index k = 0; k < mu.size(); ++k) s += (k > 0 ? ", " : "") + exact_text(mu(k));
+  return s + ")";
 }
 
 void check_increasing(const std::vector<double>& values, const std::string& context) {
   for (std::size_t i = 1; i < values.size(); ++i) {
     if (!(values[i] > values[i - 1])) {
-      const auto text = [](double x) {  // shortest round-trip digits
-        char buf[32];
-        return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
-      };
       throw Error("the values of " + context + " must be strictly increasing, but value " + std::to_string(i + 1) +
-                  " (" + text(values[i]) + ") is not above value " + std::to_string(i) + " (" + text(values[i - 1]) +
-                  ")");
+                  " (" + exact_text(values[i]) + ") is not above value " + std::to_string(i) + " (" +
+                  exact_text(values[i - 1]) + ")");
     }
   }
 }
@@ -121,6 +189,24 @@ std::vector<double> midpoints(const std::vector<double>& values) {
   std::vector<double> m;
   for (std::size_t i = 1; i < values.size(); ++i) m.push_back(0.5 * (values[i - 1] + values[i]));
   return m;
+}
+
+std::vector<Mu> points_1d(const std::vector<double>& values) {
+  std::vector<Mu> points;
+  points.reserve(values.size());
+  for (double v : values) points.push_back(Mu::Constant(1, v));
+  return points;
+}
+
+std::vector<double> values_1d(const std::vector<Mu>& points) {
+  std::vector<double> values;
+  values.reserve(points.size());
+  for (const Mu& mu : points) {
+    require(mu.size() == 1, "a one-parameter set was expected, got a point of " + std::to_string(mu.size()) +
+                                " values");
+    values.push_back(mu(0));
+  }
+  return values;
 }
 
 }  // namespace contactrb::cases

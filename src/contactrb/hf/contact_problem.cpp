@@ -18,6 +18,10 @@ void check_problem(const ContactProblem& p) {
   require(p.body_loads.empty() || static_cast<int>(p.body_loads.size()) == bodies,
           "body loads: one per body or none, got " + std::to_string(p.body_loads.size()));
   for (const Eigen::Vector2d& l : p.body_loads) require(l.allFinite(), "body load is not finite");
+  for (const fem::TractionLoad& t : p.tractions) {
+    require(p.mesh.has_boundary(t.group), "traction group '" + t.group + "' is not a boundary group of the mesh");
+    require(t.vector.allFinite() && std::isfinite(t.pressure), "traction load on '" + t.group + "' is not finite");
+  }
   for (const fem::DirichletCondition& c : p.dirichlet) {
     p.mesh.boundary(c.group);  // throws naming the group
     require((!c.ux || std::isfinite(*c.ux)) && (!c.uy || std::isfinite(*c.uy)),

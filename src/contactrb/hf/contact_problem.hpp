@@ -7,6 +7,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/fem/dirichlet.hpp"
 #include "contactrb/fem/elasticity.hpp"
+#include "contactrb/fem/traction.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
 namespace contactrb::hf {
@@ -15,6 +16,7 @@ struct ContactProblem {
   mesh::Mesh mesh;                                // Omega(mu) = h(mu)(reference mesh)
   std::vector<fem::Material> materials;           // one per body
   std::vector<Eigen::Vector2d> body_loads;        // one per body, or empty (no load)
+  std::vector<fem::TractionLoad> tractions;       // surface loads on boundary groups
   std::vector<fem::DirichletCondition> dirichlet;
   contact::Discretization discretization = contact::Discretization::Collocation;
 };

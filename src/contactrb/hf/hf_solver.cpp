@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/fem/traction.hpp"
 #include "contactrb/hf/contact_condensation.hpp"
 
 namespace contactrb::hf {
@@ -85,6 +86,7 @@ HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
   for (std::size_t body = 0; body < m.problem.body_loads.size(); ++body) {
     m.f += fem::body_load(mesh, static_cast<int>(body), m.problem.body_loads[body]);
   }
+  for (const fem::TractionLoad& t : m.problem.tractions) m.f += fem::traction_load(mesh, t);
   m.b = m.dofs.restrict(m.f - m.A * m.dofs.lift());
   m.global_to_free.assign(static_cast<std::size_t>(mesh.num_dofs()), -1);
   for (int i = 0; i < m.dofs.num_free(); ++i) {

@@ -195,18 +195,41 @@ void vecs(V& v, const std::string& name, std::vector<Eigen::VectorXd>& list) {
   list.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) vec(v, name + "_" + std::to_string(i), list[static_cast<std::size_t>(i)]);
 }
+// A theta list: `name` is J x 2 (coefficient, number of factors), `name`_factors is F x 3
+// (parameter index, scale, power), the factors of the monomials one after the other.
 template <typename V>
 void thetas(V& v, const std::string& name, std::vector<cases::ThetaMonomial>& t) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(t.size()), 3);
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(t.size()), 2);
+  std::size_t total = 0;
+  for (const cases::ThetaMonomial& x : t) total += x.factors.size();
+  Eigen::MatrixXd f(static_cast<Eigen::Index>(total), 3);
+  Eigen::Index row = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    m.row(static_cast<Eigen::Index>(i)) << t[i].coefficient, t[i].scale, static_cast<double>(t[i].power);
+    m.row(static_cast<Eigen::Index>(i)) << t[i].coefficient, static_cast<double>(t[i].factors.size());
+    for (const cases::ThetaFactor& x : t[i].factors) {
+      f.row(row++) << static_cast<double>(x.parameter), x.scale, static_cast<double>(x.power);
+    }
   }
   v.mat(name, m);
-  require(m.cols() == 3 || m.size() == 0, "field '" + name + "' is not a theta table");
+  v.mat(name + "_factors", f);
+  require(m.cols() == 2 || m.size() == 0, "field '" + name + "' is not a theta table");
+  require(f.cols() == 3 || f.size() == 0, "field '" + name + "_factors' is not a theta factor table");
   t.assign(static_cast<std::size_t>(m.rows()), {});
+  Eigen::Index next = 0;
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    t[static_cast<std::size_t>(i)] = {m(i, 0), m(i, 1), static_cast<int>(m(i, 2))};
+    const double count = m(i, 1);
+    require(count >= 0.0 && count <= 64.0 && count == std::floor(count) && next + static_cast<Eigen::Index>(count) <= f.rows(),
+            "field '" + name + "' row " + std::to_string(i) + " has an invalid factor count");
+    cases::ThetaMonomial& x = t[static_cast<std::size_t>(i)];
+    x.coefficient = m(i, 0);
+    for (int k = 0; k < static_cast<int>(count); ++k, ++next) {
+      const double par = f(next, 0), power = f(next, 2);
+      require(par >= 0.0 && par < 1000.0 && par == std::floor(par) && std::abs(power) <= 64.0 && power == std::floor(power),
+              "field '" + name + "_factors' row " + std::to_string(next) + " is invalid");
+      x.factors.push_back({static_cast<int>(par), f(next, 1), static_cast<int>(power)});
+    }
   }
+  require(next == f.rows() || f.size() == 0, "field '" + name + "_factors' has rows no monomial uses");
 }
 template <typename V>
 void points(V& v, const std::string& name, std::vector<Eigen::Vector2d>& p) {
@@ -234,17 +257,25 @@ void visit(V& v, rb::ReducedModel& m) {
   v.str("case_kind", m.case_kind);
   v.str("case_spec", m.case_spec);
   v.integer("level", m.level);
-  cases::ParameterSpec& p = m.parameter;
-  v.str("parameter_name", p.name);
-  int kind = static_cast<int>(p.kind);
-  v.integer("parameter_kind", kind);
-  p.kind = static_cast<cases::ParameterKind>(kind);
-  v.num("parameter_min", p.min);
-  v.num("parameter_max", p.max);
-  v.num("parameter_reference", p.reference);
-  v.integer("parameter_body", p.body);
-  v.num("parameter_center_x", p.center.x());
-  v.num("parameter_center_y", p.center.y());
+  int count = static_cast<int>(m.parameters.size());
+  v.integer("parameter_count", count);
+  require(count >= 1 && count <= 1000, "field 'parameter_count' is " + std::to_string(count));
+  m.parameters.resize(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    cases::ParameterSpec& p = m.parameters[static_cast<std::size_t>(k)];
+    const std::string pre = "parameter_" + std::to_string(k) + "_";
+    v.str(pre + "name", p.name);
+    v.str(pre + "units", p.units);
+    std::string kind = cases::to_string(p.kind);
+    v.str(pre + "kind", kind);
+    p.kind = cases::parameter_kind_from_string(kind);
+    v.num(pre + "min", p.min);
+    v.num(pre + "max", p.max);
+    v.num(pre + "reference", p.reference);
+    v.integer(pre + "body", p.body);
+    v.num(pre + "center_x", p.center.x());
+    v.num(pre + "center_y", p.center.y());
+  }
   thetas(v, "theta_a", m.thetas.a);
   thetas(v, "theta_f", m.thetas.f);
   thetas(v, "theta_lift", m.thetas.lift);
@@ -270,7 +301,7 @@ void visit(V& v, rb::ReducedModel& m) {
   v.integer("Mk_max", m.Mk_max);
   v.integer("Mg_max", m.Mg_max);
   vec(v, "singular_values", m.singular_values);
-  dvec(v, "training_mu", m.training_mu);
+  v.mat("training_mu", m.training_mu);
   v.mat("training_u_hat", m.training_u_hat);
   v.mat("training_lambda_hat", m.training_lambda_hat);
   mats(v, "A_hat", m.A_hat);

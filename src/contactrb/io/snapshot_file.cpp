@@ -46,6 +46,8 @@ bool exists(hid_t loc, const std::string& name) {
 
 // Field kinds of the checksum (FieldChecksum::add).
 constexpr char kString = 's';
+// More parameters than this is taken for a damaged count (a design study has 3 to 10).
+constexpr int kMaxParameters = 1000;
 constexpr char kDouble = 'd';
 constexpr char kInt = 'i';
 
@@ -159,13 +161,23 @@ void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
   {
     Handle g = w.create_group(root, "parameter");
     const Loc p{g.get(), "/parameter"};
-    w.attribute(p, "name", set.parameter_name);
-    w.attribute(p, "min", set.parameter_min);
-    w.attribute(p, "max", set.parameter_max);
     w.attribute(p, "set", set.set_name);
-    Eigen::VectorXd mu(static_cast<Eigen::Index>(set.snapshots.size()));
-    for (std::size_t i = 0; i < set.snapshots.size(); ++i) mu(static_cast<Eigen::Index>(i)) = set.snapshots[i].mu;
-    w.vector(p, "values", mu);
+    w.attribute(p, "count", static_cast<int>(set.parameters.size()));
+    for (std::size_t k = 0; k < set.parameters.size(); ++k) {
+      const SnapshotParameter& q = set.parameters[k];
+      const std::string name = snapshot_group_name(k);
+      Handle pg = w.create_group(p, name);
+      const Loc one{pg.get(), p.field(name)};
+      w.attribute(one, "name", q.name);
+      w.attribute(one, "kind", q.kind);
+      w.attribute(one, "units", q.units);
+      w.attribute(one, "min", q.min);
+      w.attribute(one, "max", q.max);
+    }
+    // P x p, one row per snapshot (the snapshot groups hold the same points).
+    Eigen::MatrixXd mu(static_cast<Eigen::Index>(set.snapshots.size()), static_cast<Eigen::Index>(set.parameters.size()));
+    for (std::size_t i = 0; i < set.snapshots.size(); ++i) mu.row(static_cast<Eigen::Index>(i)) = set.snapshots[i].mu.transpose();
+    w.matrix(p, "values", mu);
   }
   {
     Handle g = w.create_group(root, "settings");
@@ -198,7 +210,7 @@ void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
     const std::string name = snapshot_group_name(i);
     Handle g = w.create_group(snaps, name);
     const Loc one{g.get(), snaps.field(name)};
-    w.attribute(one, "mu", s.mu);
+    w.vector(one, "mu", s.mu);
     w.attribute(one, "status", s.status);
     w.attribute(one, "message", s.message);
     w.optional(one, "u0", s.u0);
@@ -370,15 +382,28 @@ SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency)
     set.level = r.integer(c, "level");
     set.constraint = r.string(c, "constraint");
   }
-  Eigen::VectorXd mu;
+  Eigen::MatrixXd mu;
   {
     Handle g = r.open_group(root, "parameter");
     const Loc p{g.get(), "/parameter"};
-    set.parameter_name = r.string(p, "name");
-    set.parameter_min = r.number(p, "min");
-    set.parameter_max = r.number(p, "max");
     set.set_name = r.string(p, "set");
-    mu = r.vector(p, "values");
+    const int count = r.integer(p, "count");
+    if (count < 1 || count > kMaxParameters) {
+      throw H5Failure{"/parameter/count is " + std::to_string(count) + " (expected 1 to " +
+                      std::to_string(kMaxParameters) + ")"};
+    }
+    for (int k = 0; k < count; ++k) {
+      const std::string name = snapshot_group_name(static_cast<std::size_t>(k));
+      Handle pg = r.open_group(p, name);
+      const Loc one{pg.get(), p.field(name)};
+      SnapshotParameter& q = set.parameters.emplace_back();
+      q.name = r.string(one, "name");
+      q.kind = r.string(one, "kind");
+      q.units = r.string(one, "units");
+      q.min = r.number(one, "min");
+      q.max = r.number(one, "max");
+    }
+    mu = r.matrix(p, "values");
   }
   {
     Handle g = r.open_group(root, "settings");
@@ -404,10 +429,11 @@ SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency)
   const Eigen::VectorXd time = r.vector(snaps, "time_s");
   const Eigen::VectorXd cpu_time = r.vector(snaps, "cpu_time_s");
   const auto n = static_cast<std::size_t>(count);
-  if (count < 0 || mu.size() != count || converged.size() != n || iterations.size() != n ||
+  if (count < 0 || mu.rows() != count || mu.cols() != static_cast<Eigen::Index>(set.parameters.size()) ||
+      converged.size() != n || iterations.size() != n ||
       time.size() != count || cpu_time.size() != count) {
     throw H5Failure{"the snapshot count " + std::to_string(count) + " disagrees with /parameter/values (" +
-                    std::to_string(mu.size()) + ") or the per-snapshot tables"};
+                    std::to_string(mu.rows()) + " x " + std::to_string(mu.cols()) + ") or the per-snapshot tables"};
   }
   set.snapshots.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -415,7 +441,7 @@ SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency)
     const std::string name = snapshot_group_name(i);
     Handle g = r.open_group(snaps, name);
     const Loc one{g.get(), snaps.field(name)};
-    s.mu = r.number(one, "mu");
+    s.mu = r.vector(one, "mu");
     s.status = r.string(one, "status");
     s.message = r.string(one, "message");
     if (converged[i] != 0 && converged[i] != 1) {
@@ -426,8 +452,9 @@ SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency)
     s.time_s = time(static_cast<Eigen::Index>(i));
     s.cpu_time_s = cpu_time(static_cast<Eigen::Index>(i));
     // /parameter/values and the group's mu are two copies: both must agree (bitwise).
-    const double listed = mu(static_cast<Eigen::Index>(i));
-    if (std::memcmp(&listed, &s.mu, sizeof listed) != 0) {
+    const Eigen::VectorXd listed = mu.row(static_cast<Eigen::Index>(i)).transpose();
+    if (listed.size() != s.mu.size() ||
+        std::memcmp(listed.data(), s.mu.data(), static_cast<std::size_t>(listed.size()) * sizeof(double)) != 0) {
       note("/parameter/values[" + std::to_string(i) + "] differs from the mu of " + one.path);
     }
     if (s.converged) {
@@ -550,9 +577,13 @@ void check_snapshot_set(const SnapshotSet& set) {
     invalid("/case/kind is '" + set.case_kind + "' (expected builtin or toml)");
   }
   if (set.level < 0) invalid("/case/level is " + std::to_string(set.level) + " (expected >= 0)");
-  if (!std::isfinite(set.parameter_min) || !std::isfinite(set.parameter_max) || set.parameter_min > set.parameter_max) {
-    invalid("the parameter domain [" + exact(set.parameter_min) + ", " + exact(set.parameter_max) +
-            "] (/parameter min, max) is not an interval");
+  if (set.parameters.empty()) invalid("/parameter holds no parameter");
+  for (std::size_t k = 0; k < set.parameters.size(); ++k) {
+    const SnapshotParameter& q = set.parameters[k];
+    if (!std::isfinite(q.min) || !std::isfinite(q.max) || q.min > q.max) {
+      invalid("the domain [" + exact(q.min) + ", " + exact(q.max) + "] of parameter '" + q.name + "' (/parameter/" +
+              snapshot_group_name(k) + " min, max) is not an interval");
+    }
   }
   if (!(std::isfinite(set.kacanov_alpha) && set.kacanov_alpha > 0.0 && set.kacanov_alpha <= 1.0) ||
       !(std::isfinite(set.kacanov_tolerance) && set.kacanov_tolerance > 0.0) || set.kacanov_max_iterations < 1) {
@@ -603,9 +634,17 @@ void check_snapshot_set(const SnapshotSet& set) {
   for (std::size_t i = 0; i < set.snapshots.size(); ++i) {
     const Snapshot& s = set.snapshots[i];
     const std::string where = "/snapshots/" + snapshot_group_name(i);
-    if (!std::isfinite(s.mu) || s.mu < set.parameter_min || s.mu > set.parameter_max) {
-      invalid(where + ": mu = " + exact(s.mu) + " is outside the stored domain [" + exact(set.parameter_min) + ", " +
-              exact(set.parameter_max) + "]");
+    if (s.mu.size() != static_cast<Eigen::Index>(set.parameters.size())) {
+      invalid(where + ": mu has " + std::to_string(s.mu.size()) + " values for " + std::to_string(set.parameters.size()) +
+              " parameters");
+    }
+    for (std::size_t k = 0; k < set.parameters.size(); ++k) {
+      const double v = s.mu(static_cast<Eigen::Index>(k));
+      const SnapshotParameter& q = set.parameters[k];
+      if (!std::isfinite(v) || v < q.min || v > q.max) {
+        invalid(where + ": mu = " + exact(v) + " (" + q.name + ") is outside the stored domain [" + exact(q.min) + ", " +
+                exact(q.max) + "]");
+      }
     }
     if (!std::isfinite(s.time_s) || s.time_s < 0.0 || !std::isfinite(s.cpu_time_s) || s.cpu_time_s < 0.0) {
       invalid(where + ": its time_s or cpu_time_s is negative or not finite");

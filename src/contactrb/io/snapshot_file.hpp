@@ -14,14 +14,24 @@
 namespace contactrb::io {
 
 inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
-// Version 2: a checksum over every field and every index and value checked on reading
-// (version 1 files are refused: generate them again).
-inline constexpr int kSnapshotFormatVersion = 2;
+// Version 2: a checksum over every field and every index and value checked on reading.
+// Version 3: p parameters (a point mu in R^p per snapshot; each parameter's name, kind, units
+// and domain). Older versions are refused: generate them again.
+inline constexpr int kSnapshotFormatVersion = 3;
+
+// What a snapshot file records of each parameter (cases::ParameterSpec, without the case).
+struct SnapshotParameter {
+  std::string name;
+  std::string kind;   // cases::to_string(ParameterKind)
+  std::string units;
+  double min = 0.0;
+  double max = 0.0;
+};
 
 // The outcome of one HF solve at one parameter value. A failed solve keeps whatever the
 // solver returned (a non-converged solve: its last iterate; an exception: no arrays).
 struct Snapshot {
-  double mu = 0.0;
+  Eigen::VectorXd mu;  // one value per parameter
   bool converged = false;
   std::string status;   // solve::to_string(KacanovStatus) ("converged", "max_iterations",
                         // "step_failed") or "exception" (building or solving threw)
@@ -51,9 +61,7 @@ struct SnapshotSet {
   int level = 0;           // mesh refinement level (0: the paper's mesh)
   std::string constraint;  // "collocation" | "lac" | "lac-simpson"
 
-  std::string parameter_name;
-  double parameter_min = 0.0;
-  double parameter_max = 0.0;
+  std::vector<SnapshotParameter> parameters;  // p >= 1, in the order of each snapshot's mu
   std::string set_name;  // "training", "verification" or "custom"
 
   // Kacanov settings the solves used.
@@ -91,8 +99,8 @@ SnapshotSet read_snapshot_file(const std::string& path);
 // inconsistent: an index of free_dofs, slave or master outside its range, negative or
 // repeated; contact_dofs other than both components of the contact nodes, ascending; an
 // array size against num_dofs, free_dofs, contact_dofs or the slave chain; a non-finite value
-// in an array of a converged snapshot; a mu outside [parameter_min, parameter_max] or a
-// domain that is not an interval; a status that disagrees with `converged`; invalid Kacanov
+// in an array of a converged snapshot; no parameter, a mu of the wrong size or outside the
+// stored domains, a domain that is not an interval; a status that disagrees with `converged`; invalid Kacanov
 // settings. Run by the writer, the reader and rb::build_reduced_model.
 void check_snapshot_set(const SnapshotSet& set);
 

@@ -35,7 +35,7 @@ inline constexpr double kEstimateRankTolerance = 1e-13;
 struct EstimateInputs {
   const cases::AffineTerms* terms = nullptr;  // global A_j, f_j, lift_k of the reference mesh
   const cases::AffineThetas* thetas = nullptr;
-  double reference_mu = 0.0;                  // X = A_00(reference_mu)
+  Eigen::VectorXd reference_mu;               // X = A_00(reference_mu)
   const std::vector<int>* free_dofs = nullptr;
   const std::vector<int>* contact_dofs = nullptr;  // global DOF of each contact-surface DOF
   const Eigen::MatrixXd* Theta = nullptr;          // n_free x N_max
@@ -75,7 +75,7 @@ class ErrorEstimator {
   // u_hat (N), lambda_hat (R), phi = (B^kappa)^-1 kappa_hat (Mk) and phi_gamma = (B^gamma)^-1
   // gamma_hat (Mg) of the linearization that produced (u_hat, lambda_hat), weight_kept = |I_r|(mu)
   // on the kept rows.
-  ErrorEstimate evaluate(double mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
+  ErrorEstimate evaluate(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
                          const Eigen::VectorXd& phi, const Eigen::VectorXd& phi_gamma,
                          const Eigen::VectorXd& weight_kept);
 

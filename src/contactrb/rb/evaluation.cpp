@@ -40,6 +40,13 @@ double median(std::vector<double> v) {
 // Whether `mu` is one of the requested multiplier values (they come from text: compare with a
 // relative tolerance, not bitwise).
 bool same_value(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)}); }
+bool same_value(const cases::Mu& a, const cases::Mu& b) {
+  if (a.size() != b.size()) return false;
+  for (Eigen::Index k = 0; k < a.size(); ++k) {
+    if (!same_value(a(k), b(k))) return false;
+  }
+  return true;
+}
 
 struct OnlineRun {
   OnlineSolution solution;
@@ -66,7 +73,7 @@ class Progress {
          << seconds_since(start_) << " s" << std::defaultfloat << std::setprecision(6) << (done_ == total_ ? "\n" : "")
          << std::flush;
     } else {
-      os << "evaluate " << done_ << "/" << total_ << ": mu = " << row.mu << " HF "
+      os << "evaluate " << done_ << "/" << total_ << ": mu = " << cases::mu_values_text(row.mu) << " HF "
          << (row.hf_converged ? "converged in " + std::to_string(row.hf_iterations) + " iterations" : "FAILED (" + row.hf_status + ")")
          << ", " << std::fixed << std::setprecision(3) << row.hf_time_s << " s" << std::defaultfloat
          << std::setprecision(6) << ", e_displ " << row.e_displ << "\n"
@@ -85,7 +92,7 @@ class Progress {
 
 // The HF solve at row.mu and the three errors of the reconstructed online solution.
 void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, const cases::CaseSpec& spec,
-                  const mesh::Mesh& reference, const OnlineRun& online, const std::vector<double>& multiplier_mus,
+                  const mesh::Mesh& reference, const OnlineRun& online, const std::vector<cases::Mu>& multiplier_mus,
                   EvaluationRow& row) {
   const hf::HFSettings settings{
       solve::KacanovSettings{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations}, {}};
@@ -100,7 +107,7 @@ void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, c
   row.hf_iterations = hf_solution.iterations;
 
   const mesh::Mesh& m = solver.problem().mesh;
-  const std::string at = "evaluation at mu = " + std::to_string(row.mu) + ": ";
+  const std::string at = "evaluation at mu = " + cases::mu_values_text(row.mu) + ": ";
   require(m.num_dofs() == rec.num_dofs && solver.dofs().free_dofs() == rec.free_dofs,
           at + "the HF discretization of the case (" + std::to_string(m.num_dofs()) + " DOFs, " +
               std::to_string(solver.dofs().num_free()) + " free) does not match the model's reconstruction data (" +
@@ -177,7 +184,7 @@ void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, c
     row.e_press_cone = norm_hf > 0.0 ? best / norm_hf : best;
   }
 
-  for (double mu : multiplier_mus) {
+  for (const cases::Mu& mu : multiplier_mus) {
     if (!same_value(mu, row.mu)) continue;
     MultiplierProfile& p = row.multipliers;
     for (Eigen::Index r = 0; r < lambda.size(); ++r) {
@@ -239,23 +246,25 @@ EvaluationSummary summarize(const std::vector<EvaluationRow>& rows) {
 }  // namespace
 
 Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction& reconstruction,
-                          const cases::CaseSpec& spec, const std::vector<double>& mus,
+                          const cases::CaseSpec& spec, const std::vector<cases::Mu>& mus,
                           const EvaluationOptions& options) {
   require(!mus.empty(), "evaluation: no parameter value");
   require(options.online_repeats >= 1,
           "evaluation: online_repeats must be >= 1 (got " + std::to_string(options.online_repeats) + ")");
   require(options.jobs >= 1, "evaluation: jobs must be >= 1 (got " + std::to_string(options.jobs) + ")");
-  for (double mu : mus) spec.parameter.check(mu, "evaluation of case '" + spec.name + "'");
-  for (double mu : options.multiplier_mus) {
-    const bool found = std::any_of(mus.begin(), mus.end(), [mu](double v) { return same_value(mu, v); });
+  for (const cases::Mu& mu : mus) cases::check_mu(spec.parameters, mu, "evaluation of " + spec.context());
+  for (const cases::Mu& mu : options.multiplier_mus) {
+    const bool found = std::any_of(mus.begin(), mus.end(), [&mu](const cases::Mu& v) { return same_value(mu, v); });
     std::ostringstream os;
-    os << "evaluation: the multipliers were requested at mu = " << mu << ", which is not an evaluated value";
+    os << "evaluation: the multipliers were requested at mu = " << cases::mu_values_text(mu)
+       << ", which is not an evaluated value";
     require(found, os.str());
   }
   check_model(model);
   check_reconstruction(model, reconstruction);
 
   Evaluation out;
+  for (const cases::ParameterSpec& p : model.parameters) out.parameter_names.push_back(p.name);
   OnlineSolver online_solver(model, options.sizes);
   out.N = online_solver.N();
   out.R = online_solver.R();
@@ -322,16 +331,28 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
 }
 
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path) {
-  io::CsvWriter csv({"mu", "hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
+  std::vector<std::string> columns = evaluation.parameter_names.size() > 1 ? evaluation.parameter_names
+                                                                          : std::vector<std::string>{"mu"};
+  const std::size_t p = columns.size();
+  const std::vector<std::string> rest{"hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
                      "online_time_s", "speedup", "e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak",
                      "e_press_cone", "force_hf", "force_rb", "peak_hf", "peak_rb", "energy_hf", "energy_rb",
-                     "e_energy_norm", "estimate", "effectivity"});
+                     "e_energy_norm", "estimate", "effectivity"};
+  columns.insert(columns.end(), rest.begin(), rest.end());
+  io::CsvWriter csv(columns);
   for (const EvaluationRow& r : evaluation.rows) {
-    csv.add_row({r.mu, static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
+    require(static_cast<std::size_t>(r.mu.size()) == p, "write_evaluation_csv: a row's mu has " +
+                                                            std::to_string(r.mu.size()) + " values for " +
+                                                            std::to_string(p) + " parameter columns");
+    std::vector<io::CsvCell> cells;
+    for (Eigen::Index k = 0; k < r.mu.size(); ++k) cells.emplace_back(r.mu(k));
+    const std::vector<io::CsvCell> values{static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
                  static_cast<long long>(r.rb_converged), r.rb_status, static_cast<long long>(r.rb_iterations),
                  r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.e_press, r.e_force, r.e_peak,
                  r.e_press_cone, r.force_hf, r.force_rb, r.peak_hf, r.peak_rb, r.energy_hf, r.energy_rb,
-                 r.e_energy_norm, r.estimate, r.effectivity});
+                 r.e_energy_norm, r.estimate, r.effectivity};
+    cells.insert(cells.end(), values.begin(), values.end());
+    csv.add_row(std::move(cells));
   }
   csv.write(path);
 }

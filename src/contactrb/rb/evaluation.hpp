@@ -25,7 +25,7 @@ struct EvaluationOptions {
   int jobs = 1;               // HF solves in parallel (online timings are taken serially)
   ProgressMode progress = ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
-  std::vector<double> multiplier_mus;       // mu values (among the evaluated ones) whose
+  std::vector<cases::Mu> multiplier_mus;    // mu points (among the evaluated ones) whose
                                             // multipliers are kept (EvaluationRow::multipliers)
 };
 
@@ -38,7 +38,7 @@ struct MultiplierProfile {
 };
 
 struct EvaluationRow {
-  double mu = 0.0;
+  cases::Mu mu;
   bool hf_converged = false;
   std::string hf_status;       // solve::to_string(KacanovStatus) of the HF solve
   int hf_iterations = 0;
@@ -99,6 +99,7 @@ struct EvaluationSummary {
 };
 
 struct Evaluation {
+  std::vector<std::string> parameter_names;  // the model's parameters (CSV columns)
   std::vector<EvaluationRow> rows;  // in the order of the mu values
   EvaluationSummary summary;        // errors over the rows where both solves converged
   int N = 0, R = 0, Mk = 0, Mg = 0; // the sizes used
@@ -109,10 +110,11 @@ struct Evaluation {
 // (sizes), or a case spec whose HF discretization does not match it. A solve that does not
 // converge is not an error: see hf_converged, rb_converged and the summary's failure counts.
 Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction& reconstruction,
-                          const cases::CaseSpec& spec, const std::vector<double>& mus,
+                          const cases::CaseSpec& spec, const std::vector<cases::Mu>& mus,
                           const EvaluationOptions& options = {});
 
-// CSV (one line per row: mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
+// CSV (one line per row: mu (p = 1) or one column per parameter, named as the parameter (p > 1),
+// hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
 // rb_iterations,online_time_s,speedup,e_ener,e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,
 // peak_hf,peak_rb,energy_hf,energy_rb,e_energy_norm,estimate,effectivity) and
 // multiplier profile CSVs (abscissa,lambda_hf,lambda_rb), both written atomically.

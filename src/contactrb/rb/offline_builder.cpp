@@ -52,7 +52,7 @@ Eigen::VectorXd restrict_to(const Eigen::VectorXd& global, const std::vector<int
 }
 
 // u_D(mu) on the contact DOFs: lift_c * theta^lift(mu).
-Eigen::VectorXd lift_at(const Eigen::MatrixXd& lift_c, const cases::AffineThetas& th, double mu) {
+Eigen::VectorXd lift_at(const Eigen::MatrixXd& lift_c, const cases::AffineThetas& th, const cases::Mu& mu) {
   if (th.lift.empty()) return Eigen::VectorXd::Zero(lift_c.rows());
   return lift_c * cases::evaluate(th.lift, mu);
 }
@@ -159,22 +159,33 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   } catch (const Error& e) {
     throw Error(std::string("offline: inconsistent snapshot set: ") + e.what());
   }
+  require(set.parameters.size() == spec.parameters.size(),
+          "offline: the snapshots have " + std::to_string(set.parameters.size()) + " parameters, the case " +
+              std::to_string(spec.parameters.size()));
+  for (std::size_t k = 0; k < set.parameters.size(); ++k) {
+    require(set.parameters[k].name == spec.parameters[k].name,
+            "offline: parameter " + std::to_string(k + 1) + " of the snapshots is '" + set.parameters[k].name +
+                "', of the case '" + spec.parameters[k].name + "'");
+  }
   for (const io::Snapshot& s : set.snapshots) {
-    require(s.converged, "offline: the snapshot at mu = " + std::to_string(s.mu) + " did not converge (" + s.status +
+    require(s.converged, "offline: the snapshot at mu = " + cases::mu_values_text(s.mu) + " did not converge (" + s.status +
                              ": " + s.message + "); drop it or recompute it");
   }
   {
     // A repeated training value adds no information but one more identical column: with a zero
     // step the whole set is one value, and the model answered elsewhere with converged = true
     // and a contact force 45 times the HF one (issue [R] row 7).
-    std::vector<std::pair<double, int>> mus;
-    for (int p = 0; p < P; ++p) mus.emplace_back(set.snapshots[sz(p)].mu, p);
+    std::vector<std::pair<std::vector<double>, int>> mus;
+    for (int p = 0; p < P; ++p) {
+      const cases::Mu& mu = set.snapshots[sz(p)].mu;
+      mus.emplace_back(std::vector<double>(mu.data(), mu.data() + mu.size()), p);
+    }
     std::sort(mus.begin(), mus.end());
     for (std::size_t i = 1; i < mus.size(); ++i) {
       if (mus[i].first == mus[i - 1].first) {
-        char text[32];  // shortest round-trip digits: the value exactly as stored
-        const auto end = std::to_chars(text, text + sizeof text, mus[i].first).ptr;
-        throw Error("offline: the training value mu = " + std::string(text, end) + " appears twice (snapshots " +
+        // shortest round-trip digits: the value exactly as stored
+        const std::string text = cases::mu_values_text(set.snapshots[sz(mus[i].second)].mu);
+        throw Error("offline: the training value mu = " + text + " appears twice (snapshots " +
                     std::to_string(mus[i - 1].second) + " and " + std::to_string(mus[i].second) +
                     "): the training values must be distinct");
       }
@@ -186,7 +197,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   for (const io::Snapshot& s : set.snapshots) {
     require(s.u0.size() == n_free && s.u.size() == set.num_dofs && s.lambda.size() == R_hf && s.K.rows() == R_hf &&
                 s.K.cols() == n_c && s.g.size() == R_hf && s.weight.size() == R_hf,
-            "offline: snapshot at mu = " + std::to_string(s.mu) + " has inconsistent array sizes (u0 " +
+            "offline: snapshot at mu = " + cases::mu_values_text(s.mu) + " has inconsistent array sizes (u0 " +
                 std::to_string(s.u0.size()) + "/" + std::to_string(n_free) + ", lambda " +
                 std::to_string(s.lambda.size()) + "/" + std::to_string(R_hf) + ", K " + std::to_string(s.K.rows()) +
                 " x " + std::to_string(s.K.cols()) + ")");
@@ -211,7 +222,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   const Eigen::SparseMatrix<double> Psel = free_selection(set.num_dofs, set.free_dofs);
   Eigen::SparseMatrix<double> inner;
   if (settings.inner_product == InnerProduct::Energy) {
-    const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(thetas.a, spec.parameter.reference));
+    const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(thetas.a, cases::reference_mu(spec.parameters)));
     inner = Psel.transpose() * A_ref * Psel;
   } else {
     inner = Psel.transpose() * fem::h1_product(reference) * Psel;
@@ -349,7 +360,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.case_kind = set.case_kind;
   m.case_spec = set.case_spec;
   m.level = set.level;
-  m.parameter = spec.parameter;
+  m.parameters = spec.parameters;
   m.thetas = thetas;
   m.inner_product = to_string(settings.inner_product);
   m.dual_method = to_string(settings.dual_method);
@@ -375,7 +386,8 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   // the reduced solve below does not converge).
   m.training_u_hat = Theta.transpose() * (inner * U0);
   m.training_lambda_hat = Eigen::MatrixXd::Zero(R, P);
-  for (int p = 0; p < P; ++p) m.training_mu.push_back(set.snapshots[sz(p)].mu);
+  m.training_mu.resize(spec.num_parameters(), P);
+  for (int p = 0; p < P; ++p) m.training_mu.col(p) = set.snapshots[sz(p)].mu;
 
   // (49)
   const int Ja = static_cast<int>(terms.A.size());
@@ -448,7 +460,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.XiQ_gamma = Xi.transpose() * eim_g.Q;
   m.eim_gamma_errors = eim_g.errors;
   // The a posteriori error estimate's offline data (error_estimate.hpp).
-  m.estimate = build_estimate_data({&terms, &thetas, spec.parameter.reference, &set.free_dofs, &set.contact_dofs,
+  m.estimate = build_estimate_data({&terms, &thetas, cases::reference_mu(spec.parameters), &set.free_dofs, &set.contact_dofs,
                                     &Theta, &m.Theta_c, &Xi, &eim_k.Q, &eim_g.Q, &set, &kept, &lift_c, &ds.weights,
                                     &eim_k.magic_points, &eim_k.B, &eim_g.magic_points, &eim_g.B});
   check_model(m);
@@ -458,7 +470,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
     OnlineSettings cold;
     cold.initial_guess = InitialGuess::Zero;
     for (int p = 0; p < P; ++p) {
-      const OnlineSolution sol = solver.solve(m.training_mu[sz(p)], cold);
+      const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
       if (!sol.converged()) continue;
       m.training_u_hat.col(p) = sol.u_hat;
       m.training_lambda_hat.col(p) = sol.lambda_hat;

@@ -43,15 +43,30 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   R_ = resolve(sizes.R, model.R_max, model.R_max > 0 ? 1 : 0, "R");
   Mk_ = resolve(sizes.Mk, model.Mk_max, model.Mk_max > 0 ? 1 : 0, "Mk");
   Mg_ = resolve(sizes.Mg, model.Mg_max, model.Mg_max > 0 ? 1 : 0, "Mg");
-  parameter_ = model.parameter;
+  parameters_ = model.parameters;
   {
-    std::vector<int> order(model.training_mu.size());
+    // p = 1: sorted values (linear interpolation); p > 1: the points scaled to [0, 1] per
+    // parameter (nearest point), so that parameters of different units weigh alike.
+    const int p_dim = model.num_parameters();
+    std::vector<int> order(static_cast<std::size_t>(model.training_mu.cols()));
     for (std::size_t p = 0; p < order.size(); ++p) order[p] = static_cast<int>(p);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return model.training_mu[sz(a)] < model.training_mu[sz(b)]; });
+    if (p_dim == 1) {
+      std::stable_sort(order.begin(), order.end(),
+                       [&](int a, int b) { return model.training_mu(0, a) < model.training_mu(0, b); });
+    }
     guess_.resize(N_ + R_, static_cast<Eigen::Index>(order.size()));
+    guess_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
+    guess_offset_.resize(p_dim);
+    guess_scale_.resize(p_dim);
+    for (int k = 0; k < p_dim; ++k) {
+      const cases::ParameterSpec& q = parameters_[sz(k)];
+      guess_offset_(k) = q.min;
+      guess_scale_(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
+    }
     for (std::size_t p = 0; p < order.size(); ++p) {
-      guess_mu_.push_back(model.training_mu[sz(order[p])]);
+      if (p_dim == 1) guess_mu_.push_back(model.training_mu(0, order[p]));
+      guess_points_.col(static_cast<Eigen::Index>(p)) =
+          (model.training_mu.col(order[p]) - guess_offset_).cwiseProduct(guess_scale_);
       guess_.col(static_cast<Eigen::Index>(p)) << model.training_u_hat.col(order[p]).head(N_),
           model.training_lambda_hat.col(order[p]).head(R_);
     }
@@ -151,9 +166,9 @@ void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorX
   }
 }
 
-bool OnlineSolver::prepare(double mu, bool restricted, std::string& message) {
+bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& message) {
   // Omega(mu) on the contact surface: h_body(mu) applied to the reference chain nodes.
-  const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameter_, mu);
+  const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameters_, mu);
   for (std::size_t i = 0; i < mesh_.nodes.size(); ++i) {
     mesh_.nodes[i] = maps[sz(surface_.body[i])](surface_.reference_nodes[i]);
   }
@@ -272,9 +287,17 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   return true;
 }
 
-Eigen::VectorXd OnlineSolver::interpolated_guess(double mu) const {
-  const auto P = static_cast<Eigen::Index>(guess_mu_.size());
+Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
+  const Eigen::Index P = guess_.cols();
   if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
+  if (point.size() > 1) {
+    // The nearest training point in scaled coordinates (ties: the first).
+    const Eigen::VectorXd x = (point - guess_offset_).cwiseProduct(guess_scale_);
+    Eigen::Index best = 0;
+    (guess_points_.colwise() - x).colwise().squaredNorm().minCoeff(&best);
+    return guess_.col(best);
+  }
+  const double mu = point(0);
   const auto hi = static_cast<Eigen::Index>(std::upper_bound(guess_mu_.begin(), guess_mu_.end(), mu) - guess_mu_.begin());
   if (hi == 0) return guess_.col(0);
   if (hi == P) return guess_.col(P - 1);
@@ -380,9 +403,9 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
   return result;
 }
 
-OnlineSolution OnlineSolver::solve(double mu, const OnlineSettings& settings) {
+OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& settings) {
   const auto t0 = Clock::now();
-  parameter_.check(mu, "reduced model online solve");
+  cases::check_mu(parameters_, mu, "reduced model online solve");
   const solve::KacanovSettings ks =
       settings.kacanov ? *settings.kacanov
                        : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};

@@ -115,9 +115,12 @@ class OnlineSolver {
   // model or sizes outside [1, max] (R, Mk, Mg may be 0 only when their maximum is 0).
   explicit OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes = {});
 
-  // Throws contactrb::Error for mu outside the parameter domain or invalid settings;
-  // non-convergence is a status.
-  OnlineSolution solve(double mu, const OnlineSettings& settings = {});
+  // Throws contactrb::Error for mu of the wrong size or outside the parameter domain, or invalid
+  // settings; non-convergence is a status. The double overload is for one-parameter models.
+  OnlineSolution solve(const cases::Mu& mu, const OnlineSettings& settings = {});
+  OnlineSolution solve(double mu, const OnlineSettings& settings = {}) {
+    return solve(cases::Mu::Constant(1, mu), settings);
+  }
 
   int N() const { return N_; }
   int R() const { return R_; }
@@ -127,7 +130,7 @@ class OnlineSolver {
  private:
   // Per mu: A_hat(mu) (49) and its Cholesky factor, z = A_hat^-1 f_hat(mu), the lift on the contact
   // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
-  bool prepare(double mu, bool restricted, std::string& message);
+  bool prepare(const cases::Mu& mu, bool restricted, std::string& message);
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
@@ -135,8 +138,9 @@ class OnlineSolver {
   solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
                                            const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
-  // training values).
-  Eigen::VectorXd interpolated_guess(double mu) const;
+  // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
+  // training point in coordinates scaled to [0, 1] per parameter.
+  Eigen::VectorXd interpolated_guess(const cases::Mu& mu) const;
 
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
@@ -145,8 +149,10 @@ class OnlineSolver {
                       Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const;
 
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
-  cases::ParameterSpec parameter_;
-  std::vector<double> guess_mu_;  // training values, increasing
+  std::vector<cases::ParameterSpec> parameters_;
+  std::vector<double> guess_mu_;  // p = 1: training values, increasing
+  Eigen::MatrixXd guess_points_;  // p x P: training points scaled to [0, 1] per parameter
+  Eigen::VectorXd guess_offset_, guess_scale_;  // x = (mu - offset) .* scale
   Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
   cases::AffineThetas thetas_;
   double kacanov_alpha_ = 0.3, kacanov_tolerance_ = 1e-3;

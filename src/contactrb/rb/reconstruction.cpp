@@ -12,7 +12,7 @@ inline Index ix(std::size_t i) { return static_cast<Index>(i); }
 std::string str(long long v) { return std::to_string(v); }
 }  // namespace
 
-Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, double mu, const Eigen::VectorXd& u_hat) {
+Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat) {
   require(u_hat.size() <= rec.Theta.cols(), "reconstruct_displacement: u_hat has size " +
                                                  std::to_string(u_hat.size()) + ", the basis " +
                                                  std::to_string(rec.Theta.cols()) + " modes");

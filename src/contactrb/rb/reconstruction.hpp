@@ -23,7 +23,7 @@ struct ReducedReconstruction {
 };
 
 // u = u_D(mu) + Theta[:, :N] u_hat on the HF DOFs (num_dofs), N = u_hat.size().
-Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, double mu, const Eigen::VectorXd& u_hat);
+Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat);
 // lambda = Xi[:, :R] lambda_hat on the kept rows, 0 on the dropped ones (R_hf), R = lambda_hat.size().
 Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& lambda_hat);
 

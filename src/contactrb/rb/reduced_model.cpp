@@ -51,12 +51,14 @@ void check_model(const ReducedModel& m) {
   for (std::size_t j = 0; j < m.A_lift_hat.size(); ++j) {
     expect_size(m.A_lift_hat[j], m.N_max, "A_lift_hat[" + std::to_string(j) + "]");
   }
-  expect_shape(m.training_u_hat, m.N_max, static_cast<Eigen::Index>(m.training_mu.size()), "training_u_hat");
-  for (double mu : m.training_mu) {
-    require(std::isfinite(mu), "reduced model: a training value is not finite");
-  }
-  expect_shape(m.training_lambda_hat, m.R_max, static_cast<Eigen::Index>(m.training_mu.size()),
-               "training_lambda_hat");
+  cases::check_parameter_list(m.parameters, "reduced model");
+  cases::check_thetas(m.thetas, m.num_parameters(), "reduced model");
+  require(m.training_mu.rows() == m.num_parameters() || m.training_mu.size() == 0,
+          "reduced model: training points of " + std::to_string(m.training_mu.rows()) + " values for " +
+              std::to_string(m.num_parameters()) + " parameters");
+  require(m.training_mu.allFinite(), "reduced model: a training value is not finite");
+  expect_shape(m.training_u_hat, m.N_max, m.training_mu.cols(), "training_u_hat");
+  expect_shape(m.training_lambda_hat, m.R_max, m.training_mu.cols(), "training_lambda_hat");
   require(m.training_u_hat.allFinite() && m.training_lambda_hat.allFinite(),
           "reduced model: the training coordinates are not finite");
   const ContactSurface& s = m.surface;
@@ -89,7 +91,7 @@ void check_model(const ReducedModel& m) {
 }
 
 long long model_doubles(const ReducedModel& m) {
-  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + static_cast<long long>(m.training_mu.size()) + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
+  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
                 m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
                 2 * static_cast<long long>(m.surface.reference_nodes.size());
   for (const auto& a : m.A_hat) n += a.size();

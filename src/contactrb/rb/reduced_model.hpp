@@ -22,7 +22,9 @@
 
 namespace contactrb::rb {
 
-inline constexpr int kReducedModelFormatVersion = 3;  // 3: N_supremizers, tolerance modes, the error estimate's arrays
+// 3: N_supremizers, tolerance modes, the error estimate's arrays; 4: p parameters (the list, the
+// training points p x P, theta monomials with one factor per parameter).
+inline constexpr int kReducedModelFormatVersion = 4;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -45,7 +47,7 @@ struct ReducedModel {
   std::string case_kind;  // "builtin" | "toml"
   std::string case_spec;  // name or TOML text
   int level = 0;
-  cases::ParameterSpec parameter;  // name, domain, and the geometric map data (kind, reference, body, center)
+  std::vector<cases::ParameterSpec> parameters;  // names, units, domains, the geometric map data (kind, reference, body, center)
   cases::AffineThetas thetas;      // theta^a, theta^f, theta^lift (online-safe monomials)
 
   // Settings the model was built with (recorded, not used online except the Kacanov ones).
@@ -72,11 +74,11 @@ struct ReducedModel {
   int Mk_max = 0;
   int Mg_max = 0;
   Eigen::VectorXd singular_values;  // POD, all P values
-  // The online initial guess, interpolated in mu (OnlineSettings::initial_guess): at each training
-  // value the reduced solution at the maximal sizes (u_hat, lambda_hat), or, where that reduced
-  // solve did not converge, the M-orthogonal projection of u_0(mu_p) on the POD basis and
+  // The online initial guess, from the training points (OnlineSettings::initial_guess): at each
+  // training point the reduced solution at the maximal sizes (u_hat, lambda_hat), or, where that
+  // reduced solve did not converge, the M-orthogonal projection of u_0(mu_p) on the POD basis and
   // lambda_hat = 0.
-  std::vector<double> training_mu;     // P values, as in the snapshot set
+  Eigen::MatrixXd training_mu;         // p x P: the training points, as in the snapshot set
   Eigen::MatrixXd training_u_hat;      // N_max x P
   Eigen::MatrixXd training_lambda_hat; // R_max x P
 
@@ -122,6 +124,7 @@ struct ReducedModel {
   int J_f() const { return static_cast<int>(f_hat.size()); }
   int J_lift() const { return static_cast<int>(lift_c.cols()); }
   int R_kept() const { return static_cast<int>(kept_rows.size()); }
+  int num_parameters() const { return static_cast<int>(parameters.size()); }
 };
 
 // Throws contactrb::Error naming the first inconsistent array (sizes against the maxima, the

@@ -163,7 +163,7 @@ class Progress {
          << std::fixed << std::setprecision(1) << seconds_since(start_) << " s" << std::defaultfloat
          << std::setprecision(6) << (done_ == total_ ? "\n" : "") << std::flush;
     } else {
-      os << "snapshot " << done_ << "/" << total_ << ": mu = " << s.mu << " ";
+      os << "snapshot " << done_ << "/" << total_ << ": mu = " << cases::mu_values_text(s.mu) << " ";
       if (s.converged) {
         os << "converged in " << s.iterations << " iterations";
       } else {
@@ -189,7 +189,7 @@ class Progress {
 
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level,
                                       std::optional<contact::Discretization> constraint,
-                                      const std::optional<std::vector<double>>& values) {
+                                      const std::optional<std::vector<cases::Mu>>& values) {
   cases::check_case_spec(spec);
   SnapshotRequest r;
   r.case_name = spec.name;
@@ -203,16 +203,14 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
     r.case_spec = cases::to_toml(spec);
   }
   r.level = level;
-  r.parameter_name = spec.parameter.name;
-  r.parameter_min = spec.parameter.min;
-  r.parameter_max = spec.parameter.max;
+  r.parameters = snapshot_parameters(spec);
   r.set_name = values ? "custom" : set_name;
-  r.mu = values ? *values : spec.parameter.set(set_name);
-  for (double mu : r.mu) spec.parameter.check(mu, "case '" + spec.name + "'");
-  if (values) cases::check_increasing(*values, "the explicit parameter values");
+  r.mu = values ? *values : spec.set(set_name);
+  for (const cases::Mu& mu : r.mu) spec.check_mu(mu);
+  if (values) cases::check_points(spec.parameters, *values, "the explicit parameter values");
   // One reference mesh, shared read-only by every worker.
   auto reference = std::make_shared<const mesh::Mesh>(cases::reference_mesh(spec, level));
-  r.make_problem = [spec, reference, constraint](double mu) {
+  r.make_problem = [spec, reference, constraint](const cases::Mu& mu) {
     return cases::make_problem(spec, *reference, mu, constraint);
   };
   return r;
@@ -249,9 +247,7 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   set.case_kind = request.case_kind;
   set.case_spec = request.case_spec;
   set.level = request.level;
-  set.parameter_name = request.parameter_name;
-  set.parameter_min = request.parameter_min;
-  set.parameter_max = request.parameter_max;
+  set.parameters = request.parameters;
   set.set_name = request.set_name;
   set.kacanov_alpha = request.settings.kacanov.alpha;
   set.kacanov_tolerance = request.settings.kacanov.tolerance;
@@ -264,8 +260,8 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
       first = &layouts[i];
     } else if (!(layouts[i] == *first)) {
       std::ostringstream os;
-      os << "the HF discretization at mu = " << request.mu[i] << " differs from the one at mu = "
-         << request.mu[static_cast<std::size_t>(first - layouts.data())]
+      os << "the HF discretization at mu = " << cases::mu_values_text(request.mu[i]) << " differs from the one at mu = "
+         << cases::mu_values_text(request.mu[static_cast<std::size_t>(first - layouts.data())])
          << " (DOF map, contact chains or constraint): the snapshots would not live in one space";
       throw Error(os.str());
     }
@@ -300,6 +296,12 @@ SnapshotSummary summarize(const io::SnapshotSet& set) {
     s.iterations_median = m % 2 == 1 ? iterations[m / 2] : 0.5 * (iterations[m / 2 - 1] + iterations[m / 2]);
   }
   return s;
+}
+
+std::vector<io::SnapshotParameter> snapshot_parameters(const cases::CaseSpec& spec) {
+  std::vector<io::SnapshotParameter> out;
+  for (const cases::ParameterSpec& p : spec.parameters) out.push_back({p.name, cases::to_string(p.kind), p.units, p.min, p.max});
+  return out;
 }
 
 }  // namespace contactrb::rb

@@ -23,7 +23,7 @@ namespace contactrb::rb {
 
 // Builds the HF problem at mu. Called concurrently from the worker threads: it must not
 // modify shared state (capture immutable data only).
-using ProblemFactory = std::function<hf::ContactProblem(double mu)>;
+using ProblemFactory = std::function<hf::ContactProblem(const cases::Mu& mu)>;
 
 // What to compute, and the metadata the snapshot file records about it.
 struct SnapshotRequest {
@@ -31,11 +31,9 @@ struct SnapshotRequest {
   std::string case_kind = "builtin";  // "builtin" | "toml"
   std::string case_spec;              // the case name (builtin) or the TOML text
   int level = 0;
-  std::string parameter_name;
-  double parameter_min = 0.0;
-  double parameter_max = 0.0;
+  std::vector<io::SnapshotParameter> parameters;
   std::string set_name;
-  std::vector<double> mu;  // the parameter values, in the order of the output
+  std::vector<cases::Mu> mu;  // the parameter points, in the order of the output
   ProblemFactory make_problem;
   hf::HFSettings settings;
 };
@@ -46,7 +44,10 @@ struct SnapshotRequest {
 // Throws contactrb::Error for an unknown set or a value outside the parameter domain.
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
                                       std::optional<contact::Discretization> constraint = std::nullopt,
-                                      const std::optional<std::vector<double>>& values = std::nullopt);
+                                      const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
+
+// What a snapshot file records of the case's parameters.
+std::vector<io::SnapshotParameter> snapshot_parameters(const cases::CaseSpec& spec);
 
 enum class ProgressMode {
   Automatic,  // Terminal when the stream is stderr and stderr is a terminal, else Lines

@@ -20,7 +20,7 @@ mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel&
   return reference;
 }
 
-SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mesh& reference, double mu,
+SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mesh& reference, const cases::Mu& mu,
                                     contact::Discretization discretization, const Eigen::VectorXd& u,
                                     const Eigen::VectorXd& lambda, const std::string& dir) {
   const mesh::Mesh m = cases::mapped_mesh(spec, reference, mu);

@@ -30,7 +30,7 @@ struct SolutionFiles {
 // contact_pressure is, at each slave node, the W-weighted mean of the rows integrating it
 // (collocation: lambda_r at the node of row r), 0 elsewhere. Throws contactrb::Error for sizes
 // that do not match the mesh or the constraint rows, or a file that cannot be written.
-SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mesh& reference, double mu,
+SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mesh& reference, const cases::Mu& mu,
                                     contact::Discretization discretization, const Eigen::VectorXd& u,
                                     const Eigen::VectorXd& lambda, const std::string& dir);
 

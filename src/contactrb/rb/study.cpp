@@ -150,23 +150,27 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
   StudyResult r;
   r.case_name = spec.name;
   r.level = s.level;
-  r.parameter_name = spec.parameter.name;
+  require(spec.num_parameters() == 1, "report: the paper's study is for one-parameter cases; " + spec.context() +
+                                          " has " + std::to_string(spec.num_parameters()) +
+                                          " (use offline and evaluate)");
+  const cases::ParameterSpec& parameter = spec.parameters.front();
+  r.parameter_name = parameter.name;
   r.tolerances = s.tolerances;
   r.jobs = s.jobs;
 
   // --- Parameter sets.
-  const std::vector<double>& full_training = spec.parameter.set("training");
+  const std::vector<double> full_training = cases::values_1d(spec.set("training"));
   r.training_mus = s.training_values ? *s.training_values : evenly_spaced_subset(full_training, s.max_training);
   if (s.verification_values) {
     r.verification_mus = *s.verification_values;
-  } else if (spec.parameter.has_set("verification")) {
-    r.verification_mus = evenly_spaced_subset(spec.parameter.set("verification"), s.max_verification);
+  } else if (spec.has_set("verification")) {
+    r.verification_mus = evenly_spaced_subset(cases::values_1d(spec.set("verification")), s.max_verification);
   }
-  for (double mu : r.verification_mus) spec.parameter.check(mu, "case '" + spec.name + "' (verification)");
+  for (double mu : r.verification_mus) parameter.check(mu, "case '" + spec.name + "' (verification)");
 
   // --- Training snapshots (the only HF solves kept: the evaluations solve HF themselves).
-  std::optional<std::vector<double>> values;
-  if (r.training_mus != full_training) values = r.training_mus;
+  std::optional<std::vector<cases::Mu>> values;
+  if (r.training_mus != full_training) values = cases::points_1d(r.training_mus);
   log.line("training snapshots of " + spec.name + ": " + std::to_string(r.training_mus.size()) + " values, " +
            std::to_string(s.jobs) + " job(s)");
   auto t0 = Clock::now();
@@ -178,7 +182,7 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
   const io::SnapshotSet set = generate_snapshots(request, run);
   r.training_snapshots_s = seconds_since(t0);
   for (const io::Snapshot& snap : set.snapshots) {
-    require(snap.converged, "report: the training snapshot at mu = " + fmt(snap.mu, "%.6g") + " failed (" +
+    require(snap.converged, "report: the training snapshot at mu = " + fmt(snap.mu(0), "%.6g") + " failed (" +
                                 snap.status + ": " + snap.message + ")");
   }
   r.constraint = set.constraint;
@@ -253,14 +257,14 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
     eo.progress = s.progress;
     eo.progress_stream = s.progress_stream;
     const bool profiles_here = key == "cpg";
-    if (profiles_here && r.profile_set == "training") eo.multiplier_mus = r.profile_mus;
+    if (profiles_here && r.profile_set == "training") eo.multiplier_mus = cases::points_1d(r.profile_mus);
     log.line("evaluating " + label + " on the training set (" + std::to_string(r.training_mus.size()) + " values)");
-    m.training = evaluate_model(off.model, off.reconstruction, spec, r.training_mus, eo);
+    m.training = evaluate_model(off.model, off.reconstruction, spec, cases::points_1d(r.training_mus), eo);
     if (!r.verification_mus.empty()) {
-      eo.multiplier_mus = profiles_here ? r.profile_mus : std::vector<double>{};
+      eo.multiplier_mus = profiles_here ? cases::points_1d(r.profile_mus) : std::vector<cases::Mu>{};
       log.line("evaluating " + label + " on the verification set (" + std::to_string(r.verification_mus.size()) +
                " values)");
-      m.verification = evaluate_model(off.model, off.reconstruction, spec, r.verification_mus, eo);
+      m.verification = evaluate_model(off.model, off.reconstruction, spec, cases::points_1d(r.verification_mus), eo);
     }
     if (profiles_here) {
       const Evaluation& e = r.profile_set == "training" ? m.training : *m.verification;
@@ -270,7 +274,7 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
       // Keep profile_mus in step with the profiles actually returned.
       std::vector<double> mus;
       for (const EvaluationRow& row : e.rows) {
-        if (!row.multipliers.abscissa.empty()) mus.push_back(row.mu);
+        if (!row.multipliers.abscissa.empty()) mus.push_back(row.mu(0));
       }
       r.profile_mus = mus;
     }
@@ -376,7 +380,7 @@ void write_errors_csv(const StudyResult& r, bool verification, const std::string
   for (const StudyModel& m : r.models) {
     const Evaluation& e = verification ? *m.verification : m.training;
     for (const EvaluationRow& row : e.rows) {
-      w.add_row({m.key, row.mu, static_cast<long long>(row.hf_converged), static_cast<long long>(row.rb_converged),
+      w.add_row({m.key, row.mu(0), static_cast<long long>(row.hf_converged), static_cast<long long>(row.rb_converged),
                  row.rb_status, row.e_ener, row.e_displ, row.e_inter, row.e_press, row.e_force, row.e_peak,
                  row.e_press_cone, row.hf_time_s, row.online_time_s, row.speedup,
                  static_cast<long long>(row.hf_iterations), static_cast<long long>(row.rb_iterations)});
