@@ -92,10 +92,13 @@ int main(int argc, char** argv) {
                "greedy status, last max estimate |\n| --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | --- |\n";
   for (const std::string& name : names) {
     const cases::CaseSpec spec = cases::builtin_case_spec(name);
-    std::optional<std::vector<double>> values;
-    if (dense > 1) {
-      values = cases::arithmetic_set(spec.parameter.min, (spec.parameter.max - spec.parameter.min) / (dense - 1), dense);
-      values->back() = spec.parameter.max;
+    std::optional<std::vector<cases::Mu>> values;
+    if (dense > 1) {  // one-parameter cases: P equispaced values
+      const cases::ParameterSpec& q = spec.parameters.front();
+      std::vector<double> v = cases::arithmetic_set(q.min, (q.max - q.min) / (dense - 1), dense);
+      v.back() = q.max;
+      values.emplace();
+      for (double x : v) values->push_back(cases::Mu::Constant(1, x));
     }
     rb::SnapshotRequest request = rb::make_snapshot_request(spec, "training", 0, std::nullopt, values);
     request.settings.kacanov.tolerance = hf_tol;
@@ -105,7 +108,7 @@ int main(int argc, char** argv) {
     offline.supremizers = !no_sup;
     offline.compression = !no_compression;
     offline.eps_eim_k = offline.eps_eim_g = eps_eim;
-    const std::vector<double>& verification = spec.parameter.set("verification");
+    const std::vector<cases::Mu>& verification = spec.set("verification");
     rb::EvaluationOptions eo;
     eo.jobs = jobs;
     eo.online_repeats = 1;
@@ -122,10 +125,10 @@ int main(int argc, char** argv) {
       const double greedy_s = seconds_since(t0);
       if (steps) {  // the parts of the estimate where the greedy stopped
         rb::OnlineSolver solver(g.offline.model);
-        const double mu = g.steps.back().argmax_mu;
+        const cases::Mu& mu = g.steps.back().argmax_mu;
         const rb::OnlineSolution s = solver.solve(mu);
         const auto& e = s.estimate;
-        std::cout << "at argmax " << mu << ": estimate " << e.energy << " residual " << e.residual << " viol "
+        std::cout << "at argmax " << cases::mu_values_text(mu) << ": estimate " << e.energy << " residual " << e.residual << " viol "
                   << e.violation << " compl " << e.complementarity << " |lambda| " << e.multiplier_norm << " eim_r "
                   << e.eim_residual << " eim_s " << e.eim_slack << " norm " << rb::reduced_energy_norm(g.offline.model, mu, s.u_hat)
                   << " iterations " << s.iterations << "\n";

@@ -206,8 +206,7 @@ int run_greedy(const OfflineOptions& opt) {
                             {"greedy.json next to --out", json_path}});
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
-  std::optional<std::vector<double>> values;
-  if (!opt.values.empty()) values = parse_values_option(opt.values, "--values");
+  const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
   rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   request.settings.kacanov.alpha = opt.alpha;
   request.settings.kacanov.tolerance = opt.tolerance;
@@ -231,10 +230,18 @@ int run_greedy(const OfflineOptions& opt) {
     j["status"] = rb::to_string(g.status);
     j["hf_solves"] = g.hf_solves;
     const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    // A point: its value for p = 1, an object {name: value} otherwise; null when absent.
+    const auto point = [&](const cases::Mu& mu) {
+      if (mu.size() == 0) return nlohmann::json(nullptr);
+      if (mu.size() == 1) return nlohmann::json(mu(0));
+      nlohmann::json o = nlohmann::json::object();
+      for (std::size_t k = 0; k < spec.parameters.size(); ++k) o[spec.parameters[k].name] = mu(static_cast<Eigen::Index>(k));
+      return o;
+    };
     nlohmann::json selected = nlohmann::json::array(), excluded = nlohmann::json::array();
-    for (int i : g.selected) selected.push_back(request.mu[static_cast<std::size_t>(i)]);
-    for (int i : g.excluded) excluded.push_back(request.mu[static_cast<std::size_t>(i)]);
-    j["start"] = request.mu[static_cast<std::size_t>(g.start)];
+    for (int i : g.selected) selected.push_back(point(request.mu[static_cast<std::size_t>(i)]));
+    for (int i : g.excluded) excluded.push_back(point(request.mu[static_cast<std::size_t>(i)]));
+    j["start"] = point(request.mu[static_cast<std::size_t>(g.start)]);
     j["selected"] = selected;
     j["excluded"] = excluded;
     j["sizes"] = {{"N", g.offline.model.N_max}, {"R", g.offline.model.R_max}, {"Mk", g.offline.model.Mk_max},
@@ -249,9 +256,9 @@ int run_greedy(const OfflineOptions& opt) {
                        {"Mk", r.Mk},
                        {"Mg", r.Mg},
                        {"max_estimate", finite_or_null(r.max_estimate)},  // null: +inf (an online failure)
-                       {"argmax_mu", r.argmax_mu},
+                       {"argmax_mu", point(r.argmax_mu)},
                        {"online_failures", r.online_failures},
-                       {"chosen_mu", finite_or_null(r.chosen_mu)},
+                       {"chosen_mu", point(r.chosen_mu)},
                        {"hf_status", r.hf_status},
                        {"true_error", finite_or_null(r.true_error)},
                        {"true_e_press", finite_or_null(r.true_e_press)},

@@ -41,10 +41,12 @@ const contactrb::cases::CaseSpec& spec() {
   return s;
 }
 
-std::vector<double> dense_training() {
+std::vector<contactrb::cases::Mu> dense_training() {
   std::vector<double> v = contactrb::cases::arithmetic_set(0.15, 0.3 / (kTrainingSize - 1), kTrainingSize);
   v.back() = 0.45;
-  return v;
+  std::vector<contactrb::cases::Mu> points;
+  for (double x : v) points.push_back(contactrb::cases::Mu::Constant(1, x));
+  return points;
 }
 
 const contactrb::rb::SnapshotRequest& request() {
@@ -85,7 +87,7 @@ TEST(OfflineGreedy, EstimateFallsAndStopsAtTheTolerance) {
   std::sort(sorted.begin(), sorted.end());
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
   // The start: the training value nearest the domain centre 0.3.
-  EXPECT_NEAR(request().mu[static_cast<std::size_t>(g.start)], 0.3, 1e-12);
+  EXPECT_NEAR(request().mu[static_cast<std::size_t>(g.start)](0), 0.3, 1e-12);
   // Sizes grow with the snapshots; the step's model is the one the table reports.
   EXPECT_EQ(g.steps.back().N, g.offline.model.N_max);
   EXPECT_EQ(g.steps.back().snapshots, static_cast<int>(g.selected.size()));
@@ -117,7 +119,7 @@ TEST(OfflineGreedy, ModelMeetsTheToleranceOnTheVerificationSet) {
   options.online_repeats = 1;
   options.jobs = 2;
   const auto ev = contactrb::rb::evaluate_model(g.offline.model, g.offline.reconstruction, spec(),
-                                                spec().parameter.set("verification"), options);
+                                                spec().set("verification"), options);
   EXPECT_EQ(ev.summary.rb_failures, 0);
   EXPECT_EQ(ev.summary.hf_failures, 0);
   // e_displ (65) is an H1 error, the tolerance is on the energy-norm estimate: measured 5e-3 for
@@ -135,18 +137,20 @@ TEST(OfflineGreedy, ReducedEnergyNormEqualsTheHighFidelityOne) {
   const auto terms = contactrb::cases::assemble_affine_terms(spec(), mesh);
   const auto thetas = contactrb::cases::theta_functions(spec());
   contactrb::rb::OnlineSolver solver(model);
-  for (double mu : {0.152, 0.3, 0.447}) {
+  for (double value : {0.152, 0.3, 0.447}) {
+    const contactrb::cases::Mu mu = contactrb::cases::Mu::Constant(1, value);
     const auto s = solver.solve(mu);
     ASSERT_TRUE(s.converged());
     const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(g.offline.reconstruction, mu, s.u_hat);
     const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(thetas.a, mu));
     const double hf = std::sqrt(u.dot(A * u));
-    EXPECT_NEAR(contactrb::rb::reduced_energy_norm(model, mu, s.u_hat), hf, 1e-10 * hf) << mu;
+    EXPECT_NEAR(contactrb::rb::reduced_energy_norm(model, mu, s.u_hat), hf, 1e-10 * hf) << value;
     // The criterion is the estimate over that norm.
-    EXPECT_NEAR(contactrb::rb::relative_estimate(model, mu, s), s.estimate.energy / hf, 1e-10) << mu;
+    EXPECT_NEAR(contactrb::rb::relative_estimate(model, mu, s), s.estimate.energy / hf, 1e-10) << value;
   }
   contactrb::rb::OnlineSolution failed;  // not converged: +inf, picked first
-  EXPECT_EQ(contactrb::rb::relative_estimate(model, 0.3, failed), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(contactrb::rb::relative_estimate(model, contactrb::cases::Mu::Constant(1, 0.3), failed),
+            std::numeric_limits<double>::infinity());
 }
 
 TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
@@ -179,13 +183,25 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
 }
 
 TEST(OfflineGreedy, StartIsTheTrainingPointNearestTheCentre) {
+  using contactrb::cases::Mu;
   contactrb::cases::ParameterSpec p;
   p.min = 1.0;
   p.max = 3.0;
-  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {1.0, 1.5, 2.4, 2.6}), 2);
-  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {1.5, 2.5}), 0);  // a tie: the smallest index
-  EXPECT_EQ(contactrb::rb::greedy_start_index(p, {3.0}), 0);
-  EXPECT_THROW(contactrb::rb::greedy_start_index(p, {}), contactrb::Error);
+  const std::vector<contactrb::cases::ParameterSpec> one{p};
+  const auto pt = [](double a) { return Mu::Constant(1, a); };
+  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(1.0), pt(1.5), pt(2.4), pt(2.6)}), 2);
+  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(1.5), pt(2.5)}), 0);  // a tie: the smallest index
+  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(3.0)}), 0);
+  EXPECT_THROW(contactrb::rb::greedy_start_index(one, {}), contactrb::Error);
+  // Two parameters on different scales: the distance is taken in [0, 1]^2 (centre (2, 150)).
+  contactrb::cases::ParameterSpec q;
+  q.min = 100.0;
+  q.max = 200.0;
+  const std::vector<contactrb::cases::ParameterSpec> two{p, q};
+  const auto pt2 = [](double a, double b) { return Mu(Eigen::Vector2d(a, b)); };
+  // (2.5, 150): scaled distance 0.25; (2.0, 180): 0.3 (unscaled, 30 against 0.5, it would lose).
+  EXPECT_EQ(contactrb::rb::greedy_start_index(two, {pt2(2.0, 180.0), pt2(2.5, 150.0)}), 1);
+  EXPECT_THROW(contactrb::rb::greedy_start_index(two, {pt(2.0)}), contactrb::Error);  // wrong size
 }
 
 TEST(OfflineGreedy, BadSettingsAreRefused) {

@@ -29,11 +29,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::string mu_text(GreedyMu mu) {
-  std::ostringstream os;
-  os << std::setprecision(10) << mu;
-  return os.str();
-}
+std::string mu_text(const GreedyMu& mu) { return cases::mu_values_text(mu); }
 
 // The criterion at every training point for one model (online solves only), `jobs` threads with
 // one OnlineSolver each; every point writes its own slot, so the result does not depend on jobs.
@@ -95,7 +91,7 @@ Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus
 class GreedyProgress {
  public:
   GreedyProgress(ProgressMode mode, std::ostream* stream) : stream_(stream ? stream : &std::cerr), on_(mode != ProgressMode::None) {}
-  void start(GreedyMu mu, int index, int count, const io::Snapshot& s) {
+  void start(const GreedyMu& mu, int index, int count, const io::Snapshot& s) {
     if (!on_) return;
     *stream_ << "greedy: start at mu = " << mu_text(mu) << " (training point " << index << " of " << count << "), HF "
              << (s.converged ? "converged in " + std::to_string(s.iterations) + " iterations" : "FAILED (" + s.status + ")")
@@ -131,7 +127,7 @@ class GreedyProgress {
 
 // The HF solves of one greedy run must live in one discretization (generate_snapshots checks it
 // within one call; the greedy calls it once per point).
-void check_same_layout(const io::SnapshotSet& a, const io::SnapshotSet& b, GreedyMu mu) {
+void check_same_layout(const io::SnapshotSet& a, const io::SnapshotSet& b, const GreedyMu& mu) {
   require(a.num_dofs == b.num_dofs && a.free_dofs == b.free_dofs && a.contact_dofs == b.contact_dofs &&
               a.slave == b.slave && a.master == b.master && a.constraint == b.constraint,
           "greedy: the HF discretization at mu = " + mu_text(mu) +
@@ -157,7 +153,7 @@ void check_settings(const GreedyOfflineSettings& s) {
   check_settings(s.offline);
 }
 
-double reduced_energy_norm(const ReducedModel& model, GreedyMu mu, const Eigen::VectorXd& u_hat) {
+double reduced_energy_norm(const ReducedModel& model, const GreedyMu& mu, const Eigen::VectorXd& u_hat) {
   const Eigen::Index N = u_hat.size();
   require(N <= model.N_max, "reduced_energy_norm: u_hat has " + std::to_string(N) + " entries, the model N_max " +
                                 std::to_string(model.N_max));
@@ -177,21 +173,28 @@ double reduced_energy_norm(const ReducedModel& model, GreedyMu mu, const Eigen::
   return std::sqrt(std::max(0.0, q));  // rounding can make a tiny q negative
 }
 
-double relative_estimate(const ReducedModel& model, GreedyMu mu, const OnlineSolution& s) {
+double relative_estimate(const ReducedModel& model, const GreedyMu& mu, const OnlineSolution& s) {
   if (!s.converged() || !s.estimate.available || !std::isfinite(s.estimate.energy)) return kInf;
   const double norm = reduced_energy_norm(model, mu, s.u_hat);
   if (norm > 0.0) return s.estimate.energy / norm;
   return s.estimate.energy > 0.0 ? kInf : 0.0;
 }
 
-int greedy_start_index(const cases::ParameterSpec& parameter, const std::vector<GreedyMu>& training) {
+int greedy_start_index(const std::vector<cases::ParameterSpec>& parameters, const std::vector<GreedyMu>& training) {
   require(!training.empty(), "greedy: the training set is empty");
-  const double centre = 0.5 * (parameter.min + parameter.max);
-  const double width = parameter.max - parameter.min;
   int best = 0;
   double best_d = kInf;
   for (std::size_t i = 0; i < training.size(); ++i) {
-    const double d = width > 0.0 ? std::abs(training[i] - centre) / width : std::abs(training[i] - centre);
+    require(training[i].size() == static_cast<Eigen::Index>(parameters.size()),
+            "greedy: training point " + std::to_string(i) + " has " + std::to_string(training[i].size()) +
+                " values for " + std::to_string(parameters.size()) + " parameters");
+    double d = 0.0;
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      const cases::ParameterSpec& q = parameters[k];
+      const double width = q.max - q.min;
+      const double x = training[i](static_cast<Eigen::Index>(k)) - 0.5 * (q.min + q.max);
+      d += width > 0.0 ? (x / width) * (x / width) : x * x;
+    }
     if (d < best_d) {  // strict: ties go to the smallest index
       best_d = d;
       best = static_cast<int>(i);
@@ -229,7 +232,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   };
 
   // Start: one HF solve at the training point nearest the domain centre.
-  out.start = greedy_start_index(spec.parameter, training);
+  out.start = greedy_start_index(spec.parameters, training);
   {
     const auto t0 = Clock::now();
     out.snapshots = hf_solve(out.start);
@@ -288,7 +291,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     } else {
       // Extend: the HF solve at the argmax, and the current model's true error there.
       row.chosen = row.argmax;
-      const GreedyMu mu = training[sz(row.chosen)];
+      const GreedyMu& mu = training[sz(row.chosen)];
       row.chosen_mu = mu;
       OnlineSolver solver(model);
       const OnlineSolution rb = solver.solve(mu, online);
@@ -332,14 +335,29 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 }
 
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path) {
-  io::CsvWriter csv({"step", "snapshots", "hf_solves", "N", "R", "Mk", "Mg", "max_estimate", "argmax_mu",
-                     "online_failures", "chosen_mu", "hf_status", "true_error", "true_e_press", "build_s", "sweep_s",
-                     "hf_s", "step_s"});
+  const std::vector<io::SnapshotParameter>& params = result.snapshots.parameters;
+  std::vector<std::string> columns{"step", "snapshots", "hf_solves", "N", "R", "Mk", "Mg", "max_estimate"};
+  for (const io::SnapshotParameter& q : params) columns.push_back("argmax_" + q.name);
+  columns.push_back("online_failures");
+  for (const io::SnapshotParameter& q : params) columns.push_back("chosen_" + q.name);
+  for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s"}) columns.push_back(c);
+  io::CsvWriter csv(columns);
+  const auto value = [](const GreedyMu& mu, std::size_t k) {
+    return static_cast<Eigen::Index>(k) < mu.size() ? mu(static_cast<Eigen::Index>(k)) : std::nan("");
+  };
   for (const GreedyStep& r : result.steps) {
-    csv.add_row({static_cast<long long>(r.step), static_cast<long long>(r.snapshots), static_cast<long long>(r.hf_solves),
-                 static_cast<long long>(r.N), static_cast<long long>(r.R), static_cast<long long>(r.Mk),
-                 static_cast<long long>(r.Mg), r.max_estimate, r.argmax_mu, static_cast<long long>(r.online_failures),
-                 r.chosen_mu, r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s, r.hf_s, r.step_s});
+    std::vector<io::CsvCell> row{static_cast<long long>(r.step), static_cast<long long>(r.snapshots),
+                                 static_cast<long long>(r.hf_solves), static_cast<long long>(r.N),
+                                 static_cast<long long>(r.R), static_cast<long long>(r.Mk),
+                                 static_cast<long long>(r.Mg), r.max_estimate};
+    for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.argmax_mu, k));
+    row.emplace_back(static_cast<long long>(r.online_failures));
+    for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.chosen_mu, k));
+    for (const io::CsvCell& c : std::vector<io::CsvCell>{r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s,
+                                                         r.hf_s, r.step_s}) {
+      row.push_back(c);
+    }
+    csv.add_row(row);
   }
   csv.write(path);
 }

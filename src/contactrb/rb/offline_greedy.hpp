@@ -23,9 +23,9 @@
 
 namespace contactrb::rb {
 
-// The parameter value as the greedy sees it (one scalar today; the code reaches it only
-// through this alias and SnapshotRequest::mu).
-using GreedyMu = double;
+// The parameter point as the greedy sees it (p values; the code reaches it only through this
+// alias and SnapshotRequest::mu).
+using GreedyMu = cases::Mu;
 
 enum class GreedyOfflineStatus {
   ToleranceReached,  // max relative estimate over the (usable) training set <= tolerance
@@ -76,11 +76,11 @@ struct GreedyStep {
   int N = 0, R = 0, Mk = 0, Mg = 0;
   double max_estimate = 0.0;  // max over the usable training points of relative_estimate (+inf: some online failure)
   int argmax = -1;            // training index of the max
-  GreedyMu argmax_mu = kNaN;
+  GreedyMu argmax_mu;
   int online_failures = 0;    // training points whose online solve did not converge (counted as +inf)
   // The HF solve of this step (-1 / NaN when the greedy stopped at this step).
   int chosen = -1;
-  GreedyMu chosen_mu = kNaN;
+  GreedyMu chosen_mu;  // empty when the greedy stopped at this step
   bool hf_converged = false;
   std::string hf_status;
   // The error of this step's model at the chosen point, against the new HF solution (NaN when
@@ -107,15 +107,15 @@ struct GreedyOfflineResult {
 
 // |u_rb|_A(mu) = sqrt(u' A(mu) u), u = u_D(mu) + Theta u_hat the total displacement, from the
 // model's reduced arrays only ((49) and the lift terms lift_AA, A_lift_hat); u_hat of size N <= N_max.
-double reduced_energy_norm(const ReducedModel& model, GreedyMu mu, const Eigen::VectorXd& u_hat);
+double reduced_energy_norm(const ReducedModel& model, const GreedyMu& mu, const Eigen::VectorXd& u_hat);
 
 // The greedy's criterion: Delta_u(mu) / |u_rb(mu)|_A(mu), +inf when the online solve did not
 // converge or carries no estimate (so that such a point is picked first); 0 / 0 = 0.
-double relative_estimate(const ReducedModel& model, GreedyMu mu, const OnlineSolution& solution);
+double relative_estimate(const ReducedModel& model, const GreedyMu& mu, const OnlineSolution& solution);
 
-// The start point: the training point nearest the centre of the parameter domain (in coordinates
-// scaled to [0, 1] per parameter; ties to the smallest index).
-int greedy_start_index(const cases::ParameterSpec& parameter, const std::vector<GreedyMu>& training);
+// The start point: the training point nearest the centre of the parameter box (Euclidean distance
+// in coordinates scaled to [0, 1] per parameter; ties to the smallest index).
+int greedy_start_index(const std::vector<cases::ParameterSpec>& parameters, const std::vector<GreedyMu>& training);
 
 // Runs the greedy over the training points request.mu (the request also gives the level, the
 // constraint discretization and the HF settings; make_snapshot_request). Throws contactrb::Error
@@ -125,8 +125,9 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
                                        const GreedyOfflineSettings& settings = {});
 
 // The per-step table as CSV (one line per step: step,snapshots,hf_solves,N,R,Mk,Mg,max_estimate,
-// argmax_mu,online_failures,chosen_mu,hf_status,true_error,true_e_press,build_s,sweep_s,hf_s,step_s),
-// written atomically.
+// argmax_<name>...,online_failures,chosen_<name>...,hf_status,true_error,true_e_press,build_s,sweep_s,
+// hf_s,step_s; one argmax_ and one chosen_ column per parameter, chosen_ empty (NaN) when the greedy
+// stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 
 }  // namespace contactrb::rb
