@@ -269,11 +269,17 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     row.sweep_s = seconds_since(t0);
     row.online_failures = sweep.failures;
     row.max_estimate = -kInf;
+    int next = -1;  // the argmax over the points not selected yet: the next HF solve
+    double next_estimate = -kInf;
     for (int i = 0; i < P; ++i) {
       if (excluded[sz(i)]) continue;
       if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
         row.max_estimate = sweep.criterion[sz(i)];
         row.argmax = i;
+      }
+      if (!selected[sz(i)] && sweep.criterion[sz(i)] > next_estimate) {
+        next_estimate = sweep.criterion[sz(i)];
+        next = i;
       }
     }
     row.argmax_mu = training[sz(row.argmax)];
@@ -285,12 +291,15 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     } else if (out.hf_solves >= settings.max_hf) {
       out.status = GreedyOfflineStatus::Budget;
       stop = "HF budget spent";
-    } else if (selected[sz(row.argmax)]) {
+    } else if (next < 0) {
       out.status = GreedyOfflineStatus::Stagnated;
-      stop = "the argmax is already selected (stagnated)";
+      stop = "every training point is selected (stagnated)";
     } else {
-      // Extend: the HF solve at the argmax, and the current model's true error there.
-      row.chosen = row.argmax;
+      // Extend: the HF solve at the largest estimate among the points not selected yet. Where the
+      // overall max is at a selected point, the estimate there is its floor (docs/offline-online.md,
+      // "Greedy sampling"): another solve there adds nothing, a new point still enriches the
+      // bases, the cone and the EIM. Then the current model's true error there.
+      row.chosen = next;
       const GreedyMu& mu = training[sz(row.chosen)];
       row.chosen_mu = mu;
       OnlineSolver solver(model);

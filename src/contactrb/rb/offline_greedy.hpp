@@ -30,7 +30,7 @@ using GreedyMu = cases::Mu;
 enum class GreedyOfflineStatus {
   ToleranceReached,  // max relative estimate over the (usable) training set <= tolerance
   Budget,            // max_hf HF solves spent, tolerance not reached
-  Stagnated,         // the argmax is a point already selected: another HF solve there adds nothing
+  Stagnated,         // every usable training point is selected: nothing left to add
 };
 const char* to_string(GreedyOfflineStatus status);  // "tolerance_reached" | "budget" | "stagnated"
 
