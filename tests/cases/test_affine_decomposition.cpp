@@ -36,8 +36,9 @@ double rel_diff(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 }
 
 // Compares sum theta_j(mu) X_j with the direct assembly at mu for A, f and u_D.
-void expect_decomposition_exact(const cases::CaseSpec& spec, const mesh::Mesh& ref, double mu) {
-  SCOPED_TRACE(spec.name + " at mu = " + std::to_string(mu));
+void expect_decomposition_exact(const cases::CaseSpec& spec, const mesh::Mesh& ref, double value) {
+  SCOPED_TRACE(spec.name + " at mu = " + std::to_string(value));
+  const cases::Mu mu = cases::Mu::Constant(1, value);
   const cases::AffineTerms terms = cases::assemble_affine_terms(spec, ref);
   const cases::AffineThetas thetas = cases::theta_functions(spec);
   ASSERT_EQ(terms.A.size(), thetas.a.size());
@@ -79,7 +80,7 @@ class AffineDecomposition : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(AffineDecomposition, EqualsDirectAssemblyOnTheMappedMesh) {
   const cases::CaseSpec spec = cases::builtin_case_spec(GetParam());
-  for (double mu : sample(spec.parameter)) expect_decomposition_exact(spec, reference(GetParam()), mu);
+  for (double mu : sample(spec.parameters.front())) expect_decomposition_exact(spec, reference(GetParam()), mu);
 }
 
 // The paper cases have no body load; with loads on both bodies f(mu) has one term per
@@ -90,7 +91,7 @@ TEST_P(AffineDecomposition, BodyLoadsScaleWithTheJacobian) {
   spec.bodies[1].load = Eigen::Vector2d(-0.7, 0.2);
   const cases::AffineThetas thetas = cases::theta_functions(spec);
   ASSERT_EQ(thetas.f.size(), 2u);
-  for (double mu : sample(spec.parameter)) expect_decomposition_exact(spec, reference(GetParam()), mu);
+  for (double mu : sample(spec.parameters.front())) expect_decomposition_exact(spec, reference(GetParam()), mu);
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperCases, AffineDecomposition, ::testing::Values("hertz-a", "hertz-b", "ring-block"),
@@ -106,21 +107,24 @@ TEST(AffineDecomposition, TermCountsOfThePaperCases) {
   EXPECT_EQ(a.a.size(), 1u);
   EXPECT_EQ(a.f.size(), 0u);
   ASSERT_EQ(a.lift.size(), 2u);
-  EXPECT_DOUBLE_EQ(a.lift[1](0.37), 0.37);
+  EXPECT_DOUBLE_EQ(a.lift[1](cases::Mu::Constant(1, 0.37)), 0.37);
   // (b), (c): uniform scaling, J^a = 1 (2D stiffness invariant), constant lift.
   for (const char* name : {"hertz-b", "ring-block"}) {
     const cases::AffineThetas t = cases::theta_functions(cases::builtin_case_spec(name));
     EXPECT_EQ(t.a.size(), 1u) << name;
-    EXPECT_DOUBLE_EQ(t.a[0](1.1), 1.0) << name;
+    EXPECT_DOUBLE_EQ(t.a[0](cases::Mu::Constant(1, 1.1)), 1.0) << name;
     EXPECT_EQ(t.lift.size(), 1u) << name;
   }
 }
 
 TEST(ThetaMonomial, Evaluates) {
-  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{2.0, 1.0, 0})(5.0), 2.0);
-  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{1.0, 2.0, 2})(3.0), 2.25);
-  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{1.0, 1.0, -1})(4.0), 0.25);
-  EXPECT_EQ(cases::evaluate({}, 1.0).size(), 0);
+  const auto one = [](double x) { return cases::Mu::Constant(1, x); };
+  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{2.0, {}})(one(5.0)), 2.0);
+  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{1.0, {{0, 2.0, 2}}})(one(3.0)), 2.25);
+  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{1.0, {{0, 1.0, -1}}})(one(4.0)), 0.25);
+  EXPECT_EQ(cases::evaluate({}, one(1.0)).size(), 0);
+  // A product over parameters: 3 (mu_0 / 2)^2 (mu_2 / 1)^-1.
+  EXPECT_DOUBLE_EQ((cases::ThetaMonomial{3.0, {{0, 2.0, 2}, {2, 1.0, -1}}})(Eigen::Vector3d(4.0, 9.0, 0.5)), 24.0);
 }
 
 TEST(AffineCombination, SizeMismatchThrows) {
@@ -130,9 +134,12 @@ TEST(AffineCombination, SizeMismatchThrows) {
 }
 
 TEST(GeometricMap, IdentityAtTheReferenceAndScalingAboutTheCenter) {
-  const cases::ParameterSpec p = cases::builtin_case_spec("hertz-b").parameter;
-  for (const cases::AffineMap& h : cases::geometric_maps(p, p.reference)) EXPECT_TRUE(h.is_identity());
-  const auto maps = cases::geometric_maps(p, 1.1);
+  const std::vector<cases::ParameterSpec> ps = cases::builtin_case_spec("hertz-b").parameters;
+  const cases::ParameterSpec& p = ps.front();
+  for (const cases::AffineMap& h : cases::geometric_maps(ps, cases::Mu::Constant(1, p.reference))) {
+    EXPECT_TRUE(h.is_identity());
+  }
+  const auto maps = cases::geometric_maps(ps, cases::Mu::Constant(1, 1.1));
   EXPECT_TRUE(maps[0].is_identity());
   EXPECT_NEAR(maps[1].jacobian(), 1.21, 1e-15);
   EXPECT_LT((maps[1](p.center) - p.center).norm(), 1e-15);

@@ -98,13 +98,13 @@ TEST(CaseToml, ReadsAllOptions) {
   EXPECT_EQ(c.dirichlet[0].uy->b, -0.5);
   EXPECT_EQ(c.dirichlet[1].uy->a, 0.0);  // a defaults to 0
   EXPECT_EQ(c.dirichlet[1].uy->b, 0.5);
-  EXPECT_EQ(c.parameter.kind, cases::ParameterKind::DirichletScale);
-  EXPECT_EQ(c.parameter.reference, 0.15);  // default: the domain's lower end
-  ASSERT_EQ(c.parameter.set("training").size(), 7u);
-  EXPECT_EQ(c.parameter.set("training").back(), 0.45);  // 0.15 + 6 * 0.05 snapped onto the bound
+  EXPECT_EQ(c.parameters.front().kind, cases::ParameterKind::DirichletScale);
+  EXPECT_EQ(c.parameters.front().reference, 0.15);  // default: the domain's lower end
+  ASSERT_EQ(cases::values_1d(c.set("training")).size(), 7u);
+  EXPECT_EQ(cases::values_1d(c.set("training")).back(), 0.45);  // 0.15 + 6 * 0.05 snapped onto the bound
   // No verification key: the midpoints of the training set.
-  ASSERT_EQ(c.parameter.set("verification").size(), 6u);
-  EXPECT_NEAR(c.parameter.set("verification").front(), 0.175, 1e-15);
+  ASSERT_EQ(cases::values_1d(c.set("verification")).size(), 6u);
+  EXPECT_NEAR(cases::values_1d(c.set("verification")).front(), 0.175, 1e-15);
 }
 
 TEST(CaseToml, BodyScalingNeedsBodyCenterAndReference) {
@@ -114,8 +114,8 @@ body = "master"
 center = [0.0, -0.05]
 reference = 0.3)");
   const cases::CaseSpec c = cases::case_from_toml_string(text, kOrigin);
-  EXPECT_EQ(c.parameter.body, 1);
-  EXPECT_EQ(c.parameter.center, Eigen::Vector2d(0.0, -0.05));
+  EXPECT_EQ(c.parameters.front().body, 1);
+  EXPECT_EQ(c.parameters.front().center, Eigen::Vector2d(0.0, -0.05));
   const std::string no_center = replace_in(text, "center = [0.0, -0.05]\n", "");
   expect_mentions(error_of(no_center), {"missing key 'parameter.center'", kOrigin.c_str()});
   expect_mentions(error_of(replace_in(text, R"(body = "master")", R"(body = "upper")")),
@@ -167,7 +167,7 @@ TEST(CaseToml, InvalidValuesAreNamed) {
   expect_mentions(error_of(replace_in(good_case(), "count = 7", "count = 8")), {"outside the domain", "training"});
   // No Dirichlet value depends on mu although the kind says so.
   const std::string frozen = replace_in(replace_in(good_case(), "b = -0.5", "b = 0.0"), "{ b = 0.5 }", "0.5");
-  expect_mentions(error_of(frozen), {"dirichlet-scale", "depends on mu"});
+  expect_mentions(error_of(frozen), {"dirichlet-scale", "depends on it"});
   expect_mentions(error_of(replace_in(good_case(), "generator = \"hertz\"", "generator = \"cube\"")),
                   {"mesh.generator", "cube"});
 }

@@ -69,7 +69,7 @@ TEST(DegenerateData, MagnitudesThatOverflow) {
 
 TEST(DegenerateData, ParameterSetsMustIncrease) {
   CaseSpec c = builtin_case_spec("hertz-a");
-  c.parameter.sets[0].values[5] = c.parameter.sets[0].values[4];
+  c.sets[0].points[5] = c.sets[0].points[4];
   EXPECT_NE(error_of(c).find("the values of parameter set 'training'"), std::string::npos) << error_of(c);
   EXPECT_NE(error_of(c).find("must be strictly increasing, but value 6 (0.19) is not above value 5 (0.19)"),
             std::string::npos)

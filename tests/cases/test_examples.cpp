@@ -26,8 +26,8 @@ std::string example(const std::string& name) {
 TEST(Examples, HertzATomlGivesTheBuiltinSolution) {
   const cases::CaseSpec toml = cases::case_from_toml_file(example("hertz-a"));
   const cases::CaseSpec builtin = cases::builtin_case_spec("hertz-a");
-  EXPECT_EQ(toml.parameter.set("training"), builtin.parameter.set("training"));
-  EXPECT_EQ(toml.parameter.set("verification").size(), builtin.parameter.set("verification").size());
+  EXPECT_EQ(cases::values_1d(toml.set("training")), cases::values_1d(builtin.set("training")));
+  EXPECT_EQ(cases::values_1d(toml.set("verification")).size(), cases::values_1d(builtin.set("verification")).size());
   const mesh::Mesh toml_mesh = cases::reference_mesh(toml);
   const mesh::Mesh builtin_mesh = cases::reference_mesh(builtin);
   ASSERT_EQ(toml_mesh.num_nodes(), builtin_mesh.num_nodes());
@@ -59,7 +59,7 @@ TEST(Examples, TwoBlockPatchRecoversTheUniformPressureWithLac) {
   hf::HFSettings settings;
   settings.kacanov.alpha = 1.0;
   settings.kacanov.tolerance = 1e-12;
-  for (double mu : spec.parameter.set("training")) {
+  for (double mu : cases::values_1d(spec.set("training"))) {
     const hf::HFSolution s = hf::HFSolver(cases::make_problem(spec, ref, mu)).solve(settings);
     ASSERT_TRUE(s.converged) << s.message;
     const double p = spec.bodies[0].E / (1.0 - spec.bodies[0].nu * spec.bodies[0].nu) * mu / 2.0;

@@ -34,15 +34,15 @@ std::set<int> active_set(const hf::HFSolution& s) {
 }  // namespace
 
 TEST(PaperCases, ParameterSetsAreThePapers) {
-  const cases::ParameterSpec a = cases::builtin_case_spec("hertz-a").parameter;
-  expect_set(a.set("training"), 0.15, 0.01, 31);
-  expect_set(a.set("verification"), 0.155, 0.01, 30);
-  const cases::ParameterSpec b = cases::builtin_case_spec("hertz-b").parameter;
-  expect_set(b.set("training"), 0.905, 0.01, 22);  // i = 0..21: inside [0.9, 1.12] (docs/cases.md)
-  expect_set(b.set("verification"), 0.91, 0.01, 21);
-  const cases::ParameterSpec c = cases::builtin_case_spec("ring-block").parameter;
-  expect_set(c.set("training"), 0.95, 0.01, 21);
-  expect_set(c.set("verification"), 0.9575, 0.02, 10);  // i = 0..9: inside P (docs/cases.md)
+  const cases::CaseSpec a = cases::builtin_case_spec("hertz-a");
+  expect_set(cases::values_1d(a.set("training")), 0.15, 0.01, 31);
+  expect_set(cases::values_1d(a.set("verification")), 0.155, 0.01, 30);
+  const cases::CaseSpec b = cases::builtin_case_spec("hertz-b");
+  expect_set(cases::values_1d(b.set("training")), 0.905, 0.01, 22);  // i = 0..21: inside [0.9, 1.12] (docs/cases.md)
+  expect_set(cases::values_1d(b.set("verification")), 0.91, 0.01, 21);
+  const cases::CaseSpec c = cases::builtin_case_spec("ring-block");
+  expect_set(cases::values_1d(c.set("training")), 0.95, 0.01, 21);
+  expect_set(cases::values_1d(c.set("verification")), 0.9575, 0.02, 10);  // i = 0..9: inside P (docs/cases.md)
   EXPECT_THROW(c.set("test"), Error);
 }
 
@@ -52,8 +52,8 @@ TEST(PaperCases, SpecsAreValidAndNamedLikeTheCatalog) {
     EXPECT_EQ(spec.name, info.name);
     EXPECT_NO_THROW(cases::check_case_spec(spec));
     const cases::ParameterDomain& d = cases::parameter_domain(info.name);
-    EXPECT_EQ(d.min, spec.parameter.min);
-    EXPECT_EQ(d.max, spec.parameter.max);
+    EXPECT_EQ(d.min, spec.parameters.front().min);
+    EXPECT_EQ(d.max, spec.parameters.front().max);
   }
   EXPECT_THROW(cases::builtin_case_spec("hertz-c"), Error);
   EXPECT_EQ(cases::builtin_case_spec("ring-block").constraint, contact::Discretization::LAC);
@@ -99,7 +99,7 @@ TEST(PaperCases, HertzBScalingLeavesTheStiffnessOfBody2Unchanged) {
 TEST(PaperCases, HertzBInitialGapOnTheVerticalAxisIs01) {
   const cases::CaseSpec spec = cases::builtin_case_spec("hertz-b");
   const mesh::Mesh ref = cases::reference_mesh(spec);
-  for (double mu : spec.parameter.set("training")) {
+  for (double mu : cases::values_1d(spec.set("training"))) {
     const mesh::Mesh m = cases::mapped_mesh(spec, ref, mu);
     double slave_low = INFINITY, master_high = -INFINITY;
     for (int n : mesh::boundary_nodes(m, mesh::kSlaveBoundary)) slave_low = std::min(slave_low, m.nodes[n].y());

@@ -30,9 +30,14 @@ inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b,
   EXPECT_EQ(a.case_spec, b.case_spec);
   EXPECT_EQ(a.level, b.level);
   EXPECT_EQ(a.constraint, b.constraint);
-  EXPECT_EQ(a.parameter_name, b.parameter_name);
-  EXPECT_EQ(a.parameter_min, b.parameter_min);
-  EXPECT_EQ(a.parameter_max, b.parameter_max);
+  ASSERT_EQ(a.parameters.size(), b.parameters.size());
+  for (std::size_t k = 0; k < a.parameters.size(); ++k) {
+    EXPECT_EQ(a.parameters[k].name, b.parameters[k].name);
+    EXPECT_EQ(a.parameters[k].kind, b.parameters[k].kind);
+    EXPECT_EQ(a.parameters[k].units, b.parameters[k].units);
+    EXPECT_EQ(a.parameters[k].min, b.parameters[k].min);
+    EXPECT_EQ(a.parameters[k].max, b.parameters[k].max);
+  }
   EXPECT_EQ(a.set_name, b.set_name);
   EXPECT_EQ(a.kacanov_alpha, b.kacanov_alpha);
   EXPECT_EQ(a.kacanov_tolerance, b.kacanov_tolerance);
@@ -47,7 +52,7 @@ inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b,
     const io::Snapshot& x = a.snapshots[i];
     const io::Snapshot& y = b.snapshots[i];
     SCOPED_TRACE("snapshot " + std::to_string(i));
-    EXPECT_EQ(std::memcmp(&x.mu, &y.mu, sizeof(double)), 0);
+    EXPECT_TRUE(same_bits(x.mu, y.mu));
     EXPECT_EQ(x.converged, y.converged);
     EXPECT_EQ(x.status, y.status);
     EXPECT_EQ(x.message, y.message);

@@ -45,9 +45,7 @@ SnapshotSet synthetic_set() {
   s.case_spec = "[case]\nname = \"two-blocks\"\n# a comment with \"quotes\" and unicode: \xce\xbc\n";
   s.level = 1;
   s.constraint = "lac";
-  s.parameter_name = "ring radius R1";
-  s.parameter_min = 0.95;
-  s.parameter_max = 1.15;
+  s.parameters = {{"ring radius R1", "body-scaling", "", 0.95, 1.15}};
   s.set_name = "training";
   s.kacanov_alpha = 0.3;
   s.kacanov_tolerance = 1e-3;
@@ -60,7 +58,7 @@ SnapshotSet synthetic_set() {
   const Eigen::Index R = 2, nc = 8;
   for (int i = 0; i < 3; ++i) {
     Snapshot snap;
-    snap.mu = 0.95 + 0.01 * i;
+    snap.mu = Eigen::VectorXd::Constant(1, 0.95 + 0.01 * i);
     snap.iterations = 10 + i;
     snap.time_s = 0.125 * (i + 1);
     snap.cpu_time_s = 0.1 * (i + 1);
@@ -336,10 +334,10 @@ TEST(SnapshotFile, EditedValuesAreCaughtByTheChecksum) {
   put_double(path, "/snapshots/000002/K", 3, 0.0);  // a failed snapshot's arrays are covered too
   expect_error_naming(path, "checksum mismatch");
   path = edited("domain");
-  put_double_attribute(path, "/parameter", "max", 2.0);
+  put_double_attribute(path, "/parameter/000000", "max", 2.0);
   expect_error_naming(path, "checksum mismatch");
   path = edited("mu");
-  put_double_attribute(path, "/snapshots/000001", "mu", 1.0);
+  put_double(path, "/snapshots/000001/mu", 0, 1.0);
   expect_error_naming(path, "checksum mismatch");
   path = edited("deleted");  // an optional array of a failed snapshot removed
   edit_file(path, [](hid_t f) { ASSERT_GE(H5Ldelete(f, "/snapshots/000002/gap_pointwise", H5P_DEFAULT), 0); });
@@ -418,17 +416,23 @@ TEST(SnapshotFile, CheckSnapshotSetNamesTheBadField) {
   EXPECT_EQ(check_error(s), "");
   // Parameter values against the stored domain, and the domain itself.
   s = synthetic_set();
-  s.snapshots[1].mu = 1.2;
-  expect_named(s, "/snapshots/000001: mu = 1.2 is outside the stored domain [0.95, 1.15]");  // shortest digits
+  s.snapshots[1].mu(0) = 1.2;
+  expect_named(s, "/snapshots/000001: mu = 1.2 (ring radius R1) is outside the stored domain [0.95, 1.15]");  // shortest digits
   s = synthetic_set();
-  s.snapshots[1].mu = std::nextafter(0.95, 0.0);
+  s.snapshots[1].mu(0) = std::nextafter(0.95, 0.0);
   expect_named(s, "is outside the stored domain");
   s = synthetic_set();
-  std::swap(s.parameter_min, s.parameter_max);
-  expect_named(s, "the parameter domain [1.15, 0.95] (/parameter min, max) is not an interval");
+  s.snapshots[1].mu = Eigen::Vector2d(1.0, 1.0);
+  expect_named(s, "/snapshots/000001: mu has 2 values for 1 parameters");
   s = synthetic_set();
-  s.parameter_max = std::numeric_limits<double>::quiet_NaN();
+  std::swap(s.parameters[0].min, s.parameters[0].max);
+  expect_named(s, "the domain [1.15, 0.95] of parameter 'ring radius R1' (/parameter/000000 min, max) is not an interval");
+  s = synthetic_set();
+  s.parameters[0].max = std::numeric_limits<double>::quiet_NaN();
   expect_named(s, "is not an interval");
+  s = synthetic_set();
+  s.parameters.clear();
+  expect_named(s, "/parameter holds no parameter");
   // Status and flag, settings, kinds.
   s = synthetic_set();
   s.snapshots[2].converged = true;

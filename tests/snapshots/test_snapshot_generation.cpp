@@ -31,7 +31,7 @@ class SnapshotGeneration : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     request_ = std::make_unique<SnapshotRequest>(contactrb::rb::make_snapshot_request(
-        contactrb::cases::builtin_case_spec("hertz-a"), "training", 0, std::nullopt, kValues));
+        contactrb::cases::builtin_case_spec("hertz-a"), "training", 0, std::nullopt, contactrb::cases::points_1d(kValues)));
     SnapshotRunOptions one;
     one.jobs = 1;
     serial_ = std::make_unique<SnapshotSet>(generate_snapshots(*request_, one));
@@ -67,10 +67,12 @@ TEST_F(SnapshotGeneration, RecordsTheCaseAndTheSet) {
   EXPECT_EQ(s.case_spec, "hertz-a");
   EXPECT_EQ(s.set_name, "custom");  // explicit values
   EXPECT_EQ(s.constraint, "collocation");
-  EXPECT_DOUBLE_EQ(s.parameter_min, 0.15);
-  EXPECT_DOUBLE_EQ(s.parameter_max, 0.45);
+  ASSERT_EQ(s.parameters.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.parameters[0].min, 0.15);
+  EXPECT_DOUBLE_EQ(s.parameters[0].max, 0.45);
+  EXPECT_EQ(s.parameters[0].kind, "dirichlet-scale");
   EXPECT_EQ(s.kacanov_alpha, 0.3);
-  for (std::size_t i = 0; i < kValues.size(); ++i) EXPECT_EQ(s.snapshots[i].mu, kValues[i]);
+  for (std::size_t i = 0; i < kValues.size(); ++i) EXPECT_EQ(s.snapshots[i].mu, Eigen::VectorXd::Constant(1, kValues[i]));
   EXPECT_EQ(s.slave.size(), 51u);  // the paper's mesh (Fig. 2)
 }
 
@@ -80,7 +82,7 @@ TEST_F(SnapshotGeneration, RecordsTheCaseAndTheSet) {
 TEST_F(SnapshotGeneration, StoredArraysAreConsistent) {
   const SnapshotSet& s = *serial_;
   for (const Snapshot& snap : s.snapshots) {
-    SCOPED_TRACE("mu = " + std::to_string(snap.mu));
+    SCOPED_TRACE("mu = " + std::to_string(snap.mu(0)));
     ASSERT_TRUE(snap.converged) << snap.message;
     EXPECT_EQ(snap.status, "converged");
     EXPECT_GT(snap.iterations, 1);
@@ -134,8 +136,8 @@ TEST_F(SnapshotGeneration, NonConvergedSolvesAreRecordedAsFailed) {
 TEST_F(SnapshotGeneration, ExceptionsAreRecordedAsFailed) {
   SnapshotRequest r = *request_;
   const auto factory = r.make_problem;
-  r.make_problem = [factory](double mu) {
-    if (mu == 0.22) throw Error("synthetic mesh failure at 0.22");
+  r.make_problem = [factory](const contactrb::cases::Mu& mu) {
+    if (mu(0) == 0.22) throw Error("synthetic mesh failure at 0.22");
     return factory(mu);
   };
   SnapshotRunOptions two;
@@ -157,9 +159,9 @@ TEST_F(SnapshotGeneration, ExceptionsAreRecordedAsFailed) {
 TEST_F(SnapshotGeneration, DifferentDiscretizationsAcrossMuAreAnError) {
   SnapshotRequest r = *request_;
   const auto factory = r.make_problem;
-  r.make_problem = [factory](double mu) {
+  r.make_problem = [factory](const contactrb::cases::Mu& mu) {
     auto p = factory(mu);
-    if (mu > 0.3) p.discretization = contactrb::contact::Discretization::LAC;
+    if (mu(0) > 0.3) p.discretization = contactrb::contact::Discretization::LAC;
     return p;
   };
   EXPECT_THROW(generate_snapshots(r), Error);
@@ -183,16 +185,16 @@ TEST_F(SnapshotGeneration, ProgressLinesOnePerValue) {
 TEST(SnapshotRequestErrors, BadArgumentsThrow) {
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
   SnapshotRequest r;
-  r.mu = {0.2};
+  r.mu = contactrb::cases::points_1d({0.2});
   EXPECT_THROW(generate_snapshots(r), Error);  // no factory
-  r.make_problem = [](double) { return contactrb::hf::ContactProblem{}; };
+  r.make_problem = [](const contactrb::cases::Mu&) { return contactrb::hf::ContactProblem{}; };
   SnapshotRunOptions zero;
   zero.jobs = 0;
   EXPECT_THROW(generate_snapshots(r, zero), Error);
   r.mu.clear();
   EXPECT_THROW(generate_snapshots(r), Error);
   EXPECT_THROW(contactrb::rb::make_snapshot_request(spec, "no-such-set"), Error);
-  EXPECT_THROW(contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::vector<double>{0.9}),
+  EXPECT_THROW(contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt, contactrb::cases::points_1d({0.9})),
                Error);
 }
 
@@ -203,7 +205,7 @@ TEST(SnapshotRequestCase, TomlCaseIsStoredAsItsText) {
   const SnapshotRequest r = contactrb::rb::make_snapshot_request(spec, "training");
   EXPECT_EQ(r.case_kind, "toml");
   EXPECT_EQ(r.set_name, "training");
-  EXPECT_EQ(r.mu, spec.parameter.set("training"));
+  EXPECT_EQ(r.mu, spec.set("training"));
   EXPECT_TRUE(contactrb::cases::same_case(contactrb::cases::case_from_toml_string(r.case_spec, "stored"), spec));
   // A built-in case is stored by name.
   const SnapshotRequest b =

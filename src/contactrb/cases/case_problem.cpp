@@ -165,4 +165,26 @@ hf::ContactProblem make_problem(const CaseSpec& spec, const Mu& mu, int level,
   return make_problem(spec, reference_mesh(spec, level), mu, constraint);
 }
 
+namespace {
+Mu one_parameter(const CaseSpec& spec, double mu) {
+  require(spec.num_parameters() == 1, spec.context() + " has " + std::to_string(spec.num_parameters()) +
+                                          " parameters: give mu as a point of that many values");
+  return Mu::Constant(1, mu);
+}
+}  // namespace
+
+hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level,
+                                std::optional<contact::Discretization> constraint) {
+  return make_problem(spec, one_parameter(spec, mu), level, constraint);
+}
+
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu) {
+  return mapped_mesh(spec, reference, one_parameter(spec, mu));
+}
+
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
+                                std::optional<contact::Discretization> constraint) {
+  return make_problem(spec, reference, one_parameter(spec, mu), constraint);
+}
+
 }  // namespace contactrb::cases

@@ -22,6 +22,7 @@ void check_tractions(const CaseSpec& spec, const mesh::Mesh& reference);
 
 // Omega(mu) = h(mu)(reference): the geometric maps applied to a copy of `reference`.
 mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu);
+mesh::Mesh mapped_mesh(const CaseSpec& spec, const mesh::Mesh& reference, double mu);  // p = 1
 
 // The HF problem at mu. `constraint` overrides the case's discretization. Throws
 // contactrb::Error for an invalid spec or mu outside the parameter domain.
@@ -29,6 +30,11 @@ hf::ContactProblem make_problem(const CaseSpec& spec, const Mu& mu, int level = 
                                 std::optional<contact::Discretization> constraint = std::nullopt);
 // Same, from a reference mesh built once by reference_mesh(spec, level) (parameter sweeps).
 hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, const Mu& mu,
+                                std::optional<contact::Discretization> constraint = std::nullopt);
+// One-parameter cases: mu as a number (throws contactrb::Error for p != 1).
+hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level = 0,
+                                std::optional<contact::Discretization> constraint = std::nullopt);
+hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
                                 std::optional<contact::Discretization> constraint = std::nullopt);
 
 // Dirichlet conditions at mu (values a + b mu_k).

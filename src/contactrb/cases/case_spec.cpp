@@ -236,10 +236,6 @@ void check_case_spec(const CaseSpec& c) {
                ", but the case has " + std::to_string(p));
         }
         const ParameterSpec& k = c.parameters[static_cast<std::size_t>(v->parameter)];
-        if (k.kind != ParameterKind::DirichletScale) {
-          fail("Dirichlet data on '" + d.group + "' depends on parameter '" + k.name + "' of kind " +
-               to_string(k.kind) + " (a Dirichlet value a + b mu needs a dirichlet-scale parameter)");
-        }
         used[static_cast<std::size_t>(v->parameter)] = true;
         // a + b mu is affine: its largest magnitude over the domain is at an end.
         largest = std::max(std::abs(v->a + v->b * k.min), std::abs(v->a + v->b * k.max));

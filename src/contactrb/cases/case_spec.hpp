@@ -36,7 +36,8 @@ struct BodySpec {
   Eigen::Vector2d load = Eigen::Vector2d::Zero();
 };
 
-// A Dirichlet value affine in one dirichlet-scale parameter: a + b mu_parameter.
+// A Dirichlet value affine in one parameter: a + b mu_parameter (usually a dirichlet-scale
+// parameter, whose only role this is; any kind may be named).
 struct AffineValue {
   double a = 0.0;
   double b = 0.0;
@@ -92,7 +93,7 @@ struct CaseSpec {
 // Throws contactrb::Error naming the first inconsistency and `spec.origin`: no or two
 // mesh sources, unknown generator, a material out of range, a non-finite value, an empty
 // Dirichlet group name, a Dirichlet condition with no component, a Dirichlet value that
-// names a parameter that is not dirichlet-scale, a DirichletScale parameter that no
+// names no parameter of the case, a DirichletScale parameter that no
 // Dirichlet value depends on, a traction parameter that no traction names, a body-force
 // parameter of a body without load, an inconsistent parameter list or set.
 // Does not read the mesh (group names are checked by reference_mesh / make_problem).

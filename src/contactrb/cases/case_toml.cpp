@@ -139,8 +139,8 @@ class Reader {
   }
 
   // A Dirichlet value: a number (constant) or an inline table {a, b} (a + b mu).
-  // The parameter a value names ({a, b, parameter = "name"}); without the key, the case's only
-  // dirichlet-scale parameter.
+  // The parameter a value names ({a, b, parameter = "name"}, any kind); without the key, the
+  // case's only dirichlet-scale parameter, or the only parameter of a one-parameter case.
   AffineValue affine(const toml::node& n, const std::string& key, const std::vector<ParameterSpec>& params) const {
     if (n.is_number()) return {number(n, key), 0.0, 0};
     const auto* t = n.as_table();
@@ -153,11 +153,6 @@ class Reader {
       const std::string name = string(*pn, key + ".parameter");
       v.parameter = parameter_index(params, name);
       if (v.parameter < 0) fail(pn, "key '" + key + ".parameter' names an unknown parameter '" + name + "'" + names(params));
-      if (params[static_cast<std::size_t>(v.parameter)].kind != ParameterKind::DirichletScale) {
-        fail(pn, "key '" + key + ".parameter' names parameter '" + name + "' of kind " +
-                     to_string(params[static_cast<std::size_t>(v.parameter)].kind) +
-                     " (a Dirichlet value a + b mu needs a dirichlet-scale parameter)");
-      }
       return v;
     }
     int found = -1;
@@ -167,7 +162,11 @@ class Reader {
                                   "name one with 'parameter = \"...\"'");
       found = static_cast<int>(k);
     }
-    if (found < 0) fail(t, "key '" + key + "' is a + b mu but the case has no dirichlet-scale parameter");
+    if (found < 0 && params.size() == 1) found = 0;  // one parameter: it (e.g. a value scaled with a radius)
+    if (found < 0) {
+      fail(t, "key '" + key + "' is a + b mu but the case has no dirichlet-scale parameter: name the parameter "
+              "with 'parameter = \"...\"'");
+    }
     v.parameter = found;
     return v;
   }
@@ -633,13 +632,14 @@ bool same_case(const CaseSpec& a, const CaseSpec& b) {
     if (has_body(p.kind) && p.body != q.body) return false;
     if (p.kind == ParameterKind::BodyScaling && p.center != q.center) return false;
   }
+  // Sets by name (a TOML table has no order).
   if (a.sets.size() != b.sets.size()) return false;
-  for (std::size_t i = 0; i < a.sets.size(); ++i) {
-    if (a.sets[i].name != b.sets[i].name || a.sets[i].points.size() != b.sets[i].points.size()) return false;
-    for (std::size_t j = 0; j < a.sets[i].points.size(); ++j) {
-      const Mu& x = a.sets[i].points[j];
-      const Mu& y = b.sets[i].points[j];
-      if (x.size() != y.size() || x != y) return false;
+  for (const ParameterSet& s : a.sets) {
+    if (!b.has_set(s.name)) return false;
+    const std::vector<Mu>& t = b.set(s.name);
+    if (s.points.size() != t.size()) return false;
+    for (std::size_t j = 0; j < t.size(); ++j) {
+      if (s.points[j].size() != t[j].size() || s.points[j] != t[j]) return false;
     }
   }
   return true;

@@ -259,7 +259,7 @@ void visit(V& v, rb::ReducedModel& m) {
   v.integer("level", m.level);
   int count = static_cast<int>(m.parameters.size());
   v.integer("parameter_count", count);
-  require(count >= 1 && count <= 1000, "field 'parameter_count' is " + std::to_string(count));
+  require(count >= 0 && count <= 1000, "field 'parameter_count' is " + std::to_string(count));  // 0: check_model says so
   m.parameters.resize(static_cast<std::size_t>(count));
   for (int k = 0; k < count; ++k) {
     cases::ParameterSpec& p = m.parameters[static_cast<std::size_t>(k)];
