@@ -58,7 +58,7 @@ CaseData load(const std::string& name) {
   Eigen::VectorXd weights = Eigen::VectorXd::Zero(L.rows());
   for (int p = 0; p < P; ++p) {
     const io::Snapshot& s = d.set.snapshots[static_cast<std::size_t>(p)];
-    if (!s.converged) std::printf("warning: %s mu = %g did not converge\n", name.c_str(), s.mu);
+    if (!s.converged) std::printf("warning: %s mu = %g did not converge\n", name.c_str(), s.mu(0));
     d.U0.col(p) = s.u0;
     L.col(p) = s.lambda;
     weights += s.weight;
@@ -68,7 +68,7 @@ CaseData load(const std::string& name) {
   d.L = rb::restrict_rows(L, comp.kept).cwiseMax(0.0);
   d.weights = rb::restrict_rows(weights, comp.kept);
   d.kept = comp.kept;
-  const hf::HFSolver solver(cases::make_problem(spec, spec.parameter.reference));
+  const hf::HFSolver solver(cases::make_problem(spec, cases::reference_mu(spec.parameters)));
   d.energy = solver.dofs().restrict_matrix(solver.stiffness());
   return d;
 }

@@ -62,7 +62,7 @@ const SnapshotSet& snapshots(const std::string& name, bool verification) {
   if (!slot) {
     contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
         contactrb::cases::builtin_case_spec(name), "training", 0, std::nullopt,
-        verification ? verification_values().at(name) : training_values().at(name));
+        contactrb::cases::points_1d(verification ? verification_values().at(name) : training_values().at(name)));
     r.settings.kacanov = contactrb::solve::KacanovSettings{1.0, kTightTolerance, 500};
     contactrb::rb::SnapshotRunOptions options;
     options.jobs = 2;
@@ -88,7 +88,7 @@ const OfflineResult& untruncated_model(const std::string& name) {
 }
 
 // A(mu) of the case (global), assembled here from the affine terms.
-Eigen::SparseMatrix<double> stiffness_at(const std::string& name, const SnapshotSet& set, double mu) {
+Eigen::SparseMatrix<double> stiffness_at(const std::string& name, const SnapshotSet& set, const Eigen::VectorXd& mu) {
   const auto spec = contactrb::cases::builtin_case_spec(name);
   const auto mesh = contactrb::cases::reference_mesh(spec, set.level);
   const auto terms = contactrb::cases::assemble_affine_terms(spec, mesh);
@@ -157,7 +157,7 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
     for (Index i = 0; i < n; ++i) v(i) = uni(rng);
     return v;
   };
-  const double mu = verification_values().at(name)[1];
+  const Eigen::VectorXd mu = Eigen::VectorXd::Constant(1, verification_values().at(name)[1]);
   const Eigen::VectorXd u_hat = 1e-2 * random(N);
   const Eigen::VectorXd lambda_hat = random(R).cwiseAbs();
   const Eigen::VectorXd phi = random(Mk);
@@ -192,7 +192,7 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   Eigen::VectorXd r(n_free);
   for (Index i = 0; i < n_free; ++i) r(i) = r_global(set.free_dofs[static_cast<std::size_t>(i)]);
   const Eigen::SparseMatrix<double> X = free_block(
-      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference)), set);
+      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, contactrb::cases::reference_mu(spec.parameters))), set);
   contactrb::fem::SparseCholesky chol;
   ASSERT_EQ(chol.compute(X), contactrb::fem::FactorStatus::Success);
   const double residual = std::sqrt(r.dot(chol.solve(r)));
@@ -243,7 +243,7 @@ TEST_P(ErrorEstimate, EimCalibrationVanishesWhenExhaustedAndMatchesAtZeroTerms) 
   std::vector<Index> to_free(static_cast<std::size_t>(set.num_dofs), -1);
   for (Index i = 0; i < n_free; ++i) to_free[static_cast<std::size_t>(set.free_dofs[static_cast<std::size_t>(i)])] = i;
   const Eigen::SparseMatrix<double> X = free_block(
-      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, spec.parameter.reference)), set);
+      contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, contactrb::cases::reference_mu(spec.parameters))), set);
   contactrb::fem::SparseCholesky chol;
   ASSERT_EQ(chol.compute(X), contactrb::fem::FactorStatus::Success);
   // The Lambda weights of the model: the mean |I_r| over the training set, on the kept rows.
@@ -284,7 +284,7 @@ TEST_P(ErrorEstimate, VanishesForTheUntruncatedModelAtTrainingValues) {
     ASSERT_TRUE(sol.estimate.available);
     const double scale = energy_norm(stiffness_at(name, set, snap.mu), snap.u);
     std::printf("[ %s ] mu %.3f: estimate %.3e (relative %.3e), residual %.3e, violation %.3e, compl. %.3e\n",
-                name.c_str(), snap.mu, sol.estimate.energy, sol.estimate.energy / scale, sol.estimate.residual,
+                name.c_str(), snap.mu(0), sol.estimate.energy, sol.estimate.energy / scale, sol.estimate.residual,
                 sol.estimate.violation, sol.estimate.complementarity);
     // Every part is at the solver tolerance (eps_KA = 1e-10): the residual and violation * |lambda|
     // relative to |u|_A and |u|_A^2. Delta_u has the square root of the latter (c2 enters under a
@@ -319,9 +319,9 @@ TEST_P(ErrorEstimate, EffectivityOnVerificationValues) {
       const double err = energy_norm(A, u - snap.u);
       const double e = sol.estimate.energy / err;
       std::printf("[ %s ] N %d R %d Mk %d mu %.3f: |e|_A %.3e estimate %.3e effectivity %.2f (res %.2e viol %.2e)\n",
-                  name.c_str(), solver.N(), solver.R(), solver.Mk(), snap.mu, err, sol.estimate.energy, e,
+                  name.c_str(), solver.N(), solver.R(), solver.Mk(), snap.mu(0), err, sol.estimate.energy, e,
                   sol.estimate.residual, sol.estimate.violation);
-      EXPECT_GE(e, 0.5) << "N " << solver.N() << " R " << solver.R() << " Mk " << solver.Mk() << " mu " << snap.mu;
+      EXPECT_GE(e, 0.5) << "N " << solver.N() << " R " << solver.R() << " Mk " << solver.Mk() << " mu " << snap.mu(0);
       EXPECT_LE(e, kMaxEffectivity) << "N " << solver.N() << " R " << solver.R() << " Mk " << solver.Mk() << " mu "
                                     << snap.mu;
       eff.push_back(e);

@@ -39,6 +39,9 @@ using contactrb::rb::OfflineResult;
 using contactrb::rb::OfflineSettings;
 
 const std::vector<double> kTraining{0.15, 0.25, 0.35, 0.45};
+const std::vector<contactrb::cases::Mu> kTrainingPoints = contactrb::cases::points_1d(kTraining);
+contactrb::cases::Mu one(double mu) { return contactrb::cases::Mu::Constant(1, mu); }
+std::vector<contactrb::cases::Mu> points(std::initializer_list<double> v) { return contactrb::cases::points_1d(v); }
 
 const contactrb::cases::CaseSpec& spec() {
   static const contactrb::cases::CaseSpec s = contactrb::cases::builtin_case_spec("hertz-a");
@@ -50,7 +53,7 @@ const contactrb::io::SnapshotSet& snapshots() {
   static std::unique_ptr<contactrb::io::SnapshotSet> set;
   if (!set) {
     contactrb::rb::SnapshotRequest r =
-        contactrb::rb::make_snapshot_request(spec(), "training", 0, std::nullopt, kTraining);
+        contactrb::rb::make_snapshot_request(spec(), "training", 0, std::nullopt, kTrainingPoints);
     r.settings.kacanov = contactrb::solve::KacanovSettings{1.0, 1e-10, 500};
     contactrb::rb::SnapshotRunOptions options;
     options.jobs = 2;
@@ -92,15 +95,15 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
   ASSERT_EQ(snapshots().num_failed(), 0);
   const OfflineResult& off = model(false);
   EvaluationOptions o = options();
-  o.multiplier_mus = {0.35};
-  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTraining, o);
+  o.multiplier_mus = points({0.35});
+  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, o);
   ASSERT_EQ(e.rows.size(), kTraining.size());
   EXPECT_EQ(e.N - off.model.N_supremizers, static_cast<int>(kTraining.size()));
   EXPECT_EQ(e.R, off.model.R_max);
   for (std::size_t i = 0; i < e.rows.size(); ++i) {
     const auto& r = e.rows[i];
-    SCOPED_TRACE("mu = " + std::to_string(r.mu));
-    EXPECT_DOUBLE_EQ(r.mu, kTraining[i]);
+    SCOPED_TRACE("mu = " + std::to_string(r.mu(0)));
+    EXPECT_DOUBLE_EQ(r.mu(0), kTraining[i]);
     EXPECT_TRUE(r.hf_converged);
     EXPECT_TRUE(r.rb_converged) << r.rb_status;
     EXPECT_LT(r.e_displ, 1e-6);
@@ -109,7 +112,7 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
     EXPECT_GT(r.hf_time_s, 0.0);
     EXPECT_GT(r.online_time_s, 0.0);
     EXPECT_NEAR(r.speedup, r.hf_time_s / r.online_time_s, 1e-12 * r.speedup);
-    EXPECT_EQ(r.multipliers.abscissa.empty(), r.mu != 0.35);
+    EXPECT_EQ(r.multipliers.abscissa.empty(), r.mu(0) != 0.35);
   }
   // The profile at 0.35: one entry per constraint row, RB against HF.
   const auto& p = e.rows[2].multipliers;
@@ -132,7 +135,7 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
 
 TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
   const OfflineResult& off = model(true);
-  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTraining, options());
+  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, options());
   ASSERT_EQ(e.N, 1);
   // Independent A(mu), f(mu) (affine terms), H1 product and HF solutions (the training snapshots).
   const auto reference = contactrb::cases::reference_mesh(spec(), 0);
@@ -148,10 +151,10 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     ASSERT_TRUE(r.hf_converged);
     const Eigen::VectorXd& uh = snapshots().snapshots[i].u;
     const auto sol = solver.solve(mu);
-    const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, mu, sol.u_hat);
-    const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, mu));
+    const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, one(mu), sol.u_hat);
+    const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, one(mu)));
     const Eigen::VectorXd f =
-        contactrb::cases::combine(terms.f, contactrb::cases::evaluate(th.f, mu), reference.num_dofs());
+        contactrb::cases::combine(terms.f, contactrb::cases::evaluate(th.f, one(mu)), reference.num_dofs());
     const double e_ener = 0.5 * std::abs(u.dot(A * u) - f.dot(u) - uh.dot(A * uh) + f.dot(uh));
     EXPECT_NEAR(r.e_ener, e_ener, 1e-9 * e_ener);
     EXPECT_NEAR(r.energy_hf, 0.5 * uh.dot(A * uh) - f.dot(uh), 1e-9 * std::abs(r.energy_hf));
@@ -202,7 +205,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
   EvaluationOptions o = options();
   o.sizes.N = 1;
   o.sizes.R = 1;
-  const Evaluation sub = contactrb::rb::evaluate_model(full.model, full.reconstruction, spec(), kTraining, o);
+  const Evaluation sub = contactrb::rb::evaluate_model(full.model, full.reconstruction, spec(), kTrainingPoints, o);
   EXPECT_EQ(sub.N, 1);
   EXPECT_GT(sub.summary.max_e_displ, 1e-4);
   std::printf("[ truncated ] N=%d R=%d Mk=%d Mg=%d: max e_ener %.3e, e_displ %.3e, e_inter %.3e\n", e.N, e.R, e.Mk,
@@ -243,7 +246,12 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   ASSERT_EQ(back.thetas.lift.size(), rec.thetas.lift.size());
   for (std::size_t k = 0; k < rec.thetas.lift.size(); ++k) {
     EXPECT_EQ(back.thetas.lift[k].coefficient, rec.thetas.lift[k].coefficient);
-    EXPECT_EQ(back.thetas.lift[k].power, rec.thetas.lift[k].power);
+    ASSERT_EQ(back.thetas.lift[k].factors.size(), rec.thetas.lift[k].factors.size());
+    for (std::size_t f = 0; f < rec.thetas.lift[k].factors.size(); ++f) {
+      EXPECT_EQ(back.thetas.lift[k].factors[f].parameter, rec.thetas.lift[k].factors[f].parameter);
+      EXPECT_EQ(back.thetas.lift[k].factors[f].scale, rec.thetas.lift[k].factors[f].scale);
+      EXPECT_EQ(back.thetas.lift[k].factors[f].power, rec.thetas.lift[k].factors[f].power);
+    }
   }
   EXPECT_EQ(back.thetas.a.size(), rec.thetas.a.size());
   EXPECT_EQ(back.kept_rows, rec.kept_rows);
@@ -253,8 +261,8 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   // Same reconstructed fields from the file's data as from memory.
   contactrb::rb::OnlineSolver solver(off.model);
   const auto sol = solver.solve(0.3);
-  EXPECT_EQ(contactrb::rb::reconstruct_displacement(back, 0.3, sol.u_hat),
-            contactrb::rb::reconstruct_displacement(rec, 0.3, sol.u_hat));
+  EXPECT_EQ(contactrb::rb::reconstruct_displacement(back, one(0.3), sol.u_hat),
+            contactrb::rb::reconstruct_displacement(rec, one(0.3), sol.u_hat));
   EXPECT_EQ(contactrb::rb::reconstruct_multipliers(back, sol.lambda_hat),
             contactrb::rb::reconstruct_multipliers(rec, sol.lambda_hat));
 
@@ -304,18 +312,18 @@ TEST(Evaluation, InvalidRequestsAreRefused) {
   const auto& rec = off.reconstruction;
   EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), {}, options()); }).find("no parameter"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), {0.9}, options()); })
+  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.9}), options()); })
                 .find("outside the domain"),
             std::string::npos);
   EvaluationOptions o = options();
-  o.multiplier_mus = {0.2};
-  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), {0.3}, o); }).find("mu = 0.2"),
+  o.multiplier_mus = points({0.2});
+  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.3}), o); }).find("mu = 0.2"),
             std::string::npos);
   // The case's mesh at the recorded level differs from the one the model was built on.
   contactrb::rb::ReducedModel finer = m;
   finer.level = 1;
   const std::string mismatch =
-      error_of([&] { (void)contactrb::rb::evaluate_model(finer, rec, spec(), {0.3}, options()); });
+      error_of([&] { (void)contactrb::rb::evaluate_model(finer, rec, spec(), points({0.3}), options()); });
   EXPECT_NE(mismatch.find("reconstruction data"), std::string::npos) << mismatch;
 }
 

@@ -53,7 +53,7 @@ const SnapshotSet& snapshots(const std::string& name, bool verification = false)
   if (!slot) {
     contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
         contactrb::cases::builtin_case_spec(name), "training", 0, std::nullopt,
-        verification ? verification_values().at(name) : training_values().at(name));
+        contactrb::cases::points_1d(verification ? verification_values().at(name) : training_values().at(name)));
     r.settings.kacanov.alpha = 1.0;
     r.settings.kacanov.tolerance = kTightTolerance;
     r.settings.kacanov.max_iterations = 500;
@@ -267,7 +267,7 @@ TEST_P(OfflineOnline, InterpolatedInitialGuessSavesStepsAndKeepsTheFixedPoint) {
               GetParam().c_str(), cold_steps, warm_steps);
   EXPECT_LT(warm_steps, cold_steps);
   // At a training value the guess is the reduced solution (snapshot tolerance 1e-10): one step.
-  const double mu_train = set.snapshots[2].mu;
+  const double mu_train = set.snapshots[2].mu(0);
   const auto t = solver.solve(mu_train, warm);
   ASSERT_TRUE(t.converged());
   EXPECT_EQ(t.iterations, 1);
@@ -372,7 +372,7 @@ TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {
   OnlineSolver from_part(part.model);
   OnlineSettings settings;
   settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 500};
-  const double mu = set.snapshots[2].mu;
+  const Eigen::VectorXd mu = set.snapshots[2].mu;
   const auto a = from_blocks.solve(mu, settings);
   const auto b = from_part.solve(mu, settings);
   ASSERT_EQ(a.status, b.status);
@@ -630,7 +630,7 @@ const SnapshotSet& ring_block_snapshots() {
   static const SnapshotSet set = [] {
     contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
         contactrb::cases::builtin_case_spec("ring-block"), "training", 0, std::nullopt,
-        std::vector<double>{0.95, 1.0, 1.05, 1.1, 1.15});
+        contactrb::cases::points_1d({0.95, 1.0, 1.05, 1.1, 1.15}));
     r.settings.kacanov.alpha = 1.0;
     r.settings.kacanov.tolerance = kTightTolerance;
     contactrb::rb::SnapshotRunOptions options;

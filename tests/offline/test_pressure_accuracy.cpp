@@ -51,7 +51,7 @@ Evaluation evaluate(const std::string& name, bool supremizers) {
   o.jobs = 2;
   o.online_repeats = 1;
   const Evaluation e =
-      contactrb::rb::evaluate_model(off.model, off.reconstruction, spec, spec.parameter.set("verification"), o);
+      contactrb::rb::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
   EXPECT_EQ(e.summary.hf_failures + e.summary.rb_failures, 0);
   std::printf("[ %s supremizers %s ] N %d R %d Mk %d Mg %d: max e_press %.3e (cone's best %.3e), e_force %.3e, "
               "e_peak %.3e, e_displ %.3e\n",

@@ -30,7 +30,7 @@ const contactrb::rb::OfflineResult& built() {
   if (!result) {
     const auto spec = contactrb::cases::builtin_case_spec("hertz-b");
     const auto request = contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt,
-                                                              std::vector<double>{0.905, 1.005, 1.105});
+                                                              contactrb::cases::points_1d({0.905, 1.005, 1.105}));
     const auto set = contactrb::rb::generate_snapshots(request);
     contactrb::rb::OfflineSettings s;
     s.eps_pod = 0.0;
@@ -94,9 +94,12 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   }
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_spec, m.case_spec);
-  EXPECT_EQ(r.parameter.kind, m.parameter.kind);
-  EXPECT_EQ(r.parameter.reference, m.parameter.reference);
-  EXPECT_EQ(r.parameter.center, m.parameter.center);
+  ASSERT_EQ(r.parameters.size(), m.parameters.size());
+  EXPECT_EQ(r.parameters[0].name, m.parameters[0].name);
+  EXPECT_EQ(r.parameters[0].kind, m.parameters[0].kind);
+  EXPECT_EQ(r.parameters[0].reference, m.parameters[0].reference);
+  EXPECT_EQ(r.parameters[0].center, m.parameters[0].center);
+  EXPECT_EQ(r.training_mu, m.training_mu);
   EXPECT_EQ(r.thetas.f.size(), m.thetas.f.size());
   EXPECT_EQ(r.N_max, m.N_max);
   EXPECT_EQ(r.R_max, m.R_max);
@@ -217,7 +220,7 @@ TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
   contactrb::test::TempDir dir("reduced_model_snapshots");
   const std::string path = dir.file("snapshots.h5");
   const auto request = contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-a"), "training",
-                                                            0, std::nullopt, std::vector<double>{0.3});
+                                                            0, std::nullopt, contactrb::cases::points_1d({0.3}));
   contactrb::io::write_snapshot_file(contactrb::rb::generate_snapshots(request), path);
   const std::string e = read_error(path);
   EXPECT_NE(e.find("'" + path + "': a contactrb snapshot file, not a reduced model"), std::string::npos) << e;

@@ -72,7 +72,7 @@ Study study(const cases::CaseSpec& spec) {
   options.online_repeats = 1;
   options.jobs = 2;
   s.evaluation = rb::evaluate_model(s.offline.model, s.offline.reconstruction, spec,
-                                    spec.parameter.set("verification"), options);
+                                    spec.set("verification"), options);
   for (const rb::EvaluationRow& r : s.evaluation.rows) s.hf_energy_scale = std::max(s.hf_energy_scale, std::abs(r.energy_hf));
   return s;
 }
@@ -112,8 +112,8 @@ void expect_same(const Study& base, const Study& scaled, double u_factor, double
     const rb::OnlineSolution x = solver_a.solve(base_mus[i]);
     const rb::OnlineSolution y = solver_b.solve(scaled_mus[i]);
     ASSERT_TRUE(x.converged() && y.converged()) << what << ", mu = " << base_mus[i];
-    const Eigen::VectorXd ux = u_factor * rb::reconstruct_displacement(base.offline.reconstruction, base_mus[i], x.u_hat);
-    const Eigen::VectorXd uy = rb::reconstruct_displacement(scaled.offline.reconstruction, scaled_mus[i], y.u_hat);
+    const Eigen::VectorXd ux = u_factor * rb::reconstruct_displacement(base.offline.reconstruction, Eigen::VectorXd::Constant(1, base_mus[i]), x.u_hat);
+    const Eigen::VectorXd uy = rb::reconstruct_displacement(scaled.offline.reconstruction, Eigen::VectorXd::Constant(1, scaled_mus[i]), y.u_hat);
     const Eigen::VectorXd lx = rb::reconstruct_multipliers(base.offline.reconstruction, x.lambda_hat);
     const Eigen::VectorXd ly = rb::reconstruct_multipliers(scaled.offline.reconstruction, y.lambda_hat);
     worst_u = std::max(worst_u, (uy - ux).norm() / ux.norm());
@@ -157,11 +157,11 @@ TEST(UnitScaling, HertzAAndHertzBGiveTheSameModelInOtherUnits) {
     print(name + "-si", s_si);
     print(name + "-mm", s_mm);
     // The model is a real one: truncated, and accurate on values it was not trained on.
-    EXPECT_LT(base.offline.model.N_max, static_cast<int>(spec.parameter.set("training").size())) << name;
+    EXPECT_LT(base.offline.model.N_max, static_cast<int>(contactrb::cases::values_1d(spec.set("training")).size())) << name;
     EXPECT_LT(base.evaluation.summary.max_e_displ, 0.05) << name;
-    const std::vector<double> mus = spec.parameter.set("verification");
-    expect_same(base, s_si, 1.0, 1.0, name + " E x 1e9", mus, si.parameter.set("verification"));
-    expect_same(base, s_mm, 1e-3, 1e-3, name + " lengths x 1e-3", mus, mm.parameter.set("verification"));
+    const std::vector<double> mus = contactrb::cases::values_1d(spec.set("verification"));
+    expect_same(base, s_si, 1.0, 1.0, name + " E x 1e9", mus, contactrb::cases::values_1d(si.set("verification")));
+    expect_same(base, s_mm, 1e-3, 1e-3, name + " lengths x 1e-3", mus, contactrb::cases::values_1d(mm.set("verification")));
   }
 }
 
