@@ -3,7 +3,7 @@
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--header]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--lu umfpack|eigen] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -24,7 +24,7 @@
 using namespace contactrb;
 
 int main(int argc, char** argv) {
-  std::string case_name = "hertz-a", solver = "newton", constraint;
+  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack";
   int level = 0, repeat = 1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
     else if (a == "--solver") solver = next();
     else if (a == "--constraint") constraint = next();
     else if (a == "--verbose") verbose = true;
+    else if (a == "--lu") lu = next();
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
     const hf::ContactProblem problem = cases::make_problem(case_name, mu, level, d);
     hf::HFSettings settings;
     settings.method = hf::hf_method_from_string(solver);
+    settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;

@@ -194,20 +194,29 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     it.linearize_s = seconds_since(t0);
     const RowSparse D0 = p.dofs->restrict_columns(lin.D);
 
-    // The (1, 1) block A_00 + H of every inner system.
+    // The (1, 1) block A_00 + H of every inner system. `frozen`: the fallback when that
+    // Jacobian is singular (e.g. a slave node at an open master end, where the finite
+    // differences straddle the candidate switch): H = 0 and D = -K, the Jacobian of the
+    // Kacanov step with the geometry frozen, nonsingular when K_A has full row rank.
     t0 = Clock::now();
+    bool frozen = false;
     std::vector<Eigen::Triplet<double>> base;
-    base.reserve(static_cast<std::size_t>(p.A00->nonZeros() + lin.H.nonZeros()));
-    for (int j = 0; j < p.A00->outerSize(); ++j) {
-      for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) base.emplace_back(a.row(), a.col(), a.value());
-    }
-    for (int j = 0; j < lin.H.outerSize(); ++j) {
-      for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
-        const int fr = global_to_free[static_cast<std::size_t>(h.row())];
-        const int fc = global_to_free[static_cast<std::size_t>(h.col())];
-        if (fr >= 0 && fc >= 0) base.emplace_back(fr, fc, h.value());
+    auto build_base = [&]() {
+      base.clear();
+      base.reserve(static_cast<std::size_t>(p.A00->nonZeros() + lin.H.nonZeros()));
+      for (int j = 0; j < p.A00->outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) base.emplace_back(a.row(), a.col(), a.value());
       }
-    }
+      if (frozen) return;
+      for (int j = 0; j < lin.H.outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
+          const int fr = global_to_free[static_cast<std::size_t>(h.row())];
+          const int fc = global_to_free[static_cast<std::size_t>(h.col())];
+          if (fr >= 0 && fc >= 0) base.emplace_back(fr, fc, h.value());
+        }
+      }
+    };
+    build_base();
     const Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
 
     // Inner primal-dual active set on the linearized problem (geometry frozen at u): the
@@ -219,10 +228,12 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     Eigen::VectorXd lambda_next = st.lambda;
     std::vector<char> is_active(static_cast<std::size_t>(R), 0);
     auto predicted_active = [&](std::vector<char>& out) {
-      const Eigen::VectorXd d_lin = st.maps.d + D0 * du;
+      const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
       int changed = 0;
       for (int r = 0; r < R; ++r) {
-        const char a = lambda_next(r) - evaluate.c()(r) * d_lin(r) > 0.0 ? 1 : 0;
+        // A non-candidate row (zero K row: no master faces the slave node) never binds.
+        const bool candidate = st.K0.outerIndexPtr()[r + 1] > st.K0.outerIndexPtr()[r];
+        const char a = candidate && lambda_next(r) - evaluate.c()(r) * d_lin(r) > 0.0 ? 1 : 0;
         if (a != out[static_cast<std::size_t>(r)]) ++changed;
         out[static_cast<std::size_t>(r)] = a;
       }
@@ -243,13 +254,24 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       for (int a = 0; a < m; ++a) {
         const int r = active[static_cast<std::size_t>(a)];
         for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) trip.emplace_back(kk.col(), n + a, kk.value());
-        for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) trip.emplace_back(n + a, dd.col(), -dd.value());
+        if (frozen) {
+          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) trip.emplace_back(n + a, kk.col(), kk.value());
+        } else {
+          for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) trip.emplace_back(n + a, dd.col(), -dd.value());
+        }
         rhs(n + a) = st.maps.d(r);
       }
       Eigen::SparseMatrix<double> J(n + m, n + m);
       J.setFromTriplets(trip.begin(), trip.end());
       ++it.factorizations;
-      if (lu.compute(J) != solve::SparseLUStatus::Success) {
+      if (lu.compute(J) != solve::SparseLUStatus::Success && !frozen) {
+        frozen = true;
+        it.frozen = true;
+        build_base();
+        --inner;
+        continue;
+      }
+      if (lu.status() != solve::SparseLUStatus::Success) {
         return finish(solve::KacanovStatus::StepFailed,
                       "semi-smooth Newton iteration " + std::to_string(k) + ": the Newton system (" +
                           std::to_string(n) + " free DOFs, " + std::to_string(m) + " active rows) is " +

@@ -53,6 +53,7 @@ struct NewtonIteration {
   int active = 0;          // |A| of the step
   int changed = 0;         // rows that entered or left A (first inner pass)
   int factorizations = 0;  // sparse LUs (inner active-set passes)
+  bool frozen = false;     // the consistent Jacobian was singular: frozen-geometry fallback step
   double step = 0.0;       // damping factor taken
   int colours = 0;         // colours of the finite-difference linearization
   double linearize_s = 0.0, factorize_s = 0.0;
