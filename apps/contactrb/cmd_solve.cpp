@@ -40,6 +40,8 @@ struct SolveOptions {
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   int level = 0;
+  std::string solver = "kacanov";  // hf::HFMethod (docs/solvers.md)
+  int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
   std::string out_dir;
 };
 
@@ -66,6 +68,7 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
   j["mu"] = mu_json(opt.parameters, opt.mu);
   j["level"] = opt.level;
   j["constraint"] = contact::to_string(solver.problem().discretization);
+  j["solver"] = hf::to_string(settings.method);
   j["alpha"] = settings.kacanov.alpha;
   j["tolerance"] = settings.kacanov.tolerance;
   j["converged"] = s.converged;
@@ -78,6 +81,9 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
     dl.push_back(it.dlambda);
   }
   j["increments"] = {{"displacement", du}, {"multipliers", dl}};
+  nlohmann::json residuals = nlohmann::json::array();  // Newton: KKT residual before each step
+  for (const auto& it : s.newton_history) residuals.push_back(it.residual);
+  if (s.method == hf::HFMethod::Newton) j["newton_residuals"] = residuals;
   j["energy"] = s.energy;
   j["contact_force"] = s.contact_force;
   j["active_constraints"] = s.active_constraints;
@@ -113,6 +119,9 @@ int run_solve(SolveOptions opt) {
   settings.kacanov.tolerance = opt.tolerance;
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
+  settings.method = hf::hf_method_from_string(opt.solver);
+  settings.newton.max_iterations = opt.newton_max_iterations;
+  hf::check_settings(settings.newton);
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
@@ -195,6 +204,10 @@ Command add_solve_command(CLI::App& app) {
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
+  sub->add_option("--solver", opt->solver, "HF solver: kacanov (the paper's) | newton (semi-smooth Newton)")
+      ->capture_default_str();
+  sub->add_option("--newton-max-iterations", opt->newton_max_iterations, "Semi-smooth Newton iteration limit")
+      ->capture_default_str();
   sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")
       ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();

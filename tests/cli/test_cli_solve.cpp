@@ -102,6 +102,21 @@ TEST(CliSolve, NonConvergenceExitsThreeAndStillWritesTheJson) {
   EXPECT_EQ(j["iterations"].get<int>(), 3);
 }
 
+// Issue [C]: the semi-smooth Newton solver's non-convergence is exit 3 too, with the
+// iterations and the KKT residuals in the message.
+TEST(CliSolve, NewtonNonConvergenceExitsThreeWithTheResiduals) {
+  contactrb::test::TempDir dir("solve_newton_noconv");
+  const CliResult r = run_cli("solve --case hertz-a --mu 0.45 --solver newton --newton-max-iterations 2 --out " +
+                              shell_quote(dir.path().string()));
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("did not converge in 2 iterations"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("stationarity"), std::string::npos) << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_EQ(j["solver"].get<std::string>(), "newton");
+  EXPECT_EQ(j["newton_residuals"].size(), 2u);
+}
+
 // Issue [A] item 5.1, the command of the report: at alpha = 1e-4 it exited 0 with converged =
 // true after one iteration (force 1.398 instead of 1.4726). The stopping test now reads the
 // unrelaxed step: 500 iterations at alpha = 1e-4 do not reach eps_KA, and that is a status.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "contactrb/common/error.hpp"
@@ -19,6 +20,20 @@ double seconds_since(Clock::time_point t0) {
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 }  // namespace
 
+const char* to_string(HFMethod method) {
+  switch (method) {
+    case HFMethod::Newton: return "newton";
+    case HFMethod::Kacanov: return "kacanov";
+  }
+  return "unknown";
+}
+
+HFMethod hf_method_from_string(const std::string& name) {
+  if (name == "newton") return HFMethod::Newton;
+  if (name == "kacanov") return HFMethod::Kacanov;
+  throw Error("unknown HF solver '" + name + "' (expected newton or kacanov)");
+}
+
 double HFKKT::max() const { return std::max({stationarity, primal, dual, complementarity}); }
 
 struct HFSolver::Impl {
@@ -29,13 +44,31 @@ struct HFSolver::Impl {
   Eigen::SparseMatrix<double> A;  // global
   Eigen::VectorXd f;              // global
   Eigen::SparseMatrix<double> A00_matrix;  // A restricted to the free DOFs
-  std::unique_ptr<ContactCondensation> A00;
   Eigen::VectorXd b;              // f_0 - (A u_D)_0
-  Eigen::VectorXd z;              // A_00^-1 b
   std::vector<int> contact_free;  // free indices of contact-boundary DOFs
   std::vector<int> free_to_contact;  // free index -> position in contact_free or -1
-  Eigen::VectorXd z_c;
   double setup_time = 0.0;
+  // Kacanov only, built on first use (ensure_condensation): the factorization of A_00 and
+  // S = (A_00^-1)[c, c], z = A_00^-1 b and its contact entries z_c.
+  mutable std::mutex condensation_mutex;
+  mutable std::unique_ptr<ContactCondensation> A00;
+  mutable Eigen::VectorXd z;
+  mutable Eigen::VectorXd z_c;
+  mutable double condensation_time = 0.0;
+
+  void ensure_condensation() const {
+    const std::lock_guard<std::mutex> lock(condensation_mutex);
+    if (A00) return;
+    const auto t0 = Clock::now();
+    // S = (A_00^-1)[c, c] from the factorization with the contact DOFs ordered last.
+    auto factor = std::make_unique<ContactCondensation>(A00_matrix, contact_free);
+    z = factor->solve(b);
+    const int nc = static_cast<int>(contact_free.size());
+    z_c.resize(nc);
+    for (int i = 0; i < nc; ++i) z_c(i) = z(contact_free[static_cast<std::size_t>(i)]);
+    A00 = std::move(factor);
+    condensation_time = seconds_since(t0);
+  }
 
   // K restricted to contact free DOFs (R x nc) and the lifted gap g - K u_D.
   void restrict_rows(const contact::ConstraintRows& rows, RowSparse& Kc, Eigen::VectorXd& g_lift) const {
@@ -58,6 +91,9 @@ struct HFSolver::Impl {
   std::vector<int> global_to_free;
 
   Eigen::VectorXd total(const Eigen::VectorXd& u0) const { return dofs.lift() + dofs.extend(u0); }
+  void finish(HFSolution& sol, Clock::time_point t0) const;
+  HFSolution solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
+                          const Eigen::VectorXd& lambda_start, Clock::time_point t0) const;
 };
 
 HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
@@ -105,14 +141,7 @@ HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
       m.contact_free.push_back(fi);
     }
   }
-  // S = (A_00^-1)[c, c] from the factorization with the contact DOFs ordered last.
-  const int nc = static_cast<int>(m.contact_free.size());
   m.A00_matrix = m.dofs.restrict_matrix(m.A);
-  m.A00 = std::make_unique<ContactCondensation>(m.A00_matrix, m.contact_free);
-
-  m.z = m.A00->solve(m.b);
-  m.z_c.resize(nc);
-  for (int i = 0; i < nc; ++i) m.z_c(i) = m.z(m.contact_free[static_cast<std::size_t>(i)]);
   m.setup_time = seconds_since(t0);
 }
 
@@ -126,16 +155,33 @@ const contact::ContactQuadrature& HFSolver::quadrature() const { return impl_->q
 const fem::DofMap& HFSolver::dofs() const { return impl_->dofs; }
 const Eigen::SparseMatrix<double>& HFSolver::stiffness() const { return impl_->A; }
 const Eigen::VectorXd& HFSolver::load() const { return impl_->f; }
-double HFSolver::setup_time_s() const { return impl_->setup_time; }
+double HFSolver::setup_time_s() const {
+  const std::lock_guard<std::mutex> lock(impl_->condensation_mutex);
+  return impl_->setup_time + impl_->condensation_time;
+}
 
-HFSolution HFSolver::solve(const HFSettings& settings) const {
+HFSolution HFSolver::solve(const HFSettings& settings) const { return solve(settings, HFInitialGuess{}); }
+
+HFSolution HFSolver::solve(const HFSettings& settings, const HFInitialGuess& guess) const {
   const auto t0 = Clock::now();
-  solve::check_settings(settings.kacanov);
   const Impl& m = *impl_;
   const mesh::Mesh& mesh = m.problem.mesh;
   const int R = static_cast<int>(m.quadrature.weight.size());
+  require(guess.u.size() == 0 || guess.u.size() == mesh.num_dofs(),
+          "HF initial guess: u has " + std::to_string(guess.u.size()) + " entries for " +
+              std::to_string(mesh.num_dofs()) + " DOFs");
+  require(guess.lambda.size() == 0 || guess.lambda.size() == R,
+          "HF initial guess: lambda has " + std::to_string(guess.lambda.size()) + " entries for " +
+              std::to_string(R) + " constraint rows");
+  const Eigen::VectorXd u0_start =
+      guess.u.size() > 0 ? m.dofs.restrict(guess.u) : Eigen::VectorXd::Zero(m.dofs.num_free());
+  const Eigen::VectorXd lambda_start = guess.lambda.size() > 0 ? guess.lambda : Eigen::VectorXd::Zero(R);
+  if (settings.method == HFMethod::Newton) return m.solve_newton(settings.newton, u0_start, lambda_start, t0);
 
+  solve::check_settings(settings.kacanov);
+  m.ensure_condensation();
   HFSolution sol;
+  sol.method = HFMethod::Kacanov;
   std::vector<int> warm;  // passive set of the previous QP
   contact::PointwiseContact last_pointwise;
   contact::ConstraintRows last_rows;
@@ -183,8 +229,8 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
     return true;
   };
 
-  const Eigen::VectorXd u_start = m.dofs.lift();
-  solve::KacanovResult kr = solve::kacanov(step, u_start, Eigen::VectorXd::Zero(R), settings.kacanov);
+  const Eigen::VectorXd u_start = m.total(u0_start);
+  solve::KacanovResult kr = solve::kacanov(step, u_start, lambda_start, settings.kacanov);
   sol.status = kr.status;
   sol.converged = kr.status == solve::KacanovStatus::Converged;
   sol.message = kr.message;
@@ -195,7 +241,7 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
     sol.u0 = Eigen::VectorXd::Zero(m.dofs.num_free());
     sol.lambda = Eigen::VectorXd::Zero(R);
     sol.time_s = seconds_since(t0) + m.setup_time;
-    return sol;
+    return sol;  // (setup_time: the condensation built in this solve is inside seconds_since(t0))
   }
   sol.u = kr.u_bar;
   sol.u0 = last_u0;
@@ -223,10 +269,17 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
   sol.kkt.dual = std::max(0.0, -sol.lambda.minCoeff()) / lmax;
   sol.kkt.complementarity = sol.lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / (lmax * gap_scale);
 
+  m.finish(sol, t0);
+  return sol;
+}
+
+// The report common to both methods: nonlinear feasibility, energy, force, finiteness.
+void HFSolver::Impl::finish(HFSolution& sol, Clock::time_point t0) const {
+  const mesh::Mesh& mesh = problem.mesh;
   // Nonlinear feasibility: geometry re-evaluated at the returned displacement.
   std::string geometry_failure;
   try {
-    const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, m.pair, sol.u);
+    const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, pair, sol.u);
     const Eigen::VectorXd violation = at_u.K * sol.u - at_u.g;
     sol.gap_violation = std::max(0.0, violation.maxCoeff());
   } catch (const Error& e) {  // the returned displacement overflows the projection
@@ -234,8 +287,8 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
     geometry_failure = e.what();
   }
 
-  sol.energy = 0.5 * sol.u.dot(m.A * sol.u) - m.f.dot(sol.u);
-  sol.contact_force = sol.lambda.dot(m.quadrature.weight);
+  sol.energy = 0.5 * sol.u.dot(A * sol.u) - f.dot(sol.u);
+  sol.contact_force = sol.lambda.dot(quadrature.weight);
   // Finite iterates can still give a non-finite result (u of 1e154: u'Au overflows; of 1e155:
   // the projection's squared distances). Not an answer: flagged, never "converged". (A solve
   // that already failed keeps its own status and message.)
@@ -253,7 +306,41 @@ HFSolution HFSolver::solve(const HFSettings& settings) const {
     sol.message = os.str();
   }
   sol.active_constraints = static_cast<int>((sol.lambda.array() > 0.0).count());
-  sol.time_s = seconds_since(t0) + m.setup_time;
+  sol.time_s = seconds_since(t0) + setup_time;
+}
+
+
+HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
+                                        const Eigen::VectorXd& lambda_start, Clock::time_point t0) const {
+  NewtonProblem np;
+  np.mesh = &problem.mesh;
+  np.pair = &pair;
+  np.quadrature = &quadrature;
+  np.dofs = &dofs;
+  np.A00 = &A00_matrix;
+  np.b = &b;
+  const NewtonResult nr = semismooth_newton(np, u0_start, lambda_start, settings);
+  HFSolution sol;
+  sol.method = HFMethod::Newton;
+  sol.status = nr.status;
+  sol.converged = nr.status == solve::KacanovStatus::Converged;
+  sol.message = nr.message;
+  sol.iterations = nr.iterations;
+  sol.newton_history = nr.history;
+  sol.u0 = nr.u0;
+  sol.u = total(nr.u0);
+  sol.lambda = nr.lambda;
+  sol.kkt.stationarity = nr.stationarity;
+  sol.kkt.primal = nr.primal;
+  sol.kkt.dual = nr.dual;
+  sol.kkt.complementarity = nr.complementarity;
+  try {  // the geometry of the returned u (Newton's K, g are those of u itself)
+    sol.pointwise = contact::project_slave_nodes(problem.mesh, pair, sol.u);
+    sol.rows = contact::constraint_rows(problem.mesh, pair, quadrature, sol.pointwise, sol.u);
+  } catch (const Error&) {
+    // finish() re-evaluates the geometry and reports the failure.
+  }
+  finish(sol, t0);
   return sol;
 }
 

@@ -1,6 +1,10 @@
 #pragma once
-// High-fidelity contact solver: Kacanov iterations (paper (12), (63)) around an exact
-// non-negative QP in dual form. A(mu) is factorized once per solve; the inner QP matrix
+// High-fidelity contact solver, two methods (HFMethod):
+//  - Newton: semi-smooth Newton / primal-dual active set with the geometry linearized
+//    consistently and one sparse LU of the active-row saddle point per iteration
+//    (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
+//  - Kacanov: the paper's iterations (12), (63) around an exact non-negative QP in dual form.
+// Kacanov: A(mu) is factorized once per solve; the inner QP matrix
 // Q = K A^-1 K' is formed from the block S = (A_00^-1) restricted to the free DOFs of the
 // two contact boundaries, computed once, so each iteration costs one back-solve plus
 // small dense work.
@@ -16,18 +20,34 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/hf/contact_problem.hpp"
+#include "contactrb/hf/semismooth_newton.hpp"
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
 
 namespace contactrb::hf {
 
+enum class HFMethod { Newton, Kacanov };
+const char* to_string(HFMethod method);
+HFMethod hf_method_from_string(const std::string& name);  // "newton" | "kacanov"
+
 struct HFSettings {
   solve::KacanovSettings kacanov;  // alpha = 0.3, eps_KA = 1e-3 (paper Section 6.2.2)
   solve::QPSettings qp;
+  NewtonSettings newton;           // tolerance 1e-10 on HFKKT::max()
+  HFMethod method = HFMethod::Kacanov;
 };
 
-// Relative KKT residuals of the returned (u, lambda) for the linearized problem it solves
-// exactly (K, g frozen at the previous Kacanov iterate).
+// A starting point (warm start, e.g. the solution at a nearby mu): the total displacement
+// (num_dofs; its prescribed entries are ignored, the lift of this problem is used) and the
+// multipliers (R). Empty vectors: the cold start u = u_D, lambda = 0.
+struct HFInitialGuess {
+  Eigen::VectorXd u;
+  Eigen::VectorXd lambda;
+};
+
+// Relative KKT residuals of the returned (u, lambda). Kacanov: for the linearized problem it
+// solves exactly (K, g frozen at the previous Kacanov iterate). Newton: for the nonlinear
+// problem (K, g at the returned u).
 struct HFKKT {
   double stationarity = 0.0;     // |A_00 u_0 + K_0' lambda - b| / max(|b|, |K_0' lambda|)
   double primal = 0.0;           // max(0, max_r (K u - g)_r) / gap scale (max(|g|, max_r sum_j |K_rj u_j|))
@@ -38,10 +58,12 @@ struct HFKKT {
 
 struct HFSolution {
   bool converged = false;
-  solve::KacanovStatus status = solve::KacanovStatus::StepFailed;
+  HFMethod method = HFMethod::Kacanov;
+  solve::KacanovStatus status = solve::KacanovStatus::StepFailed;  // the status of either method
   std::string message;
   int iterations = 0;
-  std::vector<solve::KacanovIteration> history;
+  std::vector<solve::KacanovIteration> history;        // Kacanov
+  std::vector<NewtonIteration> newton_history;         // Newton
 
   Eigen::VectorXd u;       // total displacement u_D + u_0 (num_dofs): last linearized solution
   Eigen::VectorXd u0;      // its free part (num_free)
@@ -66,6 +88,8 @@ class HFSolver {
   HFSolver& operator=(HFSolver&&) noexcept;
 
   HFSolution solve(const HFSettings& settings = {}) const;
+  // From an initial guess (warm start). Throws contactrb::Error on sizes that do not match.
+  HFSolution solve(const HFSettings& settings, const HFInitialGuess& guess) const;
 
   const ContactProblem& problem() const;
   const contact::ContactPair& pair() const;
@@ -73,6 +97,8 @@ class HFSolver {
   const fem::DofMap& dofs() const;
   const Eigen::SparseMatrix<double>& stiffness() const;  // global A (num_dofs^2)
   const Eigen::VectorXd& load() const;                    // global f
+  // Assembly, lifting and checks; plus, once a Kacanov solve has needed it, the factorization
+  // of A_00 and the condensed block S (built lazily: the Newton method never needs them).
   double setup_time_s() const;
 
  private:

@@ -94,8 +94,8 @@ class Progress {
 void evaluate_one(const ReducedModel& model, const ReducedReconstruction& rec, const cases::CaseSpec& spec,
                   const mesh::Mesh& reference, const OnlineRun& online, const std::vector<cases::Mu>& multiplier_mus,
                   EvaluationRow& row) {
-  const hf::HFSettings settings{
-      solve::KacanovSettings{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations}, {}};
+  hf::HFSettings settings;
+  settings.kacanov = solve::KacanovSettings{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
   // HF time: the problem at mu (mapped mesh, data), assembly, factorization, condensation and
   // the Kacanov solve; the reference mesh (generated once) is excluded.
   const auto t0 = Clock::now();

@@ -1,0 +1,101 @@
+// HF solver scaling (issue [C], docs/benchmarks.md "HF solver scaling"): one configuration per
+// run, one CSV line on stdout (run scripts/bench_hf_scaling.sh for the sweep). A plain program,
+// not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
+//
+//   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--lu umfpack|eigen] [--verbose] [--header]
+//
+// Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
+// Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
+// (median over --repeat runs of setup + solve), iterations, status, contact force, energy,
+// KKT residual, active rows, peak RSS (MB).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/builtin_problems.hpp"
+#include "contactrb/hf/hf_solver.hpp"
+
+using namespace contactrb;
+
+int main(int argc, char** argv) {
+  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack";
+  int level = 0, repeat = 1;
+  bool verbose = false;
+  double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "missing value after %s\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--header") {
+      std::printf("case,level,dofs,slave_nodes,solver,constraint,mu,setup_s,solve_s,total_s,iterations,status,"
+                  "force,energy,kkt,active,peak_rss_mb\n");
+      return 0;
+    }
+    if (a == "--case") case_name = next();
+    else if (a == "--level") level = std::stoi(next());
+    else if (a == "--mu") mu = std::stod(next());
+    else if (a == "--solver") solver = next();
+    else if (a == "--constraint") constraint = next();
+    else if (a == "--verbose") verbose = true;
+    else if (a == "--lu") lu = next();
+    else if (a == "--repeat") repeat = std::stoi(next());
+    else if (a == "--alpha") alpha = std::stod(next());
+    else if (a == "--tolerance") tolerance = std::stod(next());
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  try {
+    std::optional<contact::Discretization> d;
+    if (!constraint.empty()) d = contact::discretization_from_string(constraint);
+    const hf::ContactProblem problem = cases::make_problem(case_name, mu, level, d);
+    hf::HFSettings settings;
+    settings.method = hf::hf_method_from_string(solver);
+    settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
+    settings.kacanov.alpha = alpha;
+    settings.kacanov.tolerance = tolerance;
+    std::vector<double> setup, solve, total;
+    hf::HFSolution sol;
+    for (int r = 0; r < std::max(1, repeat); ++r) {
+      const hf::HFSolver s(problem);
+      sol = s.solve(settings);
+      setup.push_back(s.setup_time_s());
+      total.push_back(sol.time_s);
+      solve.push_back(sol.time_s - s.setup_time_s());
+    }
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    if (verbose) {
+      for (const auto& it : sol.newton_history) {
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d LUs %d step %g colours %d lin %.4f s lu %.4f s\n",
+                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.step, it.colours, it.linearize_s, it.factorize_s);
+      }
+      if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
+    }
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f\n", case_name.c_str(), level,
+                problem.mesh.num_dofs(), problem.mesh.boundaries.at(mesh::kSlaveBoundary).size() + 1, solver.c_str(),
+                contact::to_string(problem.discretization), mu, median(setup), median(solve), median(total),
+                sol.iterations, solve::to_string(sol.status), sol.contact_force, sol.energy, sol.kkt.max(),
+                sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0);
+    return sol.converged ? 0 : 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_hf_scaling: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The HF scaling sweep of docs/benchmarks.md ("HF solver scaling"): hertz-a at mu = 0.3, whole-mesh
+# refinement levels, both solvers (Kacanov with the paper's alpha = 0.3, eps_KA = 1e-3; Newton with
+# its default tolerance 1e-10), one process per configuration (peak RSS per configuration).
+#   bench/hf_scaling.sh BUILD_DIR [MAX_NEWTON_LEVEL] [MAX_KACANOV_LEVEL] > scaling.csv
+set -uo pipefail
+build=${1:-build}
+max_newton=${2:-6}
+max_kacanov=${3:-5}
+bin="$build/bench/bench_hf_scaling"
+"$bin" --header
+for level in $(seq 0 "$max_newton"); do
+  "$bin" --case hertz-a --level "$level" --mu 0.3 --solver newton --repeat $((level < 4 ? 3 : 1))
+done
+for level in $(seq 0 "$max_kacanov"); do
+  "$bin" --case hertz-a --level "$level" --mu 0.3 --solver kacanov --repeat $((level < 4 ? 3 : 1))
+done

@@ -1,0 +1,196 @@
+#include "contactrb/contact/contact_linearization.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::contact {
+
+namespace {
+
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+void sort_unique(std::vector<int>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+// Movable DOFs row r of (K, g) can depend on: the slave nodes of I_r and the master chain
+// positions from (first segment hit - 1) to (last segment hit + 2): the vertex normals n_k,
+// n_k+1 of a segment k use segments k - 1 .. k + 1 (docs/contact.md).
+std::vector<std::vector<int>> row_inputs(const ContactPair& pair, const ContactQuadrature& quadrature,
+                                         const PointwiseContact& pw, const std::vector<char>& movable) {
+  const int R = static_cast<int>(quadrature.W.rows());
+  const bool closed = pair.master.size() > 2 && pair.master.front() == pair.master.back();
+  const int M = static_cast<int>(pair.master.size()) - 1;  // segments
+  const int vertices = closed ? M : M + 1;                  // distinct chain positions
+  auto add_node = [&](std::vector<int>& out, int node) {
+    for (int c = 0; c < 2; ++c) {
+      const int dof = 2 * node + c;
+      if (movable[static_cast<std::size_t>(dof)]) out.push_back(dof);
+    }
+  };
+  auto add_position = [&](std::vector<int>& out, int pos) {
+    if (closed) {
+      pos = ((pos % vertices) + vertices) % vertices;
+    } else if (pos < 0 || pos >= vertices) {
+      return;
+    }
+    add_node(out, pair.master[static_cast<std::size_t>(pos)]);
+  };
+  std::vector<std::vector<int>> inputs(static_cast<std::size_t>(R));
+  for (int r = 0; r < R; ++r) {
+    std::vector<int>& in = inputs[static_cast<std::size_t>(r)];
+    int lo = M, hi = -1;
+    for (RowSparse::InnerIterator it(quadrature.W, r); it; ++it) {
+      const int p = static_cast<int>(it.col());
+      add_node(in, pair.slave[static_cast<std::size_t>(p)]);
+      const int k = pw.projection[static_cast<std::size_t>(p)].segment;
+      if (k < 0) continue;
+      lo = std::min(lo, k);
+      hi = std::max(hi, k);
+    }
+    if (hi >= 0) {
+      if (closed && hi - lo > M / 2) {  // the hits wrap around the closed chain's start
+        for (int pos = hi - 1; pos <= lo + M + 2; ++pos) add_position(in, pos);
+      } else {
+        for (int pos = lo - 1; pos <= hi + 2; ++pos) add_position(in, pos);
+      }
+    }
+    sort_unique(in);
+  }
+  return inputs;
+}
+
+}  // namespace
+
+ContactMaps evaluate_contact_maps(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                                  const Eigen::VectorXd& u, const ProjectionOptions& options) {
+  ContactMaps maps;
+  maps.pointwise = project_slave_nodes(mesh, pair, u, options);
+  maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
+  maps.d = maps.rows.g - maps.rows.K * u;
+  return maps;
+}
+
+ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair& pair,
+                                       const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                       const LinearizationOptions& options) {
+  const int N = mesh.num_dofs();
+  const int R = static_cast<int>(quadrature.W.rows());
+  require(u.size() == N, "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
+                             std::to_string(N) + " DOFs");
+  require(lambda.size() == R, "linearize_contact: lambda has " + std::to_string(lambda.size()) + " entries for " +
+                                  std::to_string(R) + " constraint rows");
+  require(static_cast<int>(movable.size()) == N, "linearize_contact: movable mask has " +
+                                                     std::to_string(movable.size()) + " entries for " +
+                                                     std::to_string(N) + " DOFs");
+  require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
+
+  ContactLinearization lin;
+  lin.maps = evaluate_contact_maps(mesh, pair, quadrature, u, options.projection);
+  const std::vector<std::vector<int>> inputs = row_inputs(pair, quadrature, lin.maps.pointwise, movable);
+
+  // Rows of H: DOF i gets the columns of every loaded row r (lambda_r != 0) whose inputs hold i.
+  std::vector<int> h_row_of(static_cast<std::size_t>(N), -1);
+  std::vector<int> h_dof;                   // H row index -> DOF
+  std::vector<std::vector<int>> h_columns;  // H row index -> columns
+  for (int r = 0; r < R; ++r) {
+    if (lambda(r) == 0.0) continue;
+    const auto& in = inputs[static_cast<std::size_t>(r)];
+    for (int i : in) {
+      int& hr = h_row_of[static_cast<std::size_t>(i)];
+      if (hr < 0) {
+        hr = static_cast<int>(h_dof.size());
+        h_dof.push_back(i);
+        h_columns.emplace_back();
+      }
+      auto& cols = h_columns[static_cast<std::size_t>(hr)];
+      cols.insert(cols.end(), in.begin(), in.end());
+    }
+  }
+  for (auto& cols : h_columns) sort_unique(cols);
+
+  // Greedy colouring: columns sharing an output row (a row of D or of H) get different colours.
+  std::vector<int> columns;
+  for (const auto& in : inputs) columns.insert(columns.end(), in.begin(), in.end());
+  sort_unique(columns);
+  std::vector<int> compact(static_cast<std::size_t>(N), -1);
+  for (std::size_t c = 0; c < columns.size(); ++c) compact[static_cast<std::size_t>(columns[c])] = static_cast<int>(c);
+  std::vector<std::vector<int>> column_outputs(columns.size());  // output rows: r, or R + H row
+  for (int r = 0; r < R; ++r) {
+    for (int j : inputs[static_cast<std::size_t>(r)]) column_outputs[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])].push_back(r);
+  }
+  for (std::size_t hr = 0; hr < h_columns.size(); ++hr) {
+    for (int j : h_columns[hr]) {
+      column_outputs[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])].push_back(R + static_cast<int>(hr));
+    }
+  }
+  std::vector<std::vector<int>> output_colours(static_cast<std::size_t>(R) + h_columns.size());
+  std::vector<int> colour(columns.size(), -1);
+  std::vector<char> forbidden;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    forbidden.assign(static_cast<std::size_t>(lin.colours) + 1, 0);
+    for (int o : column_outputs[c]) {
+      for (int k : output_colours[static_cast<std::size_t>(o)]) forbidden[static_cast<std::size_t>(k)] = 1;
+    }
+    int k = 0;
+    while (forbidden[static_cast<std::size_t>(k)]) ++k;
+    colour[c] = k;
+    lin.colours = std::max(lin.colours, k + 1);
+    for (int o : column_outputs[c]) output_colours[static_cast<std::size_t>(o)].push_back(k);
+  }
+
+  // Step: relative to the mean reference slave edge length.
+  double edges = 0.0;
+  for (std::size_t p = 0; p + 1 < pair.slave.size(); ++p) {
+    edges += (mesh.nodes[static_cast<std::size_t>(pair.slave[p + 1])] - mesh.nodes[static_cast<std::size_t>(pair.slave[p])]).norm();
+  }
+  const double h = options.relative_step * edges / static_cast<double>(std::max<std::size_t>(1, pair.slave.size() - 1));
+  require(h > 0.0, "linearize_contact: the slave boundary has zero length");
+
+  std::vector<Eigen::Triplet<double>> d_trip, h_trip;
+  Eigen::VectorXd up = u, um = u;
+  for (int k = 0; k < lin.colours; ++k) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (colour[c] != k) continue;
+      up(columns[c]) = u(columns[c]) + h;
+      um(columns[c]) = u(columns[c]) - h;
+    }
+    const ContactMaps plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
+    const ContactMaps minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
+    lin.evaluations += 2;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (colour[c] != k) continue;
+      up(columns[c]) = u(columns[c]);
+      um(columns[c]) = u(columns[c]);
+    }
+    const Eigen::VectorXd dd = (plus.d - minus.d) / (2.0 * h);
+    for (int r = 0; r < R; ++r) {
+      for (int j : inputs[static_cast<std::size_t>(r)]) {
+        if (colour[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])] == k && dd(r) != 0.0) {
+          d_trip.emplace_back(r, j, dd(r));
+        }
+      }
+    }
+    if (h_columns.empty()) continue;
+    const Eigen::VectorXd df =
+        (plus.rows.K.transpose() * lambda - minus.rows.K.transpose() * lambda) / (2.0 * h);
+    for (std::size_t hr = 0; hr < h_columns.size(); ++hr) {
+      const int i = h_dof[hr];
+      if (df(i) == 0.0) continue;
+      for (int j : h_columns[hr]) {
+        if (colour[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])] == k) h_trip.emplace_back(i, j, df(i));
+      }
+    }
+  }
+  lin.D.resize(R, N);
+  lin.D.setFromTriplets(d_trip.begin(), d_trip.end());
+  lin.H.resize(N, N);
+  lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
+  return lin;
+}
+
+}  // namespace contactrb::contact

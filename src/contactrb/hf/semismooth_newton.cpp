@@ -1,0 +1,337 @@
+#include "contactrb/hf/semismooth_newton.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::hf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// Everything the method needs at one iterate (u_0, lambda).
+struct State {
+  Eigen::VectorXd u0, lambda, u;
+  contact::ContactMaps maps;
+  RowSparse K0;           // K(u) on the free columns
+  Eigen::VectorXd F1;     // A_00 u_0 - b + K_0' lambda
+  Eigen::VectorXd ncp;    // min(lambda_r, c_r d_r)
+  double merit = 0.0;     // |(F1, |I_r| ncp_r)|
+  double stationarity = 0.0, primal = 0.0, dual = 0.0, complementarity = 0.0;
+  double kkt() const { return std::max({stationarity, primal, dual, complementarity}); }
+};
+
+class Evaluator {
+ public:
+  Evaluator(const NewtonProblem& p, const NewtonSettings& s) : p_(p), s_(s) {
+    const Eigen::SparseMatrix<double>& A = *p.A00;
+    const int R = static_cast<int>(p.quadrature->weight.size());
+    // c_r = (stiffness at the slave nodes of I_r) / |I_r|^2: lambda_r and c_r d_r are then
+    // both pressures (a slave node pushed by delta carries A_ss delta = lambda_r |I_r|, with
+    // d_r = |I_r| delta), so the active-set test does not depend on units.
+    const Eigen::VectorXd diag = A.diagonal();
+    const double mean_diag = diag.size() > 0 ? diag.cwiseAbs().mean() : 1.0;
+    std::vector<int> global_to_free(static_cast<std::size_t>(p.dofs->num_dofs()), -1);
+    for (int i = 0; i < p.dofs->num_free(); ++i) global_to_free[static_cast<std::size_t>(p.dofs->free_dofs()[static_cast<std::size_t>(i)])] = i;
+    c_.resize(R);
+    for (int r = 0; r < R; ++r) {
+      double sum = 0.0;
+      int count = 0;
+      for (RowSparse::InnerIterator it(p.quadrature->W, r); it; ++it) {
+        const int node = p.pair->slave[static_cast<std::size_t>(it.col())];
+        for (int c = 0; c < 2; ++c) {
+          const int fi = global_to_free[static_cast<std::size_t>(2 * node + c)];
+          if (fi >= 0) {
+            sum += std::abs(diag(fi));
+            ++count;
+          }
+        }
+      }
+      const double w = p.quadrature->weight(r);
+      c_(r) = (count > 0 ? sum / count : mean_diag) / (w * w);
+    }
+  }
+
+  const Eigen::VectorXd& c() const { return c_; }
+
+  // Throws contactrb::Error when the geometry cannot be evaluated at u.
+  State operator()(Eigen::VectorXd u0, Eigen::VectorXd lambda) const {
+    State st;
+    st.u0 = std::move(u0);
+    st.lambda = std::move(lambda);
+    st.u = p_.dofs->lift() + p_.dofs->extend(st.u0);
+    st.maps = contact::evaluate_contact_maps(*p_.mesh, *p_.pair, *p_.quadrature, st.u, s_.linearization.projection);
+    st.K0 = p_.dofs->restrict_columns(st.maps.rows.K);
+    const Eigen::VectorXd Ktl = st.K0.transpose() * st.lambda;
+    st.F1 = *p_.A00 * st.u0 - *p_.b + Ktl;
+    const Eigen::VectorXd& d = st.maps.d;
+    st.ncp = st.lambda.cwiseMin(c_.cwiseProduct(d));
+    st.merit = std::sqrt(st.F1.squaredNorm() + st.ncp.cwiseProduct(p_.quadrature->weight).squaredNorm());
+    // The report of hf_solver.hpp (HFKKT), at the geometry of u itself.
+    const double force_scale = std::max({p_.b->norm(), Ktl.norm(), 1e-300});
+    st.stationarity = st.F1.norm() / force_scale;
+    const Eigen::VectorXd g_lift = st.maps.rows.g - st.maps.rows.K * p_.dofs->lift();
+    const double row_scale = st.K0.rows() > 0 ? (st.K0.cwiseAbs() * st.u0.cwiseAbs()).maxCoeff() : 0.0;
+    const double gap_scale = std::max({g_lift.size() > 0 ? g_lift.cwiseAbs().maxCoeff() : 0.0, row_scale, 1e-300});
+    const double lmax = std::max(st.lambda.size() > 0 ? st.lambda.cwiseAbs().maxCoeff() : 0.0, 1e-300);
+    if (d.size() > 0) {
+      st.primal = std::max(0.0, -d.minCoeff()) / gap_scale;
+      st.dual = std::max(0.0, -st.lambda.minCoeff()) / lmax;
+      st.complementarity = st.lambda.cwiseProduct(d).cwiseAbs().maxCoeff() / (lmax * gap_scale);
+    }
+    return st;
+  }
+
+ private:
+  const NewtonProblem& p_;
+  const NewtonSettings& s_;
+  Eigen::VectorXd c_;
+};
+
+bool finite(const State& st) {
+  return st.u0.allFinite() && st.lambda.allFinite() && std::isfinite(st.merit);
+}
+
+std::string residual_text(const State& st) {
+  std::ostringstream os;
+  os << "KKT residuals: stationarity " << st.stationarity << ", primal " << st.primal << ", dual " << st.dual
+     << ", complementarity " << st.complementarity;
+  return os.str();
+}
+
+}  // namespace
+
+void check_settings(const NewtonSettings& s) {
+  require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
+          "Newton tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
+  require(s.max_iterations >= 1, "Newton max_iterations must be >= 1 (got " + std::to_string(s.max_iterations) + ")");
+  require(std::isfinite(s.armijo) && s.armijo > 0.0 && s.armijo < 0.5,
+          "Newton armijo must be in (0, 1/2) (got " + std::to_string(s.armijo) + ")");
+  require(std::isfinite(s.min_step) && s.min_step > 0.0 && s.min_step <= 1.0,
+          "Newton min_step must be in (0, 1] (got " + std::to_string(s.min_step) + ")");
+  require(s.max_inner_iterations >= 1,
+          "Newton max_inner_iterations must be >= 1 (got " + std::to_string(s.max_inner_iterations) + ")");
+  require(s.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(s.max_free_steps) + ")");
+}
+
+NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0_start,
+                               const Eigen::VectorXd& lambda_start, const NewtonSettings& s) {
+  check_settings(s);
+  const int n = p.dofs->num_free();
+  const int N = p.dofs->num_dofs();
+  const int R = static_cast<int>(p.quadrature->weight.size());
+  require(u0_start.size() == n, "semismooth_newton: initial u0 has " + std::to_string(u0_start.size()) +
+                                    " entries for " + std::to_string(n) + " free DOFs");
+  require(lambda_start.size() == R, "semismooth_newton: initial lambda has " + std::to_string(lambda_start.size()) +
+                                        " entries for " + std::to_string(R) + " constraint rows");
+  std::vector<int> global_to_free(static_cast<std::size_t>(N), -1);
+  std::vector<char> movable(static_cast<std::size_t>(N), 0);
+  for (int i = 0; i < n; ++i) {
+    const int g = p.dofs->free_dofs()[static_cast<std::size_t>(i)];
+    global_to_free[static_cast<std::size_t>(g)] = i;
+    movable[static_cast<std::size_t>(g)] = 1;
+  }
+  const Evaluator evaluate(p, s);
+
+  NewtonResult res;
+  State st;
+  try {
+    st = evaluate(u0_start, lambda_start);
+  } catch (const Error& e) {
+    res.message = std::string("semi-smooth Newton: the initial guess cannot be evaluated: ") + e.what();
+    res.u0 = u0_start;
+    res.lambda = lambda_start;
+    return res;
+  }
+  std::vector<char> previous_active(static_cast<std::size_t>(R), 0);
+  int free_steps = 0;
+  solve::SparseLU lu(s.lu);
+  auto finish = [&](solve::KacanovStatus status, std::string message) {
+    res.status = status;
+    res.message = std::move(message);
+    res.u0 = st.u0;
+    res.lambda = st.lambda;
+    res.stationarity = st.stationarity;
+    res.primal = st.primal;
+    res.dual = st.dual;
+    res.complementarity = st.complementarity;
+    return res;
+  };
+
+  for (int k = 0;; ++k) {
+    if (!finite(st)) {
+      return finish(solve::KacanovStatus::NonFinite, "semi-smooth Newton iteration " + std::to_string(k) +
+                                                         ": the iterate is not finite (" + residual_text(st) + ")");
+    }
+    if (st.kkt() <= s.tolerance) return finish(solve::KacanovStatus::Converged, "");
+    if (k >= s.max_iterations) {
+      std::ostringstream os;
+      os << "semi-smooth Newton did not converge in " << k << " iterations (tolerance " << s.tolerance
+         << "); last " << residual_text(st);
+      return finish(solve::KacanovStatus::MaxIterations, os.str());
+    }
+    NewtonIteration it;
+    it.residual = st.kkt();
+    it.merit = st.merit;
+
+    // Consistent linearization of the geometry (D, H) at u, lambda.
+    auto t0 = Clock::now();
+    contact::ContactLinearization lin;
+    try {
+      lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
+    } catch (const Error& e) {
+      return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
+                                                          ": the contact maps cannot be linearized: " + e.what());
+    }
+    it.colours = lin.colours;
+    it.linearize_s = seconds_since(t0);
+    const RowSparse D0 = p.dofs->restrict_columns(lin.D);
+
+    // The (1, 1) block A_00 + H of every inner system. `frozen`: the fallback when that
+    // Jacobian is singular (e.g. a slave node at an open master end, where the finite
+    // differences straddle the candidate switch): H = 0 and D = -K, the Jacobian of the
+    // Kacanov step with the geometry frozen, nonsingular when K_A has full row rank.
+    t0 = Clock::now();
+    bool frozen = false;
+    std::vector<Eigen::Triplet<double>> base;
+    auto build_base = [&]() {
+      base.clear();
+      base.reserve(static_cast<std::size_t>(p.A00->nonZeros() + lin.H.nonZeros()));
+      for (int j = 0; j < p.A00->outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) base.emplace_back(a.row(), a.col(), a.value());
+      }
+      if (frozen) return;
+      for (int j = 0; j < lin.H.outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
+          const int fr = global_to_free[static_cast<std::size_t>(h.row())];
+          const int fc = global_to_free[static_cast<std::size_t>(h.col())];
+          if (fr >= 0 && fc >= 0) base.emplace_back(fr, fc, h.value());
+        }
+      }
+    };
+    build_base();
+    const Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
+
+    // Inner primal-dual active set on the linearized problem (geometry frozen at u): the
+    // active set is read off the complementarity function of the LINEARIZED gap
+    // d + D du, until it repeats. The first inner pass is the plain semi-smooth Newton step;
+    // the following ones keep the outer iterate away from configurations the linearization
+    // does not describe (a first step from u = u_D ignoring contact penetrates deeply).
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd lambda_next = st.lambda;
+    std::vector<char> is_active(static_cast<std::size_t>(R), 0);
+    auto predicted_active = [&](std::vector<char>& out) {
+      const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
+      int changed = 0;
+      for (int r = 0; r < R; ++r) {
+        // A non-candidate row (zero K row: no master faces the slave node) never binds.
+        const bool candidate = st.K0.outerIndexPtr()[r + 1] > st.K0.outerIndexPtr()[r];
+        const char a = candidate && lambda_next(r) - evaluate.c()(r) * d_lin(r) > 0.0 ? 1 : 0;
+        if (a != out[static_cast<std::size_t>(r)]) ++changed;
+        out[static_cast<std::size_t>(r)] = a;
+      }
+      return changed;
+    };
+    predicted_active(is_active);
+    for (int r = 0; r < R; ++r) it.changed += is_active[static_cast<std::size_t>(r)] != previous_active[static_cast<std::size_t>(r)];
+    for (int inner = 0;; ++inner) {
+      std::vector<int> active;
+      for (int r = 0; r < R; ++r) {
+        if (is_active[static_cast<std::size_t>(r)]) active.push_back(r);
+      }
+      const int m = static_cast<int>(active.size());
+      // [A_00 + H, K_A'; -D_A, 0] [du; lambda_A] = [b - A_00 u_0; d_A].
+      std::vector<Eigen::Triplet<double>> trip = base;
+      Eigen::VectorXd rhs(n + m);
+      rhs.head(n) = top;
+      for (int a = 0; a < m; ++a) {
+        const int r = active[static_cast<std::size_t>(a)];
+        for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) trip.emplace_back(kk.col(), n + a, kk.value());
+        if (frozen) {
+          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) trip.emplace_back(n + a, kk.col(), kk.value());
+        } else {
+          for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) trip.emplace_back(n + a, dd.col(), -dd.value());
+        }
+        rhs(n + a) = st.maps.d(r);
+      }
+      Eigen::SparseMatrix<double> J(n + m, n + m);
+      J.setFromTriplets(trip.begin(), trip.end());
+      ++it.factorizations;
+      if (lu.compute(J) != solve::SparseLUStatus::Success && !frozen) {
+        frozen = true;
+        it.frozen = true;
+        build_base();
+        --inner;
+        continue;
+      }
+      if (lu.status() != solve::SparseLUStatus::Success) {
+        return finish(solve::KacanovStatus::StepFailed,
+                      "semi-smooth Newton iteration " + std::to_string(k) + ": the Newton system (" +
+                          std::to_string(n) + " free DOFs, " + std::to_string(m) + " active rows) is " +
+                          solve::to_string(lu.status()) + "; " + residual_text(st));
+      }
+      const Eigen::VectorXd x = lu.solve(rhs);
+      du = x.head(n);
+      lambda_next.setZero();
+      for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(n + a);
+      it.active = m;
+      if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
+    }
+    previous_active = is_active;
+    it.factorize_s = seconds_since(t0);
+    const Eigen::VectorXd dlambda = lambda_next - st.lambda;
+
+    // Globalization: Armijo backtracking on the merit; a full step that changes the active set
+    // is taken without a decrease (combinatorial phase), at most max_free_steps times.
+    const double phi0 = st.merit * st.merit;
+    bool accepted = false;
+    State best;
+    double best_phi = std::numeric_limits<double>::infinity();
+    double best_t = 0.0;
+    for (double t = 1.0; t >= s.min_step; t *= 0.5) {
+      State trial;
+      try {
+        trial = evaluate(st.u0 + t * du, st.lambda + t * dlambda);
+      } catch (const Error&) {
+        continue;  // the geometry cannot be evaluated there: shorten the step
+      }
+      if (!finite(trial)) continue;
+      const double phi = trial.merit * trial.merit;
+      const bool decrease = phi <= (1.0 - 2.0 * s.armijo * t) * phi0;
+      const bool free_step = t == 1.0 && free_steps < s.max_free_steps;
+      if (decrease || free_step) {
+        if (!decrease) ++free_steps;
+        it.step = t;
+        st = std::move(trial);
+        accepted = true;
+        break;
+      }
+      if (phi < best_phi) {
+        best_phi = phi;
+        best_t = t;
+        best = std::move(trial);
+      }
+    }
+    if (!accepted) {
+      if (!std::isfinite(best_phi)) {
+        return finish(solve::KacanovStatus::StepFailed,
+                      "semi-smooth Newton iteration " + std::to_string(k) +
+                          ": no damped step can be evaluated (the contact geometry fails at every trial); " +
+                          residual_text(st));
+      }
+      it.step = best_t;  // no decrease down to min_step: take the best trial, the cap ends a stall
+      st = std::move(best);
+    }
+    res.history.push_back(it);
+    res.iterations = k + 1;
+  }
+}
+
+}  // namespace contactrb::hf

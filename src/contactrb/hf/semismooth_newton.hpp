@@ -1,0 +1,86 @@
+#pragma once
+// Semi-smooth Newton (primal-dual active set) solver of the HF contact problem
+// (docs/solvers.md, "Semi-smooth Newton"). It solves the same equations as the fixed point
+// of Kacanov (paper (12)):
+//   A_00 u_0 - b + K_0(u)' lambda = 0,
+//   min(lambda_r, c_r d_r(u)) = 0,   d(u) = g(u) - K(u) u,   u = u_D + u_0,
+// (the second line is lambda >= 0, d >= 0, lambda_r d_r = 0: (26) and its complementarity),
+// by Newton's method on the nonsmooth system: the active set A = {r : lambda_r - c_r d_r > 0}
+// is read off the complementarity function at each iterate, and the geometry is linearized
+// consistently (contact/contact_linearization.hpp: D = d'(u), H = (K(u)' lambda)'). Each
+// iteration solves ONE sparse saddle-point system of the active rows,
+//   [ A_00 + H    K_A' ] [ du       ]   [ b - A_00 u_0 ]
+//   [ -D_A        0    ] [ lambda_A ] = [ d_A          ],     lambda = 0 off A,
+// by a sparse LU (solve/sparse_lu.hpp); no dense K A^-1 K' is ever formed. Globalization:
+// a backtracking line search on the merit 1/2 |F|^2 (F with the complementarity rows in
+// force units, |I_r| min(lambda_r, c_r d_r)), where a full step that changes the active set
+// is accepted without a decrease while the active set is still moving (the combinatorial
+// phase of primal-dual active sets), a bounded number of times.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "contactrb/contact/contact_linearization.hpp"
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/fem/dirichlet.hpp"
+#include "contactrb/mesh/mesh.hpp"
+#include "contactrb/solve/kacanov.hpp"
+#include "contactrb/solve/sparse_lu.hpp"
+
+namespace contactrb::hf {
+
+struct NewtonSettings {
+  double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
+  int max_iterations = 50;
+  // Line search: Armijo constant and the smallest damping factor tried (halving).
+  double armijo = 1e-4;
+  double min_step = 1.0 / 1024.0;
+  // Full steps accepted without a merit decrease (the combinatorial phase), in all.
+  int max_free_steps = 5;
+  // Inner primal-dual active-set passes on the linearized problem per Newton iteration.
+  int max_inner_iterations = 20;
+  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;
+  contact::LinearizationOptions linearization;
+};
+// Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
+// outside (0, 1/2) or a min_step outside (0, 1].
+void check_settings(const NewtonSettings& settings);
+
+struct NewtonIteration {
+  double residual = 0.0;   // HFKKT::max() at the iterate, before the step
+  double merit = 0.0;      // |F| (force units)
+  int active = 0;          // |A| of the step
+  int changed = 0;         // rows that entered or left A (first inner pass)
+  int factorizations = 0;  // sparse LUs (inner active-set passes)
+  bool frozen = false;     // the consistent Jacobian was singular: frozen-geometry fallback step
+  double step = 0.0;       // damping factor taken
+  int colours = 0;         // colours of the finite-difference linearization
+  double linearize_s = 0.0, factorize_s = 0.0;
+};
+
+// What the solver needs of an HF problem (views; the HF solver owns them).
+struct NewtonProblem {
+  const mesh::Mesh* mesh = nullptr;
+  const contact::ContactPair* pair = nullptr;
+  const contact::ContactQuadrature* quadrature = nullptr;
+  const fem::DofMap* dofs = nullptr;
+  const Eigen::SparseMatrix<double>* A00 = nullptr;  // free x free
+  const Eigen::VectorXd* b = nullptr;                // f_0 - (A u_D)_0
+};
+
+struct NewtonResult {
+  solve::KacanovStatus status = solve::KacanovStatus::StepFailed;  // Converged, MaxIterations, StepFailed, NonFinite
+  std::string message;
+  int iterations = 0;
+  std::vector<NewtonIteration> history;
+  Eigen::VectorXd u0;      // free part
+  Eigen::VectorXd lambda;  // R
+  double stationarity = 0.0, primal = 0.0, dual = 0.0, complementarity = 0.0;  // final HFKKT
+};
+
+// u0_start (num_free) and lambda_start (R): the initial guess (zeros: u = u_D, lambda = 0).
+NewtonResult semismooth_newton(const NewtonProblem& problem, const Eigen::VectorXd& u0_start,
+                               const Eigen::VectorXd& lambda_start, const NewtonSettings& settings);
+
+}  // namespace contactrb::hf
