@@ -161,7 +161,7 @@ TEST(Parameters, TractionPatchTestGivesTheUniformContactPressure) {
   hf::HFSettings settings;
   settings.kacanov.alpha = 1.0;
   settings.kacanov.tolerance = 1e-12;
-  for (const Eigen::Vector2d point : {Eigen::Vector2d(0.02, 0.1), Eigen::Vector2d(0.01, 0.2), Eigen::Vector2d(0.03, 0.0)}) {
+  for (const Eigen::Vector2d& point : {Eigen::Vector2d(0.02, 0.1), Eigen::Vector2d(0.01, 0.2), Eigen::Vector2d(0.03, 0.0)}) {
     const double delta = point(0), q = point(1);
     const double eyy = -delta / 2, exx = (-q - lambda * eyy) / (lambda + 2 * mu_l);
     const double p = -(lambda * (exx + eyy) + 2 * mu_l * eyy);
