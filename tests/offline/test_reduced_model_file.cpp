@@ -95,12 +95,36 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_spec, m.case_spec);
   ASSERT_EQ(r.parameters.size(), m.parameters.size());
-  EXPECT_EQ(r.parameters[0].name, m.parameters[0].name);
-  EXPECT_EQ(r.parameters[0].kind, m.parameters[0].kind);
-  EXPECT_EQ(r.parameters[0].reference, m.parameters[0].reference);
-  EXPECT_EQ(r.parameters[0].center, m.parameters[0].center);
-  EXPECT_EQ(r.training_mu, m.training_mu);
+  ASSERT_EQ(m.parameters.size(), 1u);
+  for (std::size_t k = 0; k < m.parameters.size(); ++k) {
+    EXPECT_EQ(r.parameters[k].name, m.parameters[k].name);
+    EXPECT_EQ(r.parameters[k].units, m.parameters[k].units);
+    EXPECT_EQ(r.parameters[k].kind, m.parameters[k].kind);
+    EXPECT_EQ(r.parameters[k].min, m.parameters[k].min);
+    EXPECT_EQ(r.parameters[k].max, m.parameters[k].max);
+    EXPECT_EQ(r.parameters[k].reference, m.parameters[k].reference);
+    EXPECT_EQ(r.parameters[k].body, m.parameters[k].body);
+    EXPECT_EQ(r.parameters[k].center, m.parameters[k].center);
+  }
+  EXPECT_TRUE(same(r.training_mu, m.training_mu));
   EXPECT_EQ(r.thetas.f.size(), m.thetas.f.size());
+  // Format 4: each theta monomial with its factors.
+  const auto expect_same_thetas = [](const std::vector<contactrb::cases::ThetaMonomial>& x,
+                                     const std::vector<contactrb::cases::ThetaMonomial>& y) {
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t j = 0; j < y.size(); ++j) {
+      EXPECT_EQ(x[j].coefficient, y[j].coefficient);
+      ASSERT_EQ(x[j].factors.size(), y[j].factors.size());
+      for (std::size_t i = 0; i < y[j].factors.size(); ++i) {
+        EXPECT_EQ(x[j].factors[i].parameter, y[j].factors[i].parameter);
+        EXPECT_EQ(x[j].factors[i].scale, y[j].factors[i].scale);
+        EXPECT_EQ(x[j].factors[i].power, y[j].factors[i].power);
+      }
+    }
+  };
+  expect_same_thetas(r.thetas.a, m.thetas.a);
+  expect_same_thetas(r.thetas.f, m.thetas.f);
+  expect_same_thetas(r.thetas.lift, m.thetas.lift);
   EXPECT_EQ(r.N_max, m.N_max);
   EXPECT_EQ(r.R_max, m.R_max);
   EXPECT_EQ(r.Mk_max, m.Mk_max);
