@@ -84,14 +84,9 @@ std::string sibling_path(const std::string& model_path, const char* name) {
   return (dir / name).string();
 }
 
-// --case/--case-file: the HF snapshots of the set, written to snapshots.h5 next to the model.
-// `lock` is taken before the file is written and kept by the caller until the model and
-// offline.json are written too (one run's three files, never mixed with another run's).
-io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path, std::optional<OutputLock>& lock) {
-  const cases::CaseSpec spec =
-      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
-  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
-  require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+// The HF solves the options ask for: the case's set (or --values), level, constraint and the
+// Kacanov settings (both the POD path and the greedy).
+rb::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases::CaseSpec& spec) {
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
@@ -100,6 +95,18 @@ io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& 
   request.settings.kacanov.tolerance = opt.tolerance;
   request.settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(request.settings.kacanov);
+  return request;
+}
+
+// --case/--case-file: the HF snapshots of the set, written to snapshots.h5 next to the model.
+// `lock` is taken before the file is written and kept by the caller until the model and
+// offline.json are written too (one run's three files, never mixed with another run's).
+io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path, std::optional<OutputLock>& lock) {
+  const cases::CaseSpec spec =
+      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+  require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
+  require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  const rb::SnapshotRequest request = snapshot_request(opt, spec);
   rb::SnapshotRunOptions run;
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
@@ -205,14 +212,7 @@ int run_greedy(const OfflineOptions& opt) {
                             {"snapshots.h5 next to --out", snapshots_path},
                             {"greedy.csv next to --out", csv_path},
                             {"greedy.json next to --out", json_path}});
-  std::optional<contact::Discretization> constraint;
-  if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
-  const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
-  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
-  request.settings.kacanov.alpha = opt.alpha;
-  request.settings.kacanov.tolerance = opt.tolerance;
-  request.settings.kacanov.max_iterations = opt.max_iterations;
-  solve::check_settings(request.settings.kacanov);
+  const rb::SnapshotRequest request = snapshot_request(opt, spec);
 
   const auto t0 = Clock::now();
   const rb::GreedyOfflineResult g = rb::run_offline_greedy(spec, request, gs);

@@ -1,6 +1,8 @@
 #pragma once
 // Runs the built contactrb executable (CONTACTRB_CLI) through the shell and captures its
 // exit code, stdout and stderr separately.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -67,6 +69,13 @@ inline std::string field_value(const std::string& text, const std::string& key) 
     if (line.rfind(prefix, 0) == 0) return line.substr(prefix.size());
   }
   return "";
+}
+
+// A user error: exit code 1 and one "contactrb: error: " message on stderr that holds `words`.
+inline void expect_user_error(const CliResult& r, const std::string& words) {
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err << "\n(expected: " << words << ")";
 }
 
 }  // namespace contactrb::test

@@ -56,11 +56,6 @@ long vtu_points(const std::string& path) {
   return std::stol(text.substr(begin, end - begin));
 }
 
-void expect_user_error(const CliResult& r, const std::string& words) {
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
-}
 
 constexpr const char* kHeader =
     "mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"

@@ -57,7 +57,7 @@ std::vector<std::string> lines_of(const std::string& text) {
 }
 
 // Exit 1 and exactly one "contactrb: error:" line that holds every word of `words`.
-void expect_user_error(const CliResult& r, const std::vector<std::string>& words) {
+void expect_user_error_words(const CliResult& r, const std::vector<std::string>& words) {
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(count_lines_starting(r.err, "contactrb: error: "), 1) << r.err;
   for (const std::string& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "missing '" << w << "' in " << r.err;
@@ -123,9 +123,9 @@ TEST_F(CliFileSafety, EndlessBatchLineFromStdinIsBounded) {
 // Rows 12 and 14: a device or a directory as a batch file (a directory was answered by
 // nothing and exit 0; /dev/urandom was answered without end).
 TEST_F(CliFileSafety, BatchFileMustBeARegularFile) {
-  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch /dev/urandom"),
+  expect_user_error_words(run_cli("online --model " + shell_quote(model_) + " --batch /dev/urandom"),
                     {"batch file '/dev/urandom'", "not a regular file"});
-  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(dir_->path().string())),
+  expect_user_error_words(run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(dir_->path().string())),
                     {"batch file", "is a directory"});
 }
 
@@ -134,25 +134,25 @@ TEST_F(CliFileSafety, BatchFileMustBeARegularFile) {
 TEST(CliInputBounds, MeshMustBeARegularFileBelowTheLimit) {
   const contactrb::test::TempDir dir("input_bounds");
   const std::string out = " --out " + shell_quote(dir.file("m"));
-  expect_user_error(run_cli("mesh --msh /dev/zero" + out), {"mesh file '/dev/zero'", "not a regular file"});
+  expect_user_error_words(run_cli("mesh --msh /dev/zero" + out), {"mesh file '/dev/zero'", "not a regular file"});
   const std::string junk = dir.file("junk.msh");
   write_bytes(junk, "$MeshFormat\n" + std::string(3 * 1024 * 1024, 'x') + "\n");
   // Under the default limit (256 MiB) the junk is read and refused as junk.
   const CliResult read = run_cli("mesh --msh " + shell_quote(junk) + out);
-  expect_user_error(read, {"junk.msh"});
+  expect_user_error_words(read, {"junk.msh"});
   EXPECT_EQ(read.err.find("above the input limit"), std::string::npos) << read.err;
   // With a 2 MiB limit it is refused by its size.
-  expect_user_error(run_cli("mesh --msh " + shell_quote(junk) + out, "", "CONTACTRB_MAX_TEXT_INPUT_MB=2"),
+  expect_user_error_words(run_cli("mesh --msh " + shell_quote(junk) + out, "", "CONTACTRB_MAX_TEXT_INPUT_MB=2"),
                     {"junk.msh", "3.0 MiB", "above the input limit of 2.0 MiB", "CONTACTRB_MAX_TEXT_INPUT_MB"});
   // A valid mesh under a raised limit reads as before; a limit that is not a number is refused.
   const CliResult good = run_cli("mesh --msh " + shell_quote(data("msh/two_squares.msh")) + out, "",
                                  "CONTACTRB_MAX_TEXT_INPUT_MB=4096");
   EXPECT_EQ(good.exit_code, 0) << good.err;
-  expect_user_error(run_cli("mesh --msh " + shell_quote(data("msh/two_squares.msh")) + out, "",
+  expect_user_error_words(run_cli("mesh --msh " + shell_quote(data("msh/two_squares.msh")) + out, "",
                             "CONTACTRB_MAX_TEXT_INPUT_MB=-1"),
                     {"CONTACTRB_MAX_TEXT_INPUT_MB must be a positive whole number"});
   // The same bound on the other text readers: a TOML case file, a parameter file.
-  expect_user_error(run_cli("solve --case-file /dev/zero --mu 0.02" + out), {"case file '/dev/zero'", "not a regular file"});
+  expect_user_error_words(run_cli("solve --case-file /dev/zero --mu 0.02" + out), {"case file '/dev/zero'", "not a regular file"});
 }
 
 // Row 9: an output equal to an input destroyed the input.
@@ -161,15 +161,15 @@ TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
   const fs::path s = dir.path() / "s.h5";
   fs::copy_file(snapshots_, s);
   const std::string before = read_bytes(s);
-  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " + shell_quote(s.string())),
+  expect_user_error_words(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " + shell_quote(s.string())),
                     {"--out", "is the input --snapshots", "would destroy the input"});
   // The same file under another spelling, and through a hard link.
   fs::create_directory(dir.path() / "sub");
-  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
+  expect_user_error_words(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
                             shell_quote((dir.path() / "sub" / ".." / "s.h5").string())),
                     {"is the input --snapshots"});
   fs::create_hard_link(s, dir.path() / "sub" / "hard.h5");
-  expect_user_error(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
+  expect_user_error_words(run_cli("offline --snapshots " + shell_quote(s.string()) + " --out " +
                             shell_quote((dir.path() / "sub" / "hard.h5").string())),
                     {"is the input --snapshots"});
   EXPECT_EQ(read_bytes(s), before);
@@ -183,14 +183,14 @@ TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
   ASSERT_NE(key, std::string::npos) << text;
   text.insert(key + 8, example_dir);
   write_bytes(toml, text);
-  expect_user_error(run_cli("snapshots --case-file " + shell_quote(toml.string()) + " --values 0.02 -q --out " +
+  expect_user_error_words(run_cli("snapshots --case-file " + shell_quote(toml.string()) + " --values 0.02 -q --out " +
                             shell_quote(toml.string())),
                     {"is the input --case-file"});
   EXPECT_EQ(read_bytes(toml), text);
   // mesh --msh D/mesh.msh --out D rewrote its own input.
   const fs::path msh = dir.path() / "mesh.msh";
   fs::copy_file(data("msh/two_squares.msh"), msh);
-  expect_user_error(run_cli("mesh --msh " + shell_quote(msh.string()) + " --out " + shell_quote(dir.path().string())),
+  expect_user_error_words(run_cli("mesh --msh " + shell_quote(msh.string()) + " --out " + shell_quote(dir.path().string())),
                     {"is the input --msh"});
   EXPECT_EQ(read_bytes(msh), read_bytes(data("msh/two_squares.msh")));
 }
@@ -201,7 +201,7 @@ TEST(CliOutputSafety, ModelNamedLikeItsSiblingIsRefused) {
   const contactrb::test::TempDir dir("sibling");
   for (const std::string name : {"offline.json", "snapshots.h5"}) {
     const CliResult r = run_cli("offline --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(dir.file(name)));
-    expect_user_error(r, {"the outputs --out", name + " next to --out", "are the same file"});
+    expect_user_error_words(r, {"the outputs --out", name + " next to --out", "are the same file"});
     EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(dir.path() / name));
   }
@@ -215,14 +215,14 @@ TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
   write_bytes(target, "keep me");
   const fs::path link = dir.path() / "link.h5";
   fs::create_symlink(target, link);
-  expect_user_error(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(link.string())),
+  expect_user_error_words(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(link.string())),
                     {"link.h5", "symbolic link"});
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_EQ(read_bytes(target), "keep me");
 
   const fs::path fifo = dir.path() / "fifo.h5";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  expect_user_error(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(fifo.string())),
+  expect_user_error_words(run_cli("snapshots --case hertz-a --values 0.3 -q --out " + shell_quote(fifo.string())),
                     {"fifo.h5", "not a regular file"});
   EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
 
@@ -232,7 +232,7 @@ TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
   const fs::path device = dir.path() / "null";
   if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {
     const CliResult r = run_cli("offline --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(device.string()));
-    expect_user_error(r, {"null'", "not a regular file"});
+    expect_user_error_words(r, {"null'", "not a regular file"});
     EXPECT_EQ(fs::symlink_status(device).type(), fs::file_type::character);
     EXPECT_FALSE(fs::exists(dir.path() / "offline.json"));
     EXPECT_FALSE(fs::exists(dir.path() / "snapshots.h5"));
@@ -242,7 +242,7 @@ TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
   const fs::path out = dir.path() / "solve";
   fs::create_directory(out);
   fs::create_symlink(target, out / "solution.json");
-  expect_user_error(run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(out.string())),
+  expect_user_error_words(run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(out.string())),
                     {"solution.json", "symbolic link"});
   EXPECT_EQ(read_bytes(target), "keep me");
 }
@@ -302,7 +302,7 @@ TEST(CliOutputSafety, StaleTemporaryFilesOfDeadRunsAreRemoved) {
 TEST(CliMessages, ControlCharactersAreEscaped) {
   const contactrb::test::TempDir dir("control");
   const CliResult r = run_cli("mesh --msh " + shell_quote("a\x1b[2J\x07" "b.msh") + " --out " + shell_quote(dir.file("m")));
-  expect_user_error(r, {"a\\x1b[2J\\x07b.msh"});
+  expect_user_error_words(r, {"a\\x1b[2J\\x07b.msh"});
   EXPECT_EQ(r.err.find('\x1b'), std::string::npos);
   EXPECT_EQ(r.err.find('\x07'), std::string::npos);
 }
@@ -310,7 +310,7 @@ TEST(CliMessages, ControlCharactersAreEscaped) {
 // Row 14: the out-of-domain message rounded mu to the bound ("0.45 is outside [0.15, 0.45]").
 TEST(CliMessages, OutOfDomainValueIsPrintedExactly) {
   const contactrb::test::TempDir dir("domain");
-  expect_user_error(run_cli("solve --case hertz-a --mu 0.4500000001 --out " + shell_quote(dir.file("o"))),
+  expect_user_error_words(run_cli("solve --case hertz-a --mu 0.4500000001 --out " + shell_quote(dir.file("o"))),
                     {"mu = 0.4500000001", "outside the domain [0.15, 0.45]"});
 }
 
@@ -318,7 +318,7 @@ TEST(CliMessages, OutOfDomainValueIsPrintedExactly) {
 TEST(CliMessages, MeshWithAnEmptySlaveGroupIsRefused) {
   const contactrb::test::TempDir dir("empty_slave");
   const CliResult r = run_cli("mesh --msh " + shell_quote(data("msh/empty_slave.msh")) + " --out " + shell_quote(dir.file("m")));
-  expect_user_error(r, {"empty_slave.msh", "slave"});
+  expect_user_error_words(r, {"empty_slave.msh", "slave"});
   EXPECT_FALSE(fs::exists(dir.path() / "m" / "mesh.msh"));
 }
 
@@ -327,10 +327,10 @@ TEST(CliMessages, MeshWithAnEmptySlaveGroupIsRefused) {
 TEST_F(CliFileSafety, NegativeSizesAreRefusedAlike) {
   const std::string m = "online --model " + shell_quote(model_) + " --mu 0.3";
   for (const std::string flag : {"--n", "--r", "--mk", "--mg"}) {
-    expect_user_error(run_cli(m + " " + flag + " -1"), {flag + " must be >= ", "got -1", "leave it out"});
-    expect_user_error(run_cli(m + " " + flag + " -3"), {flag + " must be >= ", "got -3"});
+    expect_user_error_words(run_cli(m + " " + flag + " -1"), {flag + " must be >= ", "got -1", "leave it out"});
+    expect_user_error_words(run_cli(m + " " + flag + " -3"), {flag + " must be >= ", "got -3"});
   }
-  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n -1 --out " +
+  expect_user_error_words(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n -1 --out " +
                             shell_quote(dir_->file("n.h5"))),
                     {"--n must be >= 1", "got -1"});
   EXPECT_EQ(run_cli(m).exit_code, 0);
@@ -366,14 +366,14 @@ TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
   ASSERT_LT(fs::file_size(snapshots), (std::uintmax_t{1} << 40));
   const CliResult r =
       run_cli("offline --snapshots " + shell_quote(snapshots) + " --out " + shell_quote(dir.file("model.h5")));
-  expect_user_error(r, {"snapshot file", "s.h5", "contact_dofs", "declares more elements than the file can hold"});
+  expect_user_error_words(r, {"snapshot file", "s.h5", "contact_dofs", "declares more elements than the file can hold"});
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "model.h5"));
 
   // The fuzz suite's original file: an older format version, refused as such.
   const CliResult old = run_cli("offline --snapshots " + shell_quote(data("h5/snapshot_huge_dataset.h5")) +
                                 " --out " + shell_quote(dir.file("old.h5")));
-  expect_user_error(old, {"snapshot file", "snapshot_huge_dataset.h5", "has snapshot format version 1",
+  expect_user_error_words(old, {"snapshot file", "snapshot_huge_dataset.h5", "has snapshot format version 1",
                           "this contactrb reads version"});
   EXPECT_EQ(old.err.find("internal error"), std::string::npos) << old.err;
   EXPECT_FALSE(fs::exists(dir.path() / "old.h5"));

@@ -24,7 +24,7 @@ const fs::path kFixtures = fs::path(CONTACTRB_SOURCE_DIR) / "tests" / "data" / "
 
 std::string fixture(const std::string& name) { return shell_quote((kFixtures / name).string()); }
 
-void expect_user_error(const CliResult& r, const std::string& words) {
+void expect_one_line_user_error(const CliResult& r, const std::string& words) {
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
@@ -86,16 +86,16 @@ TEST_F(CliIntegrity, DamagedFreeDofsGiveOneErrorAndNoModel) {
     const std::string damaged = with_free_dof(*dir_, snapshots_, e.name, e.index, e.value);
     const std::string out = dir_->file(std::string("model_") + e.name);
     const CliResult r = run_cli("offline --snapshots " + shell_quote(damaged) + " --out " + shell_quote(out));
-    expect_user_error(r, "snapshot file '" + damaged + "' is truncated or damaged: checksum mismatch");
+    expect_one_line_user_error(r, "snapshot file '" + damaged + "' is truncated or damaged: checksum mismatch");
     EXPECT_FALSE(fs::exists(out));
   }
 }
 
 // Row 14 (and item 1): each file kind says what it is when given for the other.
 TEST_F(CliIntegrity, AFileOfTheOtherKindIsNamed) {
-  expect_user_error(run_cli("online --model " + shell_quote(snapshots_) + " --mu 0.3"),
+  expect_one_line_user_error(run_cli("online --model " + shell_quote(snapshots_) + " --mu 0.3"),
                     "'" + snapshots_ + "': a contactrb snapshot file, not a reduced model");
-  expect_user_error(run_cli("offline --snapshots " + shell_quote(model_) + " --out " + shell_quote(dir_->file("m2.h5"))),
+  expect_one_line_user_error(run_cli("offline --snapshots " + shell_quote(model_) + " --out " + shell_quote(dir_->file("m2.h5"))),
                     "'" + model_ + "' is a contactrb reduced model file, not a snapshot file");
 }
 
@@ -104,15 +104,15 @@ TEST_F(CliIntegrity, AFileOfTheOtherKindIsNamed) {
 // silent wrong answers).
 TEST_F(CliIntegrity, EmptyAndUnderflowingParameterValuesAreRefused) {
   const std::string out = " --out " + shell_quote(dir_->file("solve"));
-  expect_user_error(run_cli("solve --case hertz-a --mu ''" + out), "--mu: the value is empty");
-  expect_user_error(run_cli("solve --case hertz-a --mu 1e-400" + out),
+  expect_one_line_user_error(run_cli("solve --case hertz-a --mu ''" + out), "--mu: the value is empty");
+  expect_one_line_user_error(run_cli("solve --case hertz-a --mu 1e-400" + out),
                     "--mu: '1e-400' is below the smallest normal double (2.2e-308): it would be read as 0");
-  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --mu ''"), "--mu: the value is empty");
-  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --mu 1e-400"), "--mu: '1e-400' is below");
+  expect_one_line_user_error(run_cli("online --model " + shell_quote(model_) + " --mu ''"), "--mu: the value is empty");
+  expect_one_line_user_error(run_cli("online --model " + shell_quote(model_) + " --mu 1e-400"), "--mu: '1e-400' is below");
   const std::string h5 = " --out " + shell_quote(dir_->file("v.h5"));
-  expect_user_error(run_cli("snapshots --case hertz-a --values ''" + h5), "--values value 1: the value is empty");
-  expect_user_error(run_cli("snapshots --case hertz-a --values 0.2,1e-400" + h5), "--values value 2: '1e-400' is below");
-  expect_user_error(run_cli("offline --case hertz-a --values ''" + h5), "--values value 1: the value is empty");
+  expect_one_line_user_error(run_cli("snapshots --case hertz-a --values ''" + h5), "--values value 1: the value is empty");
+  expect_one_line_user_error(run_cli("snapshots --case hertz-a --values 0.2,1e-400" + h5), "--values value 2: '1e-400' is below");
+  expect_one_line_user_error(run_cli("offline --case hertz-a --values ''" + h5), "--values value 1: the value is empty");
   EXPECT_FALSE(fs::exists(dir_->file("v.h5")));
   EXPECT_FALSE(fs::exists(dir_->file("solve")));
 }
@@ -121,21 +121,21 @@ TEST_F(CliIntegrity, EmptyAndUnderflowingParameterValuesAreRefused) {
 // of 65.4 where the HF solve gives 1.47, with converged = true.
 TEST_F(CliIntegrity, RepeatedTrainingValuesAreRefused) {
   const std::string h5 = " --out " + shell_quote(dir_->file("r.h5"));
-  expect_user_error(run_cli("snapshots --case-file " + fixture("zero-step.toml") + " -q" + h5),
+  expect_one_line_user_error(run_cli("snapshots --case-file " + fixture("zero-step.toml") + " -q" + h5),
                     "zero-step.toml:38: key 'parameter.training.step' must be > 0 (the values must be strictly "
                     "increasing), got 0");
-  expect_user_error(run_cli("snapshots --case-file " + fixture("repeated.toml") + " -q" + h5),
+  expect_one_line_user_error(run_cli("snapshots --case-file " + fixture("repeated.toml") + " -q" + h5),
                     "repeated.toml:37: key 'parameter.training' must be strictly increasing, but element 3 (0.3) is "
                     "not above element 2 (0.3)");
-  expect_user_error(run_cli("snapshots --case hertz-a --values 0.2,0.3,0.3 -q" + h5),
+  expect_one_line_user_error(run_cli("snapshots --case hertz-a --values 0.2,0.3,0.3 -q" + h5),
                     "--values: the values must be strictly increasing, but value 3 (0.3) is not above value 2 (0.3)");
-  expect_user_error(run_cli("offline --case hertz-a --values 0.3,0.2 -q" + h5),
+  expect_one_line_user_error(run_cli("offline --case hertz-a --values 0.3,0.2 -q" + h5),
                     "--values: the values must be strictly increasing, but value 2 (0.2) is not above value 1 (0.3)");
   EXPECT_FALSE(fs::exists(dir_->file("r.h5")));
   const std::string report = " --out " + shell_quote(dir_->file("report"));
-  expect_user_error(run_cli("report --case hertz-a --training-values 0.2,0.2" + report),
+  expect_one_line_user_error(run_cli("report --case hertz-a --training-values 0.2,0.2" + report),
                     "--training-values: the values must be strictly increasing");
-  expect_user_error(run_cli("report --case hertz-a --verification-values ''" + report),
+  expect_one_line_user_error(run_cli("report --case hertz-a --verification-values ''" + report),
                     "--verification-values value 1: the value is empty");
 }
 
@@ -144,14 +144,14 @@ TEST_F(CliIntegrity, DegenerateOrOverflowingCaseDataAreRefused) {
   const auto solve = [&](const std::string& name) {
     return run_cli("solve --case-file " + fixture(name) + " --mu 0.3 --out " + shell_quote(dir_->file("d")));
   };
-  expect_user_error(solve("uy-1e155.toml"),
+  expect_one_line_user_error(solve("uy-1e155.toml"),
                     "Dirichlet data on 'top' reaches magnitude 1e+155 on the parameter domain, above 1e50");
-  expect_user_error(solve("load-1e155.toml"), "body 1: body load of magnitude 1e+155 is above 1e50");
-  expect_user_error(solve("uy-1e154.toml"), "Dirichlet data on 'top' reaches magnitude 1e+154");
-  expect_user_error(solve("nu-half.toml"),
+  expect_one_line_user_error(solve("load-1e155.toml"), "body 1: body load of magnitude 1e+155 is above 1e50");
+  expect_one_line_user_error(solve("uy-1e154.toml"), "Dirichlet data on 'top' reaches magnitude 1e+154");
+  expect_one_line_user_error(solve("nu-half.toml"),
                     "body 1: Poisson's ratio nu = 0.49999999999999994 is within 1e-6 of 0.5: a nearly incompressible "
                     "material");
-  expect_user_error(solve("stiffness-ratio.toml"),
+  expect_one_line_user_error(solve("stiffness-ratio.toml"),
                     "the Young's moduli of the two bodies (15, 1e-12) differ by a factor 1.5e+13 above 1e12");
   EXPECT_FALSE(fs::exists(dir_->file("d")));
 }

@@ -25,11 +25,6 @@ using nlohmann::json;
 
 namespace {
 
-void expect_user_error(const CliResult& r, const std::string& words) {
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
-}
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;

@@ -15,6 +15,7 @@
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::expect_user_error;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
@@ -23,12 +24,6 @@ namespace {
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);
-}
-
-void expect_user_error(const CliResult& r, const std::string& words) {
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(words), std::string::npos) << r.err << "\n(expected: " << words << ")";
 }
 
 std::vector<nlohmann::json> json_lines(const std::string& text) {

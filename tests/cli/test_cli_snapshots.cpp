@@ -16,11 +16,6 @@ using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
 namespace {
-void expect_user_error(const CliResult& r, const std::string& words) {
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
-}
 int count(const std::string& text, const std::string& word) {
   int n = 0;
   for (auto p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) ++n;

@@ -19,11 +19,6 @@ nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);
 }
-void expect_user_error(const CliResult& r, const std::string& words) {
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("contactrb: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
-}
 }  // namespace
 
 TEST(CliSolve, HertzAWritesJsonCsvAndVtu) {
