@@ -6,8 +6,7 @@
 //   bench_greedy [case ...] [--tol 1e-2,1e-3] [--jobs 2] [--dense P] [--steps] [--hf-tol eps_KA]
 //                [--eps-du e] [--eps-eim e] [--eps-pod e] [--no-compression] [--no-supremizers]
 // --dense P: P equispaced training points over the domain instead of the case's training set.
-// The offline settings apply to the greedy's builds and to the POD; the greedy's default has no
-// compression (offline_greedy.hpp), --no-compression also turns it off for the POD.
+// The offline settings apply to the greedy's builds and to the POD (--no-compression to both).
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -116,7 +115,6 @@ int main(int argc, char** argv) {
       rb::GreedyOfflineSettings gs;
       gs.tolerance = tol;
       gs.offline = offline;
-      gs.offline.compression = false;  // the greedy's default
       gs.jobs = jobs;
       gs.progress = steps ? rb::ProgressMode::Lines : rb::ProgressMode::None;
       gs.progress_stream = &std::cout;

@@ -34,11 +34,6 @@ enum class GreedyOfflineStatus {
 };
 const char* to_string(GreedyOfflineStatus status);  // "tolerance_reached" | "budget" | "stagnated"
 
-inline OfflineSettings greedy_offline_defaults() {
-  OfflineSettings s;
-  s.compression = false;
-  return s;
-}
 
 struct GreedyOfflineSettings {
   // Stop when max_mu Delta_u(mu) / |u_rb(mu)|_A(mu) <= tolerance (unit-free; relative_estimate()).
@@ -51,13 +46,13 @@ struct GreedyOfflineSettings {
   int max_hf = 50;
   // Threads of the estimate sweep (one OnlineSolver each; the result does not depend on it).
   int jobs = 1;
-  // Of every build_reduced_model call: the defaults of `contactrb offline` except compression,
-  // off. The compression (Remark 7) keeps the rows active in some selected snapshot; with a
-  // few snapshots a reduced solution can penetrate on a dropped row that neither the reduced
-  // constraints nor the estimate see (measured on hertz-a, 61 points, eps_KA 1e-6: at step 21
-  // the estimate at the selected mu = 0.45 jumped from 0.08 to 0.27 and the greedy stagnated with
-  // a verification e_displ of 0.1; without compression the estimate there was 1.7e-4).
-  OfflineSettings offline = greedy_offline_defaults();
+  // Of every build_reduced_model call: the defaults of `contactrb offline`, compression (Remark 7)
+  // included. Measured both ways (docs/offline-online.md, "Greedy sampling"): with few snapshots
+  // the kept rows can miss a row the reduced solution then penetrates (hertz-a, 61 points, eps_KA
+  // 1e-6: verification e_displ 0.1, 1.7e-4 without compression); without it the EIM runs over
+  // every row and the models missed their own snapshots on hertz-3p (e_displ 0.17 at a selected
+  // point, 5e-4 with compression) and were 100 times less accurate on ring-block.
+  OfflineSettings offline;
   OnlineSettings online;    // of the sweep (error_estimate is forced on)
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
