@@ -70,9 +70,10 @@ FieldOutput read_field_output(const rb::ReducedModel& model, const std::string& 
 // The files of one solution into `dir` (which exists); their paths as the JSON's "files".
 nlohmann::json write_fields(const FieldOutput& f, const rb::ReducedModel& model, const cases::Mu& mu,
                             const rb::OnlineSolution& s, const std::string& dir) {
-  const rb::SolutionFiles files = rb::write_solution_fields(
-      f.spec, f.reference, mu, model.surface.discretization, rb::reconstruct_displacement(f.reconstruction, mu, s.u_hat),
-      rb::reconstruct_multipliers(f.reconstruction, s.lambda_hat), dir);
+  const rb::SolutionFiles files =
+      rb::write_solution_fields(f.spec, f.reference, mu, model.surface.discretization,
+                                rb::reconstruct_displacement(f.reconstruction, mu, s.u_hat),
+                                rb::reconstruct_multipliers(f.reconstruction, s.lambda_hat), dir);
   return {{"vtu", files.vtu},
           {"deformed_vtu", files.deformed_vtu},
           {"contact_vtu", files.contact_vtu},

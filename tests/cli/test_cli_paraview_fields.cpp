@@ -30,7 +30,8 @@ TEST(CliParaViewFields, PatchTestStressPressureAndGapAreExact) {
   SKIP_WITHOUT_MESHIO();
   contactrb::test::TempDir dir("paraview_patch");
   const std::string toml = std::string(CONTACTRB_SOURCE_DIR) + "/examples/two-block-patch/case.toml";
-  const auto r = run_cli("solve --case-file " + shell_quote(toml) + " --mu 0.02 --out " + shell_quote(dir.path().string()));
+  const auto r =
+      run_cli("solve --case-file " + shell_quote(toml) + " --mu 0.02 --out " + shell_quote(dir.path().string()));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("wrote " + dir.file("contact.vtu")), std::string::npos) << r.out;
 

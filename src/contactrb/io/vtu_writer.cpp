@@ -211,8 +211,9 @@ void VtuWriter::write(const std::string& path) const {
               std::to_string(body_.size()) + " body ids");
   for (std::size_t k = 0; k < connectivity_.size(); ++k) {
     const std::int64_t v = connectivity_[k];
-    require(v >= 0 && v < n, "cannot write '" + path + "': cell " + std::to_string(k / static_cast<std::size_t>(nodes_per_cell_)) +
-                                 " refers to node " + std::to_string(v) + " of " + std::to_string(n));
+    const std::size_t cell = k / static_cast<std::size_t>(nodes_per_cell_);
+    require(v >= 0 && v < n, "cannot write '" + path + "': cell " + std::to_string(cell) + " refers to node " +
+                                 std::to_string(v) + " of " + std::to_string(n));
   }
   const VtuField* deform = deform_field_.empty() ? nullptr : find_field(point_data_, deform_field_);
 

@@ -67,7 +67,9 @@ VtuFiles write_solution_vtus(const mesh::Mesh& mesh, const std::vector<fem::Mate
   const Eigen::VectorXd pressure = nodal_pressure(mesh, pair, quadrature, lambda);
   const CellStress stress = cell_stress(mesh, materials, u);
   const auto add_parameters = [&](io::VtuWriter& w) {
-    for (std::size_t k = 0; k < parameters.size(); ++k) w.add_field_data(parameters[k].name, mu(static_cast<Eigen::Index>(k)));
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      w.add_field_data(parameters[k].name, mu(static_cast<Eigen::Index>(k)));
+    }
   };
 
   const std::filesystem::path d(dir);
