@@ -3,11 +3,15 @@
 // --batch FILE (or - for stdin): one mu per line, one JSON line per input line, in order; a bad
 // line (not a number, outside the domain) is answered by {"line": k, "error": "..."} and the
 // others are still answered. The model is loaded and the solver set up once.
-// --out DIR (with --mu): also the reconstructed solution on the HF mesh Omega(mu), from the
-// model file's reconstruction data (rb/solution_fields.hpp): DIR/solution.vtu,
-// DIR/solution_deformed.vtu, DIR/multipliers.csv; their paths are listed in the JSON ("files").
+// --out DIR: also the reconstructed solution on the HF mesh Omega(mu), from the model file's
+// reconstruction data (rb/solution_fields.hpp): with --mu DIR/solution.vtu,
+// DIR/solution_deformed.vtu, DIR/contact.vtu, DIR/multipliers.csv; with --batch the same in
+// DIR/NNNNNN/ for answered line NNNNNN, and DIR/solutions.pvd, DIR/solutions_deformed.pvd,
+// DIR/contact.pvd, ParaView time series over the lines. Paths are listed in the JSON ("files").
 // Exit codes: 0 all answered and converged; 1 a user error (or, in batch mode, some bad line);
 // 3 some solve did not converge (and, in batch mode, no bad line).
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,6 +19,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "contactrb/cases/case_record.hpp"
@@ -22,6 +28,7 @@
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/printable.hpp"
+#include "contactrb/io/pvd_writer.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/online_solver.hpp"
 #include "contactrb/rb/reconstruction.hpp"
@@ -42,8 +49,55 @@ struct OnlineOptions {
   std::optional<double> alpha;
   std::optional<double> tolerance;
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
-  std::string out;  // --out DIR: reconstructed fields (single --mu only)
+  std::string out;  // --out DIR: reconstructed fields
 };
+
+// What --out needs, read before any solve (everything that can fail first).
+struct FieldOutput {
+  rb::ReducedReconstruction reconstruction;
+  cases::CaseSpec spec;
+  mesh::Mesh reference;
+};
+
+FieldOutput read_field_output(const rb::ReducedModel& model, const std::string& model_path) {
+  rb::ReducedReconstruction rec = io::read_reconstruction(model_path);
+  rb::check_reconstruction(model, rec);
+  cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, model_path);
+  mesh::Mesh reference = rb::model_reference_mesh(spec, model, rec);
+  return {std::move(rec), std::move(spec), std::move(reference)};
+}
+
+// The files of one solution into `dir` (which exists); their paths as the JSON's "files".
+nlohmann::json write_fields(const FieldOutput& f, const rb::ReducedModel& model, const cases::Mu& mu,
+                            const rb::OnlineSolution& s, const std::string& dir) {
+  const rb::SolutionFiles files =
+      rb::write_solution_fields(f.spec, f.reference, mu, model.surface.discretization,
+                                rb::reconstruct_displacement(f.reconstruction, mu, s.u_hat),
+                                rb::reconstruct_multipliers(f.reconstruction, s.lambda_hat), dir);
+  return {{"vtu", files.vtu},
+          {"deformed_vtu", files.deformed_vtu},
+          {"contact_vtu", files.contact_vtu},
+          {"multipliers", files.multipliers}};
+}
+
+// The outputs of one directory of --out, for check_file_roles.
+std::vector<FileRole> field_roles(const std::string& dir, const std::string& where) {
+  const rb::SolutionFiles f = rb::solution_file_names(dir);
+  return {{"solution.vtu in " + where, f.vtu},
+          {"solution_deformed.vtu in " + where, f.deformed_vtu},
+          {"contact.vtu in " + where, f.contact_vtu},
+          {"multipliers.csv in " + where, f.multipliers}};
+}
+
+// The ParaView collections of `online --batch --out DIR`, next to the line directories.
+constexpr std::array<const char*, 3> kBatchCollections = {"solutions.pvd", "solutions_deformed.pvd", "contact.pvd"};
+
+// Line k's directory name: six digits, zero-padded (wider from line 10^6 on), so that the
+// names sort as the lines.
+std::string line_directory(int k) {
+  std::string digits = std::to_string(k);
+  return std::string(digits.size() < 6 ? 6 - digits.size() : 0, '0') + digits;
+}
 
 nlohmann::json to_json(const Eigen::VectorXd& v) {
   nlohmann::json a = nlohmann::json::array();
@@ -101,8 +155,29 @@ bool read_batch_line(std::streambuf& in, std::string& line, bool& too_long) {
   return true;
 }
 
-int run_batch(const OnlineOptions& opt, const std::vector<cases::ParameterSpec>& parameters, rb::OnlineSolver& solver,
-              const rb::OnlineSettings& settings) {
+// DIR/solutions.pvd, DIR/solutions_deformed.pvd, DIR/contact.pvd over the lines with files.
+// Time step: mu for one parameter when the values are distinct (ParaView orders the steps by
+// it), otherwise the line number (the point is in each file's field data).
+void write_batch_collections(const std::string& out, std::size_t num_parameters,
+                             const std::vector<std::pair<int, cases::Mu>>& written) {
+  bool by_mu = num_parameters == 1;
+  std::vector<double> values;
+  for (const auto& [k, mu] : written) values.push_back(mu(0));
+  std::sort(values.begin(), values.end());
+  if (std::adjacent_find(values.begin(), values.end()) != values.end()) by_mu = false;
+  const std::array<const char*, 3> files = {"solution.vtu", "solution_deformed.vtu", "contact.vtu"};
+  for (std::size_t c = 0; c < kBatchCollections.size(); ++c) {
+    std::vector<io::PvdDataSet> datasets;
+    for (const auto& [k, mu] : written) {
+      datasets.push_back({by_mu ? mu(0) : static_cast<double>(k), line_directory(k) + "/" + files[c]});
+    }
+    io::write_pvd((std::filesystem::path(out) / kBatchCollections[c]).string(), datasets);
+  }
+}
+
+int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::OnlineSolver& solver,
+              const rb::OnlineSettings& settings, const FieldOutput* fields) {
+  const std::vector<cases::ParameterSpec>& parameters = model.parameters;
   std::ifstream file;
   std::istream* in = &std::cin;
   if (opt.batch != "-") {
@@ -116,6 +191,7 @@ int run_batch(const OnlineOptions& opt, const std::vector<cases::ParameterSpec>&
   int bad = 0, not_converged = 0, k = 0;
   std::string line;
   bool too_long = false;
+  std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
   while (read_batch_line(*in->rdbuf(), line, too_long)) {
     ++k;
     nlohmann::json j;
@@ -126,6 +202,14 @@ int run_batch(const OnlineOptions& opt, const std::vector<cases::ParameterSpec>&
       const rb::OnlineSolution s = solver.solve(mu, settings);
       j = {{"line", k}};
       j.update(solution_json(parameters, mu, solver, s));
+      if (fields != nullptr) {
+        const std::string dir = (std::filesystem::path(opt.out) / line_directory(k)).string();
+        check_file_roles({{"--model", opt.model}, {"--batch", opt.batch == "-" ? "" : opt.batch}},
+                         field_roles(dir, "--out"));
+        ensure_output_directory(dir);
+        j["files"] = write_fields(*fields, model, mu, s, dir);
+        written.emplace_back(k, mu);
+      }
       if (!s.converged()) ++not_converged;
     } catch (const Error& e) {
       // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
@@ -135,6 +219,7 @@ int run_batch(const OnlineOptions& opt, const std::vector<cases::ParameterSpec>&
     // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
     std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // flushed: answers stream through pipes
   }
+  if (fields != nullptr) write_batch_collections(opt.out, parameters.size(), written);
   if (bad > 0) {
     std::cerr << "contactrb: error: " << bad << " of " << k << " batch lines could not be answered\n";
     return 1;
@@ -151,9 +236,6 @@ int run_online(const OnlineOptions& opt) {
   // A plain number is checked before the model is read (its errors come first, as for p = 1).
   if (single && opt.mu->find_first_of("=,") == std::string::npos) (void)parse_mu_option(*opt.mu, "--mu");
   const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
-  require(opt.out.empty() || single,
-          "--out is not available with --batch (one output directory per --mu: run one online --mu per value, "
-          "or `contactrb evaluate`)");
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
   rb::OnlineSettings settings;
@@ -172,34 +254,33 @@ int run_online(const OnlineOptions& opt) {
   rb::OnlineSolver solver(model, sizes);
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
-    return run_batch(opt, model.parameters, solver, settings);
+    if (opt.out.empty()) return run_batch(opt, model, solver, settings, nullptr);
+    std::vector<FileRole> outputs;
+    for (const char* c : kBatchCollections) {
+      outputs.push_back({std::string(c) + " in --out", (std::filesystem::path(opt.out) / c).string()});
+    }
+    check_file_roles({{"--model", opt.model}, {"--batch", opt.batch == "-" ? "" : opt.batch}}, outputs);
+    ensure_output_directory(opt.out);
+    const FieldOutput fields = read_field_output(model, opt.model);
+    // One run's files, never mixed with another's: the lock is held until the collections are written.
+    const OutputLock lock(opt.out);
+    return run_batch(opt, model, solver, settings, &fields);
   }
   const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
 
   // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
-  std::optional<rb::ReducedReconstruction> rec;
-  std::optional<cases::CaseSpec> spec;
-  std::optional<mesh::Mesh> reference;
+  std::optional<FieldOutput> fields;
   if (!opt.out.empty()) {
-    const std::filesystem::path d(opt.out);
-    check_file_roles({{"--model", opt.model}}, {{"solution.vtu in --out", (d / "solution.vtu").string()},
-                                                {"solution_deformed.vtu in --out", (d / "solution_deformed.vtu").string()},
-                                                {"multipliers.csv in --out", (d / "multipliers.csv").string()}});
+    check_file_roles({{"--model", opt.model}}, field_roles(opt.out, "--out"));
     ensure_output_directory(opt.out);
-    rec = io::read_reconstruction(opt.model);
-    rb::check_reconstruction(model, *rec);
-    spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
-    reference = rb::model_reference_mesh(*spec, model, *rec);
+    fields = read_field_output(model, opt.model);
   }
 
   const rb::OnlineSolution s = solver.solve(mu, settings);
   nlohmann::json j = solution_json(model.parameters, mu, solver, s);
-  if (rec) {
-    const OutputLock lock(opt.out);  // the three files of one run, never mixed with another's
-    const rb::SolutionFiles files = rb::write_solution_fields(
-        *spec, *reference, mu, model.surface.discretization, rb::reconstruct_displacement(*rec, mu, s.u_hat),
-        rb::reconstruct_multipliers(*rec, s.lambda_hat), opt.out);
-    j["files"] = {{"vtu", files.vtu}, {"deformed_vtu", files.deformed_vtu}, {"multipliers", files.multipliers}};
+  if (fields) {
+    const OutputLock lock(opt.out);  // the four files of one run, never mixed with another's
+    j["files"] = write_fields(*fields, model, mu, s, opt.out);
   }
   std::cout << j.dump() << "\n";
   if (!s.converged()) {
@@ -235,7 +316,8 @@ Command add_online_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--out", opt->out,
                   "Directory for the reconstructed solution on the HF mesh (solution.vtu, solution_deformed.vtu, "
-                  "multipliers.csv); --mu only");
+                  "contact.vtu, multipliers.csv); with --batch one subdirectory NNNNNN per line and the ParaView "
+                  "collections solutions.pvd, solutions_deformed.pvd, contact.pvd");
   return {sub, [opt] { return run_online(*opt); }};
 }
 

@@ -1,8 +1,9 @@
 // `contactrb solve`: one high-fidelity contact solve of a built-in case (--case) or a TOML
 // case file (--case-file) at one parameter value. Writes DIR/solution.json,
-// DIR/multipliers.csv, DIR/solution.vtu (Omega(mu) with the displacement field) and
-// DIR/solution_deformed.vtu (the deformed configuration) (docs/user-guide.md). A solve that does not converge still writes solution.json
-// (converged = false) and exits with code 3.
+// DIR/multipliers.csv, DIR/solution.vtu (Omega(mu) with displacement, contact pressure and
+// stresses), DIR/solution_deformed.vtu (the deformed configuration) and DIR/contact.vtu (the
+// slave boundary with pressure and gap) (docs/user-guide.md; rb/solution_fields.hpp). A solve
+// that does not converge still writes solution.json (converged = false) and exits with code 3.
 #include <Eigen/Core>
 #include <filesystem>
 #include <system_error>
@@ -23,7 +24,7 @@
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
-#include "contactrb/io/vtu_writer.hpp"
+#include "contactrb/rb/solution_fields.hpp"
 
 namespace contactrb::app {
 
@@ -44,21 +45,6 @@ struct SolveOptions {
   int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
   std::string out_dir;
 };
-
-// Pressure at each slave node: the W-weighted average of the rows that integrate it, so
-// that collocation gives lambda_r at node r and LAC spreads each macro-segment's value.
-Eigen::VectorXd nodal_pressure(const mesh::Mesh& m, const hf::HFSolver& solver, const Eigen::VectorXd& lambda) {
-  Eigen::VectorXd p = Eigen::VectorXd::Zero(m.num_nodes());
-  const auto& q = solver.quadrature();
-  const auto& slave = solver.pair().slave;
-  Eigen::VectorXd num = q.W.transpose() * lambda;
-  Eigen::VectorXd den = q.W.transpose() * Eigen::VectorXd::Ones(q.W.rows());
-  for (std::size_t s = 0; s < slave.size(); ++s) {
-    const auto i = static_cast<Eigen::Index>(s);
-    if (den(i) > 0.0) p(slave[s]) = num(i) / den(i);
-  }
-  return p;
-}
 
 nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver, const hf::HFSolution& s,
                              const hf::HFSettings& settings) {
@@ -129,11 +115,13 @@ int run_solve(SolveOptions opt) {
   const std::string csv_path = opt.out_dir + "/multipliers.csv";
   const std::string vtu_path = opt.out_dir + "/solution.vtu";
   const std::string deformed_path = opt.out_dir + "/solution_deformed.vtu";
+  const std::string contact_path = opt.out_dir + "/contact.vtu";
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
                    {{"solution.json in --out", json_path},
                     {"multipliers.csv in --out", csv_path},
                     {"solution.vtu in --out", vtu_path},
-                    {"solution_deformed.vtu in --out", deformed_path}});
+                    {"solution_deformed.vtu in --out", deformed_path},
+                    {"contact.vtu in --out", contact_path}});
   ensure_output_directory(opt.out_dir);
 
   const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
@@ -141,14 +129,14 @@ int run_solve(SolveOptions opt) {
   const hf::HFSolution s = solver.solve(settings);
   const mesh::Mesh& m = solver.problem().mesh;
 
-  // The four files of one run are written under a lock on DIR: two runs to the same --out
+  // The five files of one run are written under a lock on DIR: two runs to the same --out
   // leave the files of one of them, never a mix (the writes are atomic one by one).
   const OutputLock lock(opt.out_dir);
   io::write_json(solution_json(opt, solver, s, settings), json_path);
 
   if (s.rows.K.rows() != s.lambda.size() || s.lambda.size() == 0) {
     // No fields of this run: the files of an earlier run would sit beside its solution.json.
-    for (const std::string& stale : {csv_path, vtu_path, deformed_path}) {
+    for (const std::string& stale : {csv_path, vtu_path, deformed_path, contact_path}) {
       std::error_code ignored;
       std::filesystem::remove(stale, ignored);
     }
@@ -162,10 +150,8 @@ int run_solve(SolveOptions opt) {
                    slack(r) / q.weight(r), s.lambda(r), q.weight(r)});
     }
     csv.write(csv_path);
-    io::VtuWriter vtu(m);
-    vtu.add_point_vector("displacement", s.u).add_point_scalar("contact_pressure", nodal_pressure(m, solver, s.lambda));
-    vtu.write(vtu_path);
-    vtu.deform_by("displacement").write(deformed_path);
+    rb::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
+                            opt.out_dir);
   }
 
   std::cout << "case " << opt.case_name << ", " << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu)
@@ -181,7 +167,7 @@ int run_solve(SolveOptions opt) {
             << "energy " << s.energy << ", contact force " << s.contact_force << ", active constraints "
             << s.active_constraints << ", max KKT residual " << s.kkt.max() << "\n"
             << "wrote " << json_path << "\nwrote " << csv_path << "\nwrote " << vtu_path << "\nwrote "
-            << deformed_path << "\n";
+            << deformed_path << "\nwrote " << contact_path << "\n";
   return 0;
 }
 

@@ -1,8 +1,9 @@
 // contactrb evaluate and online --out (issue 6, items 2-4) on a tiny hertz-a model: the
 // evaluation CSV (header, one line per value), JSON summary and multiplier profiles; --set as a
 // named set or a file; a bad set name; online --out writes a VTU with as many points as the HF
-// mesh of `contactrb solve` and one multipliers.csv line per constraint row; --out with --batch
-// is refused. The snapshot file and the model are made once for the suite.
+// mesh of `contactrb solve`, contact.vtu and one multipliers.csv line per constraint row; --out
+// with --batch writes one directory per answered line, byte for byte the files of online --mu,
+// and the .pvd collections. The snapshot file and the model are made once for the suite.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -174,7 +175,66 @@ TEST_F(CliEvaluate, OnlineOutWritesTheFieldsOnTheHFMesh) {
   EXPECT_EQ(m[0], "r,x,y,lambda");
   EXPECT_EQ(m[1].rfind("0,", 0), 0u) << m[1];
 
-  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch - --out " + shell_quote(out) +
-                            " < /dev/null"),
-                    "--out is not available with --batch");
+  EXPECT_EQ(j.at("files").at("contact_vtu"), out + "/contact.vtu");
+  EXPECT_NE(file_text(out + "/solution.vtu").find("Name=\"von_mises\""), std::string::npos);
+  EXPECT_NE(file_text(out + "/contact.vtu").find("Name=\"gap\""), std::string::npos);
+}
+
+TEST_F(CliEvaluate, OnlineBatchOutWritesOneDirectoryPerLineAndCollections) {
+  const std::string out = dir_->file("batch_out");
+  const std::string batch = dir_->file("batch_out.txt");
+  {
+    std::ofstream o(batch);
+    o << "0.35\nabc\n0.2\n";
+  }
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(batch) +
+                              " --out " + shell_quote(out));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // line 2 is bad; the others are answered
+  std::vector<json> lines;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) lines.push_back(json::parse(line));
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].at("files").at("vtu"), out + "/000001/solution.vtu");
+  EXPECT_EQ(lines[0].at("files").at("contact_vtu"), out + "/000001/contact.vtu");
+  EXPECT_FALSE(lines[1].contains("files"));
+  EXPECT_FALSE(fs::exists(out + "/000002"));
+  EXPECT_EQ(lines[2].at("files").at("multipliers"), out + "/000003/multipliers.csv");
+
+  // Line k's files are those of `online --mu` at the same value, byte for byte.
+  const std::string single = dir_->file("batch_single");
+  ASSERT_EQ(run_cli("online --model " + shell_quote(model_) + " --mu 0.2 --out " + shell_quote(single)).exit_code, 0);
+  for (const char* f : {"/solution.vtu", "/solution_deformed.vtu", "/contact.vtu", "/multipliers.csv"}) {
+    EXPECT_EQ(file_text(out + "/000003" + f), file_text(single + f)) << f;
+  }
+
+  // The collections: one data set per answered line, mu as the time step (p = 1, distinct).
+  EXPECT_EQ(file_text(out + "/solutions.pvd"),
+            "<?xml version=\"1.0\"?>\n"
+            "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+            "  <Collection>\n"
+            "    <DataSet timestep=\"0.35\" group=\"\" part=\"0\" file=\"000001/solution.vtu\"/>\n"
+            "    <DataSet timestep=\"0.2\" group=\"\" part=\"0\" file=\"000003/solution.vtu\"/>\n"
+            "  </Collection>\n"
+            "</VTKFile>\n");
+  EXPECT_NE(file_text(out + "/solutions_deformed.pvd").find("file=\"000003/solution_deformed.vtu\""),
+            std::string::npos);
+  EXPECT_NE(file_text(out + "/contact.pvd").find("file=\"000001/contact.vtu\""), std::string::npos);
+
+  // A repeated value: the line numbers are the time steps (ParaView would merge equal steps).
+  const std::string repeated = dir_->file("batch_repeated");
+  {
+    std::ofstream o(dir_->file("repeated.txt"));
+    o << "0.3\n0.3\n";
+  }
+  const CliResult rr = run_cli("online --model " + shell_quote(model_) + " --batch - --out " +
+                               shell_quote(repeated) + " < " + shell_quote(dir_->file("repeated.txt")));
+  ASSERT_EQ(rr.exit_code, 0) << rr.out << rr.err;
+  const std::string pvd = file_text(repeated + "/solutions.pvd");
+  EXPECT_NE(pvd.find("timestep=\"1\" group=\"\" part=\"0\" file=\"000001/solution.vtu\""), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("timestep=\"2\" group=\"\" part=\"0\" file=\"000002/solution.vtu\""), std::string::npos) << pvd;
+
+  // Output safety: the batch file cannot be an output of the run.
+  expect_user_error(run_cli("online --model " + shell_quote(model_) + " --batch " +
+                            shell_quote(out + "/solutions.pvd") + " --out " + shell_quote(out)),
+                    "is the input --batch");
 }

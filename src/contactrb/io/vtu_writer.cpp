@@ -1,10 +1,13 @@
 #include "contactrb/io/vtu_writer.hpp"
 
-#include <array>
-#include <charconv>
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <ostream>
+#include <sstream>
 #include <string_view>
+#include <type_traits>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/atomic_file.hpp"
@@ -13,16 +16,10 @@ namespace contactrb::io {
 
 namespace {
 
-// VTK cell type of a linear triangle (vtkCellType.h: VTK_TRIANGLE).
-constexpr int kVtkTriangle = 5;
+// VTK cell types (vtkCellType.h): VTK_LINE, VTK_TRIANGLE.
+constexpr std::uint8_t kVtkLine = 3;
+constexpr std::uint8_t kVtkTriangle = 5;
 constexpr const char* kBodyField = "body";
-
-// Shortest text that reads back to the same double (round-trip exact).
-void put_double(std::ostream& out, double v) {
-  std::array<char, 32> buf{};
-  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  out.write(buf.data(), result.ptr - buf.data());
-}
 
 std::string xml_escape(std::string_view s) {
   std::string r;
@@ -62,66 +59,138 @@ std::string default_attributes(const std::vector<VtuField>& section, const char*
   return attrs;
 }
 
-void write_field(std::ostream& out, const VtuField& f) {
-  // Scalars omit NumberOfComponents (VTK's default is 1); 2D vectors are written with z = 0.
-  out << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(f.name) << "\""
-      << (f.components == 2 ? " NumberOfComponents=\"3\"" : "") << " format=\"ascii\">\n";
+// The appended-data section: one block per array, each a UInt64 byte count followed by the
+// values, little-endian (the file declares byte_order="LittleEndian", header_type="UInt64").
+class AppendedBlocks {
+ public:
+  // Starts a block of `count` values of type T; returns its offset (the DataArray's `offset`
+  // attribute: bytes from the character after the leading '_').
+  template <class T>
+  std::uint64_t begin(std::size_t count) {
+    const std::uint64_t offset = bytes_.size();
+    put(static_cast<std::uint64_t>(count * sizeof(T)));
+    return offset;
+  }
+
+  template <class T>
+  void put(T value) {
+    static_assert(std::is_arithmetic_v<T>);
+    std::array<char, sizeof(T)> raw{};
+    std::memcpy(raw.data(), &value, sizeof(T));
+    if constexpr (std::endian::native == std::endian::big) std::reverse(raw.begin(), raw.end());
+    bytes_.append(raw.data(), raw.size());
+  }
+
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+// One <DataArray> element of the XML part (its values go to `blocks`).
+void data_array_header(std::ostream& out, const char* indent, const char* type, const std::string& name,
+                       int components, std::uint64_t offset, const std::string& extra = "") {
+  out << indent << "<DataArray type=\"" << type << "\" Name=\"" << xml_escape(name) << "\"";
+  if (components != 1) out << " NumberOfComponents=\"" << components << "\"";
+  out << extra << " format=\"appended\" offset=\"" << offset << "\"/>\n";
+}
+
+// A Float64 field: scalars as they are, 2D vectors with a third component 0.
+void write_field(std::ostream& out, AppendedBlocks& blocks, const VtuField& f) {
   const std::size_t entities = f.values.size() / static_cast<std::size_t>(f.components);
+  const int written_components = f.components == 2 ? 3 : 1;
+  const std::uint64_t offset = blocks.begin<double>(entities * static_cast<std::size_t>(written_components));
   for (std::size_t i = 0; i < entities; ++i) {
-    out << "          ";
     if (f.components == 2) {
-      put_double(out, f.values[2 * i]);
-      out << ' ';
-      put_double(out, f.values[2 * i + 1]);
-      out << " 0\n";
+      blocks.put(f.values[2 * i]);
+      blocks.put(f.values[2 * i + 1]);
+      blocks.put(0.0);
     } else {
-      put_double(out, f.values[i]);
-      out << '\n';
+      blocks.put(f.values[i]);
     }
   }
-  out << "        </DataArray>\n";
+  data_array_header(out, "        ", "Float64", f.name, written_components, offset);
 }
 
 }  // namespace
 
-VtuWriter::VtuWriter(const mesh::Mesh& mesh) : mesh_(mesh) {}
+VtuWriter::VtuWriter(const mesh::Mesh& mesh)
+    : points_(mesh.nodes),
+      nodes_per_cell_(3),
+      cell_type_(kVtkTriangle),
+      has_body_(true),
+      body_(mesh.body.begin(), mesh.body.end()) {
+  connectivity_.reserve(3 * mesh.triangles.size());
+  for (const auto& tri : mesh.triangles) connectivity_.insert(connectivity_.end(), tri.begin(), tri.end());
+}
+
+VtuWriter VtuWriter::lines(std::vector<Eigen::Vector2d> points, std::vector<std::array<int, 2>> segments) {
+  VtuWriter w;
+  w.points_ = std::move(points);
+  w.nodes_per_cell_ = 2;
+  w.cell_type_ = kVtkLine;
+  w.connectivity_.reserve(2 * segments.size());
+  for (const auto& s : segments) w.connectivity_.insert(w.connectivity_.end(), s.begin(), s.end());
+  return w;
+}
+
+int VtuWriter::num_cells() const { return static_cast<int>(connectivity_.size()) / nodes_per_cell_; }
 
 void VtuWriter::add(std::vector<VtuField>& section, const char* section_name, int entities,
-                    const std::string& name, int components, const Eigen::Ref<const Eigen::VectorXd>& values) {
+                    const std::string& name, int components, std::span<const double> values) {
   require(!name.empty(), std::string("VTU ") + section_name + " field name must not be empty");
-  require(find_field(section, name) == nullptr && !(&section == &cell_data_ && name == kBodyField),
+  require(find_field(section, name) == nullptr && !(&section == &cell_data_ && has_body_ && name == kBodyField),
           std::string("VTU ") + section_name + " field '" + name + "' is already defined");
-  const Eigen::Index expected = static_cast<Eigen::Index>(entities) * components;
-  require(values.size() == expected, std::string("VTU ") + section_name + " field '" + name + "' has " +
-                                         std::to_string(values.size()) + " values, expected " +
-                                         std::to_string(expected) + " (" + std::to_string(components) +
-                                         " per " + (&section == &cell_data_ ? "triangle" : "node") + " x " +
-                                         std::to_string(entities) + ")");
-  for (Eigen::Index i = 0; i < values.size(); ++i) {
+  if (&section == &field_data_) {
+    require(!values.empty(), "VTU field data '" + name + "' has no values");
+  } else {
+    const std::size_t expected = static_cast<std::size_t>(entities) * static_cast<std::size_t>(components);
+    require(values.size() == expected,
+            std::string("VTU ") + section_name + " field '" + name + "' has " + std::to_string(values.size()) +
+                " values, expected " + std::to_string(expected) + " (" + std::to_string(components) + " per " +
+                (&section == &cell_data_ ? "cell" : "node") + " x " + std::to_string(entities) + ")");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
     require(std::isfinite(values[i]), std::string("VTU ") + section_name + " field '" + name +
                                           "' has a non-finite value at index " + std::to_string(i));
   }
   section.push_back(VtuField{name, components, std::vector<double>(values.begin(), values.end())});
 }
 
+namespace {
+std::span<const double> as_span(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  // Eigen::Ref<const VectorXd> has unit inner stride (its default), so the data is contiguous.
+  return {v.data(), static_cast<std::size_t>(v.size())};
+}
+}  // namespace
+
 VtuWriter& VtuWriter::add_point_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(point_data_, "point", mesh_.num_nodes(), name, 1, values);
+  add(point_data_, "point", num_points(), name, 1, as_span(values));
   return *this;
 }
 
 VtuWriter& VtuWriter::add_point_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(point_data_, "point", mesh_.num_nodes(), name, 2, values);
+  add(point_data_, "point", num_points(), name, 2, as_span(values));
   return *this;
 }
 
 VtuWriter& VtuWriter::add_cell_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(cell_data_, "cell", mesh_.num_triangles(), name, 1, values);
+  add(cell_data_, "cell", num_cells(), name, 1, as_span(values));
   return *this;
 }
 
 VtuWriter& VtuWriter::add_cell_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(cell_data_, "cell", mesh_.num_triangles(), name, 2, values);
+  add(cell_data_, "cell", num_cells(), name, 2, as_span(values));
   return *this;
+}
+
+VtuWriter& VtuWriter::add_field_data(const std::string& name, std::span<const double> values) {
+  add(field_data_, "field", 0, name, 1, values);
+  return *this;
+}
+
+VtuWriter& VtuWriter::add_field_data(const std::string& name, double value) {
+  return add_field_data(name, std::span<const double>(&value, 1));
 }
 
 VtuWriter& VtuWriter::deform_by(const std::string& point_vector, double scale) {
@@ -135,70 +204,92 @@ VtuWriter& VtuWriter::deform_by(const std::string& point_vector, double scale) {
 }
 
 void VtuWriter::write(const std::string& path) const {
-  const int n = mesh_.num_nodes();
-  const int m = mesh_.num_triangles();
-  require(static_cast<int>(mesh_.body.size()) == m,
+  const int n = num_points();
+  const int m = num_cells();
+  require(!has_body_ || static_cast<int>(body_.size()) == m,
           "cannot write '" + path + "': mesh has " + std::to_string(m) + " triangles but " +
-              std::to_string(mesh_.body.size()) + " body ids");
-  for (int t = 0; t < m; ++t) {
-    for (int v : mesh_.triangles[static_cast<std::size_t>(t)]) {
-      require(v >= 0 && v < n, "cannot write '" + path + "': triangle " + std::to_string(t) + " refers to node " +
-                                   std::to_string(v) + " of " + std::to_string(n));
-    }
+              std::to_string(body_.size()) + " body ids");
+  for (std::size_t k = 0; k < connectivity_.size(); ++k) {
+    const std::int64_t v = connectivity_[k];
+    const std::size_t cell = k / static_cast<std::size_t>(nodes_per_cell_);
+    require(v >= 0 && v < n, "cannot write '" + path + "': cell " + std::to_string(cell) + " refers to node " +
+                                 std::to_string(v) + " of " + std::to_string(n));
   }
   const VtuField* deform = deform_field_.empty() ? nullptr : find_field(point_data_, deform_field_);
 
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-           "header_type=\"UInt64\">\n"
-        << "  <UnstructuredGrid>\n"
-        << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << m << "\">\n";
+  // The XML part names each array's block in `blocks`, written after it in <AppendedData>.
+  AppendedBlocks blocks;
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+      << "  <UnstructuredGrid>\n";
+  if (!field_data_.empty()) {
+    xml << "    <FieldData>\n";
+    for (const VtuField& f : field_data_) {
+      const std::uint64_t offset = blocks.begin<double>(f.values.size());
+      for (double v : f.values) blocks.put(v);
+      data_array_header(xml, "      ", "Float64", f.name, 1, offset,
+                        " NumberOfTuples=\"" + std::to_string(f.values.size()) + "\"");
+    }
+    xml << "    </FieldData>\n";
+  }
+  xml << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << m << "\">\n";
 
-    out << "      <PointData" << default_attributes(point_data_, "") << ">\n";
-    for (const VtuField& f : point_data_) write_field(out, f);
-    out << "      </PointData>\n";
+  xml << "      <PointData" << default_attributes(point_data_, "") << ">\n";
+  for (const VtuField& f : point_data_) write_field(xml, blocks, f);
+  xml << "      </PointData>\n";
 
-    out << "      <CellData" << default_attributes(cell_data_, kBodyField) << ">\n"
-        << "        <DataArray type=\"Int32\" Name=\"" << kBodyField << "\" format=\"ascii\">\n";
-    for (int t = 0; t < m; ++t) out << "          " << mesh_.body[static_cast<std::size_t>(t)] << '\n';
-    out << "        </DataArray>\n";
-    for (const VtuField& f : cell_data_) write_field(out, f);
-    out << "      </CellData>\n";
+  xml << "      <CellData" << default_attributes(cell_data_, has_body_ ? kBodyField : "") << ">\n";
+  if (has_body_) {
+    const std::uint64_t offset = blocks.begin<std::int32_t>(body_.size());
+    for (std::int32_t b : body_) blocks.put(b);
+    data_array_header(xml, "        ", "Int32", kBodyField, 1, offset);
+  }
+  for (const VtuField& f : cell_data_) write_field(xml, blocks, f);
+  xml << "      </CellData>\n";
 
-    out << "      <Points>\n"
-        << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (int i = 0; i < n; ++i) {
-      Eigen::Vector2d x = mesh_.nodes[static_cast<std::size_t>(i)];
+  {
+    const std::uint64_t offset = blocks.begin<double>(3 * points_.size());
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      Eigen::Vector2d x = points_[i];
       if (deform != nullptr) {
-        x.x() += deform_scale_ * deform->values[2 * static_cast<std::size_t>(i)];
-        x.y() += deform_scale_ * deform->values[2 * static_cast<std::size_t>(i) + 1];
+        x.x() += deform_scale_ * deform->values[2 * i];
+        x.y() += deform_scale_ * deform->values[2 * i + 1];
       }
-      out << "          ";
-      put_double(out, x.x());
-      out << ' ';
-      put_double(out, x.y());
-      out << " 0\n";
+      blocks.put(x.x());
+      blocks.put(x.y());
+      blocks.put(0.0);
     }
-    out << "        </DataArray>\n"
-        << "      </Points>\n";
+    xml << "      <Points>\n";
+    data_array_header(xml, "        ", "Float64", "Points", 3, offset);
+    xml << "      </Points>\n";
+  }
 
-    out << "      <Cells>\n"
-        << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (const auto& tri : mesh_.triangles) {
-      out << "          " << tri[0] << ' ' << tri[1] << ' ' << tri[2] << '\n';
-    }
-    out << "        </DataArray>\n"
-        << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (int t = 0; t < m; ++t) out << "          " << 3 * (t + 1) << '\n';
-    out << "        </DataArray>\n"
-        << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (int t = 0; t < m; ++t) out << "          " << kVtkTriangle << '\n';
-    out << "        </DataArray>\n"
-        << "      </Cells>\n"
-        << "    </Piece>\n"
-        << "  </UnstructuredGrid>\n"
-        << "</VTKFile>\n";
+  xml << "      <Cells>\n";
+  {
+    const std::uint64_t offset = blocks.begin<std::int64_t>(connectivity_.size());
+    for (std::int64_t v : connectivity_) blocks.put(v);
+    data_array_header(xml, "        ", "Int64", "connectivity", 1, offset);
+  }
+  {
+    const std::uint64_t offset = blocks.begin<std::int64_t>(static_cast<std::size_t>(m));
+    for (int t = 0; t < m; ++t) blocks.put(static_cast<std::int64_t>(nodes_per_cell_) * (t + 1));
+    data_array_header(xml, "        ", "Int64", "offsets", 1, offset);
+  }
+  {
+    const std::uint64_t offset = blocks.begin<std::uint8_t>(static_cast<std::size_t>(m));
+    for (int t = 0; t < m; ++t) blocks.put(cell_type_);
+    data_array_header(xml, "        ", "UInt8", "types", 1, offset);
+  }
+  xml << "      </Cells>\n"
+      << "    </Piece>\n"
+      << "  </UnstructuredGrid>\n";
+
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << xml.str() << "  <AppendedData encoding=\"raw\">\n   _";
+    out.write(blocks.bytes().data(), static_cast<std::streamsize>(blocks.bytes().size()));
+    out << "\n  </AppendedData>\n</VTKFile>\n";
   });
 }
 

@@ -1,14 +1,23 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu, ASCII) output of a triangle mesh with point and cell
-// fields, for ParaView. 2D points are written as 3D with z = 0, 2D vectors as 3-component
-// vectors with z = 0. Cell data always holds "body" (Int32, mesh.hpp body ids).
+// VTK XML UnstructuredGrid (.vtu) output for ParaView: a triangle mesh, or a set of line
+// segments (a contact boundary), with point, cell and field data. Binary: every array is a
+// block of VTK's "appended raw" data (little-endian, each block preceded by its byte count as
+// UInt64), so a file is exact (no decimal round trip) and about a third of the ASCII size;
+// the XML header stays readable text (docs/user-guide.md, "VTU"). 2D points are written as
+// 3D with z = 0, 2D vectors as 3-component vectors with z = 0. The cell data of a triangle
+// mesh always holds "body" (Int32, mesh.hpp body ids).
 //
 //   io::VtuWriter(mesh)
 //       .add_point_vector("displacement", u)       // u in DOF numbering (2i, 2i+1)
 //       .add_point_scalar("contact_pressure", p)   // one value per node
+//       .add_cell_scalar("von_mises", s)           // one value per triangle
+//       .add_field_data("delta", 0.3)              // one value for the whole dataset
 //       .deform_by("displacement")                 // optional: deformed configuration
 //       .write("out/solution.vtu");
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,7 +26,7 @@
 namespace contactrb::io {
 
 // One named field: `components` values per entity (1 = scalar, 2 = 2D vector), entity i
-// holding values[components * i + c].
+// holding values[components * i + c]. Field data: components = 1, one value per tuple.
 struct VtuField {
   std::string name;
   int components = 1;
@@ -26,18 +35,26 @@ struct VtuField {
 
 class VtuWriter {
  public:
-  // Borrows `mesh`: it must outlive the writer.
+  // The nodes and triangles of `mesh` (copied), cell data "body".
   explicit VtuWriter(const mesh::Mesh& mesh);
+
+  // Line cells (VTK_LINE): segment k joins points[segments[k][0]] and points[segments[k][1]].
+  // No "body" cell data. Indices are checked by write().
+  static VtuWriter lines(std::vector<Eigen::Vector2d> points, std::vector<std::array<int, 2>> segments);
 
   // Each add_* copies the values and throws contactrb::Error naming the field when the
   // size is wrong, the name is empty or already used (in the same data section), or a
-  // value is not finite (ParaView's ASCII reader cannot read nan or inf).
+  // value is not finite (a failed solve's field, not one to look at).
   VtuWriter& add_point_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
   // 2 values per node, in the DOF numbering of mesh.hpp (node i: 2i, 2i+1).
   VtuWriter& add_point_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
   VtuWriter& add_cell_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
-  // 2 values per triangle (triangle t: 2t, 2t+1).
+  // 2 values per cell (cell t: 2t, 2t+1).
   VtuWriter& add_cell_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
+  // Field data: values of the whole dataset (not per point or cell), e.g. the parameter
+  // values; one tuple per value, at least one value.
+  VtuWriter& add_field_data(const std::string& name, std::span<const double> values);
+  VtuWriter& add_field_data(const std::string& name, double value);
 
   // Writes the points of the deformed configuration X + scale * field, where `point_vector`
   // names a point vector field already added (the field itself is written too). Throws
@@ -45,20 +62,31 @@ class VtuWriter {
   VtuWriter& deform_by(const std::string& point_vector, double scale = 1.0);
 
   // Writes the file through a temporary file in the same directory, renamed at the end
-  // (never a half-written file). Throws contactrb::Error naming the path when it cannot
-  // be written (e.g. the directory does not exist).
+  // (common/output_file.hpp: never a half-written file, never over a link or device).
+  // Throws contactrb::Error naming the path when it cannot be written (e.g. the directory
+  // does not exist) or when a cell refers to a point that does not exist.
   void write(const std::string& path) const;
 
+  int num_points() const { return static_cast<int>(points_.size()); }
+  int num_cells() const;
   const std::vector<VtuField>& point_data() const { return point_data_; }
   const std::vector<VtuField>& cell_data() const { return cell_data_; }
+  const std::vector<VtuField>& field_data() const { return field_data_; }
 
  private:
+  VtuWriter() = default;
   void add(std::vector<VtuField>& section, const char* section_name, int entities, const std::string& name,
-           int components, const Eigen::Ref<const Eigen::VectorXd>& values);
+           int components, std::span<const double> values);
 
-  const mesh::Mesh& mesh_;
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<std::int64_t> connectivity_;  // nodes_per_cell_ point indices per cell
+  int nodes_per_cell_ = 3;
+  std::uint8_t cell_type_ = 0;  // vtkCellType.h
+  bool has_body_ = false;           // triangle meshes: cell data "body"
+  std::vector<std::int32_t> body_;  // one per cell when has_body_
   std::vector<VtuField> point_data_;
   std::vector<VtuField> cell_data_;
+  std::vector<VtuField> field_data_;
   std::string deform_field_;
   double deform_scale_ = 1.0;
 };
