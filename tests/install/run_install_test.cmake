@@ -1,0 +1,61 @@
+# The installed package, used as a user would (docs/user-guide.md, "Using contactrb as a library"):
+# install the build to a fresh prefix, configure and build tests/install/consumer against it with
+# find_package(contactrb), and check that its online energy is the CLI's.
+#   cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DCLI=... -DGENERATOR=...
+#         -DCXX_COMPILER=... -DC_COMPILER=... [-DCOMPILER_LAUNCHER=...] [-DBUILD_TYPE=...]
+#         [-DSANITIZE_FLAGS=...] -DCASE=... -DMU=... -P run_install_test.cmake
+foreach(var BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CLI GENERATOR CXX_COMPILER C_COMPILER CASE MU)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_install_test.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+# Runs the command; stops the test with its output when it fails. OUTPUT_VARIABLE <var>: its stdout.
+function(run step)
+  cmake_parse_arguments(ARG "" "OUTPUT_VARIABLE" "COMMAND" ${ARGN})
+  execute_process(COMMAND ${ARG_COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed (${rc}):\n  ${ARG_COMMAND}\n${out}\n${err}")
+  endif()
+  if(ARG_OUTPUT_VARIABLE)
+    set(${ARG_OUTPUT_VARIABLE} "${out}" PARENT_SCOPE)
+  endif()
+endfunction()
+
+set(prefix "${WORK_DIR}/prefix")
+set(consumer_build "${WORK_DIR}/consumer-build")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+
+run("install" COMMAND "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+
+set(configure_args -S "${CONSUMER_SOURCE_DIR}" -B "${consumer_build}" -G "${GENERATOR}"
+    "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_C_COMPILER=${C_COMPILER}"
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+if(COMPILER_LAUNCHER)
+  list(APPEND configure_args "-DCMAKE_CXX_COMPILER_LAUNCHER=${COMPILER_LAUNCHER}")
+endif()
+if(BUILD_TYPE)
+  list(APPEND configure_args "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}")
+endif()
+if(SANITIZE_FLAGS)  # the static libraries were built with the sanitizers: so is their user
+  list(APPEND configure_args "-DCMAKE_CXX_FLAGS=${SANITIZE_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${SANITIZE_FLAGS}")
+endif()
+run("consumer configure" COMMAND "${CMAKE_COMMAND}" ${configure_args})
+# The package came from the prefix, not from the build tree.
+file(STRINGS "${consumer_build}/CMakeCache.txt" found_dir REGEX "^contactrb_DIR:")
+string(REGEX REPLACE "^contactrb_DIR:[A-Z]+=" "" found_dir "${found_dir}")
+file(REAL_PATH "${found_dir}" found_dir)
+file(REAL_PATH "${prefix}" real_prefix)
+string(FIND "${found_dir}" "${real_prefix}/" at)
+if(NOT at EQUAL 0)
+  message(FATAL_ERROR "find_package(contactrb) found '${found_dir}', not the installed package under '${prefix}'")
+endif()
+run("consumer build" COMMAND "${CMAKE_COMMAND}" --build "${consumer_build}")
+
+set(model "${WORK_DIR}/model.h5")
+run("contactrb offline" COMMAND "${CLI}" offline --case "${CASE}" --out "${model}")
+run("contactrb online" COMMAND "${CLI}" online --model "${model}" --mu "${MU}" OUTPUT_VARIABLE cli_json)
+string(JSON cli_energy GET "${cli_json}" energy)
+run("consumer" COMMAND "${consumer_build}/consumer" "${model}" "${MU}" "${cli_energy}" OUTPUT_VARIABLE consumer_out)
+message(STATUS "consumer: ${consumer_out}")
