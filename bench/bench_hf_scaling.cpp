@@ -25,7 +25,7 @@ using namespace contactrb;
 
 int main(int argc, char** argv) {
   std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur";
-  int level = 0, repeat = 1;
+  int level = 0, repeat = 1, inner = -1, free_steps = -1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
   for (int i = 1; i < argc; ++i) {
@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
     else if (a == "--verbose") verbose = true;
     else if (a == "--lu") lu = next();
     else if (a == "--linear") linear = next();
+    else if (a == "--inner") inner = std::stoi(next());
+    else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -66,6 +68,8 @@ int main(int argc, char** argv) {
     settings.method = hf::hf_method_from_string(solver);
     settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
     settings.newton.linear_solver = hf::newton_linear_solver_from_string(linear);
+    if (inner > 0) settings.newton.max_inner_iterations = inner;
+    if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;

@@ -320,22 +320,27 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         for (int a = 0; a < e; ++a) e_position[static_cast<std::size_t>(E[static_cast<std::size_t>(a)])] = a;
         it.reduced_size = e;
         const Eigen::MatrixXd G = inverse.block(E);
-        Eigen::MatrixXd HE = Eigen::MatrixXd::Zero(e, e);
+        // H_E, K_E and the constraint rows stay sparse: G H_E and G K_E' cost |E| x nnz.
+        std::vector<Eigen::Triplet<double>> h_trip, k_trip, r_trip;
         if (!frozen) {
-          for (const auto& t : h_free) HE(e_position[static_cast<std::size_t>(t.row())], e_position[static_cast<std::size_t>(t.col())]) += t.value();
+          for (const auto& t : h_free) h_trip.emplace_back(e_position[static_cast<std::size_t>(t.row())], e_position[static_cast<std::size_t>(t.col())], t.value());
         }
-        Eigen::MatrixXd KE = Eigen::MatrixXd::Zero(m, e), RE = Eigen::MatrixXd::Zero(m, e);
         Eigen::VectorXd rhs(e + m);
         for (int a = 0; a < m; ++a) {
           const int r = active[static_cast<std::size_t>(a)];
-          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) KE(a, e_position[static_cast<std::size_t>(kk.col())]) = kk.value();
-          if (frozen) {
-            RE.row(a) = KE.row(a);
-          } else {
-            for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) RE(a, e_position[static_cast<std::size_t>(dd.col())]) = -dd.value();
+          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) {
+            k_trip.emplace_back(a, e_position[static_cast<std::size_t>(kk.col())], kk.value());
+            if (frozen) r_trip.emplace_back(a, e_position[static_cast<std::size_t>(kk.col())], kk.value());
+          }
+          if (!frozen) {
+            for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) r_trip.emplace_back(a, e_position[static_cast<std::size_t>(dd.col())], -dd.value());
           }
           rhs(e + a) = st.maps.d(r);
         }
+        Eigen::SparseMatrix<double> HE(e, e), KE(m, e), RE(m, e);
+        HE.setFromTriplets(h_trip.begin(), h_trip.end());
+        KE.setFromTriplets(k_trip.begin(), k_trip.end());
+        RE.setFromTriplets(r_trip.begin(), r_trip.end());
         for (int a = 0; a < e; ++a) {
           const int fi = E[static_cast<std::size_t>(a)];
           rhs(a) = z(fi) - st.u0(fi);
@@ -345,7 +350,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         M.topLeftCorner(e, e) = G * HE;
         M.topLeftCorner(e, e).diagonal().array() += 1.0;
         M.topRightCorner(e, m) = G * KE.transpose();
-        M.bottomLeftCorner(m, e) = RE;
+        M.bottomLeftCorner(m, e) = Eigen::MatrixXd(RE);
         // Equilibration (the blocks carry different units: gaps, displacements, pressures),
         // so that min_rcond judges the problem and not its units.
         Eigen::VectorXd row_scale = Eigen::VectorXd::Ones(e + m), col_scale = Eigen::VectorXd::Ones(e + m);

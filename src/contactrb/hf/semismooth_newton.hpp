@@ -46,8 +46,11 @@ struct NewtonSettings {
   // Line search: Armijo constant and the smallest damping factor tried (halving).
   double armijo = 1e-4;
   double min_step = 1.0 / 1024.0;
-  // Full steps accepted without a merit decrease (the combinatorial phase), in all.
-  int max_free_steps = 5;
+  // Full steps accepted without a merit decrease (the combinatorial phase), in all. Default 0:
+  // on hertz-a level 5 (88k DOFs, mu 0.3) free steps let the active set ping-pong (30-70 rows
+  // per step, no convergence in 50 iterations); with 0 it converges in 14, and levels 0-4 take
+  // the same iterations either way (docs/benchmarks.md, "HF solver scaling").
+  int max_free_steps = 0;
   // Inner primal-dual active-set passes on the linearized problem per Newton iteration.
   int max_inner_iterations = 20;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
