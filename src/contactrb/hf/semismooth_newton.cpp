@@ -273,6 +273,15 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     // does not describe (a first step from u = u_D ignoring contact penetrates deeply).
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
+    // The plain semi-smooth Newton step (first inner pass), kept for the line search.
+    Eigen::VectorXd du_first, lambda_first;
+    int passes = 0;
+    auto keep_first = [&]() {
+      if (passes++ == 0) {
+        du_first = du;
+        lambda_first = lambda_next;
+      }
+    };
     std::vector<char> is_active(static_cast<std::size_t>(R), 0);
     auto predicted_active = [&](std::vector<char>& out) {
       const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
@@ -385,6 +394,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         du = z - inverse.solve(y) - st.u0;
         lambda_next.setZero();
         for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(e + a);
+        keep_first();
         it.active = m;
         if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
         continue;
@@ -423,6 +433,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       du = x.head(n);
       lambda_next.setZero();
       for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(n + a);
+      keep_first();
       it.active = m;
       if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
     }
@@ -431,35 +442,51 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     const Eigen::VectorXd dlambda = lambda_next - st.lambda;
 
     // Globalization: Armijo backtracking on the merit; a full step that changes the active set
-    // is taken without a decrease (combinatorial phase), at most max_free_steps times.
+    // is taken without a decrease (combinatorial phase), at most max_free_steps times. Order of
+    // the trials: the full step of the inner active-set passes; then, when the passes moved the
+    // active set, the plain semi-smooth Newton direction (a descent direction of the merit,
+    // which the passes' one need not be: on hertz-a level 5 the latter alone crawled with steps
+    // of 1/16-1/64 for 6 iterations), backtracked; then the passes' direction backtracked.
     const double phi0 = st.merit * st.merit;
     bool accepted = false;
     State best;
     double best_phi = std::numeric_limits<double>::infinity();
     double best_t = 0.0;
-    for (double t = 1.0; t >= s.min_step; t *= 0.5) {
-      State trial;
-      try {
-        trial = evaluate(st.u0 + t * du, st.lambda + t * dlambda);
-      } catch (const Error&) {
-        continue;  // the geometry cannot be evaluated there: shorten the step
+    const Eigen::VectorXd dlambda_first = passes > 1 ? Eigen::VectorXd(lambda_first - st.lambda) : Eigen::VectorXd();
+    struct Trial {
+      const Eigen::VectorXd* du;
+      const Eigen::VectorXd* dl;
+      double t_first, t_last;
+    };
+    std::vector<Trial> trials{{&du, &dlambda, 1.0, 1.0}};
+    if (passes > 1) trials.push_back({&du_first, &dlambda_first, 1.0, s.min_step});
+    trials.push_back({&du, &dlambda, 0.5, s.min_step});
+    for (const Trial& tr : trials) {
+      for (double t = tr.t_first; t >= tr.t_last && !accepted; t *= 0.5) {
+        State trial;
+        try {
+          trial = evaluate(st.u0 + t * *tr.du, st.lambda + t * *tr.dl);
+        } catch (const Error&) {
+          continue;  // the geometry cannot be evaluated there: shorten the step
+        }
+        if (!finite(trial)) continue;
+        const double phi = trial.merit * trial.merit;
+        const bool decrease = phi <= (1.0 - 2.0 * s.armijo * t) * phi0;
+        const bool free_step = t == 1.0 && tr.du == &du && free_steps < s.max_free_steps;
+        if (decrease || free_step) {
+          if (!decrease) ++free_steps;
+          it.step = t;
+          st = std::move(trial);
+          accepted = true;
+          break;
+        }
+        if (phi < best_phi) {
+          best_phi = phi;
+          best_t = t;
+          best = std::move(trial);
+        }
       }
-      if (!finite(trial)) continue;
-      const double phi = trial.merit * trial.merit;
-      const bool decrease = phi <= (1.0 - 2.0 * s.armijo * t) * phi0;
-      const bool free_step = t == 1.0 && free_steps < s.max_free_steps;
-      if (decrease || free_step) {
-        if (!decrease) ++free_steps;
-        it.step = t;
-        st = std::move(trial);
-        accepted = true;
-        break;
-      }
-      if (phi < best_phi) {
-        best_phi = phi;
-        best_t = t;
-        best = std::move(trial);
-      }
+      if (accepted) break;
     }
     if (!accepted) {
       if (!std::isfinite(best_phi)) {
