@@ -238,7 +238,10 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   // The schedule: waves of indices; start[i] is the index i warm-starts from (or none).
   std::vector<std::vector<std::size_t>> waves;
   std::vector<std::optional<std::size_t>> start(n);
-  if (!options.warm_start) {
+  const bool warm = options.warm_start == SnapshotRunOptions::WarmStart::On ||
+                    (options.warm_start == SnapshotRunOptions::WarmStart::Automatic &&
+                     request.settings.method == hf::HFMethod::Newton);
+  if (!warm) {
     waves.emplace_back(n);
     for (std::size_t i = 0; i < n; ++i) waves[0][i] = i;
   } else {
