@@ -3,7 +3,7 @@
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--lu umfpack|eigen] [--verbose] [--header]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--lu umfpack|eigen] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -24,8 +24,8 @@
 using namespace contactrb;
 
 int main(int argc, char** argv) {
-  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack";
-  int level = 0, repeat = 1;
+  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur";
+  int level = 0, repeat = 1, inner = -1, free_steps = -1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
   for (int i = 1; i < argc; ++i) {
@@ -49,6 +49,9 @@ int main(int argc, char** argv) {
     else if (a == "--constraint") constraint = next();
     else if (a == "--verbose") verbose = true;
     else if (a == "--lu") lu = next();
+    else if (a == "--linear") linear = next();
+    else if (a == "--inner") inner = std::stoi(next());
+    else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -64,6 +67,9 @@ int main(int argc, char** argv) {
     hf::HFSettings settings;
     settings.method = hf::hf_method_from_string(solver);
     settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
+    settings.newton.linear_solver = hf::newton_linear_solver_from_string(linear);
+    if (inner > 0) settings.newton.max_inner_iterations = inner;
+    if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;
@@ -81,8 +87,9 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d LUs %d step %g colours %d lin %.4f s lu %.4f s\n",
-                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.step, it.colours, it.linearize_s, it.factorize_s);
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d lin %.4f s linear algebra %.4f s\n",
+                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours,
+                     it.linearize_s, it.factorize_s);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
     }

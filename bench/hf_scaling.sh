@@ -5,7 +5,7 @@
 #   bench/hf_scaling.sh BUILD_DIR [MAX_NEWTON_LEVEL] [MAX_KACANOV_LEVEL] > scaling.csv
 set -uo pipefail
 build=${1:-build}
-max_newton=${2:-6}
+max_newton=${2:-5}
 max_kacanov=${3:-5}
 bin="$build/bench/bench_hf_scaling"
 "$bin" --header

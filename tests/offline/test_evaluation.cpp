@@ -180,7 +180,9 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     }
     const double c = std::max(0.0, w.dot(xi.cwiseProduct(lh)) / w.dot(xi.cwiseAbs2()));
     const double best = std::sqrt(w.dot((c * xi - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
-    EXPECT_NEAR(r.e_press_cone, best, 1e-8 * best);
+    // Absolute floor: where the snapshot lies on the generator (best = 0 exactly here for the
+    // snapshot the generator came from) the two computations differ by round-off (8e-11 seen).
+    EXPECT_NEAR(r.e_press_cone, best, 1e-8 * best + 1e-9);
     EXPECT_GE(r.e_press, r.e_press_cone * (1.0 - 1e-12));
     // The a posteriori estimate's columns: the energy-norm error, the online estimate, their ratio.
     const double e_A = std::sqrt(d.dot(A * d));

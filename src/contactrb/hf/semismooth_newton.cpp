@@ -6,7 +6,10 @@
 #include <limits>
 #include <sstream>
 
+#include <Eigen/LU>
+
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::hf {
 
@@ -108,6 +111,20 @@ std::string residual_text(const State& st) {
 
 }  // namespace
 
+const char* to_string(NewtonLinearSolver solver) {
+  switch (solver) {
+    case NewtonLinearSolver::ActiveSchur: return "schur";
+    case NewtonLinearSolver::SaddleLU: return "lu";
+  }
+  return "unknown";
+}
+
+NewtonLinearSolver newton_linear_solver_from_string(const std::string& name) {
+  if (name == "schur") return NewtonLinearSolver::ActiveSchur;
+  if (name == "lu") return NewtonLinearSolver::SaddleLU;
+  throw Error("unknown Newton linear solver '" + name + "' (expected schur or lu)");
+}
+
 void check_settings(const NewtonSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
           "Newton tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
@@ -118,6 +135,8 @@ void check_settings(const NewtonSettings& s) {
           "Newton min_step must be in (0, 1] (got " + std::to_string(s.min_step) + ")");
   require(s.max_inner_iterations >= 1,
           "Newton max_inner_iterations must be >= 1 (got " + std::to_string(s.max_inner_iterations) + ")");
+  require(std::isfinite(s.min_rcond) && s.min_rcond >= 0.0 && s.min_rcond < 1.0,
+          "Newton min_rcond must be in [0, 1) (got " + std::to_string(s.min_rcond) + ")");
   require(s.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(s.max_free_steps) + ")");
 }
 
@@ -153,6 +172,26 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   std::vector<char> previous_active(static_cast<std::size_t>(R), 0);
   int free_steps = 0;
   solve::SparseLU lu(s.lu);
+  // ActiveSchur: A_00 = L L' once for the whole solve, z = A_00^-1 b. Each step then reads
+  //   u_0 + du = z - A_00^-1 P_E y,   y = H_E w + K_E' lambda_A,   w = du[E],
+  // and w, lambda_A solve the dense system of size |E| + |A| (exact: H, K_A, D_A vanish off E)
+  //   [ I + G H_E   G K_E' ] [ w        ]   [ z_E - u_0,E ]
+  //   [ -D_E        0      ] [ lambda_A ] = [ d_A         ],   G = (A_00^-1)[E, E].
+  solve::SelectedInverse inverse;
+  Eigen::VectorXd z;
+  std::vector<int> e_position(static_cast<std::size_t>(n), -1);
+  const bool schur = s.linear_solver == NewtonLinearSolver::ActiveSchur;
+  if (schur) {
+    const solve::SelectedInverseStatus status = inverse.compute(*p.A00);
+    if (status != solve::SelectedInverseStatus::Success) {
+      res.message = std::string("semi-smooth Newton: the stiffness A_00 (") + std::to_string(n) +
+                    " free DOFs) cannot be factorized: " + solve::to_string(status);
+      res.u0 = st.u0;
+      res.lambda = st.lambda;
+      return res;
+    }
+    z = inverse.solve(*p.b);
+  }
   auto finish = [&](solve::KacanovStatus status, std::string message) {
     res.status = status;
     res.message = std::move(message);
@@ -216,7 +255,15 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         }
       }
     };
-    build_base();
+    std::vector<Eigen::Triplet<double>> h_free;  // H on the free DOFs (free indices)
+    for (int j = 0; j < lin.H.outerSize(); ++j) {
+      for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
+        const int fr = global_to_free[static_cast<std::size_t>(h.row())];
+        const int fc = global_to_free[static_cast<std::size_t>(h.col())];
+        if (fr >= 0 && fc >= 0) h_free.emplace_back(fr, fc, h.value());
+      }
+    }
+    if (!schur) build_base();
     const Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
 
     // Inner primal-dual active set on the linearized problem (geometry frozen at u): the
@@ -226,6 +273,15 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     // does not describe (a first step from u = u_D ignoring contact penetrates deeply).
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
+    // The plain semi-smooth Newton step (first inner pass), kept for the line search.
+    Eigen::VectorXd du_first, lambda_first;
+    int passes = 0;
+    auto keep_first = [&]() {
+      if (passes++ == 0) {
+        du_first = du;
+        lambda_first = lambda_next;
+      }
+    };
     std::vector<char> is_active(static_cast<std::size_t>(R), 0);
     auto predicted_active = [&](std::vector<char>& out) {
       const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
@@ -247,6 +303,102 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         if (is_active[static_cast<std::size_t>(r)]) active.push_back(r);
       }
       const int m = static_cast<int>(active.size());
+      if (schur) {
+        // E: the free DOFs the active rows (K_A, D_A) and H touch, ascending.
+        std::vector<int> E;
+        auto add = [&](int fi) {
+          if (e_position[static_cast<std::size_t>(fi)] < 0) {
+            e_position[static_cast<std::size_t>(fi)] = 0;
+            E.push_back(fi);
+          }
+        };
+        for (int r : active) {
+          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) add(static_cast<int>(kk.col()));
+          if (!frozen) {
+            for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) add(static_cast<int>(dd.col()));
+          }
+        }
+        if (!frozen) {
+          for (const auto& t : h_free) {
+            add(t.row());
+            add(t.col());
+          }
+        }
+        std::sort(E.begin(), E.end());
+        const int e = static_cast<int>(E.size());
+        for (int a = 0; a < e; ++a) e_position[static_cast<std::size_t>(E[static_cast<std::size_t>(a)])] = a;
+        it.reduced_size = e;
+        const Eigen::MatrixXd G = inverse.block(E);
+        // H_E, K_E and the constraint rows stay sparse: G H_E and G K_E' cost |E| x nnz.
+        std::vector<Eigen::Triplet<double>> h_trip, k_trip, r_trip;
+        if (!frozen) {
+          for (const auto& t : h_free) h_trip.emplace_back(e_position[static_cast<std::size_t>(t.row())], e_position[static_cast<std::size_t>(t.col())], t.value());
+        }
+        Eigen::VectorXd rhs(e + m);
+        for (int a = 0; a < m; ++a) {
+          const int r = active[static_cast<std::size_t>(a)];
+          for (RowSparse::InnerIterator kk(st.K0, r); kk; ++kk) {
+            k_trip.emplace_back(a, e_position[static_cast<std::size_t>(kk.col())], kk.value());
+            if (frozen) r_trip.emplace_back(a, e_position[static_cast<std::size_t>(kk.col())], kk.value());
+          }
+          if (!frozen) {
+            for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) r_trip.emplace_back(a, e_position[static_cast<std::size_t>(dd.col())], -dd.value());
+          }
+          rhs(e + a) = st.maps.d(r);
+        }
+        Eigen::SparseMatrix<double> HE(e, e), KE(m, e), RE(m, e);
+        HE.setFromTriplets(h_trip.begin(), h_trip.end());
+        KE.setFromTriplets(k_trip.begin(), k_trip.end());
+        RE.setFromTriplets(r_trip.begin(), r_trip.end());
+        for (int a = 0; a < e; ++a) {
+          const int fi = E[static_cast<std::size_t>(a)];
+          rhs(a) = z(fi) - st.u0(fi);
+        }
+        for (int fi : E) e_position[static_cast<std::size_t>(fi)] = -1;
+        Eigen::MatrixXd M = Eigen::MatrixXd::Zero(e + m, e + m);
+        M.topLeftCorner(e, e) = G * HE;
+        M.topLeftCorner(e, e).diagonal().array() += 1.0;
+        M.topRightCorner(e, m) = G * KE.transpose();
+        M.bottomLeftCorner(m, e) = Eigen::MatrixXd(RE);
+        // Equilibration (the blocks carry different units: gaps, displacements, pressures),
+        // so that min_rcond judges the problem and not its units.
+        Eigen::VectorXd row_scale = Eigen::VectorXd::Ones(e + m), col_scale = Eigen::VectorXd::Ones(e + m);
+        for (int a = 0; a < m; ++a) {
+          const double rmax = M.row(e + a).cwiseAbs().maxCoeff();
+          const double cmax = M.col(e + a).cwiseAbs().maxCoeff();
+          if (rmax > 0.0) row_scale(e + a) = 1.0 / rmax;
+          if (cmax > 0.0) col_scale(e + a) = 1.0 / cmax;
+        }
+        M = row_scale.asDiagonal() * M * col_scale.asDiagonal();
+        ++it.factorizations;
+        const Eigen::PartialPivLU<Eigen::MatrixXd> dense(M);
+        const double rcond = e + m > 0 ? dense.rcond() : 1.0;
+        const bool singular = !(rcond >= s.min_rcond) || !M.allFinite();
+        if (singular && !frozen) {
+          frozen = true;
+          it.frozen = true;
+          --inner;
+          continue;
+        }
+        if (singular) {
+          std::ostringstream os;
+          os << "semi-smooth Newton iteration " << k << ": the reduced Newton system (" << e << " contact DOFs, " << m
+             << " active rows) is singular (reciprocal condition " << rcond << " < min_rcond " << s.min_rcond
+             << "); " << residual_text(st);
+          return finish(solve::KacanovStatus::StepFailed, os.str());
+        }
+        const Eigen::VectorXd x = col_scale.cwiseProduct(dense.solve(row_scale.cwiseProduct(rhs)));
+        const Eigen::VectorXd yE = HE * x.head(e) + KE.transpose() * x.tail(m);
+        Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+        for (int a = 0; a < e; ++a) y(E[static_cast<std::size_t>(a)]) = yE(a);
+        du = z - inverse.solve(y) - st.u0;
+        lambda_next.setZero();
+        for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(e + a);
+        keep_first();
+        it.active = m;
+        if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
+        continue;
+      }
       // [A_00 + H, K_A'; -D_A, 0] [du; lambda_A] = [b - A_00 u_0; d_A].
       std::vector<Eigen::Triplet<double>> trip = base;
       Eigen::VectorXd rhs(n + m);
@@ -267,7 +419,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       if (lu.compute(J) != solve::SparseLUStatus::Success && !frozen) {
         frozen = true;
         it.frozen = true;
-        build_base();
+        if (!schur) build_base();
         --inner;
         continue;
       }
@@ -281,6 +433,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       du = x.head(n);
       lambda_next.setZero();
       for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(n + a);
+      keep_first();
       it.active = m;
       if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
     }
@@ -289,35 +442,51 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     const Eigen::VectorXd dlambda = lambda_next - st.lambda;
 
     // Globalization: Armijo backtracking on the merit; a full step that changes the active set
-    // is taken without a decrease (combinatorial phase), at most max_free_steps times.
+    // is taken without a decrease (combinatorial phase), at most max_free_steps times. Order of
+    // the trials: the full step of the inner active-set passes; then, when the passes moved the
+    // active set, the plain semi-smooth Newton direction (a descent direction of the merit,
+    // which the passes' one need not be: on hertz-a level 5 the latter alone crawled with steps
+    // of 1/16-1/64 for 6 iterations), backtracked; then the passes' direction backtracked.
     const double phi0 = st.merit * st.merit;
     bool accepted = false;
     State best;
     double best_phi = std::numeric_limits<double>::infinity();
     double best_t = 0.0;
-    for (double t = 1.0; t >= s.min_step; t *= 0.5) {
-      State trial;
-      try {
-        trial = evaluate(st.u0 + t * du, st.lambda + t * dlambda);
-      } catch (const Error&) {
-        continue;  // the geometry cannot be evaluated there: shorten the step
+    const Eigen::VectorXd dlambda_first = passes > 1 ? Eigen::VectorXd(lambda_first - st.lambda) : Eigen::VectorXd();
+    struct Trial {
+      const Eigen::VectorXd* du;
+      const Eigen::VectorXd* dl;
+      double t_first, t_last;
+    };
+    std::vector<Trial> trials{{&du, &dlambda, 1.0, 1.0}};
+    if (passes > 1) trials.push_back({&du_first, &dlambda_first, 1.0, s.min_step});
+    trials.push_back({&du, &dlambda, 0.5, s.min_step});
+    for (const Trial& tr : trials) {
+      for (double t = tr.t_first; t >= tr.t_last && !accepted; t *= 0.5) {
+        State trial;
+        try {
+          trial = evaluate(st.u0 + t * *tr.du, st.lambda + t * *tr.dl);
+        } catch (const Error&) {
+          continue;  // the geometry cannot be evaluated there: shorten the step
+        }
+        if (!finite(trial)) continue;
+        const double phi = trial.merit * trial.merit;
+        const bool decrease = phi <= (1.0 - 2.0 * s.armijo * t) * phi0;
+        const bool free_step = t == 1.0 && tr.du == &du && free_steps < s.max_free_steps;
+        if (decrease || free_step) {
+          if (!decrease) ++free_steps;
+          it.step = t;
+          st = std::move(trial);
+          accepted = true;
+          break;
+        }
+        if (phi < best_phi) {
+          best_phi = phi;
+          best_t = t;
+          best = std::move(trial);
+        }
       }
-      if (!finite(trial)) continue;
-      const double phi = trial.merit * trial.merit;
-      const bool decrease = phi <= (1.0 - 2.0 * s.armijo * t) * phi0;
-      const bool free_step = t == 1.0 && free_steps < s.max_free_steps;
-      if (decrease || free_step) {
-        if (!decrease) ++free_steps;
-        it.step = t;
-        st = std::move(trial);
-        accepted = true;
-        break;
-      }
-      if (phi < best_phi) {
-        best_phi = phi;
-        best_t = t;
-        best = std::move(trial);
-      }
+      if (accepted) break;
     }
     if (!accepted) {
       if (!std::isfinite(best_phi)) {

@@ -8,10 +8,13 @@
 // by Newton's method on the nonsmooth system: the active set A = {r : lambda_r - c_r d_r > 0}
 // is read off the complementarity function at each iterate, and the geometry is linearized
 // consistently (contact/contact_linearization.hpp: D = d'(u), H = (K(u)' lambda)'). Each
-// iteration solves ONE sparse saddle-point system of the active rows,
+// iteration solves the saddle-point system of the active rows,
 //   [ A_00 + H    K_A' ] [ du       ]   [ b - A_00 u_0 ]
 //   [ -D_A        0    ] [ lambda_A ] = [ d_A          ],     lambda = 0 off A,
-// by a sparse LU (solve/sparse_lu.hpp); no dense K A^-1 K' is ever formed. Globalization:
+// (NewtonLinearSolver): by default reduced EXACTLY to the few DOFs E that H, K_A, D_A touch,
+// with A_00 factorized once per solve and the block (A_00^-1)[E, E] from sparse substitutions
+// (solve/selected_inverse.hpp); or, for comparison, by a sparse LU of the whole saddle point
+// (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed. Globalization:
 // a backtracking line search on the merit 1/2 |F|^2 (F with the complementarity rows in
 // force units, |I_r| min(lambda_r, c_r d_r)), where a full step that changes the active set
 // is accepted without a decrease while the active set is still moving (the combinatorial
@@ -30,17 +33,31 @@
 
 namespace contactrb::hf {
 
+// ActiveSchur: A_00 = L L' once per solve (CHOLMOD), then per system a dense one of size
+//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md); SaddleLU: one sparse
+//   LU of the (n + |A|)-square saddle point per system (the first implementation, kept to compare).
+enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
+const char* to_string(NewtonLinearSolver solver);
+NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  // "schur" | "lu"
+
 struct NewtonSettings {
   double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
   int max_iterations = 50;
   // Line search: Armijo constant and the smallest damping factor tried (halving).
   double armijo = 1e-4;
   double min_step = 1.0 / 1024.0;
-  // Full steps accepted without a merit decrease (the combinatorial phase), in all.
-  int max_free_steps = 5;
+  // Full steps accepted without a merit decrease (the combinatorial phase), in all. Default 0:
+  // on hertz-a level 5 (88k DOFs, mu 0.3) free steps let the active set ping-pong (30-70 rows
+  // per step, no convergence in 50 iterations); with 0 it converges in 14, and levels 0-4 take
+  // the same iterations either way (docs/benchmarks.md, "HF solver scaling").
+  int max_free_steps = 0;
   // Inner primal-dual active-set passes on the linearized problem per Newton iteration.
   int max_inner_iterations = 20;
-  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
+  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
+  // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
+  // as singular (the frozen-geometry fallback below), like a zero pivot of the sparse LU.
+  double min_rcond = 1e-14;
   contact::LinearizationOptions linearization;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
@@ -52,7 +69,8 @@ struct NewtonIteration {
   double merit = 0.0;      // |F| (force units)
   int active = 0;          // |A| of the step
   int changed = 0;         // rows that entered or left A (first inner pass)
-  int factorizations = 0;  // sparse LUs (inner active-set passes)
+  int factorizations = 0;  // systems solved (inner active-set passes)
+  int reduced_size = 0;    // ActiveSchur: |E| of the last pass
   bool frozen = false;     // the consistent Jacobian was singular: frozen-geometry fallback step
   double step = 0.0;       // damping factor taken
   int colours = 0;         // colours of the finite-difference linearization

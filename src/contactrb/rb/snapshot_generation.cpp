@@ -10,6 +10,8 @@
 #include <exception>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <optional>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -18,6 +20,7 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
@@ -101,14 +104,21 @@ Eigen::MatrixXd contact_columns(const Eigen::SparseMatrix<double, Eigen::RowMajo
 }
 
 // One parameter value: build, solve, extract. Exceptions become a failed snapshot.
-void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout) {
+void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
+               const io::Snapshot* start) {
   const auto t0 = Clock::now();
   const double cpu0 = thread_cpu_seconds();
   out.mu = request.mu[index];
   try {
     const hf::HFSolver solver(request.make_problem(out.mu));
     layout = layout_of(solver);
-    hf::HFSolution s = solver.solve(request.settings);
+    hf::HFInitialGuess guess;
+    if (start != nullptr && start->converged && start->u.size() == solver.problem().mesh.num_dofs() &&
+        start->lambda.size() == solver.quadrature().weight.size()) {
+      guess.u = start->u;
+      guess.lambda = start->lambda;
+    }
+    hf::HFSolution s = solver.solve(request.settings, guess);
     out.converged = s.converged;
     out.status = solve::to_string(s.status);
     out.message = s.message;
@@ -225,21 +235,95 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   std::vector<io::Snapshot> snapshots(n);
   std::vector<Layout> layouts(n);
   Progress progress(options.progress, options.progress_stream, n);
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
-      solve_one(request, i, snapshots[i], layouts[i]);
-      progress.finished(snapshots[i]);
-    }
-  };
-  const std::size_t jobs = std::min(n, static_cast<std::size_t>(options.jobs));
-  if (jobs == 1) {
-    work();
+  // The schedule: waves of indices; start[i] is the index i warm-starts from (or none).
+  std::vector<std::vector<std::size_t>> waves;
+  std::vector<std::optional<std::size_t>> start(n);
+  const bool warm = options.warm_start == SnapshotRunOptions::WarmStart::On ||
+                    (options.warm_start == SnapshotRunOptions::WarmStart::Automatic &&
+                     request.settings.method == hf::HFMethod::Newton);
+  if (!warm) {
+    waves.emplace_back(n);
+    for (std::size_t i = 0; i < n; ++i) waves[0][i] = i;
   } else {
-    std::vector<std::thread> threads;
-    threads.reserve(jobs);
-    for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
-    for (std::thread& t : threads) t.join();
+    cases::ParameterBox box;
+    for (const io::SnapshotParameter& p : request.parameters) {
+      box.names.push_back(p.name);
+    }
+    const Eigen::Index p = request.mu.front().size();
+    box.min.resize(p);
+    box.max.resize(p);
+    if (static_cast<Eigen::Index>(request.parameters.size()) == p) {
+      for (Eigen::Index k = 0; k < p; ++k) {
+        box.min(k) = request.parameters[static_cast<std::size_t>(k)].min;
+        box.max(k) = request.parameters[static_cast<std::size_t>(k)].max;
+      }
+    } else {  // no recorded domain: the bounding box of the points
+      box.names.assign(static_cast<std::size_t>(p), "");
+      box.min = request.mu.front();
+      box.max = request.mu.front();
+      for (const cases::Mu& mu : request.mu) {
+        box.min = box.min.cwiseMin(mu);
+        box.max = box.max.cwiseMax(mu);
+      }
+    }
+    // Farthest-first order; distance[i]: from point i to the points ordered so far.
+    std::vector<std::size_t> order{0};
+    std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+    std::vector<char> taken(n, 0);
+    taken[0] = 1;
+    for (std::size_t w = 0, begin = 0; begin < n; ++w) {
+      const std::size_t end = std::min(n, begin + (std::size_t{1} << w));
+      waves.emplace_back();
+      for (std::size_t k = begin; k < end; ++k) {
+        if (k >= order.size()) {  // the next farthest point (ties: smallest index)
+          std::size_t best = n;
+          for (std::size_t i = 0; i < n; ++i) {
+            if (!taken[i] && (best == n || distance[i] > distance[best])) best = i;
+          }
+          order.push_back(best);
+          taken[best] = 1;
+        }
+        const std::size_t i = order[k];
+        waves.back().push_back(i);
+        for (std::size_t j = 0; j < n; ++j) {
+          if (taken[j]) continue;
+          const double d = cases::scaled_distance(request.mu[j], request.mu[i], box);
+          distance[j] = std::min(distance[j], d);
+        }
+      }
+      // Points ordered in this wave start from the nearest of the EARLIER waves only.
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::size_t i = order[k];
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t kk = 0; kk < begin; ++kk) {  // ties: the earlier-ordered point
+          const double d = cases::scaled_distance(request.mu[i], request.mu[order[kk]], box);
+          if (d < best) {
+            best = d;
+            start[i] = order[kk];
+          }
+        }
+      }
+      begin = end;
+    }
+  }
+  for (const std::vector<std::size_t>& wave : waves) {
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
+        const std::size_t i = wave[k];
+        solve_one(request, i, snapshots[i], layouts[i], start[i] ? &snapshots[*start[i]] : nullptr);
+        progress.finished(snapshots[i]);
+      }
+    };
+    const std::size_t jobs = std::min(wave.size(), static_cast<std::size_t>(options.jobs));
+    if (jobs <= 1) {
+      work();
+    } else {
+      std::vector<std::thread> threads;
+      threads.reserve(jobs);
+      for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
+      for (std::thread& t : threads) t.join();
+    }
   }
 
   io::SnapshotSet set;

@@ -2,8 +2,9 @@
 // High-fidelity snapshots over a parameter set, in parallel (DESIGN.md data flow: "snapshot
 // store over the training set (parallel over mu)").
 //
-// J worker threads take parameter indices from one shared atomic counter; each builds its
-// own problem and HFSolver, and writes its result to the slot of that index. The HF solver
+// J worker threads take parameter indices from one shared atomic counter (per wave of the
+// warm-start schedule, SnapshotRunOptions::warm_start); each builds its own problem and
+// HFSolver, and writes its result to the slot of that index. The HF solver
 // holds no shared mutable state, so the stored data do not depend on J (only the timings
 // do). A failed solve (not converged, or an exception while building or solving) is
 // recorded with its status and message, never dropped.
@@ -58,6 +59,19 @@ enum class ProgressMode {
 
 struct SnapshotRunOptions {
   int jobs = 1;  // worker threads (>= 1; more than the number of values is capped)
+  // Warm start (issue [C]): each solve starts from the converged solution (u, lambda) of the
+  // nearest point (scaled coordinates, cases::scaled_distance) among those solved before it in
+  // a FIXED schedule, independent of `jobs`, so the stored data stay bitwise independent of the
+  // thread count: the points are ordered farthest-first (start at the first point, then the
+  // point farthest from those already ordered, ties to the smaller index) and solved in waves
+  // of 1, 2, 4, ... points; the points of one wave run in parallel and start from the waves
+  // before it (cold when none converged). The answers agree with cold starts to the solver
+  // tolerance, not bitwise (tests/snapshots/test_snapshot_warm_start.cpp).
+  // Automatic: on for the Newton method (tolerance 1e-10: start-dependence at 1e-9), off for
+  // Kacanov (eps_KA = 1e-3: the snapshots move by up to 8e-4, enough to change the paper's
+  // tables downstream, e.g. the hertz-b demo's N, R and the POD spectra; measured).
+  enum class WarmStart { Automatic, On, Off };
+  WarmStart warm_start = WarmStart::Automatic;
   ProgressMode progress = ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
 };
