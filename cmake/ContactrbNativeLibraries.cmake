@@ -1,7 +1,7 @@
 # contactrb_find_native_libraries(<found_var> <missing_var>)
 # The libraries that ship no CMake package on Debian, found by hand and wrapped in IMPORTED
 # targets: gmsh::gmsh (mesh/), contactrb_deps::umfpack (solve/) and, when libcholmod is found,
-# contactrb_deps::cholmod (fem/, optional: fem/cholesky.cpp falls back without cholmod.h).
+# contactrb_deps::cholmod (fem/ and solve/; the callers require it: the Newton steps need it).
 # Used by the build (CMakeLists.txt) and by the installed contactrbConfig.cmake, so a consumer
 # links the private dependencies of the static libraries through the same targets.
 # Sets <found_var> to TRUE when the required ones were found, else FALSE with <missing_var> the
