@@ -213,6 +213,12 @@ void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd
     const Vec2& X = X_[sz(slot)];
     const Vec2 x = X + w_r_.segment<2>(2 * slot);
     const Hit best = nearest_segment(x);
+    // As project_slave_nodes: finite coordinates whose squared distances overflow leave no
+    // segment at a finite distance, and the search keeps its initial segment -1.
+    if (best.segment < 0 || !std::isfinite(best.d2)) {
+      throw Error("OnlineSolver: the distance from slave node " + std::to_string(slave_node_[l]) +
+                  " to the master boundary is not finite (positions overflow double precision when squared)");
+    }
     Projection& p = projection_[l];
     const int k = best.segment;
     p.a = master_[sz(k)];
