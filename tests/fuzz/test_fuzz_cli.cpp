@@ -62,6 +62,25 @@ std::string verdict(const RunResult& r, double timeout_s) {
   return "";
 }
 
+// HDF5 1.10.8 itself asks malloc for petabytes (H5C_protect) on some damaged HDF5 files, before
+// any check of ours runs (tests/snapshots/test_snapshot_file.cpp, byte flips). glibc's malloc
+// returns NULL there, HDF5 reports the failed allocation and contactrb refuses the file with exit
+// 1 and one error line (the Release run checks that contract on the same cases); ASan instead
+// aborts with allocation-size-too-big. Such a run is listed and counted, not checked further.
+// Only that report with HDF5 as the caller of malloc: every other report, and this one from
+// contactrb's own code, stays a failure.
+bool hdf5_allocation_too_big(const RunResult& r) {
+  if (r.err.find("ERROR: AddressSanitizer: requested allocation size") == std::string::npos ||
+      r.err.find("SUMMARY: AddressSanitizer: allocation-size-too-big") == std::string::npos) {
+    return false;
+  }
+  const std::size_t caller = r.err.find("\n    #1 ");  // frame 0 is ASan's malloc
+  if (caller == std::string::npos) return false;
+  const std::size_t end = r.err.find('\n', caller + 1);
+  return r.err.substr(caller, end == std::string::npos ? std::string::npos : end - caller).find("libhdf5") !=
+         std::string::npos;
+}
+
 // One fuzz target: a name, the inputs it mutates and the command it runs on a mutated input.
 struct Target {
   std::string name;
@@ -111,7 +130,7 @@ class FuzzCli : public ::testing::Test {
       last = first + 1;
     }
     const auto start = std::chrono::steady_clock::now();
-    std::size_t ran = 0, failed = 0;
+    std::size_t ran = 0, failed = 0, hdf5_known = 0;
     for (std::size_t k = first; k < last; ++k) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (!opt.single_case && elapsed > opt.budget_s) break;  // the suite's time budget holds first
@@ -125,6 +144,13 @@ class FuzzCli : public ::testing::Test {
       const RunResult r = contactrb::fuzz::run_with_timeout(CONTACTRB_CLI, args, case_dir, opt.timeout_s,
                                                             fs::exists(stdin_file) ? stdin_file.string() : "/dev/null");
       ++ran;
+      if (hdf5_allocation_too_big(r)) {
+        ++hdf5_known;
+        std::cout << target.name << " case " << k << " (--fuzz-seed " << opt.seed << " --fuzz-case " << k
+                  << "): HDF5's own allocation-size-too-big under ASan (known HDF5 1.10.8 issue, not checked further)"
+                  << std::endl;
+        continue;
+      }
       std::string why = verdict(r, opt.timeout_s);
       if (why.empty() && target.extra) why = target.extra(input, r);
       if (why.empty()) continue;
@@ -136,8 +162,9 @@ class FuzzCli : public ::testing::Test {
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "fuzz " << target.name << ": " << ran << " cases in " << total << " s (seed " << opt.seed << ", "
-              << failed << " failed)" << std::endl;
+              << failed << " failed, " << hdf5_known << " ended in HDF5's own allocation-size-too-big)" << std::endl;
     RecordProperty("cases", static_cast<int>(ran));
+    RecordProperty("hdf5_allocation_too_big", static_cast<int>(hdf5_known));
   }
 
   static fs::path save_failure(const Target& target, std::size_t k, const std::string& input,
