@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/xml_text.hpp"
 #include "contactrb/io/atomic_file.hpp"
 
 namespace contactrb::io {
@@ -19,19 +20,6 @@ std::string number_text(double v) {
   return std::string(buf.data(), result.ptr);
 }
 
-std::string xml_attribute(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
 
 }  // namespace
 
@@ -47,7 +35,7 @@ void write_pvd(const std::string& path, const std::vector<PvdDataSet>& datasets)
         << "  <Collection>\n";
     for (const PvdDataSet& d : datasets) {
       out << "    <DataSet timestep=\"" << number_text(d.timestep) << "\" group=\"\" part=\"0\" file=\""
-          << xml_attribute(d.file) << "\"/>\n";
+          << xml_escape(d.file) << "\"/>\n";
     }
     out << "  </Collection>\n"
         << "</VTKFile>\n";

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/xml_text.hpp"
 #include "contactrb/io/atomic_file.hpp"
 
 namespace contactrb::io {
@@ -21,21 +22,6 @@ constexpr std::uint8_t kVtkLine = 3;
 constexpr std::uint8_t kVtkTriangle = 5;
 constexpr const char* kBodyField = "body";
 
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  r.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
 
 const VtuField* find_field(const std::vector<VtuField>& section, const std::string& name) {
   for (const VtuField& f : section) {
