@@ -56,6 +56,8 @@ struct ReportOptions {
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
   int history_r = rb::StudySettings{}.history_max_R;
   int profiles = rb::StudySettings{}.multiplier_profiles;
+  int deformed = rb::StudySettings{}.deformed_configurations;
+  int comparisons = rb::StudySettings{}.constraint_comparisons;
   int repeats = rb::StudySettings{}.online_repeats;
 };
 
@@ -143,6 +145,8 @@ int run_report(const ReportOptions& opt) {
   }
   s.history_max_R = opt.history_r;
   s.multiplier_profiles = opt.profiles;
+  s.deformed_configurations = opt.deformed;
+  s.constraint_comparisons = opt.comparisons;
   s.online_repeats = opt.repeats;
   s.jobs = opt.jobs;
   s.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
@@ -201,8 +205,12 @@ int run_report(const ReportOptions& opt) {
                                    "errors_training.png"};
   if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");
   figures.push_back("multipliers.png");
+  if (!r.configurations.empty()) figures.push_back("deformed_configuration.png");
+  if (!r.comparisons.empty()) figures.push_back("constraint_comparison.png");
   for (const std::string& f : figures) {
     require(fs::is_regular_file(fs::path(out) / f), "the plotting script did not write " + f);
+    const std::string pdf = f.substr(0, f.size() - 4) + ".pdf";  // each figure also as PDF
+    require(fs::is_regular_file(fs::path(out) / pdf), "the plotting script did not write " + pdf);
   }
   write_text(report_md, rb::study_markdown(r, figures));
   std::cout << "wrote " << report_md << "\n";
@@ -242,6 +250,12 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--history-r", opt->history_r, "Dual cone histories up to this R (capped at P and the rows)")
       ->capture_default_str();
   sub->add_option("--profiles", opt->profiles, "Multiplier profiles for this many mu (0: none)")
+      ->capture_default_str();
+  sub->add_option("--deformed", opt->deformed,
+                  "Deformed configurations (HF) at this many training values, evenly spaced (0: none)")
+      ->capture_default_str();
+  sub->add_option("--comparisons", opt->comparisons,
+                  "LAC against collocation (HF pressures) at this many training values (0: none)")
       ->capture_default_str();
   sub->add_option("--repeats", opt->repeats, "Online solves per mu (the time is their median)")
       ->capture_default_str();

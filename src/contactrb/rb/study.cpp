@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
@@ -105,6 +106,8 @@ void check_settings(const StudySettings& s) {
   require(!s.training_values || s.training_values->size() >= 2, "report: at least 2 training values are needed");
   require(s.history_max_R >= 1, "report: history_max_R must be >= 1, got " + std::to_string(s.history_max_R));
   require(s.multiplier_profiles >= 0, "report: the number of multiplier profiles must be >= 0");
+  require(s.deformed_configurations >= 0, "report: the number of deformed configurations must be >= 0");
+  require(s.constraint_comparisons >= 0, "report: the number of constraint comparisons must be >= 0");
   require(s.online_repeats >= 1, "report: online_repeats must be >= 1, got " + std::to_string(s.online_repeats));
   require(s.jobs >= 1, "report: jobs must be >= 1, got " + std::to_string(s.jobs));
 }
@@ -189,6 +192,17 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
   r.num_dofs = set.num_dofs;
   const int P = static_cast<int>(set.snapshots.size());
   r.R_hf = static_cast<int>(set.snapshots.front().lambda.size());
+
+  // --- HF pictures without a reduced model: deformed configurations, LAC against collocation.
+  if (s.deformed_configurations > 0 || s.constraint_comparisons > 0) {
+    const mesh::Mesh reference = cases::reference_mesh(spec, s.level);
+    const std::vector<double> d_mus = evenly_spaced_subset(r.training_mus, s.deformed_configurations);
+    const std::vector<double> c_mus = evenly_spaced_subset(r.training_mus, s.constraint_comparisons);
+    log.line("deformed configurations (" + std::to_string(d_mus.size()) + " values), LAC against collocation (" +
+             std::to_string(c_mus.size()) + " values)");
+    if (s.deformed_configurations > 0) r.configurations = deformed_configurations(spec, reference, d_mus);
+    if (s.constraint_comparisons > 0) r.comparisons = compare_constraints(spec, reference, c_mus);
+  }
 
   // --- Multiplier snapshots on the kept rows, as the offline builder forms them (Remark 7,
   // mean weights |I_r|, round-off negatives clipped), for the histories.
@@ -452,6 +466,7 @@ std::vector<std::string> write_study_files(const StudyResult& r, const std::stri
     w.write(path("multipliers.csv"));
     files.push_back("multipliers.csv");
   }
+  for (const std::string& f : write_configuration_files(r.configurations, r.comparisons, dir)) files.push_back(f);
   {
     io::CsvWriter w({"eps_du", "method", "R"});
     for (double eps : r.tolerances.table_eps_du) {
@@ -512,6 +527,22 @@ std::vector<std::string> write_study_files(const StudyResult& r, const std::stri
   j["dual_history"] = {{"R_max", r.dual.R_max},
                        {"times_s", {{"cpg", r.dual.cpg_s}, {"angle", r.dual.angle_s}, {"nmf", r.dual.nmf_s}}}};
   j["multiplier_profiles"] = {{"set", r.profile_set}, {"mu", r.profile_mus}};
+  {
+    nlohmann::json deformed = nlohmann::json::array();
+    for (const DeformedConfiguration& c : r.configurations) {
+      deformed.push_back({{"mu", c.mu}, {"converged", c.converged}, {"status", c.status}});
+    }
+    nlohmann::json comparison = nlohmann::json::array();
+    const auto side = [](const ConstraintProfile& p) {
+      return nlohmann::json{{"rows", p.abscissa.size()}, {"contact_force", p.contact_force}, {"energy", p.energy},
+                            {"iterations", p.iterations}, {"converged", p.converged}, {"status", p.status}};
+    };
+    for (const ConstraintComparison& c : r.comparisons) {
+      comparison.push_back({{"mu", c.mu}, {"lac", side(c.lac)}, {"collocation", side(c.collocation)}});
+    }
+    j["deformed_configurations"] = deformed;
+    j["constraint_comparison"] = comparison;
+  }
   j["times_s"] = {{"training_snapshots", r.training_snapshots_s}, {"total", r.total_s}};
   files.push_back("study.json");
   j["files"] = files;
@@ -640,6 +671,21 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
   for (double e : r.tolerances.table_eps_pod) md << " " << pod_size(r.singular_values, e) << " |";
   md << "\n";
 
+  if (!r.comparisons.empty()) {
+    // Table 1/2-style (iterations) with the forces: the paper's Figs. 7, 8 in numbers.
+    md << "\n## LAC against collocation (HF, paper Figs. 7, 8, Tables 1, 2)\n\n"
+       << "| mu | rows LAC | rows col. | iterations LAC | iterations col. | force LAC | force col. | "
+          "relative difference | energy LAC | energy col. |\n"
+       << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const ConstraintComparison& c : r.comparisons) {
+      const double f = c.collocation.contact_force;
+      md << "| " << fmt(c.mu) << " | " << c.lac.abscissa.size() << " | " << c.collocation.abscissa.size() << " | "
+         << c.lac.iterations << (c.lac.converged ? "" : " (" + c.lac.status + ")") << " | " << c.collocation.iterations
+         << (c.collocation.converged ? "" : " (" + c.collocation.status + ")") << " | " << fmt(c.lac.contact_force)
+         << " | " << fmt(f) << " | " << fmt(f != 0.0 ? std::abs(c.lac.contact_force - f) / std::abs(f) : 0.0)
+         << " | " << fmt(c.lac.energy) << " | " << fmt(c.collocation.energy) << " |\n";
+    }
+  }
   if (!figures.empty()) {
     md << "\n## Figures\n\n";
     for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";

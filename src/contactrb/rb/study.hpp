@@ -18,6 +18,7 @@
 #include "contactrb/rb/evaluation.hpp"
 #include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/rb/study_configurations.hpp"
 
 namespace contactrb::rb {
 
@@ -66,6 +67,12 @@ struct StudySettings {
   // Multiplier profiles (Figs. 8, 18) of the CPG model for this many mu (evenly spaced in the
   // verification set, else in the training set; 0: none).
   int multiplier_profiles = 3;
+  // Deformed configurations (Figs. 3, 5, 17): HF solutions at this many training values (evenly
+  // spaced, both ends first: 2 gives the smallest and the largest mu; 0: none).
+  int deformed_configurations = 2;
+  // LAC against collocation (Figs. 7, 8): HF pressures of both discretizations at this many
+  // training values (evenly spaced; 0: none).
+  int constraint_comparisons = 4;
   int online_repeats = 5;  // online time: median over this many solves
   int jobs = 1;            // HF solves in parallel
   ProgressMode progress = ProgressMode::None;
@@ -120,6 +127,8 @@ struct StudyResult {
   std::vector<MultiplierProfile> profiles;  // of the CPG model
   std::vector<double> profile_mus;
   std::string profile_set;  // "verification" | "training"
+  std::vector<DeformedConfiguration> configurations;
+  std::vector<ConstraintComparison> comparisons;
   double total_s = 0.0;
 
   const StudyModel& model(const std::string& key) const;  // throws contactrb::Error if absent
@@ -139,8 +148,8 @@ int pod_size(const Eigen::VectorXd& singular_values, double eps);
 
 // Writes into `dir` (which must exist): pod_singular_values.csv, dual_cone_error.csv,
 // eim_error.csv, sizes.csv, errors_training.csv, errors_verification.csv (when there is a
-// verification set), multipliers.csv, dual_table.csv, pod_table.csv and study.json (which
-// lists them). Every file is written atomically with a header row. Returns the file names.
+// verification set), multipliers.csv, dual_table.csv, pod_table.csv, the configuration files
+// (write_configuration_files, when computed) and study.json (which lists them). Every file is written atomically with a header row. Returns the file names.
 std::vector<std::string> write_study_files(const StudyResult& result, const std::string& dir);
 
 // One sentence per model whose max e_displ exceeds kStudyErrorWarning (empty: none).
