@@ -1,11 +1,12 @@
 // `contactrb report`: the paper's Section 6 study of one case in one command
 // (docs/user-guide.md, "report"): training snapshots, offline stages with CPG, angle-greedy,
-// NMF and truncated NMF, evaluation on the training and verification sets (rb/study.hpp);
+// NMF and truncated NMF, evaluation on the training and verification sets (study/study.hpp);
 // writes the CSV data and study.json, plots the figures with scripts/plot_report.py and
 // writes report.md (tables and links to the figures).
 //
 // The plotting script is looked up in: $CONTACTRB_SCRIPTS (a directory; an error if it does
-// not hold plot_report.py), <binary dir>/../share/contactrb (installed), then the source tree
+// not hold plot_report.py), <binary dir>/../share/contactrb and <binary dir>/../../share/contactrb
+// (installed: contactrb-full is in libexec/contactrb), then the source tree
 // (CONTACTRB_SCRIPTS_DIR, set by CMake; else derived from this file's path). The interpreter
 // is $CONTACTRB_PYTHON, else /usr/bin/python3 (Debian's python3-matplotlib and python3-numpy).
 #include <sys/wait.h>
@@ -29,7 +30,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/atomic_file.hpp"
-#include "contactrb/rb/study.hpp"
+#include "contactrb/study/study.hpp"
 
 namespace contactrb::app {
 
@@ -80,7 +81,11 @@ fs::path find_plot_script() {
   std::vector<fs::path> tried;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+  if (!ec) {
+    tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+    // Installed, this runs as <prefix>/libexec/contactrb/contactrb-full (apps/contactrb/CMakeLists.txt).
+    tried.push_back(exe.parent_path().parent_path().parent_path() / "share" / "contactrb" / name);
+  }
   tried.push_back(source_scripts_dir() / name);
   std::string list;
   for (const fs::path& p : tried) {
