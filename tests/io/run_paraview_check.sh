@@ -10,19 +10,24 @@ for tool in pvpython xvfb-run; do
   fi
 done
 rm -rf "$2"
-# One retry, on another server number, when the virtual X server was not reachable ("bad X server
-# connection": seen once in a loaded parallel run, where xvfb-run -a's free-display search races).
-# Any other failure is reported at once.
+# Up to three retries, each on another server number after a pause, when the virtual X server
+# was not reachable ("bad X server connection": seen in loaded parallel runs, where the server
+# starts late or xvfb-run -a's free-display search races; one retry was not always enough with
+# ten compilers running). Any other failure is reported at once.
 log=$(mktemp)
 status=0
 xvfb-run -a -s "-screen 0 1280x1024x24" pvpython "$(dirname "$0")/paraview_check.py" "$1" "$2" >"$log" 2>&1 || status=$?
-if [ "$status" -ne 0 ] && grep -q "bad X server connection" "$log"; then
+attempt=1
+while [ "$status" -ne 0 ] && [ "$attempt" -le 3 ] && grep -q "bad X server connection" "$log"; do
   cat "$log"
-  echo "X server not reachable: retrying once on another display"
+  echo "X server not reachable: retry $attempt of 3 on another display"
+  sleep "$((2 * attempt))"
   rm -rf "$2"
   status=0
-  xvfb-run -n "$((200 + $$ % 500))" -s "-screen 0 1280x1024x24" pvpython "$(dirname "$0")/paraview_check.py" "$1" "$2" >"$log" 2>&1 || status=$?
-fi
+  xvfb-run -n "$((200 + ($$ + 97 * attempt) % 500))" -s "-screen 0 1280x1024x24" pvpython \
+    "$(dirname "$0")/paraview_check.py" "$1" "$2" >"$log" 2>&1 || status=$?
+  attempt=$((attempt + 1))
+done
 cat "$log"
 rm -f "$log"
 exit "$status"
