@@ -208,13 +208,16 @@ TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
 
 namespace {
 
-// Sets the model file's `complete` mark to `value` through the HDF5 C API.
-void set_complete(const std::string& path, const std::string& name, int value) {
+// Sets the `complete` mark (an attribute of `object`: "/" or "reconstruction") to `value` through
+// the HDF5 C API.
+void set_complete(const std::string& path, const std::string& object, int value) {
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
-  const herr_t written = set >= 0 ? H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) : -1;
-  if (set >= 0) H5Dclose(set);
+  const hid_t obj = H5Oopen(file, object.c_str(), H5P_DEFAULT);
+  const hid_t attr = obj >= 0 ? H5Aopen(obj, "complete", H5P_DEFAULT) : -1;
+  const herr_t written = attr >= 0 ? H5Awrite(attr, H5T_NATIVE_INT, &value) : -1;
+  if (attr >= 0) H5Aclose(attr);
+  if (obj >= 0) H5Oclose(obj);
   H5Fclose(file);
   ASSERT_GE(written, 0);
 }
@@ -226,11 +229,11 @@ TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
   contactrb::io::write_reduced_model_file(built().model, built().reconstruction, path);
   ASSERT_EQ(read_error(path), "");
   ASSERT_NO_THROW((void)contactrb::io::read_reconstruction(path));
-  set_complete(path, "complete", 0);
+  set_complete(path, "/", 0);
   EXPECT_NE(read_error(path).find("incomplete file"), std::string::npos) << read_error(path);
-  set_complete(path, "complete", 1);
+  set_complete(path, "/", 1);
   EXPECT_EQ(read_error(path), "");
-  set_complete(path, "reconstruction/complete", 0);
+  set_complete(path, "reconstruction", 0);
   try {
     (void)contactrb::io::read_reconstruction(path);
     ADD_FAILURE() << "an incomplete reconstruction was accepted";
