@@ -254,3 +254,42 @@ TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
 }
 
 }  // namespace
+
+namespace {
+
+// A file of the flat layout of model formats <= 4 (every field a root dataset, the format name
+// as bytes, the version a one-element int dataset) gets the rebuild message, not "no format".
+TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
+  contactrb::test::TempDir dir("reduced_model_flat");
+  const std::string path = dir.file("old.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const std::string format = contactrb::io::kReducedModelFormatName;
+  const hsize_t n[1] = {format.size()}, one[1] = {1};
+  const int version = 4;
+  const hid_t s1 = H5Screate_simple(1, n, nullptr), s2 = H5Screate_simple(1, one, nullptr);
+  const hid_t d1 = H5Dcreate2(file, "format", H5T_STD_U8LE, s1, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t d2 = H5Dcreate2(file, "format_version", H5T_STD_I32LE, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(H5Dwrite(d1, H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, format.data()), 0);
+  EXPECT_GE(H5Dwrite(d2, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &version), 0);
+  H5Dclose(d1);
+  H5Dclose(d2);
+  H5Sclose(s1);
+  H5Sclose(s2);
+  H5Fclose(file);
+  const std::string e = read_error(path);
+  EXPECT_NE(e.find("format version 4, this build reads version " +
+                   std::to_string(contactrb::rb::kReducedModelFormatVersion) +
+                   " (rebuild the model with `contactrb offline`)"),
+            std::string::npos)
+      << e;
+  std::string r;
+  try {
+    (void)contactrb::io::read_reconstruction(path);
+  } catch (const contactrb::Error& x) {
+    r = x.what();
+  }
+  EXPECT_NE(r.find("rebuild the model"), std::string::npos) << r;
+}
+
+}  // namespace
