@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_spec.hpp"
@@ -302,6 +303,11 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
     std::ofstream out(damaged, std::ios::binary);
     out.write(data.data(), static_cast<std::streamsize>(data.size()));
   }
+  // The whole file's seal refuses it at once; resealed (a crafted file), the group's own
+  // checksum still finds the change and the model part still reads.
+  EXPECT_NE(error_of([&] { (void)contactrb::io::read_reconstruction(damaged); }).find("checksum mismatch"),
+            std::string::npos);
+  contactrb::seal_file(damaged);
   const std::string msg = error_of([&] { (void)contactrb::io::read_reconstruction(damaged); });
   EXPECT_NE(msg.find("reconstruction checksum mismatch"), std::string::npos) << msg;
   EXPECT_NO_THROW((void)contactrb::io::read_reduced_model_file(damaged));  // the online part is intact

@@ -16,6 +16,7 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/rb/offline_builder.hpp"
 #include "contactrb/rb/online_solver.hpp"
@@ -220,6 +221,7 @@ void set_complete(const std::string& path, const std::string& object, int value)
   if (obj >= 0) H5Oclose(obj);
   H5Fclose(file);
   ASSERT_GE(written, 0);
+  contactrb::seal_file(path);  // a crafted file: the reader's checks behind the seal
 }
 
 // Issue [R] row 14: `complete = 0` was accepted (only its presence was checked).

@@ -50,13 +50,24 @@ inline Handle open_attribute(hid_t loc, const std::string& name) {
   return attr;
 }
 
+// File-creation properties with a user block of kSealBlock bytes for the seal
+// (common/file_seal.hpp), written after HDF5 has closed the file.
+inline Handle sealed_file_properties() {
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "cannot create file-creation properties");
+  check(H5Pset_userblock(fcpl.get(), 512), "cannot reserve the user block");
+  return fcpl;
+}
+
 // A scalar string attribute, variable-length (this format) or fixed-length (the `format` of
-// older snapshot files, read to name their version).
-inline std::string read_string_attribute(hid_t loc, const std::string& name) {
+// older snapshot files, read to name their version). `vlen_allowed` false: a variable-length
+// one is refused, not read (a file without a valid seal: HDF5 1.10.8 crashes reading a
+// variable-length string whose stored length is damaged).
+inline std::string read_string_attribute(hid_t loc, const std::string& name, bool vlen_allowed = true) {
   Handle attr = open_attribute(loc, name);
   Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
   if (H5Tget_class(type.get()) != H5T_STRING) throw Failure{"attribute '" + name + "' is not a string"};
   if (H5Tis_variable_str(type.get()) > 0) {
+    if (!vlen_allowed) throw Failure{"attribute '" + name + "' cannot be read safely: the file has no valid seal"};
     Handle mem = vlen_string_type();
     char* data = nullptr;
     check(H5Aread(attr.get(), mem.get(), &data), "cannot read attribute '" + name + "'");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/version.hpp"
@@ -286,7 +287,8 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
   const std::string tmp = temporary_path(path).string();
   try {
     {
-      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "cannot create the file");
+      const Handle fcpl = hdf5::sealed_file_properties();
+      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, fcpl.get(), H5P_DEFAULT), H5Fclose, "cannot create the file");
       const hid_t f = file.get();
       hdf5::write_string_attribute(f, "format", kReducedModelFormatName);
       hdf5::write_number_attribute(f, "format_version", model.format_version, H5T_STD_I32LE, H5T_NATIVE_INT);
@@ -302,6 +304,7 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
       hdf5::write_number_attribute(f, "complete", 1, H5T_STD_I32LE, H5T_NATIVE_INT);  // last
       file.close("cannot close (flush) the file");
     }
+    seal_file(tmp);  // the hash of every byte, checked before HDF5 parses the file
     commit_temporary(tmp, path);  // removes tmp itself when it fails
   } catch (const H5Failure& e) {
     std::error_code ignored;
@@ -314,11 +317,17 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
   }
 }
 
-// The cheap checks before opening a file.
-void check_model_path(const std::string& path, const std::string& where) {
+// The cheap checks before opening a file; true when the file's seal is valid (a file without
+// one: an older version or another program's). A sealed file whose bytes changed is refused
+// here, before HDF5 parses it (common/file_seal.hpp).
+bool check_model_path(const std::string& path, const std::string& where) {
   require(std::filesystem::exists(path), where + "no such file");
   check_input_file(path, "reduced model file", InputKind::Hdf5);  // a regular file below the size limit
   require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
+  const SealState seal = check_seal(path);
+  require(seal != SealState::Mismatch,
+          where + "checksum mismatch: the file was modified or damaged after it was written (its bytes' hash)");
+  return seal == SealState::Valid;
 }
 Handle open_model_file(const std::string& path) {
   return Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
@@ -346,7 +355,7 @@ std::string rebuild_message(int version) {
 }
 
 // Format, version and completeness of an open model file; throws H5Failure with the reason.
-void check_header(hid_t file, const std::string& path) {
+void check_header(hid_t file, const std::string& path, bool sealed) {
   if (H5Aexists(file, "format") <= 0) {
     if (is_snapshot_file(path)) {
       throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
@@ -358,8 +367,9 @@ void check_header(hid_t file, const std::string& path) {
   }
   std::string format;
   try {
-    format = hdf5::read_string_attribute(file, "format");
-  } catch (const H5Failure&) {
+    format = hdf5::read_string_attribute(file, "format", sealed);
+  } catch (const H5Failure& e) {
+    if (!sealed) throw H5Failure{"damaged or not written by contactrb (" + e.what + ")"};
     format = "(unreadable)";
   }
   if (format == kSnapshotFormatName) {
@@ -369,6 +379,8 @@ void check_header(hid_t file, const std::string& path) {
   if (format != kReducedModelFormatName) throw H5Failure{"not a contactrb reduced model (format '" + format + "')"};
   const int version = hdf5::read_number_attribute<int>(file, "format_version", H5T_NATIVE_INT, H5T_INTEGER);
   if (version != rb::kReducedModelFormatVersion) throw H5Failure{rebuild_message(version)};
+  // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
+  if (!sealed) throw H5Failure{"damaged: its seal (the first bytes of the file) is missing"};
   // `complete` = 1 is written last: a missing one or any other value is not a finished write.
   if (H5Aexists(file, "complete") <= 0 ||
       hdf5::read_number_attribute<int>(file, "complete", H5T_NATIVE_INT, H5T_INTEGER) != 1) {
@@ -390,10 +402,10 @@ void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedRe
 rb::ReducedModel read_reduced_model_file(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  check_model_path(path, where);
+  const bool sealed = check_model_path(path, where);
   try {
     Handle file = open_model_file(path);
-    check_header(file.get(), path);
+    check_header(file.get(), path, sealed);
     rb::ReducedModel m;
     m.format_version = rb::kReducedModelFormatVersion;
     FieldChecksum sum;
@@ -413,7 +425,7 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
 bool has_reconstruction(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  check_model_path(path, where);
+  (void)check_model_path(path, where);
   try {
     Handle file = open_model_file(path);
     return H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) > 0;
@@ -425,10 +437,10 @@ bool has_reconstruction(const std::string& path) {
 rb::ReducedReconstruction read_reconstruction(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  check_model_path(path, where);
+  const bool sealed = check_model_path(path, where);
   try {
     Handle file = open_model_file(path);
-    check_header(file.get(), path);
+    check_header(file.get(), path, sealed);
     if (H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) <= 0) {
       throw H5Failure{"no reconstruction data (a model written without them; rerun `contactrb offline` to get "
                       "them)"};

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/version.hpp"
@@ -663,7 +664,8 @@ bool is_snapshot_file(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec) || H5Fis_hdf5(path.c_str()) <= 0) return false;
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open");
-    return H5Aexists(file.get(), "format") > 0 && read_string_attribute(file.get(), "format") == kSnapshotFormatName;
+    return H5Aexists(file.get(), "format") > 0 &&
+           read_string_attribute(file.get(), "format", check_seal(path) == SealState::Valid) == kSnapshotFormatName;
   } catch (const H5Failure&) {
     return false;
   }
@@ -679,7 +681,8 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   const QuietHdf5 quiet;
   const std::string tmp = temporary_name(path);
   try {
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    const Handle fcpl = hdf5::sealed_file_properties();
+    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, fcpl.get(), H5P_DEFAULT), H5Fclose,
                 "cannot create the file (is the directory there and writable?)");
     FileWriter w;
     write_contents(file.get(), set, w);
@@ -697,8 +700,11 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
     throw Error("cannot write snapshot file '" + path + "': " + f.what);
   }
   try {
+    seal_file(tmp);  // the hash of every byte, checked before HDF5 parses the file
     commit_temporary(tmp, path);
   } catch (const Error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
     throw Error("cannot write snapshot file '" + path + "': " + e.what());
   }
 }
@@ -710,6 +716,12 @@ SnapshotSet read_snapshot_file(const std::string& path) {
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 == 0) throw Error(name + " is not an HDF5 file (expected a file written by `contactrb snapshots`)");
   if (is_hdf5 < 0) throw Error(name + " cannot be read (" + hdf5::reason() + ")");
+  // Before HDF5 parses anything: a sealed file whose bytes changed (common/file_seal.hpp).
+  const SealState seal = check_seal(path);
+  if (seal == SealState::Mismatch) {
+    throw Error(name + " is truncated or damaged: checksum mismatch: its bytes changed after it was written");
+  }
+  const bool sealed = seal == SealState::Valid;
   try {
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create file access properties");
     check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "cannot set the close degree");
@@ -728,8 +740,9 @@ SnapshotSet read_snapshot_file(const std::string& path) {
     }
     std::string format;
     try {
-      format = read_string_attribute(file.get(), "format");
-    } catch (const H5Failure&) {
+      format = read_string_attribute(file.get(), "format", sealed);
+    } catch (const H5Failure& f) {
+      if (!sealed) throw Error(name + " is damaged or not written by contactrb (" + f.what + ")");
       format = "(unreadable)";
     }
     if (format == kReducedModelFormatName) {
@@ -749,6 +762,8 @@ SnapshotSet read_snapshot_file(const std::string& path) {
       throw Error(name + " has snapshot format version " + std::to_string(version) + "; this contactrb reads version " +
                   std::to_string(kSnapshotFormatVersion) + " (generate the snapshots again with `contactrb snapshots`)");
     }
+    // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
+    if (!sealed) throw Error(name + " is damaged: its seal (the first bytes of the file) is missing");
     // `complete` = 1 is written last; any other value (0, a damaged one) is not a finished write.
     if (H5Aexists(file.get(), "complete") <= 0 || read_int_attribute(file.get(), "complete") != 1) {
       throw Error(name + " is incomplete (the run that wrote it was interrupted): generate it again");
