@@ -25,8 +25,8 @@ inline constexpr std::size_t kSealHashOffset = 16;
 
 enum class SealState {
   Valid,     // the hash matches: the bytes are those the writer sealed
-  Absent,    // no seal (a file of an older version, or not written by contactrb, or its first bytes damaged)
-  Mismatch,  // sealed, but the bytes changed since (damaged, truncated, edited)
+  Absent,    // no seal: an HDF5 file without a user block (an older version, another program's)
+  Mismatch,  // sealed, but the bytes changed since (damaged, truncated, edited), or a damaged seal
 };
 
 namespace seal_detail {
@@ -75,12 +75,18 @@ inline void seal_file(const std::string& path) {
   require(static_cast<bool>(out.flush()), "cannot seal '" + path + "'");
 }
 
-// The state of `path`'s seal; Absent for a file that cannot be read.
+// The state of `path`'s seal; Absent for a file too short to hold one (HDF5 refuses it).
 inline SealState check_seal(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::array<char, kSealHashOffset + 8> head{};
   if (!in.read(head.data(), head.size())) return SealState::Absent;
-  if (std::memcmp(head.data(), seal_detail::kMagic, kSealHashOffset) != 0) return SealState::Absent;
+  if (std::memcmp(head.data(), seal_detail::kMagic, kSealHashOffset) != 0) {
+    // No seal: an HDF5 file without a user block starts with HDF5's signature; anything else in
+    // place of the magic is a damaged seal (the file must not reach HDF5's parser).
+    static constexpr char kHdf5Signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    return std::memcmp(head.data(), kHdf5Signature, sizeof kHdf5Signature) == 0 ? SealState::Absent
+                                                                                : SealState::Mismatch;
+  }
   std::uint64_t stored = 0;
   for (std::size_t i = 0; i < 8; ++i) {
     stored |= static_cast<std::uint64_t>(static_cast<unsigned char>(head[kSealHashOffset + i])) << (8 * i);
