@@ -327,12 +327,22 @@ TEST(Evaluation, InvalidRequestsAreRefused) {
   o.multiplier_mus = points({0.2});
   EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.3}), o); }).find("mu = 0.2"),
             std::string::npos);
-  // The case's mesh at the recorded level differs from the one the model was built on.
+  // Without a stored mesh the case's mesh at the recorded level is used: here it differs from
+  // the one the model was built on.
+  ASSERT_FALSE(rec.mesh.nodes.empty());  // the builder stores the snapshots' mesh
   contactrb::rb::ReducedModel finer = m;
   finer.level = 1;
+  contactrb::rb::ReducedReconstruction no_mesh = rec;
+  no_mesh.mesh = {};
   const std::string mismatch =
-      error_of([&] { (void)contactrb::rb::evaluate_model(finer, rec, spec(), points({0.3}), options()); });
+      error_of([&] { (void)contactrb::rb::evaluate_model(finer, no_mesh, spec(), points({0.3}), options()); });
   EXPECT_NE(mismatch.find("reconstruction data"), std::string::npos) << mismatch;
+  // A stored mesh of another size is refused the same way.
+  contactrb::rb::ReducedReconstruction other_mesh = rec;
+  other_mesh.mesh = contactrb::cases::reference_mesh(spec(), 1);
+  const std::string other =
+      error_of([&] { (void)contactrb::rb::evaluate_model(m, other_mesh, spec(), points({0.3}), options()); });
+  EXPECT_NE(other.find("reconstruction data"), std::string::npos) << other;
 }
 
 }  // namespace
