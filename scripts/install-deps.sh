@@ -10,6 +10,7 @@ CONTACTRB_DEBIAN_PACKAGES=(
   nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib
+  python3-h5py  # the file-format test: an independent reader of model files (tests/io/test_model_h5py.py)
   python3-paraview xvfb  # the ParaView test: pvpython renders a VTU under xvfb-run (tests/io/paraview_check.py)
 )
 

@@ -162,7 +162,10 @@ int run_evaluate(const EvaluateOptions& opt) {
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
   const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
-  const cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, opt.model);
+  // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
+  const cases::CaseSpec spec = cases::case_from_record(
+      model.case_kind, model.case_spec, opt.model,
+      rec.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
   const std::vector<cases::Mu> mus = parameter_values(spec, opt.set);
   {
     const std::filesystem::path d(opt.out);

@@ -171,7 +171,9 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
 }
 
 cases::CaseSpec spec_of(const io::SnapshotSet& set, const std::string& path) {
-  return cases::case_from_record(set.case_kind, set.case_spec, path);
+  // A set that stores its mesh needs no .msh file (it may have been moved since).
+  return cases::case_from_record(set.case_kind, set.case_spec, path,
+                                 set.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
 }
 
 nlohmann::json to_json(const Eigen::VectorXd& v) {

@@ -46,7 +46,10 @@ class FieldOutput final : public OnlineFields {
 std::unique_ptr<OnlineFields> read_field_output(const rb::ReducedModel& model, const std::string& model_path) {
   rb::ReducedReconstruction rec = io::read_reconstruction(model_path);
   rb::check_reconstruction(model, rec);
-  cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, model_path);
+  // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
+  cases::CaseSpec spec = cases::case_from_record(
+      model.case_kind, model.case_spec, model_path,
+      rec.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
   mesh::Mesh reference = rb::model_reference_mesh(spec, model, rec);
   return std::make_unique<FieldOutput>(std::move(rec), std::move(spec), std::move(reference));
 }

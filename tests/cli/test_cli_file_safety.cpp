@@ -17,6 +17,7 @@
 
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
+#include "contactrb/common/file_seal.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
@@ -362,6 +363,7 @@ TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
     H5Pclose(dcpl);
     H5Sclose(space);
     ASSERT_GE(H5Fclose(file), 0);
+    contactrb::seal_file(snapshots);  // a crafted file: the reader's checks behind the seal
   }
   ASSERT_LT(fs::file_size(snapshots), (std::uintmax_t{1} << 40));
   const CliResult r =

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_spec.hpp"
@@ -302,6 +303,11 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
     std::ofstream out(damaged, std::ios::binary);
     out.write(data.data(), static_cast<std::streamsize>(data.size()));
   }
+  // The whole file's seal refuses it at once; resealed (a crafted file), the group's own
+  // checksum still finds the change and the model part still reads.
+  EXPECT_NE(error_of([&] { (void)contactrb::io::read_reconstruction(damaged); }).find("checksum mismatch"),
+            std::string::npos);
+  contactrb::seal_file(damaged);
   const std::string msg = error_of([&] { (void)contactrb::io::read_reconstruction(damaged); });
   EXPECT_NE(msg.find("reconstruction checksum mismatch"), std::string::npos) << msg;
   EXPECT_NO_THROW((void)contactrb::io::read_reduced_model_file(damaged));  // the online part is intact
@@ -321,12 +327,22 @@ TEST(Evaluation, InvalidRequestsAreRefused) {
   o.multiplier_mus = points({0.2});
   EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.3}), o); }).find("mu = 0.2"),
             std::string::npos);
-  // The case's mesh at the recorded level differs from the one the model was built on.
+  // Without a stored mesh the case's mesh at the recorded level is used: here it differs from
+  // the one the model was built on.
+  ASSERT_FALSE(rec.mesh.nodes.empty());  // the builder stores the snapshots' mesh
   contactrb::rb::ReducedModel finer = m;
   finer.level = 1;
+  contactrb::rb::ReducedReconstruction no_mesh = rec;
+  no_mesh.mesh = {};
   const std::string mismatch =
-      error_of([&] { (void)contactrb::rb::evaluate_model(finer, rec, spec(), points({0.3}), options()); });
+      error_of([&] { (void)contactrb::rb::evaluate_model(finer, no_mesh, spec(), points({0.3}), options()); });
   EXPECT_NE(mismatch.find("reconstruction data"), std::string::npos) << mismatch;
+  // A stored mesh of another size is refused the same way.
+  contactrb::rb::ReducedReconstruction other_mesh = rec;
+  other_mesh.mesh = contactrb::cases::reference_mesh(spec(), 1);
+  const std::string other =
+      error_of([&] { (void)contactrb::rb::evaluate_model(m, other_mesh, spec(), points({0.3}), options()); });
+  EXPECT_NE(other.find("reconstruction data"), std::string::npos) << other;
 }
 
 }  // namespace

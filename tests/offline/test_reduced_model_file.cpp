@@ -16,6 +16,7 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
@@ -208,15 +209,19 @@ TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
 
 namespace {
 
-// Sets the model file's `complete` mark to `value` through the HDF5 C API.
-void set_complete(const std::string& path, const std::string& name, int value) {
+// Sets the `complete` mark (an attribute of `object`: "/" or "reconstruction") to `value` through
+// the HDF5 C API.
+void set_complete(const std::string& path, const std::string& object, int value) {
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
-  const herr_t written = set >= 0 ? H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) : -1;
-  if (set >= 0) H5Dclose(set);
+  const hid_t obj = H5Oopen(file, object.c_str(), H5P_DEFAULT);
+  const hid_t attr = obj >= 0 ? H5Aopen(obj, "complete", H5P_DEFAULT) : -1;
+  const herr_t written = attr >= 0 ? H5Awrite(attr, H5T_NATIVE_INT, &value) : -1;
+  if (attr >= 0) H5Aclose(attr);
+  if (obj >= 0) H5Oclose(obj);
   H5Fclose(file);
   ASSERT_GE(written, 0);
+  contactrb::seal_file(path);  // a crafted file: the reader's checks behind the seal
 }
 
 // Issue [R] row 14: `complete = 0` was accepted (only its presence was checked).
@@ -226,11 +231,11 @@ TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
   contactrb::io::write_reduced_model_file(built().model, built().reconstruction, path);
   ASSERT_EQ(read_error(path), "");
   ASSERT_NO_THROW((void)contactrb::io::read_reconstruction(path));
-  set_complete(path, "complete", 0);
+  set_complete(path, "/", 0);
   EXPECT_NE(read_error(path).find("incomplete file"), std::string::npos) << read_error(path);
-  set_complete(path, "complete", 1);
+  set_complete(path, "/", 1);
   EXPECT_EQ(read_error(path), "");
-  set_complete(path, "reconstruction/complete", 0);
+  set_complete(path, "reconstruction", 0);
   try {
     (void)contactrb::io::read_reconstruction(path);
     ADD_FAILURE() << "an incomplete reconstruction was accepted";
@@ -248,6 +253,45 @@ TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
   contactrb::io::write_snapshot_file(contactrb::rb::generate_snapshots(request), path);
   const std::string e = read_error(path);
   EXPECT_NE(e.find("'" + path + "': a contactrb snapshot file, not a reduced model"), std::string::npos) << e;
+}
+
+}  // namespace
+
+namespace {
+
+// A file of the flat layout of model formats <= 4 (every field a root dataset, the format name
+// as bytes, the version a one-element int dataset) gets the rebuild message, not "no format".
+TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
+  contactrb::test::TempDir dir("reduced_model_flat");
+  const std::string path = dir.file("old.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const std::string format = contactrb::io::kReducedModelFormatName;
+  const hsize_t n[1] = {format.size()}, one[1] = {1};
+  const int version = 4;
+  const hid_t s1 = H5Screate_simple(1, n, nullptr), s2 = H5Screate_simple(1, one, nullptr);
+  const hid_t d1 = H5Dcreate2(file, "format", H5T_STD_U8LE, s1, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t d2 = H5Dcreate2(file, "format_version", H5T_STD_I32LE, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(H5Dwrite(d1, H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, format.data()), 0);
+  EXPECT_GE(H5Dwrite(d2, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &version), 0);
+  H5Dclose(d1);
+  H5Dclose(d2);
+  H5Sclose(s1);
+  H5Sclose(s2);
+  H5Fclose(file);
+  const std::string e = read_error(path);
+  EXPECT_NE(e.find("format version 4, this build reads version " +
+                   std::to_string(contactrb::rb::kReducedModelFormatVersion) +
+                   " (rebuild the model with `contactrb offline`)"),
+            std::string::npos)
+      << e;
+  std::string r;
+  try {
+    (void)contactrb::io::read_reconstruction(path);
+  } catch (const contactrb::Error& x) {
+    r = x.what();
+  }
+  EXPECT_NE(r.find("rebuild the model"), std::string::npos) << r;
 }
 
 }  // namespace

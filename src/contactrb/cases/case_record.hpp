@@ -5,11 +5,14 @@
 #include <string>
 
 #include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/case_toml.hpp"
 
 namespace contactrb::cases {
 
 // Throws contactrb::Error naming `origin` (the file holding the record) for an unknown kind,
-// an unknown built-in name or an invalid TOML text.
-CaseSpec case_from_record(const std::string& kind, const std::string& text, const std::string& origin);
+// an unknown built-in name or an invalid TOML text. MeshFile::Optional: the recorded .msh file
+// may be gone (the file holding the record stores the mesh itself).
+CaseSpec case_from_record(const std::string& kind, const std::string& text, const std::string& origin,
+                          MeshFile mesh_file = MeshFile::Required);
 
 }  // namespace contactrb::cases

@@ -59,7 +59,8 @@ std::string shortest(double x) {
 // toml++ knows it) and the dotted key.
 class Reader {
  public:
-  Reader(std::string origin, fs::path base_dir) : origin_(std::move(origin)), base_dir_(std::move(base_dir)) {}
+  Reader(std::string origin, fs::path base_dir, MeshFile mesh_file)
+      : origin_(std::move(origin)), base_dir_(std::move(base_dir)), mesh_file_(mesh_file) {}
 
   [[noreturn]] void fail(const toml::node* n, const std::string& what) const {
     std::ostringstream os;
@@ -283,7 +284,7 @@ class Reader {
       if (p.is_relative()) p = base_dir_ / p;
       p = p.lexically_normal();
       std::error_code ec;
-      if (!fs::is_regular_file(p, ec)) fail(file, "key 'mesh.file': mesh file " + p.string() + " not found");
+      if (mesh_file_ == MeshFile::Required && !fs::is_regular_file(p, ec)) fail(file, "key 'mesh.file': mesh file " + p.string() + " not found");
       c.mesh.msh_file = p.string();
     }
 
@@ -468,6 +469,7 @@ class Reader {
  private:
   std::string origin_;
   fs::path base_dir_;
+  MeshFile mesh_file_;
 };
 
 // TOML text of a double: shortest round-trip form, always a float literal.
@@ -511,7 +513,7 @@ bool same_value(const std::optional<AffineValue>& a, const std::optional<AffineV
 
 }  // namespace
 
-CaseSpec case_from_toml_string(const std::string& text, const std::string& origin) {
+CaseSpec case_from_toml_string(const std::string& text, const std::string& origin, MeshFile mesh_file) {
   fs::path base = fs::path(origin).parent_path();
   if (base.empty()) base = fs::current_path();
   // Absolute, so that the resolved mesh.file (recorded by to_toml in snapshot and model
@@ -526,7 +528,7 @@ CaseSpec case_from_toml_string(const std::string& text, const std::string& origi
        << e.description();
     throw Error(os.str());
   }
-  return Reader(origin, base).read(root);
+  return Reader(origin, base, mesh_file).read(root);
 }
 
 CaseSpec case_from_toml_file(const std::string& path) {

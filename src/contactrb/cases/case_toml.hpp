@@ -19,7 +19,11 @@ CaseSpec case_from_toml_file(const std::string& path);
 // Same from the text of a case file; `origin` names it in messages and a relative
 // mesh.file is resolved against the directory of `origin` (the working directory if it
 // has none) and made absolute.
-CaseSpec case_from_toml_string(const std::string& text, const std::string& origin);
+// MeshFile::Optional: a mesh.file that does not exist (any more) is accepted; for a case
+// recorded in a snapshot or model file that stores its mesh (docs/file-formats.md, /mesh).
+enum class MeshFile { Required, Optional };
+CaseSpec case_from_toml_string(const std::string& text, const std::string& origin,
+                               MeshFile mesh_file = MeshFile::Required);
 
 // The TOML text of a spec, read back by case_from_toml_string to an equal spec (doubles
 // are written in their shortest round-trip form; parameter sets as explicit lists; a .msh

@@ -1,19 +1,21 @@
 #include "contactrb/io/reduced_model_file.hpp"
 
 #include <hdf5.h>
-#include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
-#include "contactrb/io/hdf5_handle.hpp"
+#include "contactrb/common/version.hpp"
+#include "contactrb/io/hdf5_visitor.hpp"
+#include "contactrb/io/mesh_group.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 
 namespace contactrb::io {
@@ -21,184 +23,20 @@ namespace contactrb::io {
 namespace {
 
 using hdf5::check;
-using Id = hdf5::Handle;
+using hdf5::Description;
+using hdf5::Handle;
+using hdf5::Loc;
 using H5Failure = hdf5::Failure;
 using QuietHdf5 = hdf5::Quiet;
 
-// FNV-1a, 64 bit.
-class Checksum {
- public:
-  void add(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) {
-      h_ ^= p[i];
-      h_ *= 1099511628211ULL;
-    }
-  }
-  void add_name(const std::string& name) { add(name.data(), name.size() + 1); }
-  std::uint64_t value() const { return h_; }
-
- private:
-  std::uint64_t h_ = 14695981039346656037ULL;
-};
-
-// One dataset of `count` values of `mem_type` with the given dims.
-void write_raw(hid_t file, const std::string& name, const void* data, int rank, const hsize_t* dims, hid_t file_type,
-               hid_t mem_type) {
-  Id space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "cannot create the dataspace of '" + name + "'");
-  Id set(H5Dcreate2(file, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-         "cannot create dataset '" + name + "'");
-  hsize_t total = 1;
-  for (int i = 0; i < rank; ++i) total *= dims[i];
-  if (total > 0) check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write '" + name + "'");
-}
-
-// Reads a dataset of the expected rank; returns its dims; fills `out` (resized by the caller
-// through `resize(total)`).
-template <typename Resize>
-std::vector<hsize_t> read_raw(hid_t file, const std::string& name, int rank, hid_t mem_type, Resize resize) {
-  if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) throw H5Failure{"missing dataset '" + name + "'"};
-  Id set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset '" + name + "'");
-  Id space(H5Dget_space(set.get()), H5Sclose, "cannot read the shape of '" + name + "'");
-  if (H5Sget_simple_extent_ndims(space.get()) != rank) throw H5Failure{"dataset '" + name + "' has the wrong rank"};
-  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
-  check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "cannot read the shape of '" + name + "'");
-  // Bounded by the file's size before anything is allocated (a damaged header).
-  const hsize_t total = hdf5::checked_element_count(set.get(), dims.data(), rank, H5Tget_size(mem_type), name);
-  void* buffer = resize(static_cast<std::size_t>(total), dims);
-  if (total > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer), "cannot read '" + name + "' (truncated or damaged)");
-  return dims;
-}
-
-// Both directions visit the fields in the same order (the checksum's order).
-class Writer {
- public:
-  explicit Writer(hid_t file) : file_(file) {}
-  void str(const std::string& name, std::string& s) {
-    const hsize_t dims[1] = {s.size()};
-    write_raw(file_, name, s.data(), 1, dims, H5T_STD_U8LE, H5T_NATIVE_UCHAR);
-    sum_.add_name(name);
-    sum_.add(s.data(), s.size());
-  }
-  void num(const std::string& name, double& v) {
-    const hsize_t dims[1] = {1};
-    write_raw(file_, name, &v, 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
-    sum_.add_name(name);
-    sum_.add(&v, sizeof v);
-  }
-  void integer(const std::string& name, int& v) {
-    const hsize_t dims[1] = {1};
-    write_raw(file_, name, &v, 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
-    sum_.add_name(name);
-    sum_.add(&v, sizeof v);
-  }
-  void ivec(const std::string& name, std::vector<int>& v) {
-    const hsize_t dims[1] = {v.size()};
-    write_raw(file_, name, v.data(), 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
-    sum_.add_name(name);
-    sum_.add(v.data(), v.size() * sizeof(int));
-  }
-  void mat(const std::string& name, Eigen::MatrixXd& m) {
-    // Stored column-major as an (cols x rows) C-order array: the bytes of Eigen's storage.
-    const hsize_t dims[2] = {static_cast<hsize_t>(m.cols()), static_cast<hsize_t>(m.rows())};
-    write_raw(file_, name, m.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
-    sum_.add_name(name);
-    sum_.add(dims, sizeof dims);
-    sum_.add(m.data(), static_cast<std::size_t>(m.size()) * sizeof(double));
-  }
-  Checksum& checksum() { return sum_; }
-
- private:
-  hid_t file_;
-  Checksum sum_;
-};
-
-class Reader {
- public:
-  explicit Reader(hid_t file) : file_(file) {}
-  void str(const std::string& name, std::string& s) {
-    read_raw(file_, name, 1, H5T_NATIVE_UCHAR, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-      s.assign(n, '\0');
-      return s.data();
-    });
-    sum_.add_name(name);
-    sum_.add(s.data(), s.size());
-  }
-  void num(const std::string& name, double& v) {
-    read_raw(file_, name, 1, H5T_NATIVE_DOUBLE, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-      if (n != 1) throw H5Failure{"dataset '" + name + "' is not a scalar"};
-      return &v;
-    });
-    sum_.add_name(name);
-    sum_.add(&v, sizeof v);
-  }
-  void integer(const std::string& name, int& v) {
-    read_raw(file_, name, 1, H5T_NATIVE_INT, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-      if (n != 1) throw H5Failure{"dataset '" + name + "' is not a scalar"};
-      return &v;
-    });
-    sum_.add_name(name);
-    sum_.add(&v, sizeof v);
-  }
-  void ivec(const std::string& name, std::vector<int>& v) {
-    read_raw(file_, name, 1, H5T_NATIVE_INT, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-      v.assign(n, 0);
-      return v.data();
-    });
-    sum_.add_name(name);
-    sum_.add(v.data(), v.size() * sizeof(int));
-  }
-  void mat(const std::string& name, Eigen::MatrixXd& m) {
-    const auto dims = read_raw(file_, name, 2, H5T_NATIVE_DOUBLE, [&](std::size_t, const std::vector<hsize_t>& d) -> void* {
-      m.resize(static_cast<Eigen::Index>(d[1]), static_cast<Eigen::Index>(d[0]));
-      return m.data();
-    });
-    const hsize_t d[2] = {dims[0], dims[1]};
-    sum_.add_name(name);
-    sum_.add(d, sizeof d);
-    sum_.add(m.data(), static_cast<std::size_t>(m.size()) * sizeof(double));
-  }
-  Checksum& checksum() { return sum_; }
-
- private:
-  hid_t file_;
-  Checksum sum_;
-};
-
-// Helpers over the two visitors for the composite fields.
+// A theta list (cases::ThetaMonomial, theta(mu) = coefficient prod (mu_k / s_k)^p_k) as two
+// tables in group `name`: monomials J x 2 (coefficient, number of factors), factors F x 3
+// (parameter index k, scale s_k, power p_k), the factors of the monomials one after the other.
 template <typename V>
-void vec(V& v, const std::string& name, Eigen::VectorXd& x) {
-  Eigen::MatrixXd m = x;
-  v.mat(name, m);
-  require(m.cols() == 1 || m.size() == 0, "field '" + name + "' is not a vector");
-  x = m.size() == 0 ? Eigen::VectorXd() : Eigen::VectorXd(m.col(0));
-}
-template <typename V>
-void dvec(V& v, const std::string& name, std::vector<double>& x) {
-  Eigen::MatrixXd m = Eigen::Map<Eigen::MatrixXd>(x.data(), static_cast<Eigen::Index>(x.size()), 1);
-  v.mat(name, m);
-  x.assign(m.data(), m.data() + m.size());
-}
-template <typename V>
-void mats(V& v, const std::string& name, std::vector<Eigen::MatrixXd>& list) {
-  int n = static_cast<int>(list.size());
-  v.integer(name + "_count", n);
-  require(n >= 0 && n < 1000000, "field '" + name + "_count' is invalid");
-  list.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) v.mat(name + "_" + std::to_string(i), list[static_cast<std::size_t>(i)]);
-}
-template <typename V>
-void vecs(V& v, const std::string& name, std::vector<Eigen::VectorXd>& list) {
-  int n = static_cast<int>(list.size());
-  v.integer(name + "_count", n);
-  require(n >= 0 && n < 1000000, "field '" + name + "_count' is invalid");
-  list.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) vec(v, name + "_" + std::to_string(i), list[static_cast<std::size_t>(i)]);
-}
-// A theta list: `name` is J x 2 (coefficient, number of factors), `name`_factors is F x 3
-// (parameter index, scale, power), the factors of the monomials one after the other.
-template <typename V>
-void thetas(V& v, const std::string& name, std::vector<cases::ThetaMonomial>& t) {
+void thetas(V& v, const Loc& parent, const std::string& name, const std::string& meaning,
+            std::vector<cases::ThetaMonomial>& t) {
+  Handle g = v.group(parent, name, meaning);
+  const Loc loc{g.get(), parent.field(name)};
   Eigen::MatrixXd m(static_cast<Eigen::Index>(t.size()), 2);
   std::size_t total = 0;
   for (const cases::ThetaMonomial& x : t) total += x.factors.size();
@@ -210,197 +48,235 @@ void thetas(V& v, const std::string& name, std::vector<cases::ThetaMonomial>& t)
       f.row(row++) << static_cast<double>(x.parameter), x.scale, static_cast<double>(x.power);
     }
   }
-  v.mat(name, m);
-  v.mat(name + "_factors", f);
-  require(m.cols() == 2 || m.size() == 0, "field '" + name + "' is not a theta table");
-  require(f.cols() == 3 || f.size() == 0, "field '" + name + "_factors' is not a theta factor table");
+  v.mat(loc, "monomials", m,
+        {"J x 2: row j is theta_j = coefficient * prod of its factors; columns: coefficient, number of factors "
+         "(its rows of `factors`, in order)",
+         "1"});
+  v.mat(loc, "factors", f,
+        {"F x 3: one factor (mu_k / s)^p per row, the factors of monomial 0, then 1, ...; columns: parameter "
+         "index k (0-based, /parameters/NNNNNN), scale s, power p",
+         "column 0 index, column 1 the parameter's units, column 2 1"});
+  if constexpr (V::kWriting) return;
+  require(m.cols() == 2 || m.size() == 0, "field '" + loc.field("monomials") + "' is not a theta table");
+  require(f.cols() == 3 || f.size() == 0, "field '" + loc.field("factors") + "' is not a theta factor table");
   t.assign(static_cast<std::size_t>(m.rows()), {});
   Eigen::Index next = 0;
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
     const double count = m(i, 1);
-    require(count >= 0.0 && count <= 64.0 && count == std::floor(count) && next + static_cast<Eigen::Index>(count) <= f.rows(),
-            "field '" + name + "' row " + std::to_string(i) + " has an invalid factor count");
+    require(count >= 0.0 && count <= 64.0 && count == std::floor(count) &&
+                next + static_cast<Eigen::Index>(count) <= f.rows(),
+            "field '" + loc.field("monomials") + "' row " + std::to_string(i) + " has an invalid factor count");
     cases::ThetaMonomial& x = t[static_cast<std::size_t>(i)];
     x.coefficient = m(i, 0);
     for (int k = 0; k < static_cast<int>(count); ++k, ++next) {
       const double par = f(next, 0), power = f(next, 2);
-      require(par >= 0.0 && par < 1000.0 && par == std::floor(par) && std::abs(power) <= 64.0 && power == std::floor(power),
-              "field '" + name + "_factors' row " + std::to_string(next) + " is invalid");
+      require(par >= 0.0 && par < 1000.0 && par == std::floor(par) && std::abs(power) <= 64.0 &&
+                  power == std::floor(power),
+              "field '" + loc.field("factors") + "' row " + std::to_string(next) + " is invalid");
       x.factors.push_back({static_cast<int>(par), f(next, 1), static_cast<int>(power)});
     }
   }
-  require(next == f.rows() || f.size() == 0, "field '" + name + "_factors' has rows no monomial uses");
-}
-template <typename V>
-void points(V& v, const std::string& name, std::vector<Eigen::Vector2d>& p) {
-  Eigen::MatrixXd m(2, static_cast<Eigen::Index>(p.size()));
-  for (std::size_t i = 0; i < p.size(); ++i) m.col(static_cast<Eigen::Index>(i)) = p[i];
-  v.mat(name, m);
-  require(m.rows() == 2 || m.size() == 0, "field '" + name + "' is not a point list");
-  p.resize(static_cast<std::size_t>(m.cols()));
-  for (std::size_t i = 0; i < p.size(); ++i) p[i] = m.col(static_cast<Eigen::Index>(i));
+  require(next == f.rows() || f.size() == 0, "field '" + loc.field("factors") + "' has rows no monomial uses");
 }
 
-// A bool stored as an integer 0 / 1.
 template <typename V>
-void flag(V& v, const std::string& name, bool& b) {
-  int i = b ? 1 : 0;
-  v.integer(name, i);
-  b = i != 0;
+void theta_group(V& v, const Loc& parent, cases::AffineThetas& t) {
+  Handle g = v.group(parent, "theta", "the affine coefficient functions theta(mu) (docs/offline-online.md, (49))");
+  const Loc loc{g.get(), parent.field("theta")};
+  thetas(v, loc, "a", "theta^a_j: A(mu) = sum_j theta^a_j(mu) A_j (J^a terms)", t.a);
+  thetas(v, loc, "f", "theta^f_j: f(mu) = sum_j theta^f_j(mu) f_j (J^f terms)", t.f);
+  thetas(v, loc, "lift",
+         "theta^lift_k: the Dirichlet lift u_D(mu) = sum_k theta^lift_k(mu) lift_k; row k is the coefficient of "
+         "/reconstruction/lift row k and of /primal/lift_c column k (J^D terms)",
+         t.lift);
 }
 
-// Every field of the model, in the checksum's order (the format version is checked first,
-// apart).
+// Every field of the model (layout: docs/file-formats.md).
 template <typename V>
-void visit(V& v, rb::ReducedModel& m) {
-  v.str("case_name", m.case_name);
-  v.str("case_kind", m.case_kind);
-  v.str("case_spec", m.case_spec);
-  v.integer("level", m.level);
-  int count = static_cast<int>(m.parameters.size());
-  v.integer("parameter_count", count);
-  require(count >= 0 && count <= 1000, "field 'parameter_count' is " + std::to_string(count));  // 0: check_model says so
-  m.parameters.resize(static_cast<std::size_t>(count));
-  for (int k = 0; k < count; ++k) {
-    cases::ParameterSpec& p = m.parameters[static_cast<std::size_t>(k)];
-    const std::string pre = "parameter_" + std::to_string(k) + "_";
-    v.str(pre + "name", p.name);
-    v.str(pre + "units", p.units);
-    std::string kind = cases::to_string(p.kind);
-    v.str(pre + "kind", kind);
-    p.kind = cases::parameter_kind_from_string(kind);
-    v.num(pre + "min", p.min);
-    v.num(pre + "max", p.max);
-    v.num(pre + "reference", p.reference);
-    v.integer(pre + "body", p.body);
-    v.num(pre + "center_x", p.center.x());
-    v.num(pre + "center_y", p.center.y());
+void visit(V& v, const Loc& root, rb::ReducedModel& m) {
+  {
+    Handle g = v.group(root, "meta", "provenance, the settings the model was built with, the maximal sizes");
+    const Loc meta{g.get(), "/meta"};
+    v.str(meta, "case_name", m.case_name);
+    v.str(meta, "case_kind", m.case_kind);
+    v.str(meta, "case_spec", m.case_spec);
+    v.integer(meta, "level", m.level);
+    v.str(meta, "inner_product", m.inner_product);
+    v.str(meta, "dual_method", m.dual_method);
+    v.num(meta, "eps_pod", m.eps_pod);
+    v.flag(meta, "eps_pod_relative", m.eps_pod_relative);
+    v.num(meta, "eps_du", m.eps_du);
+    v.flag(meta, "eps_du_relative", m.eps_du_relative);
+    v.num(meta, "eps_eim_k", m.eps_eim_k);
+    v.flag(meta, "eps_eim_k_relative", m.eps_eim_k_relative);
+    v.num(meta, "eps_eim_g", m.eps_eim_g);
+    v.flag(meta, "eps_eim_g_relative", m.eps_eim_g_relative);
+    v.flag(meta, "compression", m.compression);
+    v.num(meta, "kacanov_alpha", m.kacanov_alpha);
+    v.num(meta, "kacanov_tolerance", m.kacanov_tolerance);
+    v.integer(meta, "kacanov_max_iterations", m.kacanov_max_iterations);
+    v.integer(meta, "N_max", m.N_max);
+    v.integer(meta, "N_supremizers", m.N_supremizers);
+    v.integer(meta, "R_max", m.R_max);
+    v.integer(meta, "Mk_max", m.Mk_max);
+    v.integer(meta, "Mg_max", m.Mg_max);
   }
-  thetas(v, "theta_a", m.thetas.a);
-  thetas(v, "theta_f", m.thetas.f);
-  thetas(v, "theta_lift", m.thetas.lift);
-  v.str("inner_product", m.inner_product);
-  v.str("dual_method", m.dual_method);
-  v.num("eps_pod", m.eps_pod);
-  flag(v, "eps_pod_relative", m.eps_pod_relative);
-  v.num("eps_du", m.eps_du);
-  flag(v, "eps_du_relative", m.eps_du_relative);
-  v.num("eps_eim_k", m.eps_eim_k);
-  flag(v, "eps_eim_k_relative", m.eps_eim_k_relative);
-  v.num("eps_eim_g", m.eps_eim_g);
-  flag(v, "eps_eim_g_relative", m.eps_eim_g_relative);
-  int compression = m.compression ? 1 : 0;
-  v.integer("compression", compression);
-  m.compression = compression != 0;
-  v.num("kacanov_alpha", m.kacanov_alpha);
-  v.num("kacanov_tolerance", m.kacanov_tolerance);
-  v.integer("kacanov_max_iterations", m.kacanov_max_iterations);
-  v.integer("N_max", m.N_max);
-  v.integer("N_supremizers", m.N_supremizers);
-  v.integer("R_max", m.R_max);
-  v.integer("Mk_max", m.Mk_max);
-  v.integer("Mg_max", m.Mg_max);
-  vec(v, "singular_values", m.singular_values);
-  v.mat("training_mu", m.training_mu);
-  v.mat("training_u_hat", m.training_u_hat);
-  v.mat("training_lambda_hat", m.training_lambda_hat);
-  mats(v, "A_hat", m.A_hat);
-  vecs(v, "f_hat", m.f_hat);
-  vecs(v, "A_lift_hat", m.A_lift_hat);
-  dvec(v, "lift_AA", m.lift_AA);
-  dvec(v, "lift_f", m.lift_f);
-  v.ivec("kept_rows", m.kept_rows);
-  v.mat("Xi", m.Xi);
-  v.ivec("kappa_row", m.kappa_row);
-  v.ivec("kappa_dof", m.kappa_dof);
-  v.mat("B_kappa", m.B_kappa);
-  mats(v, "C_kappa", m.C_kappa);
-  dvec(v, "eim_kappa_errors", m.eim_kappa_errors);
-  v.ivec("gamma_row", m.gamma_row);
-  v.mat("B_gamma", m.B_gamma);
-  v.mat("XiQ_gamma", m.XiQ_gamma);
-  dvec(v, "eim_gamma_errors", m.eim_gamma_errors);
-  rb::ContactSurface& s = m.surface;
-  points(v, "surface_reference_nodes", s.reference_nodes);
-  v.ivec("surface_body", s.body);
-  v.ivec("surface_slave", s.slave);
-  v.ivec("surface_master", s.master);
-  int disc = static_cast<int>(s.discretization);
-  v.integer("surface_discretization", disc);
-  s.discretization = static_cast<contact::Discretization>(disc);
-  v.integer("surface_num_constraints", s.num_constraints);
-  v.mat("Theta_c", m.Theta_c);
-  v.mat("lift_c", m.lift_c);
-  // Format 3: the error estimate (rb/error_estimate_data.hpp).
-  rb::EstimateData& e = m.estimate;
-  vec(v, "estimate_theta_a_reference", e.theta_a_reference);
-  v.mat("estimate_residual_T", e.residual_T);
-  mats(v, "estimate_QTheta_kappa", e.QTheta_kappa);
-  v.mat("estimate_Q_gamma", e.Q_gamma);
-  vec(v, "estimate_eim_residual", e.eim_residual);
-  v.mat("estimate_eim_slack", e.eim_slack);
+  {
+    Handle g = v.group(root, "parameters",
+                       "the parameters mu = (mu_0, ..., mu_{p-1}): one subgroup each (000000, ...), and the training "
+                       "points");
+    const Loc par{g.get(), "/parameters"};
+    int count = static_cast<int>(m.parameters.size());
+    v.integer(par, "count", count);
+    require(count >= 0 && count <= 1000, "field '/parameters/count' is " + std::to_string(count));  // 0: check_model says so
+    m.parameters.resize(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k) {
+      cases::ParameterSpec& p = m.parameters[static_cast<std::size_t>(k)];
+      const std::string name = hdf5::list_entry_name(static_cast<std::size_t>(k));
+      Handle pg = v.group(par, name, "parameter mu_k: name, units, kind, domain [min, max], reference value, geometric map data");
+      const Loc one{pg.get(), par.field(name)};
+      v.str(one, "name", p.name);
+      v.str(one, "units", p.units);
+      std::string kind = cases::to_string(p.kind);
+      v.str(one, "kind", kind);
+      p.kind = cases::parameter_kind_from_string(kind);
+      v.num(one, "min", p.min);
+      v.num(one, "max", p.max);
+      v.num(one, "reference", p.reference);
+      v.integer(one, "body", p.body);
+      v.num(one, "center_x", p.center.x());
+      v.num(one, "center_y", p.center.y());
+    }
+    v.mat(par, "training_mu", m.training_mu,
+          {"p x P: column i is training point mu^(i) (the snapshot set's order)", "row k: the units of parameter k"});
+  }
+  theta_group(v, root, m.thetas);
+  {
+    Handle g = v.group(root, "primal", "the reduced primal problem (49): u = u_D(mu) + Theta u_hat");
+    const Loc pr{g.get(), "/primal"};
+    v.vec(pr, "singular_values", m.singular_values, {"P: the POD singular values, decreasing", "displacement (M-norm)"});
+    v.stack(pr, "A_hat", m.A_hat, {"J^a x N_max x N_max: A_hat[j] = Theta' A_j,00 Theta", "energy (stiffness x length^2)"});
+    v.rows(pr, "f_hat", m.f_hat, {"J^f x N_max: row j is Theta' f_j,0", "force x length"});
+    v.rows(pr, "A_lift_hat", m.A_lift_hat,
+           {"(J^a J^D) x N_max: row j J^D + k is Theta' (A_j lift_k)_0", "force x length"});
+    v.dvec(pr, "lift_AA", m.lift_AA, {"J^a J^D J^D: entry (j J^D + k) J^D + l is lift_k' A_j lift_l", "energy"});
+    v.dvec(pr, "lift_f", m.lift_f, {"J^f J^D: entry j J^D + k is f_j' lift_k", "energy"});
+    v.mat(pr, "Theta_c", m.Theta_c,
+          {"n_c x N_max: the basis on the contact-surface DOFs (/surface), 0 where constrained", "length"});
+    v.mat(pr, "lift_c", m.lift_c, {"n_c x J^D: column k is lift_k on the contact-surface DOFs", "length"});
+    v.mat(pr, "training_u_hat", m.training_u_hat,
+          {"N_max x P: column i is the online initial guess u_hat at training point i", "1 (basis coordinates)"});
+  }
+  {
+    Handle g = v.group(root, "dual", "the reduced dual cone (Remark 7): lambda = Xi lambda_hat on the kept rows");
+    const Loc du{g.get(), "/dual"};
+    v.ints(du, "kept_rows", m.kept_rows,
+           {"R_kept: the constraint rows (0 .. R_hf - 1) kept by the compression, increasing", "index (0-based)"});
+    v.mat(du, "Xi", m.Xi, {"R_kept x R_max: column r is dual basis vector r on the kept rows, >= 0", "pressure"});
+    v.mat(du, "training_lambda_hat", m.training_lambda_hat,
+          {"R_max x P: column i is the online initial guess lambda_hat at training point i", "1 (basis coordinates)"});
+  }
+  {
+    Handle eim = v.group(root, "eim", "the empirical interpolation of the contact map kappa and the gap gamma");
+    const Loc e{eim.get(), "/eim"};
+    {
+      Handle g = v.group(e, "kappa", "EIM of kappa (50)-(52), (55)");
+      const Loc k{g.get(), "/eim/kappa"};
+      v.ints(k, "row", m.kappa_row, {"Mk_max: magic row i, an index into /dual/kept_rows", "index (0-based)"});
+      v.ints(k, "dof", m.kappa_dof, {"Mk_max: magic contact-surface DOF i (/surface)", "index (0-based)"});
+      v.mat(k, "B", m.B_kappa, {"Mk_max x Mk_max: the EIM matrix, lower triangular, unit diagonal", "1"});
+      v.stack(k, "C", m.C_kappa, {"Mk_max x R_max x N_max: C[i] = Xi' Q_i Theta_c (55)", "pressure x length"});
+      v.dvec(k, "errors", m.eim_kappa_errors, {"the greedy's interpolation error at each M", "1"});
+    }
+    {
+      Handle g = v.group(e, "gamma", "EIM of gamma = g - K u_D(mu) (54)");
+      const Loc k{g.get(), "/eim/gamma"};
+      v.ints(k, "row", m.gamma_row, {"Mg_max: magic row i, an index into /dual/kept_rows", "index (0-based)"});
+      v.mat(k, "B", m.B_gamma, {"Mg_max x Mg_max: the EIM matrix", "1"});
+      v.mat(k, "XiQ", m.XiQ_gamma, {"R_max x Mg_max: Xi' Q^gamma (D^gamma = XiQ B^-1)", "pressure x length"});
+      v.dvec(k, "errors", m.eim_gamma_errors, {"the greedy's interpolation error at each M", "length"});
+    }
+  }
+  {
+    rb::ContactSurface& s = m.surface;
+    Handle g = v.group(root, "surface",
+                       "the contact surface in the reference configuration: the contact nodes (slave and master chain "
+                       "nodes in ascending global index); contact-surface DOF 2 i + c is component c of node i");
+    const Loc su{g.get(), "/surface"};
+    Eigen::MatrixXd nodes(static_cast<Eigen::Index>(s.reference_nodes.size()), 2);
+    for (std::size_t i = 0; i < s.reference_nodes.size(); ++i) {
+      nodes.row(static_cast<Eigen::Index>(i)) = s.reference_nodes[i].transpose();
+    }
+    v.mat(su, "reference_nodes", nodes, {"n_c / 2 x 2: row i is (x, y) of contact node i", "length"});
+    if constexpr (!V::kWriting) {
+      require(nodes.cols() == 2 || nodes.size() == 0, "field '/surface/reference_nodes' is not a point list");
+      s.reference_nodes.resize(static_cast<std::size_t>(nodes.rows()));
+      for (std::size_t i = 0; i < s.reference_nodes.size(); ++i) {
+        s.reference_nodes[i] = nodes.row(static_cast<Eigen::Index>(i)).transpose();
+      }
+    }
+    v.ints(su, "body", s.body, {"n_c / 2: body of contact node i, 0 slave, 1 master", "index (0-based)"});
+    v.ints(su, "slave", s.slave, {"the slave chain, contact node indices in order", "index (0-based)"});
+    v.ints(su, "master", s.master,
+           {"the master chain, contact node indices in order (closed: the first repeated at the end)", "index (0-based)"});
+    std::string disc = contact::to_string(s.discretization);
+    v.str(su, "discretization", disc);
+    s.discretization = contact::discretization_from_string(disc);
+    v.integer(su, "num_constraints", s.num_constraints);
+  }
+  {
+    rb::EstimateData& e = m.estimate;
+    Handle g = v.group(root, "estimate", "the a posteriori error estimate's arrays (rb/error_estimate_data.hpp)");
+    const Loc es{g.get(), "/estimate"};
+    v.vec(es, "theta_a_reference", e.theta_a_reference, {"J^a: theta^a_j at the reference parameter value", "1"});
+    v.mat(es, "residual_T", e.residual_T,
+          {"rho x d_max: ||r||_X' = |residual_T y| for the coefficient vector y (columns: f_j | (A_j lift_k)_0 | "
+           "A_j,00 Theta_n | E_c' Q_i' Xi_r)",
+           "force x length / energy norm"});
+    v.stack(es, "QTheta_kappa", e.QTheta_kappa, {"Mk_max x R_kept x N_max: EIM reconstruction of K Theta_c", "1"});
+    v.mat(es, "Q_gamma", e.Q_gamma, {"R_kept x Mg_max: EIM basis of gamma on the kept rows", "length"});
+    v.vec(es, "eim_residual", e.eim_residual, {"Mk_max + 1: the EIM residual bound at each M", "1"});
+    v.mat(es, "eim_slack", e.eim_slack, {"(Mk_max + 1) x (Mg_max + 1): the EIM slack at each (M, M')", "length"});
+  }
 }
-
-void write_u64(hid_t file, const std::string& name, std::uint64_t value) {
-  const hsize_t dims[1] = {1};
-  write_raw(file, name, &value, 1, dims, H5T_STD_U64LE, H5T_NATIVE_UINT64);
-}
-std::uint64_t read_u64(hid_t file, const std::string& name) {
-  std::uint64_t value = 0;
-  read_raw(file, name, 1, H5T_NATIVE_UINT64, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-    if (n != 1) throw H5Failure{"dataset '" + name + "' is not a scalar"};
-    return &value;
-  });
-  return value;
-}
-
-// The mark `name` (= 1) is written last: a missing one or any other value (0, a damaged one) is
-// not a finished write.
-bool is_complete(hid_t file, const std::string& name) {
-  if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) return false;
-  int complete = 0;
-  read_raw(file, name, 1, H5T_NATIVE_INT, [&](std::size_t n, const std::vector<hsize_t>&) -> void* {
-    if (n != 1) throw H5Failure{"dataset '" + name + "' is not a scalar"};
-    return &complete;
-  });
-  return complete == 1;
-}
-
-}  // namespace
-
-namespace {
 
 constexpr const char* kReconstructionGroup = "reconstruction";
 
-// The reconstruction's fields, in its checksum's order, names relative to the file root.
+// The reconstruction and the mesh (one checksum: root attribute of /reconstruction).
 template <typename V>
-void visit_reconstruction(V& v, rb::ReducedReconstruction& r) {
-  const std::string g = std::string(kReconstructionGroup) + "/";
-  v.integer(g + "num_dofs", r.num_dofs);
-  v.ivec(g + "free_dofs", r.free_dofs);
-  v.mat(g + "Theta", r.Theta);
-  vecs(v, g + "lift", r.lift);
-  thetas(v, g + "theta_a", r.thetas.a);
-  thetas(v, g + "theta_f", r.thetas.f);
-  thetas(v, g + "theta_lift", r.thetas.lift);
-  v.ivec(g + "kept_rows", r.kept_rows);
-  v.integer(g + "num_constraints", r.num_constraints);
-  v.mat(g + "Xi", r.Xi);
+void visit_reconstruction(V& v, const Loc& root, rb::ReducedReconstruction& r, bool with_mesh) {
+  {
+    Handle g = v.group(root, kReconstructionGroup,
+                       "HF-size data mapping a reduced solution back to the mesh: u = u_D(mu) + P Theta u_hat, "
+                       "u_D(mu) = sum_k theta^lift_k(mu) lift_k, P the scatter to free_dofs");
+    const Loc rec{g.get(), "/reconstruction"};
+    v.integer(rec, "num_dofs", r.num_dofs);
+    v.integer(rec, "num_constraints", r.num_constraints);
+    v.ints(rec, "free_dofs", r.free_dofs,
+           {"n_free: the global DOF (2 node + component) of each row of Theta", "index (0-based)"});
+    v.mat(rec, "Theta", r.Theta,
+          {"n_free x N_max: column j is basis vector j on the free DOFs", "length per unit of u_hat"});
+    v.rows(rec, "lift", r.lift, {"J^D x num_dofs: row k is lift vector lift_k on every DOF", "length"});
+    v.ints(rec, "kept_rows", r.kept_rows,
+           {"R_kept: the constraint rows kept (as /dual/kept_rows)", "index (0-based)"});
+    v.mat(rec, "Xi", r.Xi,
+          {"R_kept x R_max: lambda = Xi lambda_hat on the kept rows, 0 on the others", "pressure"});
+    theta_group(v, rec, r.thetas);
+  }
+  if (with_mesh) hdf5::visit_mesh(v, root, r.mesh);
 }
 
-void write_reconstruction_group(hid_t file, const rb::ReducedReconstruction& reconstruction) {
-  Id group(H5Gcreate2(file, kReconstructionGroup, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-           "cannot create the group 'reconstruction'");
-  Writer w(file);
-  const std::string g = std::string(kReconstructionGroup) + "/";
-  int version = kReconstructionFormatVersion;
-  w.integer(g + "format_version", version);
+void write_reconstruction(hid_t file, const rb::ReducedReconstruction& reconstruction) {
+  FieldChecksum sum;
+  hdf5::FieldWriter w(sum);
+  const Loc root{file, ""};
   rb::ReducedReconstruction copy = reconstruction;  // the visitor takes references
-  visit_reconstruction(w, copy);
-  write_u64(file, g + "checksum", w.checksum().value());
-  int complete = 1;
-  const hsize_t dims[1] = {1};
-  write_raw(file, g + "complete", &complete, 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
+  visit_reconstruction(w, root, copy, !copy.mesh.nodes.empty());
+  Handle g = hdf5::open_group(file, kReconstructionGroup);
+  hdf5::write_number_attribute(g.get(), "format_version", kReconstructionFormatVersion, H5T_STD_I32LE, H5T_NATIVE_INT);
+  hdf5::write_number_attribute(g.get(), "has_mesh", copy.mesh.nodes.empty() ? 0 : 1, H5T_STD_I32LE, H5T_NATIVE_INT);
+  hdf5::write_number_attribute(g.get(), "checksum", sum.value(), H5T_STD_U64LE, H5T_NATIVE_UINT64);
+  hdf5::write_number_attribute(g.get(), "complete", 1, H5T_STD_I32LE, H5T_NATIVE_INT);
 }
 
 void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction* reconstruction,
@@ -411,21 +287,24 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
   const std::string tmp = temporary_path(path).string();
   try {
     {
-      Id file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "cannot create the file");
-      Writer w(file.get());
-      std::string format = kReducedModelFormatName;
-      w.str("format", format);
-      int version = model.format_version;
-      w.integer("format_version", version);
+      const Handle fcpl = hdf5::sealed_file_properties();
+      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, fcpl.get(), H5P_DEFAULT), H5Fclose, "cannot create the file");
+      const hid_t f = file.get();
+      hdf5::write_string_attribute(f, "format", kReducedModelFormatName);
+      hdf5::write_number_attribute(f, "format_version", model.format_version, H5T_STD_I32LE, H5T_NATIVE_INT);
+      hdf5::write_string_attribute(f, "contactrb_version", kVersion);
+      hdf5::write_string_attribute(f, "description",
+                                   "contactrb reduced model (paper Algorithm 1); layout: docs/file-formats.md");
+      FieldChecksum sum;
+      hdf5::FieldWriter w(sum);
       rb::ReducedModel copy = model;  // the visitor takes references
-      visit(w, copy);
-      if (reconstruction != nullptr) write_reconstruction_group(file.get(), *reconstruction);
-      write_u64(file.get(), "checksum", w.checksum().value());
-      int complete = 1;
-      const hsize_t dims[1] = {1};
-      write_raw(file.get(), "complete", &complete, 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
+      visit(w, Loc{f, ""}, copy);
+      if (reconstruction != nullptr) write_reconstruction(f, *reconstruction);
+      hdf5::write_number_attribute(f, "checksum", sum.value(), H5T_STD_U64LE, H5T_NATIVE_UINT64);
+      hdf5::write_number_attribute(f, "complete", 1, H5T_STD_I32LE, H5T_NATIVE_INT);  // last
       file.close("cannot close (flush) the file");
     }
+    seal_file(tmp);  // the hash of every byte, checked before HDF5 parses the file
     commit_temporary(tmp, path);  // removes tmp itself when it fails
   } catch (const H5Failure& e) {
     std::error_code ignored;
@@ -438,15 +317,75 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
   }
 }
 
-// The cheap checks before opening a file (as read_reduced_model_file).
-void check_model_path(const std::string& path, const std::string& where) {
+// The cheap checks before opening a file; true when the file's seal is valid (a file without
+// one: an older version or another program's). A sealed file whose bytes changed is refused
+// here, before HDF5 parses it (common/file_seal.hpp).
+bool check_model_path(const std::string& path, const std::string& where) {
   require(std::filesystem::exists(path), where + "no such file");
   check_input_file(path, "reduced model file", InputKind::Hdf5);  // a regular file below the size limit
   require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
+  const SealState seal = check_seal(path);
+  require(seal != SealState::Mismatch,
+          where + "checksum mismatch: the file was modified or damaged after it was written (its bytes' hash)");
+  return seal == SealState::Valid;
 }
-Id open_model_file(const std::string& path) {
-  return Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-            "cannot open the file (truncated or damaged)");
+Handle open_model_file(const std::string& path) {
+  return Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+                "cannot open the file (truncated or damaged)");
+}
+
+// The version of a file of the format before 5 (every field a dataset of the root, the
+// version a one-element int dataset), or -1.
+int old_layout_version(hid_t file) {
+  try {
+    hsize_t dims[1] = {0};
+    Handle set = hdf5::open_dataset(file, "format_version", 1, H5T_INTEGER, dims, sizeof(int));
+    if (dims[0] != 1) return -1;
+    int version = -1;
+    check(H5Dread(set.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, &version), "format_version");
+    return version;
+  } catch (const H5Failure&) {
+    return -1;
+  }
+}
+
+std::string rebuild_message(int version) {
+  return "format version " + std::to_string(version) + ", this build reads version " +
+         std::to_string(rb::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)";
+}
+
+// Format, version and completeness of an open model file; throws H5Failure with the reason.
+void check_header(hid_t file, const std::string& path, bool sealed) {
+  if (H5Aexists(file, "format") <= 0) {
+    if (is_snapshot_file(path)) {
+      throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
+                      "--snapshots`)"};
+    }
+    const int old = old_layout_version(file);
+    if (old >= 0) throw H5Failure{rebuild_message(old)};
+    throw H5Failure{"not a contactrb reduced model (no 'format' attribute)"};
+  }
+  std::string format;
+  try {
+    format = hdf5::read_string_attribute(file, "format", sealed);
+  } catch (const H5Failure& e) {
+    if (!sealed) throw H5Failure{"damaged or not written by contactrb (" + e.what + ")"};
+    format = "(unreadable)";
+  }
+  if (format == kSnapshotFormatName) {
+    throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
+                    "--snapshots`)"};
+  }
+  if (format != kReducedModelFormatName) throw H5Failure{"not a contactrb reduced model (format '" + format + "')"};
+  const int version = hdf5::read_number_attribute<int>(file, "format_version", H5T_NATIVE_INT, H5T_INTEGER);
+  if (version != rb::kReducedModelFormatVersion) throw H5Failure{rebuild_message(version)};
+  // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
+  if (!sealed) throw H5Failure{"damaged: its seal (the first bytes of the file) is missing"};
+  // `complete` = 1 is written last: a missing one or any other value is not a finished write.
+  if (H5Aexists(file, "complete") <= 0 ||
+      hdf5::read_number_attribute<int>(file, "complete", H5T_NATIVE_INT, H5T_INTEGER) != 1) {
+    throw H5Failure{"incomplete file (the write was interrupted)"};
+  }
 }
 
 }  // namespace
@@ -463,30 +402,18 @@ void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedRe
 rb::ReducedModel read_reduced_model_file(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  require(std::filesystem::exists(path), where + "no such file");
-  check_input_file(path, "reduced model file", InputKind::Hdf5);  // a regular file below the size limit
-  require(H5Fis_hdf5(path.c_str()) > 0, where + "not an HDF5 file (or truncated before its superblock)");
+  const bool sealed = check_model_path(path, where);
   try {
-    Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-            "cannot open the file (truncated or damaged)");
-    if (H5Lexists(file.get(), "format", H5P_DEFAULT) <= 0 && is_snapshot_file(path)) {
-      throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
-                      "--snapshots`)"};
-    }
-    Reader r(file.get());
-    std::string format;
-    r.str("format", format);
-    if (format != kReducedModelFormatName) throw H5Failure{"not a contactrb reduced model (format '" + format + "')"};
+    Handle file = open_model_file(path);
+    check_header(file.get(), path, sealed);
     rb::ReducedModel m;
-    r.integer("format_version", m.format_version);
-    if (m.format_version != rb::kReducedModelFormatVersion) {
-      throw H5Failure{"format version " + std::to_string(m.format_version) + ", this build reads version " +
-                      std::to_string(rb::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)"};
-    }
-    if (!is_complete(file.get(), "complete")) throw H5Failure{"incomplete file (the write was interrupted)"};
-    visit(r, m);
-    const std::uint64_t stored = read_u64(file.get(), "checksum");
-    if (stored != r.checksum().value()) throw H5Failure{"checksum mismatch: the file was modified or damaged"};
+    m.format_version = rb::kReducedModelFormatVersion;
+    FieldChecksum sum;
+    hdf5::FieldReader r(sum);
+    visit(r, Loc{file.get(), ""}, m);
+    const auto stored =
+        hdf5::read_number_attribute<std::uint64_t>(file.get(), "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
+    if (stored != sum.value()) throw H5Failure{"checksum mismatch: the file was modified or damaged"};
     return m;
   } catch (const H5Failure& e) {
     throw Error(where + e.what);
@@ -498,9 +425,9 @@ rb::ReducedModel read_reduced_model_file(const std::string& path) {
 bool has_reconstruction(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  check_model_path(path, where);
+  (void)check_model_path(path, where);
   try {
-    Id file = open_model_file(path);
+    Handle file = open_model_file(path);
     return H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) > 0;
   } catch (const H5Failure& e) {
     throw Error(where + e.what);
@@ -510,36 +437,45 @@ bool has_reconstruction(const std::string& path) {
 rb::ReducedReconstruction read_reconstruction(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
-  check_model_path(path, where);
+  const bool sealed = check_model_path(path, where);
   try {
-    Id file = open_model_file(path);
+    Handle file = open_model_file(path);
+    check_header(file.get(), path, sealed);
     if (H5Lexists(file.get(), kReconstructionGroup, H5P_DEFAULT) <= 0) {
       throw H5Failure{"no reconstruction data (a model written without them; rerun `contactrb offline` to get "
                       "them)"};
     }
-    const std::string g = std::string(kReconstructionGroup) + "/";
-    if (!is_complete(file.get(), g + "complete")) {
+    Handle g = hdf5::open_group(file.get(), kReconstructionGroup);
+    const auto attribute = [&](const char* name) {
+      return hdf5::read_number_attribute<int>(g.get(), name, H5T_NATIVE_INT, H5T_INTEGER);
+    };
+    if (H5Aexists(g.get(), "complete") <= 0 || attribute("complete") != 1) {
       throw H5Failure{"incomplete reconstruction data (the write was interrupted)"};
     }
-    Reader r(file.get());
-    int version = 0;
-    r.integer(g + "format_version", version);
+    const int version = attribute("format_version");
     if (version != kReconstructionFormatVersion) {
       throw H5Failure{"reconstruction format version " + std::to_string(version) + ", this build reads version " +
                       std::to_string(kReconstructionFormatVersion)};
     }
+    const int has_mesh = attribute("has_mesh");
+    if (has_mesh != 0 && has_mesh != 1) throw H5Failure{"/reconstruction has_mesh is neither 0 nor 1"};
     rb::ReducedReconstruction rec;
-    visit_reconstruction(r, rec);
-    const std::uint64_t stored = read_u64(file.get(), g + "checksum");
-    if (stored != r.checksum().value()) {
-      throw H5Failure{"reconstruction checksum mismatch: the file was modified or damaged"};
-    }
+    FieldChecksum sum;
+    hdf5::FieldReader r(sum);
+    visit_reconstruction(r, Loc{file.get(), ""}, rec, has_mesh == 1);
+    const auto stored = hdf5::read_number_attribute<std::uint64_t>(g.get(), "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
+    if (stored != sum.value()) throw H5Failure{"reconstruction checksum mismatch: the file was modified or damaged"};
     // Sizes only (the model-dependent checks are rb::check_reconstruction's).
     require(rec.num_dofs > 0 && rec.Theta.rows() == static_cast<Eigen::Index>(rec.free_dofs.size()) &&
                 rec.Xi.rows() == static_cast<Eigen::Index>(rec.kept_rows.size()) &&
                 rec.lift.size() == rec.thetas.lift.size(),
             "reconstruction data with inconsistent array sizes");
     for (const Eigen::VectorXd& l : rec.lift) require(l.size() == rec.num_dofs, "reconstruction lift of the wrong size");
+    if (has_mesh == 1) {
+      mesh::validate(rec.mesh);  // indices, orientation, bodies, boundary edges: before any use
+      require(rec.mesh.num_dofs() == rec.num_dofs, "the stored mesh has " + std::to_string(rec.mesh.num_dofs()) +
+                                                       " DOFs, the reconstruction data " + std::to_string(rec.num_dofs));
+    }
     return rec;
   } catch (const H5Failure& e) {
     throw Error(where + e.what);

@@ -1,20 +1,23 @@
 #pragma once
 // Reduced model files (HDF5): the whole online state of a rb::ReducedModel in one file
-// (rbOOmit: one file serves every N below the maxima). Every field is one dataset of the root
-// group (strings as bytes, scalars as one-element arrays, lists of arrays as name/0, name/1, ...),
-// followed by an FNV-1a 64-bit checksum over every field in a fixed order and the dataset
-// `complete`, written last. Writing goes to a temporary file renamed over the target.
+// (rbOOmit: one file serves every N below the maxima). Self-describing layout
+// (docs/file-formats.md): groups /meta, /parameters, /theta, /primal, /dual, /eim/kappa,
+// /eim/gamma, /surface, /estimate; scalars and strings (variable-length UTF-8) as group
+// attributes; every array a dataset of its documented shape (a rows x cols matrix is stored
+// rows x cols) with the attributes `shape_meaning` and `units`. The root attributes `format`,
+// `format_version`, `checksum` (FNV-1a over every field, io/field_checksum.hpp) and `complete`
+// (written last). Writing goes to a temporary file renamed over the target.
 //
 // Layering: io serializes the rb record (STYLE.md 3: online objects are serialized by io/);
 // only the plain struct is used, no rb function (rb links io, not the other way round). The
 // semantic check of the loaded arrays is rb::check_model, which OnlineSolver runs.
 // Not stored: the parameter's named sets (ParameterSpec::sets; not needed online).
 //
-// Optional group "reconstruction" (rb::ReducedReconstruction: the HF-size basis, lift and dual
-// basis that map a reduced solution back to the HF mesh). It has its own format version,
-// FNV-1a checksum and `complete` mark, inside the group. read_reduced_model_file never opens
-// it (the online model holds nothing of HF size); files without it (written before it
-// existed, or by the model-only overload) stay valid model files of the same format version.
+// Optional group /reconstruction (rb::ReducedReconstruction: the HF-size basis, lift and dual
+// basis that map a reduced solution back to the HF mesh) and /mesh (its reference mesh, so
+// that no .msh file is needed). They have their own format version, checksum and `complete`
+// mark (attributes of /reconstruction). read_reduced_model_file never opens them (the online
+// model holds nothing of HF size); files without them (the model-only overload) stay valid.
 #include <string>
 
 #include "contactrb/online/reconstruction.hpp"
@@ -35,7 +38,7 @@ void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedRe
 // checksum mismatch.
 rb::ReducedModel read_reduced_model_file(const std::string& path);
 
-inline constexpr int kReconstructionFormatVersion = 1;
+inline constexpr int kReconstructionFormatVersion = 2;  // 2: the layout of model format 5, /mesh
 
 // Whether the model file holds the group "reconstruction". Throws contactrb::Error naming
 // `path` for a missing file or a file that is not HDF5 (same messages as the reader).

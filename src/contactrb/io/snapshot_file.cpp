@@ -15,11 +15,14 @@
 #include <utility>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/file_seal.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/version.hpp"
 #include "contactrb/io/field_checksum.hpp"
 #include "contactrb/io/hdf5_handle.hpp"
+#include "contactrb/io/hdf5_visitor.hpp"
+#include "contactrb/io/mesh_group.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 
 namespace contactrb::io {
@@ -51,29 +54,22 @@ constexpr int kMaxParameters = 1000;
 constexpr char kDouble = 'd';
 constexpr char kInt = 'i';
 
-// A group (or the root) and its path, the prefix of the checksum names of its fields.
-struct Loc {
-  hid_t id;
-  std::string path;  // "" for the root, "/case", "/snapshots/000003", ...
-  std::string field(const std::string& name) const { return path + "/" + name; }
-};
+// A group (or the root) and its path ("" for the root, "/case", "/snapshots/000003", ...), the
+// prefix of the checksum names of its fields.
+using hdf5::Loc;
+using hdf5::Description;
 
 // ---------------------------------------------------------------------------- writing
 
 class FileWriter {
  public:
-  Handle create_group(const Loc& loc, const std::string& name) {
-    return {H5Gcreate2(loc.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-            "cannot create group '" + loc.field(name) + "'"};
+  Handle create_group(const Loc& loc, const std::string& name, const std::string& description) {
+    return hdf5::create_group(loc.id, name, description);
   }
 
+  // Strings: variable-length UTF-8 (h5py reads them as str).
   void attribute(const Loc& loc, const std::string& name, const std::string& value) {
-    Handle type = string_type(value.size());
-    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
-    Handle attr(H5Acreate2(loc.id, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                "cannot create attribute '" + name + "'");
-    const std::string buffer = value.empty() ? std::string(1, '\0') : value;
-    check(H5Awrite(attr.get(), type.get(), buffer.data()), "cannot write attribute '" + name + "'");
+    hdf5::write_string_attribute(loc.id, name, value);
     sum_.add(loc.field(name), kString, {value.size()}, value.data(), value.size());
   }
   void attribute(const Loc& loc, const std::string& name, double value) {
@@ -85,38 +81,32 @@ class FileWriter {
     sum_.add(loc.field(name), kInt, {1}, &value, sizeof value);
   }
 
-  void vector(const Loc& loc, const std::string& name, const Eigen::VectorXd& v) {
+  void vector(const Loc& loc, const std::string& name, const Eigen::VectorXd& v, const Description& d) {
     const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
-    dataset(loc, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+    hdf5::write_dataset(loc.id, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), kDouble, {dims[0]}, v.data(), static_cast<std::size_t>(v.size()) * sizeof(double));
   }
-  void vector(const Loc& loc, const std::string& name, const std::vector<int>& v) {
+  void vector(const Loc& loc, const std::string& name, const std::vector<int>& v, const Description& d) {
     const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
-    dataset(loc, name, v.data(), 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT);
+    hdf5::write_dataset(loc.id, name, v.data(), 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT, d);
     sum_.add(loc.field(name), kInt, {dims[0]}, v.data(), v.size() * sizeof(int));
   }
-  void matrix(const Loc& loc, const std::string& name, const Eigen::MatrixXd& m) {
+  void matrix(const Loc& loc, const std::string& name, const Eigen::MatrixXd& m, const Description& d) {
     const RowMajorMatrix row_major = m;  // HDF5 stores C order
     const hsize_t dims[2] = {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())};
-    dataset(loc, name, row_major.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+    hdf5::write_dataset(loc.id, name, row_major.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), kDouble, {dims[0], dims[1]}, row_major.data(),
              static_cast<std::size_t>(m.size()) * sizeof(double));
   }
   // Arrays a failed solve may lack are written only when present.
-  void optional(const Loc& loc, const std::string& name, const Eigen::VectorXd& v) {
-    if (v.size() > 0) vector(loc, name, v);
+  void optional(const Loc& loc, const std::string& name, const Eigen::VectorXd& v, const Description& d) {
+    if (v.size() > 0) vector(loc, name, v, d);
   }
 
   std::uint64_t checksum() const { return sum_.value(); }
+  FieldChecksum& sum() { return sum_; }  // for the shared groups (/mesh)
 
  private:
-  static Handle string_type(std::size_t length) {
-    Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
-    check(H5Tset_size(type.get(), length == 0 ? 1 : length), "cannot size a string type");
-    check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "cannot set string padding");
-    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot set string encoding");
-    return type;
-  }
   template <typename T>
   static void number_attribute(const Loc& loc, const std::string& name, T value, hid_t file_type, hid_t mem_type) {
     Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
@@ -124,16 +114,6 @@ class FileWriter {
                 "cannot create attribute '" + name + "'");
     check(H5Awrite(attr.get(), mem_type, &value), "cannot write attribute '" + name + "'");
   }
-  static void dataset(const Loc& loc, const std::string& name, const void* data, int rank, const hsize_t* dims,
-                      hid_t file_type, hid_t mem_type) {
-    Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose,
-                 "cannot create the dataspace of '" + loc.field(name) + "'");
-    Handle set(H5Dcreate2(loc.id, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-               H5Dclose, "cannot create dataset '" + loc.field(name) + "'");
-    check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-          "cannot write dataset '" + loc.field(name) + "'");
-  }
-
   FieldChecksum sum_;
 };
 
@@ -143,14 +123,18 @@ std::string snapshot_group_name(std::size_t i) {
   return buffer;
 }
 
-// Every field but `complete` and `checksum` (written by the caller, last).
+// Every field but `complete` and `checksum` (written by the caller, last). Layout and the
+// meaning of every field: docs/file-formats.md.
 void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
   const Loc root{file, ""};
   w.attribute(root, "format", std::string(kSnapshotFormatName));
   w.attribute(root, "format_version", kSnapshotFormatVersion);
   w.attribute(root, "contactrb_version", std::string(kVersion));
+  hdf5::write_string_attribute(file, "description",
+                               "contactrb snapshot set (HF solutions over a parameter set); layout: docs/file-formats.md");
   {
-    Handle g = w.create_group(root, "case");
+    Handle g = w.create_group(root, "case", "the case the snapshots solve: name, kind (builtin | toml), spec (its name or "
+                                            "TOML text), mesh refinement level, constraint discretization");
     const Loc c{g.get(), "/case"};
     w.attribute(c, "name", set.case_name);
     w.attribute(c, "kind", set.case_kind);
@@ -159,14 +143,14 @@ void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
     w.attribute(c, "constraint", set.constraint);
   }
   {
-    Handle g = w.create_group(root, "parameter");
+    Handle g = w.create_group(root, "parameter", "the parameters (one subgroup each, 000000, ...) and the parameter set");
     const Loc p{g.get(), "/parameter"};
     w.attribute(p, "set", set.set_name);
     w.attribute(p, "count", static_cast<int>(set.parameters.size()));
     for (std::size_t k = 0; k < set.parameters.size(); ++k) {
       const SnapshotParameter& q = set.parameters[k];
       const std::string name = snapshot_group_name(k);
-      Handle pg = w.create_group(p, name);
+      Handle pg = w.create_group(p, name, "parameter mu_k: name, kind, units, domain [min, max]");
       const Loc one{pg.get(), p.field(name)};
       w.attribute(one, "name", q.name);
       w.attribute(one, "kind", q.kind);
@@ -177,25 +161,38 @@ void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
     // P x p, one row per snapshot (the snapshot groups hold the same points).
     Eigen::MatrixXd mu(static_cast<Eigen::Index>(set.snapshots.size()), static_cast<Eigen::Index>(set.parameters.size()));
     for (std::size_t i = 0; i < set.snapshots.size(); ++i) mu.row(static_cast<Eigen::Index>(i)) = set.snapshots[i].mu.transpose();
-    w.matrix(p, "values", mu);
+    w.matrix(p, "values", mu, {"P x p: row i is the parameter point mu of snapshot i", "column k: the units of parameter k"});
   }
   {
-    Handle g = w.create_group(root, "settings");
+    Handle g = w.create_group(root, "settings", "the Kacanov settings of the HF solves");
     const Loc s{g.get(), "/settings"};
     w.attribute(s, "kacanov_alpha", set.kacanov_alpha);
     w.attribute(s, "kacanov_tolerance", set.kacanov_tolerance);
     w.attribute(s, "kacanov_max_iterations", set.kacanov_max_iterations);
   }
   {
-    Handle g = w.create_group(root, "discretization");
+    Handle g = w.create_group(root, "discretization",
+                              "the DOF layout shared by every snapshot: DOF 2 i + c is component c of mesh node i");
     const Loc d{g.get(), "/discretization"};
     w.attribute(d, "num_dofs", set.num_dofs);
-    w.vector(d, "free_dofs", set.free_dofs);
-    w.vector(d, "contact_dofs", set.contact_dofs);
-    w.vector(d, "slave", set.slave);
-    w.vector(d, "master", set.master);
+    w.vector(d, "free_dofs", set.free_dofs, {"n_free: the global DOF of each entry of u0", "index (0-based)"});
+    w.vector(d, "contact_dofs", set.contact_dofs,
+             {"n_c: the global DOF of each column of K (both components of every slave and master node, ascending)",
+              "index (0-based)"});
+    w.vector(d, "slave", set.slave, {"S: the slave chain, mesh node indices in order", "index (0-based)"});
+    w.vector(d, "master", set.master,
+             {"the master chain, mesh node indices in order (closed: the first repeated at the end)", "index (0-based)"});
   }
-  Handle snaps_group = w.create_group(root, "snapshots");
+  // The reference mesh (format 4): no .msh file is needed to use the snapshots.
+  w.attribute(root, "has_mesh", set.mesh.nodes.empty() ? 0 : 1);
+  if (!set.mesh.nodes.empty()) {
+    hdf5::FieldWriter mesh_writer(w.sum());
+    mesh::Mesh copy = set.mesh;  // the visitor takes references
+    hdf5::visit_mesh(mesh_writer, root, copy);
+  }
+  Handle snaps_group = w.create_group(root, "snapshots",
+                                      "one subgroup per snapshot (000000, ...) in the order of the set, and the "
+                                      "per-snapshot tables");
   const Loc snaps{snaps_group.get(), "/snapshots"};
   const std::size_t n = set.snapshots.size();
   w.attribute(snaps, "count", static_cast<int>(n));
@@ -208,23 +205,26 @@ void write_contents(hid_t file, const SnapshotSet& set, FileWriter& w) {
     time(static_cast<Eigen::Index>(i)) = s.time_s;
     cpu_time(static_cast<Eigen::Index>(i)) = s.cpu_time_s;
     const std::string name = snapshot_group_name(i);
-    Handle g = w.create_group(snaps, name);
+    Handle g = w.create_group(snaps, name,
+                              "one HF solve: mu, status, message; the arrays (a failed solve may lack them)");
     const Loc one{g.get(), snaps.field(name)};
-    w.vector(one, "mu", s.mu);
+    w.vector(one, "mu", s.mu, {"p: the parameter point", "entry k: the units of parameter k"});
     w.attribute(one, "status", s.status);
     w.attribute(one, "message", s.message);
-    w.optional(one, "u0", s.u0);
-    w.optional(one, "u", s.u);
-    w.optional(one, "lambda", s.lambda);
-    if (s.K.size() > 0) w.matrix(one, "K", s.K);
-    w.optional(one, "g", s.g);
-    w.optional(one, "weight", s.weight);
-    w.optional(one, "gap_pointwise", s.gap_pointwise);
+    w.optional(one, "u0", s.u0, {"n_free: the displacement on the free DOFs (/discretization/free_dofs)", "length"});
+    w.optional(one, "u", s.u, {"num_dofs: the total displacement u_D + u_0 on every DOF", "length"});
+    w.optional(one, "lambda", s.lambda, {"R: the contact pressure of each constraint row", "pressure"});
+    if (s.K.size() > 0) {
+      w.matrix(one, "K", s.K, {"R x n_c: the contact rows K(w) on the contact DOFs (/discretization/contact_dofs)", "1"});
+    }
+    w.optional(one, "g", s.g, {"R: the gap rows g(w)", "length"});
+    w.optional(one, "weight", s.weight, {"R: |I_r|, the length each row integrates", "length"});
+    w.optional(one, "gap_pointwise", s.gap_pointwise, {"S: the pointwise gap of each slave node", "length"});
   }
-  w.vector(snaps, "converged", converged);
-  w.vector(snaps, "iterations", iterations);
-  w.vector(snaps, "time_s", time);
-  w.vector(snaps, "cpu_time_s", cpu_time);
+  w.vector(snaps, "converged", converged, {"P: 1 when snapshot i converged, 0 otherwise", "1"});
+  w.vector(snaps, "iterations", iterations, {"P: Kacanov iterations of snapshot i", "count"});
+  w.vector(snaps, "time_s", time, {"P: wall-clock time of snapshot i (construction, setup, solve)", "s"});
+  w.vector(snaps, "cpu_time_s", cpu_time, {"P: CPU time of the thread that solved snapshot i", "s"});
 }
 
 void write_checksum(hid_t file, std::uint64_t value) {
@@ -236,61 +236,17 @@ void write_checksum(hid_t file, std::uint64_t value) {
 
 // ---------------------------------------------------------------------------- reading
 
-Handle open_attribute(hid_t loc, const std::string& name) {
-  if (H5Aexists(loc, name.c_str()) <= 0) throw H5Failure{"missing attribute '" + name + "'"};
-  return {H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + name + "'"};
-}
+using hdf5::read_number_attribute;
+using hdf5::read_string_attribute;  // variable-length (format 4) or fixed-length (older `format`)
 
-// A scalar attribute: a dataspace of more than one element would overflow the one value read.
-void check_scalar(hid_t attr, const std::string& name) {
-  Handle space(H5Aget_space(attr), H5Sclose, "cannot read the shape of attribute '" + name + "'");
-  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw H5Failure{"attribute '" + name + "' is not a scalar"};
-}
-
-std::string read_string_attribute(hid_t loc, const std::string& name) {
-  Handle attr = open_attribute(loc, name);
-  check_scalar(attr.get(), name);
-  Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
-  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
-    throw H5Failure{"attribute '" + name + "' is not a fixed-length string"};
-  }
-  // Read with the stored type itself: any padding and character set, no conversion.
-  const std::size_t size = H5Tget_size(type.get());
-  std::string value(size, '\0');
-  check(H5Aread(attr.get(), type.get(), value.data()), "cannot read attribute '" + name + "'");
-  value.resize(value.find_last_not_of('\0') == std::string::npos ? 0 : value.find_last_not_of('\0') + 1);
-  return value;
-}
-
-template <typename T>
-T read_number_attribute(hid_t loc, const std::string& name, hid_t mem_type, H5T_class_t expected) {
-  Handle attr = open_attribute(loc, name);
-  check_scalar(attr.get(), name);
-  Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
-  if (H5Tget_class(type.get()) != expected) throw H5Failure{"attribute '" + name + "' has the wrong type"};
-  T value{};
-  check(H5Aread(attr.get(), mem_type, &value), "cannot read attribute '" + name + "'");
-  return value;
-}
 int read_int_attribute(hid_t loc, const std::string& name) {
   return read_number_attribute<int>(loc, name, H5T_NATIVE_INT, H5T_INTEGER);
 }
 
-// Opens dataset `name`, checks its rank and type class, returns its dimensions.
+// Opens dataset `name`, checks its rank and type class, returns its dimensions (bounded by
+// the file's size: 4 bytes, the smallest element we read).
 Handle open_dataset(hid_t loc, const std::string& name, int rank, H5T_class_t expected, hsize_t* dims) {
-  if (!exists(loc, name)) throw H5Failure{"missing dataset '" + name + "'"};
-  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset '" + name + "'");
-  Handle space(H5Dget_space(set.get()), H5Sclose, "cannot read the shape of dataset '" + name + "'");
-  if (H5Sget_simple_extent_ndims(space.get()) != rank) {
-    throw H5Failure{"dataset '" + name + "' has rank " + std::to_string(H5Sget_simple_extent_ndims(space.get())) +
-                    ", expected " + std::to_string(rank)};
-  }
-  check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), "cannot read the shape of dataset '" + name + "'");
-  Handle type(H5Dget_type(set.get()), H5Tclose, "cannot read the type of dataset '" + name + "'");
-  if (H5Tget_class(type.get()) != expected) throw H5Failure{"dataset '" + name + "' has the wrong type"};
-  // Before the caller allocates dims' worth of memory (4 bytes: the smallest element we read).
-  hdf5::checked_element_count(set.get(), dims, rank, 4, name);
-  return set;
+  return hdf5::open_dataset(loc, name, rank, expected, dims, 4);
 }
 
 // The mirror of FileWriter: every value read is added to the checksum under the same name.
@@ -356,6 +312,7 @@ class FileReader {
   }
 
   std::uint64_t checksum() const { return sum_.value(); }
+  FieldChecksum& sum() { return sum_; }  // for the shared groups (/mesh)
 
  private:
   FieldChecksum sum_;
@@ -421,6 +378,13 @@ SnapshotSet read_contents(hid_t file, FileReader& r, std::string& inconsistency)
     set.slave = r.int_vector(d, "slave");
     set.master = r.int_vector(d, "master");
   }
+  const int has_mesh = r.integer(root, "has_mesh");
+  if (has_mesh == 1) {
+    hdf5::FieldReader mesh_reader(r.sum());
+    hdf5::visit_mesh(mesh_reader, root, set.mesh);
+  } else if (has_mesh != 0) {
+    throw H5Failure{"the root attribute has_mesh is " + std::to_string(has_mesh) + " (expected 0 or 1)"};
+  }
   Handle snaps_group = r.open_group(root, "snapshots");
   const Loc snaps{snaps_group.get(), "/snapshots"};
   const int count = r.integer(snaps, "count");
@@ -482,8 +446,8 @@ std::uint64_t read_checksum(hid_t file) {
   return read_number_attribute<std::uint64_t>(file, "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
 }
 
-// The `format` of a reduced model file is a dataset of bytes (io/reduced_model_file.cpp),
-// not an attribute: recognized here to say what the file is.
+// The `format` of a reduced model file before model format 5 is a dataset of bytes, not an
+// attribute: recognized here to say what the file is.
 bool has_model_format(hid_t file) {
   if (!exists(file, "format")) return false;
   hsize_t dims[1] = {0};
@@ -627,6 +591,19 @@ void check_snapshot_set(const SnapshotSet& set) {
             " slave and master nodes in ascending order");
   }
 
+  // The stored reference mesh (format 4): valid, and the mesh of these DOFs.
+  if (!set.mesh.nodes.empty()) {
+    try {
+      mesh::validate(set.mesh);
+    } catch (const Error& e) {
+      invalid(std::string("/mesh: ") + e.what());
+    }
+    if (set.mesh.num_dofs() != set.num_dofs) {
+      invalid("/mesh has " + std::to_string(set.mesh.num_nodes()) + " nodes (" + std::to_string(set.mesh.num_dofs()) +
+              " DOFs), /discretization num_dofs = " + std::to_string(set.num_dofs));
+    }
+  }
+
   // Snapshots.
   const auto num_free = static_cast<Eigen::Index>(set.free_dofs.size());
   const auto nc = static_cast<Eigen::Index>(set.contact_dofs.size());
@@ -687,7 +664,8 @@ bool is_snapshot_file(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec) || H5Fis_hdf5(path.c_str()) <= 0) return false;
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open");
-    return H5Aexists(file.get(), "format") > 0 && read_string_attribute(file.get(), "format") == kSnapshotFormatName;
+    return H5Aexists(file.get(), "format") > 0 &&
+           read_string_attribute(file.get(), "format", check_seal(path) == SealState::Valid) == kSnapshotFormatName;
   } catch (const H5Failure&) {
     return false;
   }
@@ -703,7 +681,8 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
   const QuietHdf5 quiet;
   const std::string tmp = temporary_name(path);
   try {
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    const Handle fcpl = hdf5::sealed_file_properties();
+    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, fcpl.get(), H5P_DEFAULT), H5Fclose,
                 "cannot create the file (is the directory there and writable?)");
     FileWriter w;
     write_contents(file.get(), set, w);
@@ -721,8 +700,11 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path) {
     throw Error("cannot write snapshot file '" + path + "': " + f.what);
   }
   try {
+    seal_file(tmp);  // the hash of every byte, checked before HDF5 parses the file
     commit_temporary(tmp, path);
   } catch (const Error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
     throw Error("cannot write snapshot file '" + path + "': " + e.what());
   }
 }
@@ -734,6 +716,12 @@ SnapshotSet read_snapshot_file(const std::string& path) {
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 == 0) throw Error(name + " is not an HDF5 file (expected a file written by `contactrb snapshots`)");
   if (is_hdf5 < 0) throw Error(name + " cannot be read (" + hdf5::reason() + ")");
+  // Before HDF5 parses anything: a sealed file whose bytes changed (common/file_seal.hpp).
+  const SealState seal = check_seal(path);
+  if (seal == SealState::Mismatch) {
+    throw Error(name + " is truncated or damaged: checksum mismatch: its bytes changed after it was written");
+  }
+  const bool sealed = seal == SealState::Valid;
   try {
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create file access properties");
     check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "cannot set the close degree");
@@ -752,9 +740,14 @@ SnapshotSet read_snapshot_file(const std::string& path) {
     }
     std::string format;
     try {
-      format = read_string_attribute(file.get(), "format");
-    } catch (const H5Failure&) {
+      format = read_string_attribute(file.get(), "format", sealed);
+    } catch (const H5Failure& f) {
+      if (!sealed) throw Error(name + " is damaged or not written by contactrb (" + f.what + ")");
       format = "(unreadable)";
+    }
+    if (format == kReducedModelFormatName) {
+      throw Error(name + " is a contactrb reduced model file, not a snapshot file (a model is read by `contactrb "
+                  "online` and `contactrb evaluate`)");
     }
     if (format != kSnapshotFormatName) {
       throw Error(name + " is an HDF5 file of another format ('" + format + "', expected '" + kSnapshotFormatName + "')");
@@ -767,8 +760,10 @@ SnapshotSet read_snapshot_file(const std::string& path) {
     }
     if (version != kSnapshotFormatVersion) {
       throw Error(name + " has snapshot format version " + std::to_string(version) + "; this contactrb reads version " +
-                  std::to_string(kSnapshotFormatVersion));
+                  std::to_string(kSnapshotFormatVersion) + " (generate the snapshots again with `contactrb snapshots`)");
     }
+    // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
+    if (!sealed) throw Error(name + " is damaged: its seal (the first bytes of the file) is missing");
     // `complete` = 1 is written last; any other value (0, a damaged one) is not a finished write.
     if (H5Aexists(file.get(), "complete") <= 0 || read_int_attribute(file.get(), "complete") != 1) {
       throw Error(name + " is incomplete (the run that wrote it was interrupted): generate it again");

@@ -1,8 +1,7 @@
 #pragma once
 // Snapshot files (HDF5): the high-fidelity solutions of one case over one parameter set,
 // with everything the offline stage needs (POD of u_0, the dual cone of lambda, the EIM of
-// the gap and of the contact map on the contact-surface DOFs). Layout: docs/user-guide.md,
-// "snapshots".
+// the gap and of the contact map on the contact-surface DOFs). Layout: docs/file-formats.md.
 //
 // Writing goes to a temporary file next to the target that is renamed over it at the end;
 // the root attribute `complete` is written last. A reader therefore never takes an
@@ -11,13 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/mesh/mesh.hpp"
+
 namespace contactrb::io {
 
 inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
 // Version 2: a checksum over every field and every index and value checked on reading.
 // Version 3: p parameters (a point mu in R^p per snapshot; each parameter's name, kind, units
-// and domain). Older versions are refused: generate them again.
-inline constexpr int kSnapshotFormatVersion = 3;
+// and domain). Version 4: the self-describing layout (strings as variable-length UTF-8
+// attributes, `shape_meaning` and `units` on every dataset) and the reference mesh in /mesh
+// (docs/file-formats.md). Older versions are refused: generate them again.
+inline constexpr int kSnapshotFormatVersion = 4;
 
 // What a snapshot file records of each parameter (cases::ParameterSpec, without the case).
 struct SnapshotParameter {
@@ -76,6 +79,9 @@ struct SnapshotSet {
                                   // every slave and master node, ascending)
   std::vector<int> slave;         // slave chain (mesh node indices)
   std::vector<int> master;        // master chain (closed: first node repeated at the end)
+  // The reference mesh of these DOFs (level `level`), stored in /mesh so that no .msh file is
+  // needed later; empty when unknown (a set built by hand, or no solve got a discretization).
+  mesh::Mesh mesh;
 
   std::vector<Snapshot> snapshots;
 

@@ -210,7 +210,8 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
 
   // --- Assembly of the affine terms on the reference mesh (offline only).
   auto t0 = Clock::now();
-  const mesh::Mesh reference = cases::reference_mesh(spec, set.level);
+  // The set's own mesh when it records one (no .msh file needed), else the case's.
+  const mesh::Mesh reference = set.mesh.nodes.empty() ? cases::reference_mesh(spec, set.level) : set.mesh;
   require(reference.num_dofs() == set.num_dofs, "offline: the case's reference mesh has " +
                                                     std::to_string(reference.num_dofs()) + " DOFs, the snapshots " +
                                                     std::to_string(set.num_dofs));
@@ -486,6 +487,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   rec.kept_rows = kept;
   rec.num_constraints = R_hf;
   rec.Xi = Xi;
+  rec.mesh = reference;
   rep.total_s = seconds_since(t_total);
   return out;
 }

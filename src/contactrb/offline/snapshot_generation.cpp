@@ -223,6 +223,7 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   r.make_problem = [spec, reference, constraint](const cases::Mu& mu) {
     return cases::make_problem(spec, *reference, mu, constraint);
   };
+  r.reference = reference;
   return r;
 }
 
@@ -357,6 +358,7 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
     set.slave = first->slave;
     set.master = first->master;
     set.constraint = first->constraint;
+    if (request.reference && request.reference->num_dofs() == set.num_dofs) set.mesh = *request.reference;
   }
   set.snapshots = std::move(snapshots);
   return set;

@@ -10,6 +10,7 @@
 // recorded with its status and message, never dropped.
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct SnapshotRequest {
   std::vector<cases::Mu> mu;  // the parameter points, in the order of the output
   ProblemFactory make_problem;
   hf::HFSettings settings;
+  // The reference mesh the factory maps, recorded in the set (SnapshotSet::mesh, /mesh of the
+  // file); null: not recorded.
+  std::shared_ptr<const mesh::Mesh> reference;
 };
 
 // A request for a case specification over one of its named sets (or over `values` when

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contactrb/cases/theta.hpp"
+#include "contactrb/mesh/mesh.hpp"
 #include "contactrb/online/reduced_model.hpp"
 
 namespace contactrb::rb {
@@ -20,6 +21,9 @@ struct ReducedReconstruction {
   std::vector<int> kept_rows;
   int num_constraints = 0;
   Eigen::MatrixXd Xi;                 // R_kept x R_max
+  // The reference mesh the HF DOFs live on (the snapshot set's), stored in the model file so
+  // that no .msh file is needed online; empty when unknown (the case's mesh is regenerated).
+  mesh::Mesh mesh;
 };
 
 // u = u_D(mu) + Theta[:, :N] u_hat on the HF DOFs (num_dofs), N = u_hat.size().

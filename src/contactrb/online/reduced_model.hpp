@@ -23,8 +23,9 @@
 namespace contactrb::rb {
 
 // 3: N_supremizers, tolerance modes, the error estimate's arrays; 4: p parameters (the list, the
-// training points p x P, theta monomials with one factor per parameter).
-inline constexpr int kReducedModelFormatVersion = 4;
+// training points p x P, theta monomials with one factor per parameter); 5: the self-describing
+// layout (groups, attributes, matrices in their documented shape, docs/file-formats.md).
+inline constexpr int kReducedModelFormatVersion = 5;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so

@@ -285,7 +285,9 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
   }
 
   // HF solves and errors, in parallel over mu.
-  const mesh::Mesh reference = cases::reference_mesh(spec, model.level);
+  // The mesh stored with the reconstruction (no .msh file needed), else the case's.
+  const mesh::Mesh reference =
+      reconstruction.mesh.nodes.empty() ? cases::reference_mesh(spec, model.level) : reconstruction.mesh;
   require(reference.num_dofs() == reconstruction.num_dofs,
           "evaluation: the mesh of case '" + spec.name + "' at level " + std::to_string(model.level) + " has " +
               std::to_string(reference.num_dofs()) + " DOFs, the model's reconstruction data " +

@@ -14,7 +14,8 @@ namespace contactrb::rb {
 
 mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel& model,
                                 const ReducedReconstruction& reconstruction) {
-  mesh::Mesh reference = cases::reference_mesh(spec, model.level);
+  // The mesh stored in the model file (format 5) when there is one: no .msh file needed.
+  mesh::Mesh reference = reconstruction.mesh.nodes.empty() ? cases::reference_mesh(spec, model.level) : reconstruction.mesh;
   require(reference.num_dofs() == reconstruction.num_dofs,
           "the mesh of case '" + spec.name + "' at level " + std::to_string(model.level) + " has " +
               std::to_string(reference.num_nodes()) + " nodes (" + std::to_string(reference.num_dofs()) +

@@ -2,8 +2,9 @@
 // Solutions as files for ParaView (docs/user-guide.md, "VTU"): the fields of a displacement u
 // and multipliers lambda on Omega(mu), written by `contactrb solve` (the HF solution) and
 // `contactrb online --out` (the reconstructed reduced solution). For the online case the
-// reference mesh is regenerated from the case the model records (it is not stored in the model
-// file), mapped by h(mu), and checked against the reconstruction's DOF count.
+// reference mesh is the one stored in the model file (or, for a reconstruction without one, is
+// regenerated from the case the model records), mapped by h(mu), and checked against the
+// reconstruction's DOF count.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@
 
 namespace contactrb::rb {
 
-// cases::reference_mesh(spec, model.level). Throws contactrb::Error when its DOF count is not
+// reconstruction.mesh, or cases::reference_mesh(spec, model.level) when it is empty. Throws contactrb::Error when its DOF count is not
 // the reconstruction's (the case changed since the model was built, e.g. another Gmsh version
 // or an edited .msh file).
 mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel& model,
