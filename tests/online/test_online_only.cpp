@@ -215,4 +215,29 @@ TEST_F(OnlineOnly, CompactFormatsAreForBatchOnly) {
   EXPECT_TRUE(r.out.empty());
 }
 
+// The front hands everything but a plain `online` to contactrb-full: help, version, usage errors
+// and other commands print and exit as contactrb-full does (argv[0] aside, both named the same).
+TEST_F(OnlineOnly, FrontAndFullExecutableAgree) {
+  const std::string m = quote(model_);
+  for (const std::string& args : std::vector<std::string>{"--help", "--version", "online --help", "online --model " + m + " --mu 0.3 --bogus",
+                                 "online --model " + m, "online --model " + m + " --mu 0.3 --format xml",
+                                 "online --model " + m + " --mu 7", "cases", "nonsense"}) {
+    SCOPED_TRACE(args);
+    const std::string err_front = dir_->file("front.err"), err_full = dir_->file("full.err");
+    const Result front = run(CONTACTRB_CLI, args, err_front), full = run(CONTACTRB_FULL_CLI, args, err_full);
+    EXPECT_EQ(front.exit_code, full.exit_code);
+    std::ifstream ef(err_front), eu(err_full);
+    std::stringstream sf, su;
+    sf << ef.rdbuf();
+    su << eu.rdbuf();
+    // Usage lines name the program by argv[0]: compare with the paths replaced.
+    auto strip = [](std::string t, const std::string& exe) {
+      for (std::size_t at = t.find(exe); at != std::string::npos; at = t.find(exe)) t.replace(at, exe.size(), "EXE");
+      return t;
+    };
+    EXPECT_EQ(strip(front.out, CONTACTRB_CLI), strip(full.out, CONTACTRB_FULL_CLI));
+    EXPECT_EQ(strip(sf.str(), CONTACTRB_CLI), strip(su.str(), CONTACTRB_FULL_CLI));
+  }
+}
+
 }  // namespace
