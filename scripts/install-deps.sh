@@ -10,6 +10,7 @@ CONTACTRB_DEBIAN_PACKAGES=(
   nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib
+  python3-dev pybind11-dev python3-pytest  # the Python module (python/, docs/python.md) and its tests
   python3-paraview xvfb  # the ParaView test: pvpython renders a VTU under xvfb-run (tests/io/paraview_check.py)
 )
 
