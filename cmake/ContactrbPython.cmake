@@ -4,6 +4,12 @@
 # /usr/bin/python3) that imports numpy, so that a python3 without numpy earlier on PATH (pyenv) is
 # passed over for Debian's.
 set(CONTACTRB_PYTHON_FOUND OFF)
+if(CONTACTRB_SANITIZE)
+  # An ASan-instrumented extension cannot be loaded by an uninstrumented python3 (the ASan runtime
+  # must come first in the process).
+  message(STATUS "contactrb: Python module skipped in the sanitizer build")
+  return()
+endif()
 if(NOT Python3_EXECUTABLE)
   find_program(_contactrb_path_python3 NAMES python3 NO_CACHE)
   foreach(candidate IN ITEMS "${_contactrb_path_python3}" /usr/bin/python3)

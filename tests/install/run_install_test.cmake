@@ -75,7 +75,6 @@ if r.energy != float(energy):
     sys.exit(f"installed module: energy {r.energy!r}, the CLI's {energy}")
 print(f"python: energy {r.energy!r} = the CLI's")
 ]=])
-  file(REAL_PATH "${prefix}" real_prefix)
   run("installed python module"
       COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/${PYTHON_DIR}" "${PYTHON}" -c "${check}"
               "${prefix}/${PYTHON_DIR}" "${model}" "${MU}" "${cli_energy}"
