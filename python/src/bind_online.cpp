@@ -81,11 +81,18 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
                          const std::string& start) {
   const cases::Mu mu = mu_from_python(mu_in);
   const rb::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
-  rb::OnlineSolver& solver = m.online(online_sizes(N, R, Mk, Mg));
+  const rb::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
   rb::OnlineSolution s;
+  int n_sizes[4] = {0, 0, 0, 0};
   {
     py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(m.solver_mutex);
+    rb::OnlineSolver& solver = m.online(sizes);
     s = solver.solve(mu, settings);
+    n_sizes[0] = solver.N();
+    n_sizes[1] = solver.R();
+    n_sizes[2] = solver.Mk();
+    n_sizes[3] = solver.Mg();
   }
   OnlineResult r;
   r.mu = mu;
@@ -100,28 +107,34 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
   r.status = solve::to_string(s.status);
   r.message = s.message;
   r.converged = s.converged();
-  r.N = solver.N();
-  r.R = solver.R();
-  r.Mk = solver.Mk();
-  r.Mg = solver.Mg();
+  r.N = n_sizes[0];
+  r.R = n_sizes[1];
+  r.Mk = n_sizes[2];
+  r.Mg = n_sizes[3];
   return r;
 }
 
 py::dict model_solve_many(PyModel& m, const py::object& points, const std::optional<int>& N, const std::optional<int>& R,
                           const std::optional<int>& Mk, const std::optional<int>& Mg,
                           const std::optional<double>& alpha, const std::optional<double>& tol,
-                          const std::optional<int>& max_iterations, const std::string& start) {
+                          const std::optional<int>& max_iterations, const std::string& start, bool fields) {
   const Eigen::MatrixXd P = points_from_python(points, static_cast<int>(m.model.parameters.size()));
   const rb::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
-  rb::OnlineSolver& solver = m.online(online_sizes(N, R, Mk, Mg));
+  const rb::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
+  const rb::ReducedReconstruction* rec = fields ? &m.reconstruction_data() : nullptr;  // may read the file
   const Eigen::Index n = P.rows();
-  RowMatrix U(n, solver.N()), L(n, solver.R());
+  RowMatrix U, L, displacement;
   Eigen::VectorXd energy(n), force(n), estimate(n), time_s(n);
   Eigen::VectorXi iterations(n);
   Eigen::Matrix<std::int8_t, Eigen::Dynamic, 1> status(n);
   Eigen::Matrix<bool, Eigen::Dynamic, 1> converged(n);
   {
     py::gil_scoped_release release;  // no Python object is touched in the loop
+    const std::lock_guard<std::mutex> lock(m.solver_mutex);
+    rb::OnlineSolver& solver = m.online(sizes);
+    U.resize(n, solver.N());
+    L.resize(n, solver.R());
+    if (rec != nullptr) displacement.resize(n, rec->num_dofs);
     cases::Mu mu(P.cols());
     for (Eigen::Index i = 0; i < n; ++i) {
       mu = P.row(i).transpose();
@@ -140,6 +153,7 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
       iterations(i) = s.iterations;
       status(i) = static_cast<std::int8_t>(s.status);
       converged(i) = s.converged();
+      if (rec != nullptr) displacement.row(i) = rb::reconstruct_displacement(*rec, mu, s.u_hat).transpose();
     }
   }
   py::dict d;
@@ -153,6 +167,13 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
   d["status"] = status;
   d["converged"] = converged;
   d["time_s"] = time_s;
+  if (rec != nullptr) {
+    // (n, n_nodes, 2): DOF 2 i + c of row k is [k, i, c].
+    py::array_t<double> a({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(displacement.cols() / 2),
+                           static_cast<py::ssize_t>(2)});
+    std::copy(displacement.data(), displacement.data() + displacement.size(), a.mutable_data());
+    d["displacement"] = a;
+  }
   return d;
 }
 
@@ -197,6 +218,8 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
   std::vector<cases::Mu> mus;
   if (py::isinstance<py::str>(set)) {
     mus = spec.set(set.cast<std::string>());
+  } else if (py::isinstance<PySnapshots>(set)) {
+    for (const io::Snapshot& snap : set.cast<const PySnapshots&>().set.snapshots) mus.push_back(snap.mu);
   } else {
     const Eigen::MatrixXd P = points_from_python(set, spec.num_parameters());
     for (Eigen::Index i = 0; i < P.rows(); ++i) mus.push_back(P.row(i).transpose());
@@ -413,12 +436,13 @@ void bind_online(py::module_& m) {
       .def("solve_many", &model_solve_many, py::arg("mu"), py::kw_only(), py::arg("N") = py::none(),
            py::arg("R") = py::none(), py::arg("Mk") = py::none(), py::arg("Mg") = py::none(),
            py::arg("alpha") = py::none(), py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
-           py::arg("start") = "interpolated",
+           py::arg("start") = "interpolated", py::arg("fields") = false,
            "Online solves at the rows of an (n, p) array (or n values for p = 1), looped in C++ with the GIL\n"
            "released; equal to a loop of solve(). Returns a dict of numpy arrays, one row per point:\n"
            "mu, coefficients (n, N), multipliers (n, R), energy, force, estimate (NaN: none), iterations,\n"
-           "status (codes: contactrb.STATUS[code]), converged, time_s. A point outside the domain raises\n"
-           "contactrb.Error naming the point.")
+           "status (codes: contactrb.STATUS[code]), converged, time_s; with fields=True also\n"
+           "displacement (n, n_nodes, 2), the reconstructed displacement on the HF mesh. A point outside\n"
+           "the domain raises contactrb.Error naming the point.")
       .def("fields", &model_fields, py::arg("result"),
            "The reduced solution on the HF mesh: {'nodes' (Omega(mu)), 'reference_nodes', 'triangles',\n"
            "'body', 'displacement' (n_nodes, 2), 'multipliers' (one per HF constraint row)}.")
@@ -435,7 +459,8 @@ void bind_online(py::module_& m) {
         py::arg("N") = py::none(), py::arg("R") = py::none(), py::arg("Mk") = py::none(), py::arg("Mg") = py::none(),
         py::arg("jobs") = 1, py::arg("repeats") = 5, py::arg("progress") = false,
         "Errors (64)-(66), estimates and speed-ups of a model against HF solves over a named set of its\n"
-        "case or an (n, p) array of points, as `contactrb evaluate`. Returns a dict of numpy arrays (one\n"
+        "case, an (n, p) array of points or the points of a Snapshots (solved again), as `contactrb\n"
+        "evaluate`. Returns a dict of numpy arrays (one\n"
         "row per point) and 'summary', 'sizes' dicts.");
 }
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,7 +55,8 @@ struct PySnapshots {
 };
 
 // A reduced model, its reconstruction data (loaded on first use when it came from a file) and
-// one online solver per set of sizes (the last one used is kept).
+// one online solver per set of sizes (the last one used is kept). The solver is used with the GIL
+// released: `solver_mutex` serializes its use (and its replacement) between Python threads.
 struct PyModel {
   rb::ReducedModel model;
   std::optional<rb::ReducedReconstruction> reconstruction;
@@ -63,6 +65,7 @@ struct PyModel {
   py::object greedy;      // greedy table (offline(method='greedy')), None otherwise
   std::unique_ptr<rb::OnlineSolver> solver;
   rb::OnlineSizes solver_sizes;
+  std::mutex solver_mutex;
   std::shared_ptr<const mesh::Mesh> reference;  // the HF reference mesh (fields), on first use
   rb::OnlineSolver& online(const rb::OnlineSizes& sizes);
   const rb::ReducedReconstruction& reconstruction_data();

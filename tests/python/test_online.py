@@ -167,3 +167,39 @@ def test_non_convergence_is_a_flagged_status(model):
     assert not many["converged"].any()
     assert [contactrb.STATUS[c] for c in many["status"]] == ["max_iterations"] * 2
     assert np.isnan(many["estimate"]).all()
+
+
+def test_solve_many_fields_equal_the_fields_of_solve(model):
+    many = model.solve_many(np.array([0.2, 0.41]), fields=True)
+    assert many["displacement"].ndim == 3
+    for i, mu in enumerate([0.2, 0.41]):
+        assert np.array_equal(many["displacement"][i], model.fields(model.solve(mu))["displacement"])
+
+
+def test_evaluate_at_the_snapshot_points(model, cli_snapshots):
+    snaps = contactrb.Snapshots.load(str(cli_snapshots))
+    e = contactrb.evaluate(model, snaps, repeats=1)
+    assert np.array_equal(e["mu"], snaps.mu)
+    assert e["hf_converged"].all() and e["rb_converged"].all()
+    # The training points themselves: the model reproduces its snapshots up to its tolerances.
+    assert e["summary"]["max_e_displ"] < 1e-2, e["summary"]["max_e_displ"]
+
+
+def test_solve_many_from_two_threads_equals_serial(model):
+    import threading
+
+    points = np.linspace(0.15, 0.45, 200)
+    serial = model.solve_many(points)
+    out = [None, None]
+
+    def run(k):
+        out[k] = model.solve_many(points)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for k in range(2):
+        assert np.array_equal(out[k]["energy"], serial["energy"])
+        assert np.array_equal(out[k]["coefficients"], serial["coefficients"])
