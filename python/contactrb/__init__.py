@@ -34,6 +34,8 @@ from ._contactrb import (  # noqa: F401
     snapshots,
 )
 
+Error.__module__ = "contactrb"  # tracebacks say contactrb.Error
+
 __all__ = [
     "STATUS",
     "Case",

@@ -203,3 +203,12 @@ def test_solve_many_from_two_threads_equals_serial(model):
     for k in range(2):
         assert np.array_equal(out[k]["energy"], serial["energy"])
         assert np.array_equal(out[k]["coefficients"], serial["coefficients"])
+
+
+def test_failed_snapshots_are_recorded_and_refused_by_offline():
+    snaps = contactrb.snapshots("hertz-a", np.array([0.2, 0.3]), max_iterations=1)
+    assert len(snaps) == 2 and snaps.num_failed == 2
+    assert not snaps.converged.any()
+    assert snaps.status == ["max_iterations", "max_iterations"]
+    with pytest.raises(contactrb.Error, match=r"^2 of 2 snapshot solves failed"):
+        contactrb.offline(snaps)
