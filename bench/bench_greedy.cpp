@@ -18,10 +18,10 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/parameter.hpp"
-#include "contactrb/rb/evaluation.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/offline_greedy.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/study/evaluation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 using namespace contactrb;
 

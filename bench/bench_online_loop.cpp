@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/online_solver.hpp"
+#include "contactrb/online/online_solver.hpp"
 
 namespace {
 

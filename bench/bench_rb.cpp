@@ -11,11 +11,11 @@
 #include <chrono>
 #include <cmath>
 
-#include "contactrb/rb/angle_greedy.hpp"
-#include "contactrb/rb/cpg.hpp"
-#include "contactrb/rb/eim.hpp"
-#include "contactrb/rb/nmf.hpp"
-#include "contactrb/rb/pod.hpp"
+#include "contactrb/offline/angle_greedy.hpp"
+#include "contactrb/offline/cpg.hpp"
+#include "contactrb/offline/eim.hpp"
+#include "contactrb/offline/nmf.hpp"
+#include "contactrb/offline/pod.hpp"
 
 namespace {
 

@@ -1,12 +1,36 @@
-# contactrb_module(<name> DEPS <public targets...> PRIVATE_DEPS <private targets...>)
-# Defines the library contactrb_<name> from src/contactrb/<name>/*.cpp (an INTERFACE
-# library when the folder holds headers only). Headers are included as
-# "contactrb/<name>/<file>.hpp". The target is installed with its headers and exported as
-# contactrb::<name> (export set contactrbTargets, CMakeLists.txt); contactrb::<name> is also
-# its alias in the build tree.
+# contactrb_module(<name> [FOLDER <folder>] [SOURCES <stems...>] DEPS <public targets...>
+#                  PRIVATE_DEPS <private targets...>)
+# Defines the library contactrb_<name> from src/contactrb/<folder>/*.cpp (<folder> defaults to
+# <name>; an INTERFACE library when there is no source). SOURCES <stems> makes a part of a
+# folder its own library (e.g. the light parts of mesh/, solve/, cases/ that the online stage
+# links: CMakeLists.txt): only <stem>.cpp of the folder; such parts are declared before the
+# folder's own module, which then takes the remaining sources. Headers are included as
+# "contactrb/<folder>/<file>.hpp" and installed with the folder's own module. The target is
+# installed and exported as contactrb::<name> (export set contactrbTargets, CMakeLists.txt);
+# contactrb::<name> is also its alias in the build tree.
 function(contactrb_module name)
-  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/src/contactrb/${name}/*.cpp")
+  cmake_parse_arguments(ARG "" "FOLDER" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  set(folder ${name})
+  if(ARG_FOLDER)
+    set(folder ${ARG_FOLDER})
+  endif()
+  set(dir "${PROJECT_SOURCE_DIR}/src/contactrb/${folder}")
+  get_property(claimed GLOBAL PROPERTY CONTACTRB_CLAIMED_${folder})
+  if(ARG_SOURCES)
+    set(sources "")
+    foreach(stem IN LISTS ARG_SOURCES)
+      if(NOT EXISTS "${dir}/${stem}.cpp")
+        message(FATAL_ERROR "contactrb_module(${name}): no ${folder}/${stem}.cpp")
+      endif()
+      list(APPEND sources "${dir}/${stem}.cpp")
+    endforeach()
+    set_property(GLOBAL APPEND PROPERTY CONTACTRB_CLAIMED_${folder} ${sources})
+  else()
+    file(GLOB sources CONFIGURE_DEPENDS "${dir}/*.cpp")
+    if(claimed)
+      list(REMOVE_ITEM sources ${claimed})
+    endif()
+  endif()
   set(target contactrb_${name})
   set(include_dirs "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>" "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
   if(sources)
@@ -24,10 +48,56 @@ function(contactrb_module name)
   install(TARGETS ${target} EXPORT contactrbTargets
           ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
           LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-  install(DIRECTORY "${PROJECT_SOURCE_DIR}/src/contactrb/${name}/"
-          DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/contactrb/${name}"
-          FILES_MATCHING PATTERN "*.hpp")
+  if(NOT ARG_SOURCES)
+    install(DIRECTORY "${dir}/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/contactrb/${folder}"
+            FILES_MATCHING PATTERN "*.hpp")
+  endif()
   set_property(GLOBAL APPEND PROPERTY CONTACTRB_MODULES ${name})
+endfunction()
+
+# contactrb_check_link_closure(<target> FORBIDDEN <targets...>): a configure-time error when
+# <target> links, directly or through any target it links (PUBLIC, PRIVATE or INTERFACE, static
+# libraries' $<LINK_ONLY:...> included), one of the FORBIDDEN targets. Enforces that the online
+# library stays light (CMakeLists.txt; the runtime check is the ctest online_link_closure).
+function(contactrb_check_link_closure target)
+  cmake_parse_arguments(ARG "" "" "FORBIDDEN" ${ARGN})
+  set(seen "")
+  set(queue ${target})
+  while(queue)
+    list(POP_FRONT queue t)
+    if(t IN_LIST seen)
+      continue()
+    endif()
+    list(APPEND seen ${t})
+    if(NOT TARGET ${t})
+      continue()
+    endif()
+    get_target_property(aliased ${t} ALIASED_TARGET)
+    if(aliased)
+      list(APPEND queue ${aliased})
+      continue()
+    endif()
+    set(deps "")
+    foreach(prop LINK_LIBRARIES INTERFACE_LINK_LIBRARIES)
+      get_target_property(v ${t} ${prop})
+      if(v)
+        list(APPEND deps ${v})
+      endif()
+    endforeach()
+    foreach(d IN LISTS deps)
+      string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" d "${d}")
+      if(d MATCHES "^\\$<")
+        continue()  # other generator expressions: none of ours
+      endif()
+      list(APPEND queue ${d})
+    endforeach()
+  endwhile()
+  foreach(f IN LISTS ARG_FORBIDDEN)
+    if(f IN_LIST seen)
+      message(FATAL_ERROR "contactrb: ${target} must not link ${f} (the online library is Eigen + HDF5 only; "
+                          "docs/rb.md, \"Layout\")")
+    endif()
+  endforeach()
 endfunction()
 
 # contactrb_test(<module> DEPS <targets...>): one GoogleTest executable test_<module>

@@ -2,7 +2,7 @@
 // radius) in one command (docs/user-guide.md, "demo"): HF snapshots on the training set, the
 // offline stage with CPG, the online stage on the verification set against the HF solver, and
 // a table like the paper's (N, R, M^k, M^g, errors, HF time, online time, speed-up).
-// Writes DIR/model.h5 (io/reduced_model_file.hpp) and DIR/evaluation.csv (rb/evaluation.hpp).
+// Writes DIR/model.h5 (io/reduced_model_file.hpp) and DIR/evaluation.csv (study/evaluation.hpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -18,9 +18,9 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/evaluation.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/study/evaluation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace contactrb::app {
 

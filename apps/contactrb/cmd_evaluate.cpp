@@ -1,5 +1,5 @@
 // `contactrb evaluate`: errors and speed-ups of a reduced model against the HF solver over a
-// parameter set (paper Section 6.2.3, (64)-(66); rb/evaluation.hpp; docs/user-guide.md,
+// parameter set (paper Section 6.2.3, (64)-(66); study/evaluation.hpp; docs/user-guide.md,
 // "evaluate"). Writes DIR/evaluation.csv (one line per mu), DIR/evaluation.json (summary, sizes,
 // model, set) and DIR/multipliers_mu<value>.csv for the --multipliers values, and prints a
 // table in which every speed-up has the errors of the same solve beside it.
@@ -25,7 +25,7 @@
 #include "contactrb/common/printable.hpp"
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/evaluation.hpp"
+#include "contactrb/study/evaluation.hpp"
 
 namespace contactrb::app {
 

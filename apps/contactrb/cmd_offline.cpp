@@ -4,7 +4,7 @@
 // histories of each step and their times). With --case/--case-file instead of --snapshots,
 // the training snapshots are computed first (as `contactrb snapshots` would) and kept next to
 // the model as snapshots.h5. With --greedy (and --case/--case-file), the weak greedy on the error
-// estimate (rb/offline_greedy.hpp) solves HF only at the points it selects; it writes the model,
+// estimate (offline/offline_greedy.hpp) solves HF only at the points it selects; it writes the model,
 // the selected snapshots (snapshots.h5), greedy.csv and greedy.json next to the model.
 #include <unistd.h>
 
@@ -29,10 +29,10 @@
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/offline_greedy.hpp"
-#include "contactrb/rb/reduced_model.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace contactrb::app {
 

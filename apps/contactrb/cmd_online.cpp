@@ -2,9 +2,11 @@
 // `contactrb offline` (docs/user-guide.md, "online"). One --mu: one JSON object on stdout.
 // --batch FILE (or - for stdin): one mu per line, one JSON line per input line, in order; a bad
 // line (not a number, outside the domain) is answered by {"line": k, "error": "..."} and the
-// others are still answered. The model is loaded and the solver set up once.
+// others are still answered; --format csv|npy gives one compact row per line instead
+// (io/batch_table.hpp). The model is loaded and the solver set up once. This file is part of
+// both executables; --out's code (online_fields.cpp) only of contactrb-full (front_main.cpp).
 // --out DIR: also the reconstructed solution on the HF mesh Omega(mu), from the model file's
-// reconstruction data (rb/solution_fields.hpp): with --mu DIR/solution.vtu,
+// reconstruction data (study/solution_fields.hpp): with --mu DIR/solution.vtu,
 // DIR/solution_deformed.vtu, DIR/contact.vtu, DIR/multipliers.csv; with --batch the same in
 // DIR/NNNNNN/ for answered line NNNNNN, and DIR/solutions.pvd, DIR/solutions_deformed.pvd,
 // DIR/contact.pvd, ParaView time series over the lines. Paths are listed in the JSON ("files").
@@ -18,22 +20,21 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "commands.hpp"
-#include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/io/pvd_writer.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/reconstruction.hpp"
-#include "contactrb/rb/reduced_model.hpp"
-#include "contactrb/rb/solution_fields.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/io/batch_table.hpp"
 
 namespace contactrb::app {
 
@@ -50,43 +51,15 @@ struct OnlineOptions {
   std::optional<double> tolerance;
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
   std::string out;  // --out DIR: reconstructed fields
+  std::string format = "json";  // --format: of the --batch answers (json | csv | npy)
 };
 
-// What --out needs, read before any solve (everything that can fail first).
-struct FieldOutput {
-  rb::ReducedReconstruction reconstruction;
-  cases::CaseSpec spec;
-  mesh::Mesh reference;
-};
+// --out's code (online_fields.cpp); null in the light front, which hands --out to contactrb-full.
+const OnlineFieldHooks* field_hooks_ = nullptr;
 
-FieldOutput read_field_output(const rb::ReducedModel& model, const std::string& model_path) {
-  rb::ReducedReconstruction rec = io::read_reconstruction(model_path);
-  rb::check_reconstruction(model, rec);
-  cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, model_path);
-  mesh::Mesh reference = rb::model_reference_mesh(spec, model, rec);
-  return {std::move(rec), std::move(spec), std::move(reference)};
-}
-
-// The files of one solution into `dir` (which exists); their paths as the JSON's "files".
-nlohmann::json write_fields(const FieldOutput& f, const rb::ReducedModel& model, const cases::Mu& mu,
-                            const rb::OnlineSolution& s, const std::string& dir) {
-  const rb::SolutionFiles files =
-      rb::write_solution_fields(f.spec, f.reference, mu, model.surface.discretization,
-                                rb::reconstruct_displacement(f.reconstruction, mu, s.u_hat),
-                                rb::reconstruct_multipliers(f.reconstruction, s.lambda_hat), dir);
-  return {{"vtu", files.vtu},
-          {"deformed_vtu", files.deformed_vtu},
-          {"contact_vtu", files.contact_vtu},
-          {"multipliers", files.multipliers}};
-}
-
-// The outputs of one directory of --out, for check_file_roles.
-std::vector<FileRole> field_roles(const std::string& dir, const std::string& where) {
-  const rb::SolutionFiles f = rb::solution_file_names(dir);
-  return {{"solution.vtu in " + where, f.vtu},
-          {"solution_deformed.vtu in " + where, f.deformed_vtu},
-          {"contact.vtu in " + where, f.contact_vtu},
-          {"multipliers.csv in " + where, f.multipliers}};
+const OnlineFieldHooks& require_field_hooks() {
+  if (field_hooks_ == nullptr) throw std::logic_error("online --out reached the light executable (front_main.cpp)");
+  return *field_hooks_;
 }
 
 // The ParaView collections of `online --batch --out DIR`, next to the line directories.
@@ -175,8 +148,24 @@ void write_batch_collections(const std::string& out, std::size_t num_parameters,
   }
 }
 
+// The numbers of one answer, for --format csv|npy (the JSON line's, nothing else).
+io::BatchRow batch_row(int k, const cases::Mu& mu, const rb::OnlineSolution& s) {
+  io::BatchRow row;
+  row.line = k;
+  row.answered = true;
+  row.mu = mu;
+  row.status = static_cast<int>(s.status);
+  row.status_name = solve::to_string(s.status);
+  row.iterations = s.iterations;
+  row.energy = s.energy;
+  row.contact_force = s.contact_force;
+  row.has_estimate = s.estimate.available;
+  row.estimate = s.estimate.energy;
+  return row;
+}
+
 int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::OnlineSolver& solver,
-              const rb::OnlineSettings& settings, const FieldOutput* fields) {
+              const rb::OnlineSettings& settings, const OnlineFields* fields) {
   const std::vector<cases::ParameterSpec>& parameters = model.parameters;
   std::ifstream file;
   std::istream* in = &std::cin;
@@ -188,6 +177,19 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
     require(file.good(), "cannot open batch file '" + printable(opt.batch) + "'");
     in = &file;
   }
+  const bool json = opt.format == "json";
+  std::optional<io::CsvBatchWriter> csv;
+  std::optional<io::NpyBatchWriter> npy;
+  if (opt.format == "csv") {
+    std::vector<std::string> names;
+    for (const cases::ParameterSpec& q : parameters) names.push_back(q.name);
+    csv.emplace(std::cout, names);
+  } else if (opt.format == "npy") {
+    npy.emplace(parameters.size());
+  }
+  // JSON lines are flushed one by one (answers stream through pipes); CSV rows only when the
+  // points come from stdin (a program in a dialogue), so that a file's batch is written in blocks.
+  const bool flush_rows = json || opt.batch == "-";
   int bad = 0, not_converged = 0, k = 0;
   std::string line;
   bool too_long = false;
@@ -195,30 +197,52 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
   while (read_batch_line(*in->rdbuf(), line, too_long)) {
     ++k;
     nlohmann::json j;
+    io::BatchRow row;
+    row.line = k;
     try {
       require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
                              (parameters.size() == 1 ? std::string("one number") : "one parameter point") + ")");
       const cases::Mu mu = parse_mu_line(line, parameters);
       const rb::OnlineSolution s = solver.solve(mu, settings);
-      j = {{"line", k}};
-      j.update(solution_json(parameters, mu, solver, s));
+      if (json) {
+        j = {{"line", k}};
+        j.update(solution_json(parameters, mu, solver, s));
+      } else {
+        row = batch_row(k, mu, s);
+      }
       if (fields != nullptr) {
         const std::string dir = (std::filesystem::path(opt.out) / line_directory(k)).string();
         check_file_roles({{"--model", opt.model}, {"--batch", opt.batch == "-" ? "" : opt.batch}},
-                         field_roles(dir, "--out"));
+                         field_hooks_->roles(dir, "--out"));
         ensure_output_directory(dir);
-        j["files"] = write_fields(*fields, model, mu, s, dir);
+        nlohmann::json files = fields->write(model, mu, s, dir);
+        if (json) j["files"] = std::move(files);
         written.emplace_back(k, mu);
       }
       if (!s.converged()) ++not_converged;
     } catch (const Error& e) {
       // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
-      j = {{"line", k}, {"error", printable_line(e.what())}};
+      if (json) {
+        j = {{"line", k}, {"error", printable_line(e.what())}};
+      } else {
+        row = io::BatchRow{};
+        row.line = k;
+        std::cerr << "contactrb: error: batch line " << k << ": " << printable_line(e.what()) << "\n";
+      }
       ++bad;
     }
-    // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
-    std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // flushed: answers stream through pipes
+    if (json) {
+      // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
+      std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    } else if (csv) {
+      csv->write(row);
+    } else {
+      npy->write(row);
+    }
+    if (flush_rows) std::cout.flush();
   }
+  if (npy) npy->finish(std::cout);
+  std::cout.flush();
   if (fields != nullptr) write_batch_collections(opt.out, parameters.size(), written);
   if (bad > 0) {
     std::cerr << "contactrb: error: " << bad << " of " << k << " batch lines could not be answered\n";
@@ -233,6 +257,8 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
 
 int run_online(const OnlineOptions& opt) {
   const bool single = opt.mu.has_value();  // --mu, else --batch
+  require(!single || opt.format == "json",
+          "--format " + opt.format + " is for --batch (--mu prints one JSON object)");
   // A plain number is checked before the model is read (its errors come first, as for p = 1).
   if (single && opt.mu->find_first_of("=,") == std::string::npos) (void)parse_mu_option(*opt.mu, "--mu");
   const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
@@ -255,32 +281,34 @@ int run_online(const OnlineOptions& opt) {
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
     if (opt.out.empty()) return run_batch(opt, model, solver, settings, nullptr);
+    const OnlineFieldHooks& hooks = require_field_hooks();
     std::vector<FileRole> outputs;
     for (const char* c : kBatchCollections) {
       outputs.push_back({std::string(c) + " in --out", (std::filesystem::path(opt.out) / c).string()});
     }
     check_file_roles({{"--model", opt.model}, {"--batch", opt.batch == "-" ? "" : opt.batch}}, outputs);
     ensure_output_directory(opt.out);
-    const FieldOutput fields = read_field_output(model, opt.model);
+    const std::unique_ptr<OnlineFields> fields = hooks.read(model, opt.model);
     // One run's files, never mixed with another's: the lock is held until the collections are written.
     const OutputLock lock(opt.out);
-    return run_batch(opt, model, solver, settings, &fields);
+    return run_batch(opt, model, solver, settings, fields.get());
   }
   const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
 
   // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
-  std::optional<FieldOutput> fields;
+  std::unique_ptr<OnlineFields> fields;
   if (!opt.out.empty()) {
-    check_file_roles({{"--model", opt.model}}, field_roles(opt.out, "--out"));
+    const OnlineFieldHooks& hooks = require_field_hooks();
+    check_file_roles({{"--model", opt.model}}, hooks.roles(opt.out, "--out"));
     ensure_output_directory(opt.out);
-    fields = read_field_output(model, opt.model);
+    fields = hooks.read(model, opt.model);
   }
 
   const rb::OnlineSolution s = solver.solve(mu, settings);
   nlohmann::json j = solution_json(model.parameters, mu, solver, s);
   if (fields) {
     const OutputLock lock(opt.out);  // the four files of one run, never mixed with another's
-    j["files"] = write_fields(*fields, model, mu, s, opt.out);
+    j["files"] = fields->write(model, mu, s, opt.out);
   }
   std::cout << j.dump() << "\n";
   if (!s.converged()) {
@@ -292,7 +320,8 @@ int run_online(const OnlineOptions& opt) {
 
 }  // namespace
 
-Command add_online_command(CLI::App& app) {
+Command add_online_command(CLI::App& app, const OnlineFieldHooks* fields) {
+  field_hooks_ = fields;
   auto opt = std::make_shared<OnlineOptions>();
   CLI::App* sub = app.add_subcommand("online", "Reduced solves from a model file (one --mu, or --batch for many)");
   sub->add_option("--model", opt->model, "Reduced model file written by `contactrb offline`")->required();
@@ -318,6 +347,12 @@ Command add_online_command(CLI::App& app) {
                   "Directory for the reconstructed solution on the HF mesh (solution.vtu, solution_deformed.vtu, "
                   "contact.vtu, multipliers.csv); with --batch one subdirectory NNNNNN per line and the ParaView "
                   "collections solutions.pvd, solutions_deformed.pvd, contact.pvd");
+  sub->add_option("--format", opt->format,
+                  "Output of --batch: json (one JSON line per input line) | csv (a header, then one row per line: "
+                  "line, mu, status, iterations, energy, contact_force, estimate) | npy (the same numbers as a "
+                  "NumPy float64 array on stdout, status as its code, -1 for a bad line)")
+      ->check(CLI::IsMember({"json", "csv", "npy"}))
+      ->capture_default_str();
   return {sub, [opt] { return run_online(*opt); }};
 }
 

@@ -1,11 +1,12 @@
 // `contactrb report`: the paper's Section 6 study of one case in one command
 // (docs/user-guide.md, "report"): training snapshots, offline stages with CPG, angle-greedy,
-// NMF and truncated NMF, evaluation on the training and verification sets (rb/study.hpp);
+// NMF and truncated NMF, evaluation on the training and verification sets (study/study.hpp);
 // writes the CSV data and study.json, plots the figures with scripts/plot_report.py and
 // writes report.md (tables and links to the figures).
 //
 // The plotting script is looked up in: $CONTACTRB_SCRIPTS (a directory; an error if it does
-// not hold plot_report.py), <binary dir>/../share/contactrb (installed), then the source tree
+// not hold plot_report.py), <binary dir>/../share/contactrb and <binary dir>/../../share/contactrb
+// (installed: contactrb-full is in libexec/contactrb), then the source tree
 // (CONTACTRB_SCRIPTS_DIR, set by CMake; else derived from this file's path). The interpreter
 // is $CONTACTRB_PYTHON, else /usr/bin/python3 (Debian's python3-matplotlib and python3-numpy).
 #include <sys/wait.h>
@@ -29,7 +30,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/atomic_file.hpp"
-#include "contactrb/rb/study.hpp"
+#include "contactrb/study/study.hpp"
 
 namespace contactrb::app {
 
@@ -56,6 +57,8 @@ struct ReportOptions {
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
   int history_r = rb::StudySettings{}.history_max_R;
   int profiles = rb::StudySettings{}.multiplier_profiles;
+  int deformed = rb::StudySettings{}.deformed_configurations;
+  int comparisons = rb::StudySettings{}.constraint_comparisons;
   int repeats = rb::StudySettings{}.online_repeats;
 };
 
@@ -78,7 +81,11 @@ fs::path find_plot_script() {
   std::vector<fs::path> tried;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+  if (!ec) {
+    tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+    // Installed, this runs as <prefix>/libexec/contactrb/contactrb-full (apps/contactrb/CMakeLists.txt).
+    tried.push_back(exe.parent_path().parent_path().parent_path() / "share" / "contactrb" / name);
+  }
   tried.push_back(source_scripts_dir() / name);
   std::string list;
   for (const fs::path& p : tried) {
@@ -143,6 +150,8 @@ int run_report(const ReportOptions& opt) {
   }
   s.history_max_R = opt.history_r;
   s.multiplier_profiles = opt.profiles;
+  s.deformed_configurations = opt.deformed;
+  s.constraint_comparisons = opt.comparisons;
   s.online_repeats = opt.repeats;
   s.jobs = opt.jobs;
   s.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
@@ -201,8 +210,12 @@ int run_report(const ReportOptions& opt) {
                                    "errors_training.png"};
   if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");
   figures.push_back("multipliers.png");
+  if (!r.configurations.empty()) figures.push_back("deformed_configuration.png");
+  if (!r.comparisons.empty()) figures.push_back("constraint_comparison.png");
   for (const std::string& f : figures) {
     require(fs::is_regular_file(fs::path(out) / f), "the plotting script did not write " + f);
+    const std::string pdf = f.substr(0, f.size() - 4) + ".pdf";  // each figure also as PDF
+    require(fs::is_regular_file(fs::path(out) / pdf), "the plotting script did not write " + pdf);
   }
   write_text(report_md, rb::study_markdown(r, figures));
   std::cout << "wrote " << report_md << "\n";
@@ -242,6 +255,12 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--history-r", opt->history_r, "Dual cone histories up to this R (capped at P and the rows)")
       ->capture_default_str();
   sub->add_option("--profiles", opt->profiles, "Multiplier profiles for this many mu (0: none)")
+      ->capture_default_str();
+  sub->add_option("--deformed", opt->deformed,
+                  "Deformed configurations (HF) at this many training values, evenly spaced (0: none)")
+      ->capture_default_str();
+  sub->add_option("--comparisons", opt->comparisons,
+                  "LAC against collocation (HF pressures) at this many training values (0: none)")
       ->capture_default_str();
   sub->add_option("--repeats", opt->repeats, "Online solves per mu (the time is their median)")
       ->capture_default_str();

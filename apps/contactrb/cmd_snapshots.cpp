@@ -19,7 +19,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace contactrb::app {
 

@@ -6,6 +6,7 @@
 // "contactrb: error: ..." on stderr and exit code 1.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 
 namespace contactrb::rb {
 struct OnlineSizes;
+struct OnlineSolution;
 struct ReducedModel;
 }  // namespace contactrb::rb
 
@@ -30,7 +32,33 @@ Command add_mesh_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
 Command add_snapshots_command(CLI::App& app);
 Command add_offline_command(CLI::App& app);
-Command add_online_command(CLI::App& app);
+// A file a command reads or writes, with the words that name it in a message
+// ("--snapshots", "offline.json next to --out").
+struct FileRole {
+  std::string role;
+  std::string path;
+};
+
+// What `online --out` needs: the reconstruction data and the case's HF mesh Omega(mu)
+// (online_fields.cpp; the mesh generation and FE code, so only contactrb-full has it).
+class OnlineFields {
+ public:
+  virtual ~OnlineFields() = default;
+  // The files of one solution into `dir` (which exists); their paths as the JSON's "files".
+  virtual nlohmann::json write(const rb::ReducedModel& model, const cases::Mu& mu, const rb::OnlineSolution& s,
+                               const std::string& dir) const = 0;
+};
+struct OnlineFieldHooks {
+  // The outputs of one directory of --out, for check_file_roles.
+  std::vector<FileRole> (*roles)(const std::string& dir, const std::string& where) = nullptr;
+  // Everything --out needs, read before any solve (everything that can fail first).
+  std::unique_ptr<OnlineFields> (*read)(const rb::ReducedModel& model, const std::string& model_path) = nullptr;
+};
+// online_fields.cpp (contactrb-full).
+const OnlineFieldHooks* online_field_hooks();
+
+// `fields` null: --out is refused as an internal error (the front hands it to contactrb-full).
+Command add_online_command(CLI::App& app, const OnlineFieldHooks* fields);
 Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);
@@ -42,13 +70,6 @@ void ensure_output_directory(const std::string& dir);
 // `path` names an output FILE whose directory exists and is writable (checked before long
 // work starts); throws contactrb::Error naming --out otherwise.
 void check_output_file(const std::string& path);
-
-// A file a command reads or writes, with the words that name it in a message
-// ("--snapshots", "offline.json next to --out").
-struct FileRole {
-  std::string role;
-  std::string path;
-};
 
 // Output safety before any work starts (docs/user-guide.md, "Output files"): throws
 // contactrb::Error naming both roles when an output is the same file as an input (it would be

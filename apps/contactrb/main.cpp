@@ -1,91 +1,18 @@
-// contactrb command line: subcommands grow issue by issue (docs/user-guide.md).
-// Exit codes: 0 success, 1 an error the user can fix (one line on stderr), CLI11's own
-// non-zero codes for usage errors, 2 an internal error (a bug: please report it).
-#include <CLI/CLI.hpp>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-#include <exception>
-#include <iostream>
-#include <sstream>
-#include <string>
+// contactrb-full: every subcommand (the mesh generation, the HF solver, the offline stage, the
+// study). `contactrb` runs it for everything but a plain `online` (front_main.cpp); it can be
+// run directly too.
 #include <vector>
 
+#include "cli_main.hpp"
 #include "commands.hpp"
-#include "contactrb/common/error.hpp"
-#include "contactrb/common/printable.hpp"
-#include "contactrb/common/version.hpp"
-
-namespace {
-
-// CLI11 reads an empty value ('') of a numeric option as 0, and strtod reads '1e-400' as 0:
-// `--eps-pod ''` silently became eps_pod = 0 (issue [R] row 6). Every numeric option of every
-// subcommand refuses both as a usage error. (--mu and --values are read as text and parsed
-// by parse_mu_option, which gives `contactrb: error:` messages.)
-std::string empty_or_underflow(std::string& text) {
-  if (text.find_first_not_of(" \t") == std::string::npos) return "the value is empty (expected a number)";
-  errno = 0;
-  char* end = nullptr;
-  const double x = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() && errno == ERANGE && std::abs(x) < 1.0) {
-    return "'" + text + "' is below the smallest normal double (2.2e-308) and would be read as 0";
-  }
-  return "";
-}
-
-void refuse_empty_numbers(CLI::App& app, const CLI::Validator& check) {
-  for (CLI::Option* o : app.get_options()) {
-    const std::string type = o->get_type_name();
-    if (type.find("FLOAT") != std::string::npos || type.find("INT") != std::string::npos) o->check(check);
-  }
-  // Option groups are nameless subcommands: recurse into them as well.
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_numbers(*sub, check);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"contactrb: reduced-basis models of parametrized elastic frictionless contact"};
-  app.set_version_flag("--version", std::string("contactrb ") + contactrb::kVersion);
-  app.require_subcommand(0, 1);
-  const std::vector<contactrb::app::Command> commands{
-      contactrb::app::add_cases_command(app),
-      contactrb::app::add_mesh_command(app),
-      contactrb::app::add_solve_command(app),
-      contactrb::app::add_snapshots_command(app),
-      contactrb::app::add_offline_command(app),
-      contactrb::app::add_online_command(app),
-      contactrb::app::add_evaluate_command(app),
-      contactrb::app::add_report_command(app),
-      contactrb::app::add_demo_command(app),
-  };
-  refuse_empty_numbers(app, CLI::Validator(empty_or_underflow, "", "number"));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11 quotes the offending argument: escaped like our own messages (help text and
-    // --version go to stdout untouched).
-    std::ostringstream err;
-    const int code = app.exit(e, std::cout, err);
-    std::cerr << contactrb::printable(err.str());
-    return code;
-  }
-  try {
-    for (const auto& command : commands) {
-      if (command.subcommand->parsed()) return command.run();
-    }
-    std::cout << app.help();
-    return 0;
-  } catch (const contactrb::Error& e) {
-    // Messages quote the user's input (paths, lines): escaped so that a control character
-    // cannot act on the terminal.
-    std::cerr << "contactrb: error: " << contactrb::printable(e.what()) << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "contactrb: internal error: " << contactrb::printable(e.what()) << "\n";
-    return 2;
-  } catch (...) {
-    std::cerr << "contactrb: internal error: unknown exception\n";
-    return 2;
-  }
+  using namespace contactrb::app;
+  return run_cli(argc, argv, [](CLI::App& app) {
+    return std::vector<Command>{
+        add_cases_command(app),     add_mesh_command(app),   add_solve_command(app),
+        add_snapshots_command(app), add_offline_command(app), add_online_command(app, online_field_hooks()),
+        add_evaluate_command(app),  add_report_command(app), add_demo_command(app),
+    };
+  });
 }

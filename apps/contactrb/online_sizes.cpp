@@ -4,8 +4,8 @@
 
 #include "commands.hpp"
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/reduced_model.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reduced_model.hpp"
 
 namespace contactrb::app {
 

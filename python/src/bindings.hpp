@@ -27,14 +27,14 @@
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/evaluation.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/offline_greedy.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/reconstruction.hpp"
-#include "contactrb/rb/reduced_model.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
-#include "contactrb/rb/solution_fields.hpp"
+#include "contactrb/study/evaluation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
+#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
+#include "contactrb/study/solution_fields.hpp"
 
 namespace contactrb::python {
 

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -77,12 +79,28 @@ CliResult CliReport::result_;
 
 TEST_F(CliReport, WritesEveryFigureNonEmpty) {
   ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
-  for (const char* png : {"pod_singular_values.png", "dual_cone_error.png", "eim_error.png", "errors_training.png",
-                          "errors_verification.png", "multipliers.png"}) {
-    const fs::path p = fs::path(out_) / png;
-    ASSERT_TRUE(fs::is_regular_file(p)) << png;
-    EXPECT_GT(fs::file_size(p), 5000u) << png;  // a real plot, not an empty canvas
-    EXPECT_EQ(read_text(p).substr(1, 3), "PNG") << png;
+  for (const std::string name : {"pod_singular_values", "dual_cone_error", "eim_error", "errors_training",
+                                 "errors_verification", "multipliers", "deformed_configuration",
+                                 "constraint_comparison"}) {
+    const fs::path p = fs::path(out_) / (name + ".png");
+    ASSERT_TRUE(fs::is_regular_file(p)) << p;
+    EXPECT_GT(fs::file_size(p), 5000u) << p;  // a real plot, not an empty canvas
+    const std::string png = read_text(p);
+    EXPECT_EQ(png.substr(1, 3), "PNG") << p;
+    // 300 dpi: the pHYs chunk holds 11811 pixels per metre (300 / 0.0254) on both axes, unit 1.
+    const std::size_t phys = png.find("pHYs");
+    ASSERT_NE(phys, std::string::npos) << p;
+    const auto be32 = [&](std::size_t at) {
+      unsigned v = 0;
+      for (int k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(png[at + static_cast<std::size_t>(k)]);
+      return v;
+    };
+    EXPECT_EQ(be32(phys + 4), 11811u) << p;
+    EXPECT_EQ(be32(phys + 8), 11811u) << p;
+    const fs::path pdf = fs::path(out_) / (name + ".pdf");
+    ASSERT_TRUE(fs::is_regular_file(pdf)) << pdf;
+    EXPECT_EQ(read_text(pdf).substr(0, 5), "%PDF-") << pdf;
+    EXPECT_GT(fs::file_size(pdf), 3000u) << pdf;
   }
 }
 
@@ -174,6 +192,125 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   EXPECT_GT(rows, 20);  // every constraint row of both profiles
   EXPECT_EQ(negative, 0);
   EXPECT_GT(positive, 0);  // some contact
+}
+
+// Rows of a CSV file as cells (header dropped).
+std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<std::string>> out;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    out.push_back(cells);
+  }
+  return out;
+}
+
+// Figs. 3, 17: the deformed configurations at the ends of the training set. hertz-a's Dirichlet
+// data (paper Section 6.2.3: u = (0, mu/2) on the lower edge, (0, -mu/2) on the upper edge) read
+// back from the CSV, and the two bodies touch without interpenetrating.
+TEST_F(CliReport, DeformedConfigurationsCarryTheDirichletDataAndTouch) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
+  std::ifstream in(fs::path(out_) / "study.json");
+  const json j = json::parse(in);
+  ASSERT_EQ(j.at("deformed_configurations").size(), 2u);
+  EXPECT_DOUBLE_EQ(j.at("deformed_configurations").at(0).at("mu").get<double>(), 0.15);
+  EXPECT_DOUBLE_EQ(j.at("deformed_configurations").at(1).at("mu").get<double>(), 0.45);
+  EXPECT_EQ(first_line(fs::path(out_) / "deformed_nodes.csv"), "mu,node,body,x,y,ux,uy");
+  EXPECT_EQ(first_line(fs::path(out_) / "deformed_triangles.csv"), "triangle,n0,n1,n2,body");
+  const auto rows = csv_rows(fs::path(out_) / "deformed_nodes.csv");
+  const auto tris = csv_rows(fs::path(out_) / "deformed_triangles.csv");
+  ASSERT_GT(tris.size(), 100u);
+  for (const json& d : j.at("deformed_configurations")) {
+    const double mu = d.at("mu").get<double>();  // the training value as stored (0.45 up to rounding)
+    ASSERT_TRUE(d.at("converged").get<bool>()) << mu;
+    double y_min = 1e300, y_max = -1e300;
+    std::vector<std::vector<double>> v;
+    for (const auto& r : rows) {
+      ASSERT_EQ(r.size(), 7u);
+      if (std::abs(std::stod(r[0]) - mu) > 1e-12) continue;
+      v.push_back({std::stod(r[2]), std::stod(r[3]), std::stod(r[4]), std::stod(r[5]), std::stod(r[6])});
+      y_min = std::min(y_min, v.back()[2]);
+      y_max = std::max(y_max, v.back()[2]);
+    }
+    ASSERT_GT(v.size(), 300u) << mu;
+    // The upper body: the larger mean ordinate.
+    std::map<int, std::pair<double, int>> mean_y;
+    for (const auto& n : v) {
+      mean_y[static_cast<int>(n[0])].first += n[2];
+      ++mean_y[static_cast<int>(n[0])].second;
+    }
+    ASSERT_EQ(mean_y.size(), 2u);
+    const auto avg = [](const std::pair<double, int>& m) { return m.first / m.second; };
+    const int upper_body = avg(mean_y.begin()->second) > avg(mean_y.rbegin()->second) ? mean_y.begin()->first
+                                                                                      : mean_y.rbegin()->first;
+    int top = 0, bottom = 0;
+    // Lowest deformed point of the upper body, highest of the lower body.
+    double upper_low = 1e300, lower_high = -1e300;
+    for (const auto& n : v) {
+      if (n[2] == y_max) {
+        ++top;
+        EXPECT_NEAR(n[3], 0.0, 1e-14);
+        EXPECT_NEAR(n[4], -mu / 2, 1e-14);
+      }
+      if (n[2] == y_min) {
+        ++bottom;
+        EXPECT_NEAR(n[3], 0.0, 1e-14);
+        EXPECT_NEAR(n[4], mu / 2, 1e-14);
+      }
+      if (static_cast<int>(n[0]) == upper_body) {
+        upper_low = std::min(upper_low, n[2] + n[4]);
+      } else {
+        lower_high = std::max(lower_high, n[2] + n[4]);
+      }
+    }
+    EXPECT_GE(top, 2) << mu;
+    EXPECT_GE(bottom, 2) << mu;
+    // In contact (the imposed approach mu exceeds the initial gap) and not interpenetrating
+    // beyond the discretization (collocation: the slave nodes stay above the master chords).
+    EXPECT_LT(std::abs(upper_low - lower_high), 2e-3) << mu;
+  }
+}
+
+// Figs. 7, 8 and Tables 1, 2: LAC against collocation on the same mesh. LAC has about half the
+// rows (two cells agglomerated); both pressures are non-negative and their resultants agree to
+// the discretization error; study.json's forces are the CSV's sums of pressure times |I_r|.
+TEST_F(CliReport, LacAgainstCollocationAgreeInForce) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
+  std::ifstream in(fs::path(out_) / "study.json");
+  const json j = json::parse(in);
+  const json& cmp = j.at("constraint_comparison");
+  ASSERT_EQ(cmp.size(), 4u);
+  const auto rows = csv_rows(fs::path(out_) / "constraint_comparison.csv");
+  EXPECT_EQ(first_line(fs::path(out_) / "constraint_comparison.csv"), "mu,constraint,abscissa,pressure,weight");
+  for (const json& c : cmp) {
+    const double mu = c.at("mu").get<double>();
+    std::map<std::string, double> force;
+    std::map<std::string, int> count;
+    for (const auto& r : rows) {
+      ASSERT_EQ(r.size(), 5u);
+      if (std::abs(std::stod(r[0]) - mu) > 1e-12) continue;
+      EXPECT_GE(std::stod(r[3]), -1e-12) << r[1];
+      force[r[1]] += std::stod(r[3]) * std::stod(r[4]);
+      ++count[r[1]];
+    }
+    ASSERT_TRUE(c.at("lac").at("converged").get<bool>()) << mu;
+    ASSERT_TRUE(c.at("collocation").at("converged").get<bool>()) << mu;
+    EXPECT_EQ(count["lac"], c.at("lac").at("rows").get<int>());
+    EXPECT_EQ(count["collocation"], c.at("collocation").at("rows").get<int>());
+    EXPECT_NEAR(count["lac"], count["collocation"] / 2.0, 1.0) << mu;
+    const double f_lac = c.at("lac").at("contact_force").get<double>();
+    const double f_col = c.at("collocation").at("contact_force").get<double>();
+    EXPECT_NEAR(force["lac"], f_lac, 1e-9 * f_lac) << mu;
+    EXPECT_NEAR(force["collocation"], f_col, 1e-9 * f_col) << mu;
+    EXPECT_GT(f_col, 0.0);
+    // Measured: 4.0 % at mu = 0.15 (a contact zone of a few cells), 0.2-0.6 % above.
+    EXPECT_NEAR(f_lac, f_col, 0.05 * f_col) << mu;
+  }
 }
 
 TEST(CliReportErrors, MissingPythonIsAClearErrorAndKeepsTheCsv) {

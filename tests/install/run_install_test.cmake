@@ -53,9 +53,21 @@ if(NOT at EQUAL 0)
 endif()
 run("consumer build" COMMAND "${CMAKE_COMMAND}" --build "${consumer_build}")
 
+# The installed executables: bin/contactrb answers `online` itself and hands `offline` to
+# libexec/contactrb/contactrb-full (apps/contactrb/CMakeLists.txt).
+set(installed_cli "${prefix}/bin/contactrb")
 set(model "${WORK_DIR}/model.h5")
-run("contactrb offline" COMMAND "${CLI}" offline --case "${CASE}" --out "${model}")
-run("contactrb online" COMMAND "${CLI}" online --model "${model}" --mu "${MU}" OUTPUT_VARIABLE cli_json)
+run("installed contactrb offline" COMMAND "${installed_cli}" offline --case "${CASE}" --out "${model}")
+run("installed contactrb online" COMMAND "${installed_cli}" online --model "${model}" --mu "${MU}"
+    OUTPUT_VARIABLE cli_json)
+run("build-tree contactrb online" COMMAND "${CLI}" online --model "${model}" --mu "${MU}" OUTPUT_VARIABLE build_json)
+foreach(key energy contact_force u_hat lambda_hat)  # time_s differs
+  string(JSON installed_value GET "${cli_json}" ${key})
+  string(JSON build_value GET "${build_json}" ${key})
+  if(NOT installed_value STREQUAL build_value)
+    message(FATAL_ERROR "${key}: the installed contactrb answered ${installed_value}, the build tree's ${build_value}")
+  endif()
+endforeach()
 string(JSON cli_energy GET "${cli_json}" energy)
 run("consumer" COMMAND "${consumer_build}/consumer" "${model}" "${MU}" "${cli_energy}" OUTPUT_VARIABLE consumer_out)
 message(STATUS "consumer: ${consumer_out}")

@@ -23,13 +23,13 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/fem/cholesky.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/compression.hpp"
-#include "contactrb/rb/eim.hpp"
-#include "contactrb/rb/eim_flatten.hpp"
-#include "contactrb/rb/error_estimate.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/compression.hpp"
+#include "contactrb/offline/eim.hpp"
+#include "contactrb/offline/eim_flatten.hpp"
+#include "contactrb/offline/error_estimate.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {
 

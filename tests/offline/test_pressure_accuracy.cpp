@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
-#include "contactrb/rb/evaluation.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/study/evaluation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {
 

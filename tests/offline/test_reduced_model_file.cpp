@@ -17,9 +17,9 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {
 

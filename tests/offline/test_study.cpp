@@ -1,4 +1,4 @@
-// rb/study.hpp: the helpers of the report study (subsets of a parameter set, the Table 3-5
+// study/study.hpp: the helpers of the report study (subsets of a parameter set, the Table 3-5
 // size rows), its settings checks, the per-case tolerances, and the report.md tables built
 // from a hand-made result.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/study.hpp"
+#include "contactrb/study/study.hpp"
 
 namespace rb = contactrb::rb;
 

@@ -16,11 +16,11 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/mesh/msh_io.hpp"
-#include "contactrb/rb/evaluation.hpp"
-#include "contactrb/rb/offline_builder.hpp"
-#include "contactrb/rb/online_solver.hpp"
-#include "contactrb/rb/reconstruction.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/study/evaluation.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/compression.hpp"
+#include "contactrb/offline/compression.hpp"
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;

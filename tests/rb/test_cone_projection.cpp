@@ -7,7 +7,7 @@
 #include <random>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/cone_projection.hpp"
+#include "contactrb/offline/cone_projection.hpp"
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;

@@ -5,9 +5,9 @@
 #include <random>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/angle_greedy.hpp"
-#include "contactrb/rb/cone_projection.hpp"
-#include "contactrb/rb/cpg.hpp"
+#include "contactrb/offline/angle_greedy.hpp"
+#include "contactrb/offline/cone_projection.hpp"
+#include "contactrb/offline/cpg.hpp"
 #include "rb_fixtures.hpp"
 
 using namespace contactrb::rb;

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/eim.hpp"
-#include "contactrb/rb/eim_flatten.hpp"
+#include "contactrb/offline/eim.hpp"
+#include "contactrb/offline/eim_flatten.hpp"
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;

@@ -4,8 +4,8 @@
 #include <random>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/nmf.hpp"
-#include "contactrb/rb/cone_projection.hpp"
+#include "contactrb/offline/nmf.hpp"
+#include "contactrb/offline/cone_projection.hpp"
 #include "rb_fixtures.hpp"
 
 namespace {

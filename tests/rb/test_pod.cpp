@@ -7,7 +7,7 @@
 #include <random>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/rb/pod.hpp"
+#include "contactrb/offline/pod.hpp"
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;

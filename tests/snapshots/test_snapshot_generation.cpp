@@ -13,7 +13,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 #include "snapshot_fixtures.hpp"
 
 using contactrb::Error;

@@ -8,7 +8,7 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
 #include "snapshot_fixtures.hpp"
 
 using contactrb::io::SnapshotSet;

@@ -45,7 +45,8 @@ Eigen::VectorXd evaluate(const std::vector<ThetaMonomial>& thetas, const Eigen::
 // [0, num_parameters), a zero or non-finite scale or coefficient.
 void check_thetas(const AffineThetas& thetas, int num_parameters, const std::string& what);
 
-// The theta functions of a case; the term order matches assemble_affine_terms.
+// The theta functions of a case; the term order matches assemble_affine_terms. Defined in
+// case_thetas.cpp, part of contactrb::cases (offline): the online library does not have it.
 //  a: one term, theta = 1, when no body has a young-modulus parameter (a body scaled
 //     uniformly by s in 2D keeps its stiffness matrix: grad phi scales by 1/s, the area by
 //     s^2, the J^a = 1 of docs/cases.md); otherwise one term per body, theta = E_i = mu_k for

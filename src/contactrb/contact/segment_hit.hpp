@@ -1,6 +1,6 @@
 #pragma once
 // The closest point of a point x on one master segment, shared by the HF projection
-// (projection.cpp) and the online magic-point evaluation (rb/online_magic.cpp), which must
+// (projection.cpp) and the online magic-point evaluation (online/online_magic.cpp), which must
 // pick the same segment in floating point. Inline: it is the inner loop of both searches.
 #include <Eigen/Core>
 #include <limits>

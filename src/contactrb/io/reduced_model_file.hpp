@@ -17,8 +17,8 @@
 // existed, or by the model-only overload) stay valid model files of the same format version.
 #include <string>
 
-#include "contactrb/rb/reconstruction.hpp"
-#include "contactrb/rb/reduced_model.hpp"
+#include "contactrb/online/reconstruction.hpp"
+#include "contactrb/online/reduced_model.hpp"
 
 namespace contactrb::io {
 

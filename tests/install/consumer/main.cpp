@@ -9,7 +9,7 @@
 #include <string>
 
 #include "contactrb/io/reduced_model_file.hpp"
-#include "contactrb/rb/online_solver.hpp"
+#include "contactrb/online/online_solver.hpp"
 
 namespace {
 // Same library, same model, same mu: only the decimal round trip of the CLI's JSON differs.

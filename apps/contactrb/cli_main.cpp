@@ -1,0 +1,87 @@
+// The command-line driver both executables share (cli_main.hpp).
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_main.hpp"
+#include "commands.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/common/printable.hpp"
+#include "contactrb/common/version.hpp"
+
+namespace {
+
+// CLI11 reads an empty value ('') of a numeric option as 0, and strtod reads '1e-400' as 0:
+// `--eps-pod ''` silently became eps_pod = 0 (issue [R] row 6). Every numeric option of every
+// subcommand refuses both as a usage error. (--mu and --values are read as text and parsed
+// by parse_mu_option, which gives `contactrb: error:` messages.)
+std::string empty_or_underflow(std::string& text) {
+  if (text.find_first_not_of(" \t") == std::string::npos) return "the value is empty (expected a number)";
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && errno == ERANGE && std::abs(x) < 1.0) {
+    return "'" + text + "' is below the smallest normal double (2.2e-308) and would be read as 0";
+  }
+  return "";
+}
+
+void refuse_empty_numbers(CLI::App& app, const CLI::Validator& check) {
+  for (CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name();
+    if (type.find("FLOAT") != std::string::npos || type.find("INT") != std::string::npos) o->check(check);
+  }
+  // Option groups are nameless subcommands: recurse into them as well.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_numbers(*sub, check);
+}
+
+}  // namespace
+
+namespace contactrb::app {
+
+int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI::App&)>& add_commands,
+            const std::function<void()>& on_parse_error) {
+  CLI::App app{"contactrb: reduced-basis models of parametrized elastic frictionless contact"};
+  app.set_version_flag("--version", std::string("contactrb ") + contactrb::kVersion);
+  app.require_subcommand(0, 1);
+  const std::vector<Command> commands = add_commands(app);
+  refuse_empty_numbers(app, CLI::Validator(empty_or_underflow, "", "number"));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (on_parse_error) on_parse_error();
+    // CLI11 quotes the offending argument: escaped like our own messages (help text and
+    // --version go to stdout untouched).
+    std::ostringstream err;
+    const int code = app.exit(e, std::cout, err);
+    std::cerr << contactrb::printable(err.str());
+    return code;
+  }
+  try {
+    for (const auto& command : commands) {
+      if (command.subcommand->parsed()) return command.run();
+    }
+    std::cout << app.help();
+    return 0;
+  } catch (const contactrb::Error& e) {
+    // Messages quote the user's input (paths, lines): escaped so that a control character
+    // cannot act on the terminal.
+    std::cerr << "contactrb: error: " << contactrb::printable(e.what()) << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "contactrb: internal error: " << contactrb::printable(e.what()) << "\n";
+    return 2;
+  } catch (...) {
+    std::cerr << "contactrb: internal error: unknown exception\n";
+    return 2;
+  }
+}
+
+}  // namespace contactrb::app

@@ -1,0 +1,69 @@
+// contactrb: the command-line entry point (docs/user-guide.md). It links the online library
+// only (Eigen, HDF5: contactrb::online), so that `contactrb online --model m.h5 --mu X` costs a
+// few milliseconds of process start instead of loading gmsh, OpenCASCADE, FLTK and the sparse
+// solvers (docs/online-performance.md, "Process time"). Every other command, `online --out`
+// (the HF mesh of the case), --help, --version and any usage error are handed to the full
+// executable contactrb-full (main.cpp) by execv with the same arguments, so that their output
+// and exit codes are those of one program.
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli_main.hpp"
+#include "commands.hpp"
+
+#ifndef CONTACTRB_FULL_NAME
+#define CONTACTRB_FULL_NAME "contactrb-full"
+#endif
+#ifndef CONTACTRB_FULL_FROM_BIN
+#define CONTACTRB_FULL_FROM_BIN "../libexec/contactrb"
+#endif
+
+namespace {
+
+// Whether this process answers the command itself: `online`, and none of the arguments that
+// need more than the online library or whose output the full program gives (help, version).
+bool answers_itself(int argc, char** argv) {
+  if (argc < 2 || std::string_view(argv[1]) != "online") return false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view a(argv[i]);
+    if (a == "--out" || a.starts_with("--out=") || a == "-h" || a == "--help" || a == "--version") return false;
+  }
+  return true;
+}
+
+// contactrb-full next to this executable (the build tree), else in the installed libexec
+// directory relative to it (CONTACTRB_FULL_FROM_BIN, from CMake's install directories).
+std::filesystem::path full_executable() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path dir = ec ? std::filesystem::path(".") : self.parent_path();
+  for (const std::filesystem::path& p : {dir / CONTACTRB_FULL_NAME, dir / CONTACTRB_FULL_FROM_BIN / CONTACTRB_FULL_NAME}) {
+    if (::access(p.c_str(), X_OK) == 0) return p;
+  }
+  return dir / CONTACTRB_FULL_FROM_BIN / CONTACTRB_FULL_NAME;
+}
+
+[[noreturn]] void run_full(char** argv) {
+  const std::filesystem::path full = full_executable();
+  ::execv(full.c_str(), argv);  // argv[0] unchanged: the usage lines name the program as typed
+  std::cerr << "contactrb: internal error: cannot run " << full.string() << ": " << std::strerror(errno)
+            << " (contactrb-full is installed with contactrb)\n";
+  std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (!answers_itself(argc, argv)) run_full(argv);
+  using namespace contactrb::app;
+  return run_cli(
+      argc, argv, [](CLI::App& app) { return std::vector<Command>{add_online_command(app, nullptr)}; },
+      [argv] { run_full(argv); });
+}

@@ -1,0 +1,69 @@
+// `online --out DIR` (cmd_online.cpp): the reconstructed solution on the HF mesh Omega(mu), from
+// the model file's reconstruction data (study/solution_fields.hpp). It needs the case's mesh
+// (mesh generation, FE), so it is part of contactrb-full only; the light `contactrb` hands every
+// `online --out` to contactrb-full (front_main.cpp).
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands.hpp"
+#include "contactrb/cases/case_record.hpp"
+#include "contactrb/io/reduced_model_file.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
+#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/study/solution_fields.hpp"
+
+namespace contactrb::app {
+
+namespace {
+
+class FieldOutput final : public OnlineFields {
+ public:
+  FieldOutput(rb::ReducedReconstruction rec, cases::CaseSpec spec, mesh::Mesh reference)
+      : reconstruction_(std::move(rec)), spec_(std::move(spec)), reference_(std::move(reference)) {}
+
+  nlohmann::json write(const rb::ReducedModel& model, const cases::Mu& mu, const rb::OnlineSolution& s,
+                       const std::string& dir) const override {
+    const rb::SolutionFiles files =
+        rb::write_solution_fields(spec_, reference_, mu, model.surface.discretization,
+                                  rb::reconstruct_displacement(reconstruction_, mu, s.u_hat),
+                                  rb::reconstruct_multipliers(reconstruction_, s.lambda_hat), dir);
+    return {{"vtu", files.vtu},
+            {"deformed_vtu", files.deformed_vtu},
+            {"contact_vtu", files.contact_vtu},
+            {"multipliers", files.multipliers}};
+  }
+
+ private:
+  rb::ReducedReconstruction reconstruction_;
+  cases::CaseSpec spec_;
+  mesh::Mesh reference_;
+};
+
+std::unique_ptr<OnlineFields> read_field_output(const rb::ReducedModel& model, const std::string& model_path) {
+  rb::ReducedReconstruction rec = io::read_reconstruction(model_path);
+  rb::check_reconstruction(model, rec);
+  cases::CaseSpec spec = cases::case_from_record(model.case_kind, model.case_spec, model_path);
+  mesh::Mesh reference = rb::model_reference_mesh(spec, model, rec);
+  return std::make_unique<FieldOutput>(std::move(rec), std::move(spec), std::move(reference));
+}
+
+std::vector<FileRole> field_roles(const std::string& dir, const std::string& where) {
+  const rb::SolutionFiles f = rb::solution_file_names(dir);
+  return {{"solution.vtu in " + where, f.vtu},
+          {"solution_deformed.vtu in " + where, f.deformed_vtu},
+          {"contact.vtu in " + where, f.contact_vtu},
+          {"multipliers.csv in " + where, f.multipliers}};
+}
+
+}  // namespace
+
+const OnlineFieldHooks* online_field_hooks() {
+  static const OnlineFieldHooks hooks{&field_roles, &read_field_output};
+  return &hooks;
+}
+
+}  // namespace contactrb::app

@@ -1,0 +1,61 @@
+#pragma once
+// The compact outputs of `contactrb online --batch --format csv|npy` (docs/user-guide.md,
+// "online"): one row per batch line, the numbers of the JSON line and nothing else.
+//   columns: line, mu_1 .. mu_p, status, iterations, energy, contact_force, estimate
+// CSV: a header line (the parameter names as mu columns), then one line per row; every double
+// with the shortest text that reads back as the same double (std::to_chars), so the numbers
+// equal the JSON's bit for bit; status as its name ("converged", ..., "error" for a line that
+// could not be answered), empty fields where the JSON has none (error, no estimate).
+// npy (NumPy format 1.0, little-endian float64, C order, shape (rows, p + 6)): status as its
+// code (batch_status_code), NaN where the JSON has none. The row count is in the header, so
+// the rows are kept in memory and written by finish().
+#include <Eigen/Core>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace contactrb::io {
+
+// One answered (or refused) batch line.
+struct BatchRow {
+  int line = 0;
+  bool answered = false;       // false: a bad line (mu and the numbers are not written)
+  Eigen::VectorXd mu;          // p values (answered)
+  int status = 0;              // the solver's status code (answered): 0 converged
+  const char* status_name = "";
+  int iterations = 0;
+  double energy = 0.0;
+  double contact_force = 0.0;
+  bool has_estimate = false;
+  double estimate = 0.0;       // the energy-norm error estimate (has_estimate)
+};
+
+// The status column of npy: the solver's code, or this for a line that could not be answered.
+inline constexpr double kBatchErrorStatus = -1.0;
+
+class CsvBatchWriter {
+ public:
+  // Writes the header line to `out` (kept by reference).
+  CsvBatchWriter(std::ostream& out, const std::vector<std::string>& parameter_names);
+  void write(const BatchRow& row);
+
+ private:
+  std::ostream& out_;
+  std::size_t p_;
+  std::string buffer_;
+};
+
+class NpyBatchWriter {
+ public:
+  explicit NpyBatchWriter(std::size_t num_parameters) : p_(num_parameters) {}
+  void write(const BatchRow& row);
+  // The whole .npy file (header and rows) to `out`.
+  void finish(std::ostream& out) const;
+  std::size_t columns() const { return p_ + 6; }
+
+ private:
+  std::size_t p_;
+  std::vector<double> data_;
+};
+
+}  // namespace contactrb::io

@@ -1,0 +1,205 @@
+#include "contactrb/offline/error_estimate.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/offline/eim_flatten.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+using Index = Eigen::Index;
+inline Index ix(std::size_t i) { return static_cast<Index>(i); }
+inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+}  // namespace
+
+// The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
+// leading size: I_M F = Q[:, :M] B[:M, :M]^-1 F(magic[:M]) (B lower triangular).
+void calibrate_eim(const EstimateInputs& in, const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>& llt,
+                   const std::vector<Index>& global_to_free, EstimateData& e) {
+  const Eigen::MatrixXd& Qk = *in.Q_kappa;
+  const Eigen::MatrixXd& Qg = *in.Q_gamma;
+  const int Mk = static_cast<int>(Qk.cols()), Mg = static_cast<int>(Qg.cols());
+  const Index R_kept = Qg.rows();
+  const Index n_c = ix(in.contact_dofs->size());
+  const Index n_free = ix(in.free_dofs->size());
+  const Eigen::VectorXd& w = *in.weights_kept;
+  require(ix(in.kappa_magic->size()) == Mk && ix(in.gamma_magic->size()) == Mg && w.size() == R_kept &&
+              in.B_kappa->rows() == Mk && in.B_gamma->rows() == Mg,
+          "build_estimate_data: the EIM data disagree with the bases");
+  e.eim_residual = Eigen::VectorXd::Zero(Mk + 1);
+  e.eim_slack = Eigen::MatrixXd::Zero(Mk + 1, Mg + 1);
+  for (const io::Snapshot& snap : in.set->snapshots) {
+    Eigen::MatrixXd K(R_kept, n_c);
+    Eigen::VectorXd lambda(R_kept), G(R_kept);
+    const Eigen::VectorXd lift = in.lift_c->cols() > 0
+                                     ? Eigen::VectorXd(*in.lift_c * cases::evaluate(in.thetas->lift, snap.mu))
+                                     : Eigen::VectorXd::Zero(n_c);
+    const Eigen::VectorXd g_lift = snap.g - snap.K * lift;
+    for (Index r = 0; r < R_kept; ++r) {
+      const int row = (*in.kept_rows)[sz(r)];
+      K.row(r) = Eigen::RowVectorXd(snap.K.row(row));
+      lambda(r) = std::max(0.0, snap.lambda(row));
+      G(r) = g_lift(row);
+    }
+    Eigen::VectorXd u0_c = Eigen::VectorXd::Zero(n_c);
+    for (Index a = 0; a < n_c; ++a) {
+      const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+      if (fi >= 0) u0_c(a) = snap.u0(fi);
+    }
+    const double lambda_norm = std::sqrt((w.array() * lambda.array().square()).sum());
+    // Flattened row-major (eim_flatten.hpp): F(r n_c + n) = K(r, n).
+    const Eigen::MatrixXd Kt = K.transpose();
+    const Eigen::Map<const Eigen::VectorXd> F(Kt.data(), Kt.size());
+    std::vector<Eigen::VectorXd> dKu(sz(Mk + 1));
+    for (int M = 0; M <= Mk; ++M) {
+      Eigen::VectorXd IF = Eigen::VectorXd::Zero(F.size());
+      if (M > 0) {
+        Eigen::VectorXd values(M);
+        for (int i = 0; i < M; ++i) values(i) = F((*in.kappa_magic)[sz(i)]);
+        IF = Qk.leftCols(M) * in.B_kappa->topLeftCorner(M, M).triangularView<Eigen::Lower>().solve(values);
+      }
+      const Eigen::VectorXd dF = F - IF;
+      const Eigen::Map<const Eigen::MatrixXd> dKt(dF.data(), n_c, R_kept);  // (K - I_M K)'
+      dKu[sz(M)] = dKt.transpose() * u0_c;
+      if (lambda_norm > 0.0) {
+        const Eigen::VectorXd c = dKt * lambda;  // (K - I_M K)' lambda on the contact DOFs
+        Eigen::VectorXd v = Eigen::VectorXd::Zero(n_free);
+        for (Index a = 0; a < n_c; ++a) {
+          const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+          if (fi >= 0) v(fi) = c(a);
+        }
+        Eigen::VectorXd pv = llt.permutationP() * v;
+        llt.matrixL().solveInPlace(pv);
+        e.eim_residual(M) = std::max(e.eim_residual(M), pv.norm() / lambda_norm);
+      }
+    }
+    for (int Mp = 0; Mp <= Mg; ++Mp) {
+      Eigen::VectorXd dG = G;
+      if (Mp > 0) {
+        Eigen::VectorXd values(Mp);
+        for (int i = 0; i < Mp; ++i) values(i) = G((*in.gamma_magic)[sz(i)]);
+        dG -= Qg.leftCols(Mp) * in.B_gamma->topLeftCorner(Mp, Mp).triangularView<Eigen::Lower>().solve(values);
+      }
+      // The slack error enters the bound as ((delta s)^-)' lambda (the interpenetration the EIM hides,
+      // weighted by the pressure that meets it): calibrated as that product per unit |lambda|_Lambda.
+      if (lambda_norm <= 0.0) continue;
+      for (int M = 0; M <= Mk; ++M) {
+        const double hidden = (dKu[sz(M)] - dG).cwiseMax(0.0).dot(lambda) / lambda_norm;  // delta s = dG - dKu
+        e.eim_slack(M, Mp) = std::max(e.eim_slack(M, Mp), hidden);
+      }
+    }
+  }
+}
+
+EstimateData build_estimate_data(const EstimateInputs& in) {
+  require(in.terms && in.thetas && in.free_dofs && in.contact_dofs && in.Theta && in.Theta_c && in.Xi && in.Q_kappa &&
+              in.Q_gamma && in.set && in.kept_rows && in.lift_c && in.weights_kept && in.kappa_magic &&
+              in.B_kappa && in.gamma_magic && in.B_gamma,
+          "build_estimate_data: a required input is missing");
+  const cases::AffineTerms& terms = *in.terms;
+  const std::vector<int>& free = *in.free_dofs;
+  const Eigen::MatrixXd& Theta = *in.Theta;
+  const Eigen::MatrixXd& Xi = *in.Xi;
+  const Index n_free = ix(free.size());
+  const Index n_c = ix(in.contact_dofs->size());
+  const Index R_kept = Xi.rows();
+  const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
+  const int JD = static_cast<int>(terms.lift.size());
+  const int N = static_cast<int>(Theta.cols()), R = static_cast<int>(Xi.cols());
+  const int Mk = static_cast<int>(in.Q_kappa->cols());
+  require(Theta.rows() == n_free && in.Theta_c->rows() == n_c && in.Theta_c->cols() == N &&
+              in.Q_kappa->rows() == R_kept * n_c && in.Q_gamma->rows() == R_kept && Ja >= 1,
+          "build_estimate_data: inconsistent sizes (Theta " + std::to_string(Theta.rows()) + " x " +
+              std::to_string(N) + ", n_free " + std::to_string(n_free) + ", Q_kappa " +
+              std::to_string(in.Q_kappa->rows()) + " rows for R_kept n_c = " + std::to_string(R_kept * n_c) + ")");
+  const Index num_dofs = terms.A.front().rows();
+  std::vector<Index> global_to_free(sz(num_dofs), -1);
+  for (std::size_t i = 0; i < free.size(); ++i) global_to_free[sz(free[i])] = ix(i);
+  auto restrict_free = [&](const Eigen::VectorXd& g) {
+    Eigen::VectorXd out(n_free);
+    for (Index i = 0; i < n_free; ++i) out(i) = g(free[sz(i)]);
+    return out;
+  };
+
+  // The residual terms (layout: error_estimate_data.hpp), on the free DOFs. The Mk R contact
+  // columns -E_c' Q_i' Xi_r all lie in the n_c columns of E_c' (the contact DOFs): they are kept
+  // as E_c' times the small n_c x (Mk R) matrix C, so the QR below factors n_free x (d0 + n_c),
+  // not n_free x d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted QR).
+  const Index d = residual_columns(Jf, Ja, JD, N, Mk, R);
+  const Index d0 = d - static_cast<Index>(Mk) * R;
+  Eigen::MatrixXd terms_free(n_free, d0 + n_c);
+  Index col = 0;
+  for (int j = 0; j < Jf; ++j) terms_free.col(col++) = restrict_free(terms.f[sz(j)]);
+  for (int j = 0; j < Ja; ++j) {
+    for (int k = 0; k < JD; ++k) terms_free.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)]);
+  }
+  // A_j,00 Theta: A_j Theta extended by zero on the constrained DOFs, restricted to the free ones.
+  Eigen::MatrixXd Theta_global = Eigen::MatrixXd::Zero(num_dofs, N);
+  for (Index i = 0; i < n_free; ++i) Theta_global.row(free[sz(i)]) = Theta.row(i);
+  for (int j = 0; j < Ja; ++j) {
+    const Eigen::MatrixXd AT = terms.A[sz(j)] * Theta_global;
+    for (int n = 0; n < N; ++n) terms_free.col(col++) = -restrict_free(AT.col(n));
+  }
+  // E_c': contact DOF a -> its free index (a constrained contact DOF has no column entry).
+  terms_free.rightCols(n_c).setZero();
+  for (Index a = 0; a < n_c; ++a) {
+    const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+    if (fi >= 0) terms_free(fi, d0 + a) = 1.0;
+  }
+  // The contact term -E_c' K' Xi lambda with K ~ sum_i phi_i Q_i (50): column (i, r) of C is
+  // -(Q_i' Xi)_r.
+  std::vector<Eigen::MatrixXd> Q(sz(Mk));
+  Eigen::MatrixXd C(n_c, static_cast<Index>(Mk) * R);
+  for (int i = 0; i < Mk; ++i) {
+    Q[sz(i)] = unflatten_column(in.Q_kappa->col(i), R_kept, n_c);
+    C.middleCols(static_cast<Index>(i) * R, R) = -(Q[sz(i)].transpose() * Xi);
+  }
+
+  // X = A_00(mu_ref) = P L L' P' (Eigen's convention: P X P' = L L'); ||r||_{X'}^2 = |L^-1 P r|^2.
+  const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(in.thetas->a, in.reference_mu));
+  Eigen::SparseMatrix<double> X(n_free, n_free);
+  {
+    std::vector<Eigen::Triplet<double>> trip;
+    for (Index k = 0; k < A_ref.outerSize(); ++k) {
+      for (fem::SparseMatrix::InnerIterator it(A_ref, k); it; ++it) {
+        const Index r = global_to_free[sz(it.row())], c = global_to_free[sz(it.col())];
+        if (r >= 0 && c >= 0) trip.emplace_back(r, c, it.value());
+      }
+    }
+    X.setFromTriplets(trip.begin(), trip.end());
+  }
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(X);
+  require(llt.info() == Eigen::Success,
+          "build_estimate_data: the energy product at the reference value is not positive definite");
+  Eigen::MatrixXd W = llt.permutationP() * terms_free;
+  llt.matrixL().solveInPlace(W);
+  // W = [W0 | G] = Q0 [S0 | SG] (thin, unpivoted, blocked); then every residual column is
+  // Q0 times a column of T0 = [S0 | SG C], so |W_full y| = |T0 y| with T0 of d0 + n_c rows at most.
+  const Index k0 = std::min<Index>(n_free, d0 + n_c);
+  Eigen::HouseholderQR<Eigen::MatrixXd> thin(W);
+  const Eigen::MatrixXd S = thin.matrixQR().topRows(k0).triangularView<Eigen::Upper>();
+  Eigen::MatrixXd T0(k0, d);
+  T0.leftCols(d0) = S.leftCols(d0);
+  T0.rightCols(d - d0) = S.rightCols(n_c) * C;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(T0);
+  qr.setThreshold(kEstimateRankTolerance);
+  const Index rank = std::max<Index>(1, std::min<Index>(qr.rank(), d));
+
+  EstimateData e;
+  e.theta_a_reference = cases::evaluate(in.thetas->a, in.reference_mu);
+  const Eigen::MatrixXd Rtop = qr.matrixQR().topRows(rank).triangularView<Eigen::Upper>();
+  e.residual_T = Rtop * qr.colsPermutation().transpose();  // W = Q R P': |W y| = |R P' y|
+  for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
+  e.Q_gamma = *in.Q_gamma;
+  calibrate_eim(in, llt, global_to_free, e);
+  return e;
+}
+
+}  // namespace contactrb::rb

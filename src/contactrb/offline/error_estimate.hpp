@@ -1,0 +1,57 @@
+#pragma once
+// A posteriori error estimate of an online answer, from reduced quantities only, in the spirit
+// of Haasdonk, Salomon, Wohlmuth (SINUM 2012) for variational inequalities: the dual norm of
+// the primal residual (Riesz representers of the affine terms, offline), the constraint
+// violation and the complementarity of the EIM-reconstructed constraints on the kept rows,
+// combined into an estimate of the energy-norm error |u_hf - u_rb|_A(mu). Formulas, and which
+// parts are bounded and which are estimated: docs/offline-online.md, "Error estimate".
+//
+// Offline (build_estimate_data): the residual terms on the free DOFs, whitened by the Cholesky
+// factor of X = A_00(mu_ref), then one column-pivoted QR: ||r||_{X'} = |T y| with T the R factor
+// (Buhr, Engwer, Ohlberger, Rave 2014: no sum of large terms of opposite signs online, so the
+// accuracy floor is that of T y, about 1e-15 |T| |y|, not the square root of it).
+// Online: ErrorEstimator (online/error_estimator.hpp).
+#include <Eigen/Core>
+#include <vector>
+
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/online/error_estimate_data.hpp"
+#include "contactrb/online/error_estimator.hpp"
+#include "contactrb/online/reduced_model.hpp"
+
+namespace contactrb::cases {
+struct AffineTerms;
+}
+
+namespace contactrb::rb {
+
+// Inputs of the offline construction (all borrowed).
+struct EstimateInputs {
+  const cases::AffineTerms* terms = nullptr;  // global A_j, f_j, lift_k of the reference mesh
+  const cases::AffineThetas* thetas = nullptr;
+  Eigen::VectorXd reference_mu;               // X = A_00(reference_mu)
+  const std::vector<int>* free_dofs = nullptr;
+  const std::vector<int>* contact_dofs = nullptr;  // global DOF of each contact-surface DOF
+  const Eigen::MatrixXd* Theta = nullptr;          // n_free x N_max
+  const Eigen::MatrixXd* Theta_c = nullptr;        // n_c x N_max
+  const Eigen::MatrixXd* Xi = nullptr;             // R_kept x R_max
+  const Eigen::MatrixXd* Q_kappa = nullptr;        // (R_kept n_c) x Mk_max, flattened row-major (eim_flatten.hpp)
+  const Eigen::MatrixXd* Q_gamma = nullptr;        // R_kept x Mg_max
+  // The EIM calibration on the training snapshots: magic points (flattened rows of the kappa
+  // snapshot matrix, rows of gamma's), B matrices, the kept rows, the lift on the contact DOFs,
+  // the row weights |I_r| on the kept rows.
+  const io::SnapshotSet* set = nullptr;
+  const std::vector<int>* kept_rows = nullptr;
+  const Eigen::MatrixXd* lift_c = nullptr;         // n_c x J^D
+  const Eigen::VectorXd* weights_kept = nullptr;   // R_kept
+  const std::vector<int>* kappa_magic = nullptr;   // Mk_max
+  const Eigen::MatrixXd* B_kappa = nullptr;
+  const std::vector<int>* gamma_magic = nullptr;   // Mg_max
+  const Eigen::MatrixXd* B_gamma = nullptr;
+};
+
+// Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.
+EstimateData build_estimate_data(const EstimateInputs& in);
+
+}  // namespace contactrb::rb

@@ -1,0 +1,493 @@
+#include "contactrb/offline/offline_builder.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/fem/cholesky.hpp"
+#include "contactrb/fem/elasticity.hpp"
+#include "contactrb/offline/angle_greedy.hpp"
+#include "contactrb/offline/compression.hpp"
+#include "contactrb/offline/cone_projection.hpp"
+#include "contactrb/offline/cpg.hpp"
+#include "contactrb/offline/eim.hpp"
+#include "contactrb/offline/eim_flatten.hpp"
+#include "contactrb/offline/error_estimate.hpp"
+#include "contactrb/offline/nmf.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/offline/pod.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using Index = Eigen::Index;
+inline Index ix(std::size_t i) { return static_cast<Index>(i); }
+inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+
+// Selection matrix P (num_dofs x n_free): P(free_dofs[i], i) = 1, so P' A P = A_00.
+Eigen::SparseMatrix<double> free_selection(int num_dofs, const std::vector<int>& free_dofs) {
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(free_dofs.size());
+  for (std::size_t i = 0; i < free_dofs.size(); ++i) trip.emplace_back(free_dofs[i], static_cast<int>(i), 1.0);
+  Eigen::SparseMatrix<double> P(num_dofs, ix(free_dofs.size()));
+  P.setFromTriplets(trip.begin(), trip.end());
+  return P;
+}
+
+Eigen::VectorXd restrict_to(const Eigen::VectorXd& global, const std::vector<int>& idx) {
+  Eigen::VectorXd out(ix(idx.size()));
+  for (std::size_t i = 0; i < idx.size(); ++i) out(ix(i)) = global(idx[i]);
+  return out;
+}
+
+// u_D(mu) on the contact DOFs: lift_c * theta^lift(mu).
+Eigen::VectorXd lift_at(const Eigen::MatrixXd& lift_c, const cases::AffineThetas& th, const cases::Mu& mu) {
+  if (th.lift.empty()) return Eigen::VectorXd::Zero(lift_c.rows());
+  return lift_c * cases::evaluate(th.lift, mu);
+}
+
+const char* eim_status(const EIMResult& r) { return to_string(r.status); }
+
+// Linear dependence threshold of the enrichment: a supremizer whose M-norm drops below this
+// fraction of its own norm when orthogonalized against the basis adds nothing (round-off).
+constexpr double kSupremizerDependence = 1e-10;
+
+// The snapshot a dual generator stands for: the greedies' own pick, otherwise (NMF) the snapshot
+// closest in angle in the Lambda norm.
+int generator_snapshot(const DualConeResult& dual, const Eigen::MatrixXd& Lambda, const Eigen::VectorXd& w, int r) {
+  if (sz(r) < dual.selected.size()) return dual.selected[sz(r)];
+  const Eigen::VectorXd xi = dual.generators.col(r);
+  int best = 0;
+  double best_cos = -1.0;
+  for (Index p = 0; p < Lambda.cols(); ++p) {
+    const double nl = std::sqrt(w.dot(Lambda.col(p).cwiseAbs2())), nx = std::sqrt(w.dot(xi.cwiseAbs2()));
+    if (nl <= 0.0 || nx <= 0.0) continue;
+    const double c = w.dot(Lambda.col(p).cwiseProduct(xi)) / (nl * nx);
+    if (c > best_cos) {
+      best_cos = c;
+      best = static_cast<int>(p);
+    }
+  }
+  return best;
+}
+
+// Supremizer enrichment: appends M^-1 (K_r' xi_r) (free DOFs), M-orthonormalized against the
+// basis (Gram-Schmidt twice), dependent ones dropped. Returns the number appended.
+int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<double>& M, const io::SnapshotSet& set,
+                            const std::vector<int>& kept, const DualConeResult& dual, const Eigen::MatrixXd& Lambda,
+                            const Eigen::VectorXd& weights, const std::vector<int>& global_to_free) {
+  fem::SparseCholesky chol;
+  require(chol.compute(M) == fem::FactorStatus::Success,
+          "offline: the inner-product matrix is not positive definite (supremizers)");
+  const Index R = dual.generators.cols();
+  const Index n_free = Theta.rows();
+  Eigen::MatrixXd S(n_free, R);
+  for (Index r = 0; r < R; ++r) {
+    const io::Snapshot& snap = set.snapshots[sz(generator_snapshot(dual, Lambda, weights, static_cast<int>(r)))];
+    Eigen::VectorXd lambda_full = Eigen::VectorXd::Zero(snap.K.rows());
+    for (std::size_t i = 0; i < kept.size(); ++i) lambda_full(kept[i]) = dual.generators(ix(i), r);
+    const Eigen::VectorXd t = snap.K.transpose() * lambda_full;  // contact DOFs
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_free);
+    for (Index i = 0; i < t.size(); ++i) {
+      const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
+      if (fi >= 0) b(fi) += t(i);
+    }
+    S.col(r) = chol.solve(b);
+  }
+  int added = 0;
+  Eigen::MatrixXd out(n_free, Theta.cols() + R);
+  out.leftCols(Theta.cols()) = Theta;
+  Index n = Theta.cols();
+  for (Index r = 0; r < R; ++r) {
+    Eigen::VectorXd v = S.col(r);
+    const double norm0 = std::sqrt(std::max(0.0, v.dot(M * v)));
+    if (norm0 <= 0.0) continue;
+    for (int pass = 0; pass < 2; ++pass) {
+      const Eigen::VectorXd Mv = M * v;
+      v -= out.leftCols(n) * (out.leftCols(n).transpose() * Mv);
+    }
+    const double norm = std::sqrt(std::max(0.0, v.dot(M * v)));
+    if (norm <= kSupremizerDependence * norm0) continue;
+    out.col(n++) = v / norm;
+    ++added;
+  }
+  Theta = out.leftCols(n);
+  return added;
+}
+
+// A gap gamma below this fraction of the largest reference coordinate is round-off (M^g = 0 is
+// then exact up to it).
+constexpr double kGapRoundoff = 1e-12;
+
+}  // namespace
+
+const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
+
+void check_settings(const OfflineSettings& s) {
+  require(std::isfinite(s.eps_pod) && s.eps_pod >= 0.0, "offline: eps_pod must be >= 0, got " + std::to_string(s.eps_pod));
+  require(s.pod_modes >= -1 && s.pod_modes != 0, "offline: pod_modes must be -1 (by eps_pod) or >= 1, got " +
+                                                    std::to_string(s.pod_modes));
+  require(std::isfinite(s.eps_du) && s.eps_du >= 0.0, "offline: eps_du must be >= 0, got " + std::to_string(s.eps_du));
+  require(s.dual_size >= -1 && s.dual_size != 0, "offline: dual_size must be -1 or >= 1, got " +
+                                                    std::to_string(s.dual_size));
+  require(std::isfinite(s.eps_eim_k) && s.eps_eim_k >= 0.0, "offline: eps_eim_k must be >= 0");
+  require(std::isfinite(s.eps_eim_g) && s.eps_eim_g >= 0.0, "offline: eps_eim_g must be >= 0");
+  require(s.eim_k_size >= -1 && s.eim_g_size >= -1, "offline: EIM sizes must be >= -1");
+}
+
+OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
+                                  const OfflineSettings& settings) {
+  const auto t_total = Clock::now();
+  check_settings(settings);
+  const int P = static_cast<int>(set.snapshots.size());
+  require(P >= 1, "offline: the snapshot set is empty");
+  // A library entry point: the set may not come from read_snapshot_file, and every index below
+  // (free_selection, restrict_to, the contact surface) is used unchecked.
+  try {
+    io::check_snapshot_set(set);
+  } catch (const Error& e) {
+    throw Error(std::string("offline: inconsistent snapshot set: ") + e.what());
+  }
+  require(set.parameters.size() == spec.parameters.size(),
+          "offline: the snapshots have " + std::to_string(set.parameters.size()) + " parameters, the case " +
+              std::to_string(spec.parameters.size()));
+  for (std::size_t k = 0; k < set.parameters.size(); ++k) {
+    require(set.parameters[k].name == spec.parameters[k].name,
+            "offline: parameter " + std::to_string(k + 1) + " of the snapshots is '" + set.parameters[k].name +
+                "', of the case '" + spec.parameters[k].name + "'");
+  }
+  for (const io::Snapshot& s : set.snapshots) {
+    require(s.converged, "offline: the snapshot at mu = " + cases::mu_values_text(s.mu) + " did not converge (" + s.status +
+                             ": " + s.message + "); drop it or recompute it");
+  }
+  {
+    // A repeated training value adds no information but one more identical column: with a zero
+    // step the whole set is one value, and the model answered elsewhere with converged = true
+    // and a contact force 45 times the HF one (issue [R] row 7).
+    std::vector<std::pair<std::vector<double>, int>> mus;
+    for (int p = 0; p < P; ++p) {
+      const cases::Mu& mu = set.snapshots[sz(p)].mu;
+      mus.emplace_back(std::vector<double>(mu.data(), mu.data() + mu.size()), p);
+    }
+    std::sort(mus.begin(), mus.end());
+    for (std::size_t i = 1; i < mus.size(); ++i) {
+      if (mus[i].first == mus[i - 1].first) {
+        // shortest round-trip digits: the value exactly as stored
+        const std::string text = cases::mu_values_text(set.snapshots[sz(mus[i].second)].mu);
+        throw Error("offline: the training value mu = " + text + " appears twice (snapshots " +
+                    std::to_string(mus[i - 1].second) + " and " + std::to_string(mus[i].second) +
+                    "): the training values must be distinct");
+      }
+    }
+  }
+  const int n_free = static_cast<int>(set.free_dofs.size());
+  const int n_c = static_cast<int>(set.contact_dofs.size());
+  const int R_hf = static_cast<int>(set.snapshots.front().lambda.size());
+  for (const io::Snapshot& s : set.snapshots) {
+    require(s.u0.size() == n_free && s.u.size() == set.num_dofs && s.lambda.size() == R_hf && s.K.rows() == R_hf &&
+                s.K.cols() == n_c && s.g.size() == R_hf && s.weight.size() == R_hf,
+            "offline: snapshot at mu = " + cases::mu_values_text(s.mu) + " has inconsistent array sizes (u0 " +
+                std::to_string(s.u0.size()) + "/" + std::to_string(n_free) + ", lambda " +
+                std::to_string(s.lambda.size()) + "/" + std::to_string(R_hf) + ", K " + std::to_string(s.K.rows()) +
+                " x " + std::to_string(s.K.cols()) + ")");
+  }
+
+  OfflineResult out;
+  ReducedModel& m = out.model;
+  OfflineReport& rep = out.report;
+  ReducedReconstruction& rec = out.reconstruction;
+
+  // --- Assembly of the affine terms on the reference mesh (offline only).
+  auto t0 = Clock::now();
+  const mesh::Mesh reference = cases::reference_mesh(spec, set.level);
+  require(reference.num_dofs() == set.num_dofs, "offline: the case's reference mesh has " +
+                                                    std::to_string(reference.num_dofs()) + " DOFs, the snapshots " +
+                                                    std::to_string(set.num_dofs));
+  const cases::AffineTerms terms = cases::assemble_affine_terms(spec, reference);
+  const cases::AffineThetas thetas = cases::theta_functions(spec);
+  require(terms.A.size() == thetas.a.size() && terms.f.size() == thetas.f.size() &&
+              terms.lift.size() == thetas.lift.size(),
+          "offline: affine terms and theta functions disagree in number");
+  const Eigen::SparseMatrix<double> Psel = free_selection(set.num_dofs, set.free_dofs);
+  Eigen::SparseMatrix<double> inner;
+  if (settings.inner_product == InnerProduct::Energy) {
+    const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(thetas.a, cases::reference_mu(spec.parameters)));
+    inner = Psel.transpose() * A_ref * Psel;
+  } else {
+    inner = Psel.transpose() * fem::h1_product(reference) * Psel;
+  }
+  rep.assembly_s = seconds_since(t0);
+
+  // --- (T2) POD of u_0.
+  Eigen::MatrixXd U0(n_free, P);
+  for (int p = 0; p < P; ++p) U0.col(p) = set.snapshots[sz(p)].u0;
+  PODSettings pod_settings;
+  pod_settings.tolerance = settings.eps_pod;
+  pod_settings.relative = settings.eps_pod_relative;
+  pod_settings.max_modes = settings.pod_modes;
+  const PODResult pod_result = pod(U0, inner, pod_settings);
+  require(pod_result.N >= 1, "offline: POD kept no mode (eps_pod = " + std::to_string(settings.eps_pod) +
+                                 (settings.eps_pod_relative ? " relative" : " absolute") +
+                                 " above every singular value, largest " +
+                                 std::to_string(pod_result.singular_values.size() ? pod_result.singular_values(0) : 0.0) +
+                                 ")");
+  Eigen::MatrixXd Theta = pod_result.basis;
+  rep.singular_values = pod_result.singular_values;
+  rep.N_pod = pod_result.N;
+  rep.pod_threshold = pod_result.threshold;
+  rep.pod_s = pod_result.seconds;
+  std::vector<int> global_to_free(sz(set.num_dofs), -1);
+  for (std::size_t i = 0; i < set.free_dofs.size(); ++i) global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
+
+  // --- Compression (Remark 7) and (T3) the dual cone on the kept rows.
+  t0 = Clock::now();
+  Eigen::MatrixXd Lambda(R_hf, P);
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(R_hf);
+  for (int p = 0; p < P; ++p) {
+    Lambda.col(p) = set.snapshots[sz(p)].lambda;
+    weights += set.snapshots[sz(p)].weight;
+  }
+  weights /= static_cast<double>(P);  // |I_r| depends on mu for a mapped slave body: the mean
+  CompressionSettings cs;
+  cs.enabled = settings.compression;
+  const Compression comp = compress_constraints(Lambda, cs);
+  require(!comp.kept.empty(), "offline: no constraint is active on the training set: no dual basis to build");
+  const std::vector<int>& kept = comp.kept;
+  const int R_kept = static_cast<int>(kept.size());
+  const Eigen::MatrixXd Lambda_k = restrict_rows(Lambda, kept);
+  DualConeSettings ds;
+  ds.greedy.tolerance = settings.eps_du;
+  ds.greedy.relative = settings.eps_du_relative;
+  ds.greedy.max_size = settings.dual_size;
+  ds.weights = restrict_rows(weights, kept);
+  // The snapshot multipliers are >= 0 up to the QP's round-off: clip tiny negatives.
+  const Eigen::MatrixXd Lambda_pos = Lambda_k.cwiseMax(0.0);
+  DualConeResult dual;
+  switch (settings.dual_method) {
+    case DualConeMethod::CPG: dual = build_cpg(Lambda_pos, ds); break;
+    case DualConeMethod::AngleGreedy: dual = build_angle_greedy(Lambda_pos, ds); break;
+    case DualConeMethod::NMF: dual = build_nmf_cone(Lambda_pos, ds); break;
+  }
+  const Eigen::MatrixXd& Xi = dual.generators;
+  const int R = static_cast<int>(Xi.cols());
+  require(R >= 1, "offline: the dual cone is empty");
+  rep.R_hf = R_hf;
+  rep.R_kept = R_kept;
+  rep.R = R;
+  rep.dual_errors = dual.errors;
+  rep.dual_relative_errors = dual.relative_errors;
+  rep.dual_status = to_string(dual.status);
+  rep.dual_condition_number = generator_condition_number(Xi, ds.weights);
+  rep.dual_s = seconds_since(t0);
+
+  if (settings.supremizers) {
+    t0 = Clock::now();
+    rep.N_supremizers = enrich_with_supremizers(Theta, inner, set, kept, dual, Lambda_pos, ds.weights, global_to_free);
+    rep.supremizer_s = seconds_since(t0);
+  }
+  const int N = static_cast<int>(Theta.cols());
+  rep.N = N;
+
+  // Lift on the contact DOFs, per term.
+  const int JD = static_cast<int>(terms.lift.size());
+  Eigen::MatrixXd lift_c(n_c, JD);
+  for (int k = 0; k < JD; ++k) lift_c.col(k) = restrict_to(terms.lift[sz(k)], set.contact_dofs);
+
+  // --- (T1) EIM of kappa: K(u(mu)) on the kept rows and the contact DOFs, flattened.
+  t0 = Clock::now();
+  std::vector<Eigen::MatrixXd> Ks;
+  Ks.reserve(sz(P));
+  for (const io::Snapshot& s : set.snapshots) Ks.push_back(restrict_rows(s.K, kept));
+  EIMSettings ek;
+  ek.tolerance = settings.eps_eim_k;
+  ek.relative = settings.eps_eim_k_relative;
+  ek.max_size = settings.eim_k_size;
+  const EIMResult eim_k = eim(flatten_columns(Ks), ek);
+  Ks.clear();
+  // M^k = 0 makes D^kappa (54) zero: every online solve would fail (the primal space would not
+  // see the contact). Refuse the model rather than write it.
+  require(eim_k.size() >= 1, "offline: the EIM of the contact map kappa kept no function (M^k = 0: eps_eim_k = " +
+                                 std::to_string(settings.eps_eim_k) + " is above max |kappa| = " +
+                                 std::to_string(eim_k.errors.empty() ? 0.0 : eim_k.errors.front()) +
+                                 " on the training set, or eim_k_size = 0); lower eps_eim_k");
+  rep.Mk = eim_k.size();
+  rep.eim_kappa_errors = eim_k.errors;
+  rep.eim_kappa_status = eim_status(eim_k);
+  rep.eim_kappa_threshold = eim_k.threshold;
+  rep.eim_kappa_s = seconds_since(t0);
+
+  // --- (T1) EIM of gamma = g - K u_D(mu) on the kept rows.
+  t0 = Clock::now();
+  Eigen::MatrixXd G(R_kept, P);
+  for (int p = 0; p < P; ++p) {
+    const io::Snapshot& s = set.snapshots[sz(p)];
+    G.col(p) = restrict_rows(Eigen::VectorXd(s.g - s.K * lift_at(lift_c, thetas, s.mu)), kept);
+  }
+  EIMSettings eg;
+  eg.tolerance = settings.eps_eim_g;
+  eg.relative = settings.eps_eim_g_relative;
+  eg.max_size = settings.eim_g_size;
+  const EIMResult eim_g = eim(G, eg);
+  // M^g = 0 replaces gamma by 0: accepted only when gamma vanishes on the whole training set up
+  // to the round-off of the geometry (e.g. a flat patch test, initially touching, 2e-33).
+  const double gamma_max = eim_g.errors.empty() ? 0.0 : eim_g.errors.front();
+  double extent = 0.0;  // largest reference coordinate
+  for (const auto& x : reference.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  require(eim_g.size() >= 1 || gamma_max <= kGapRoundoff * extent,
+          "offline: the EIM of the gap gamma kept no function (M^g = 0: eps_eim_g = " +
+              std::to_string(settings.eps_eim_g) + " is above max |gamma| = " + std::to_string(gamma_max) +
+              " on the training set, or eim_g_size = 0), so the reduced gap would be 0; lower eps_eim_g");
+  rep.Mg = eim_g.size();
+  rep.eim_gamma_errors = eim_g.errors;
+  rep.eim_gamma_status = eim_status(eim_g);
+  rep.eim_gamma_threshold = eim_g.threshold;
+  rep.eim_gamma_s = seconds_since(t0);
+
+  // --- Reduced arrays.
+  t0 = Clock::now();
+  m.case_name = set.case_name;
+  m.case_kind = set.case_kind;
+  m.case_spec = set.case_spec;
+  m.level = set.level;
+  m.parameters = spec.parameters;
+  m.thetas = thetas;
+  m.inner_product = to_string(settings.inner_product);
+  m.dual_method = to_string(settings.dual_method);
+  m.eps_pod = settings.eps_pod;
+  m.eps_pod_relative = settings.eps_pod_relative;
+  m.eps_du = settings.eps_du;
+  m.eps_du_relative = settings.eps_du_relative;
+  m.eps_eim_k = settings.eps_eim_k;
+  m.eps_eim_k_relative = settings.eps_eim_k_relative;
+  m.eps_eim_g = settings.eps_eim_g;
+  m.eps_eim_g_relative = settings.eps_eim_g_relative;
+  m.compression = settings.compression;
+  m.kacanov_alpha = set.kacanov_alpha;
+  m.kacanov_tolerance = set.kacanov_tolerance;
+  m.kacanov_max_iterations = set.kacanov_max_iterations;
+  m.N_max = N;
+  m.N_supremizers = rep.N_supremizers;
+  m.R_max = R;
+  m.Mk_max = eim_k.size();
+  m.Mg_max = eim_g.size();
+  m.singular_values = pod_result.singular_values;
+  // Theta is M-orthonormal: the projection coefficients are Theta' M u_0 (the initial guess where
+  // the reduced solve below does not converge).
+  m.training_u_hat = Theta.transpose() * (inner * U0);
+  m.training_lambda_hat = Eigen::MatrixXd::Zero(R, P);
+  m.training_mu.resize(spec.num_parameters(), P);
+  for (int p = 0; p < P; ++p) m.training_mu.col(p) = set.snapshots[sz(p)].mu;
+
+  // (49)
+  const int Ja = static_cast<int>(terms.A.size());
+  const int Jf = static_cast<int>(terms.f.size());
+  for (int j = 0; j < Ja; ++j) {
+    const Eigen::SparseMatrix<double> A00 = Psel.transpose() * terms.A[sz(j)] * Psel;
+    Eigen::MatrixXd Ah = Theta.transpose() * (A00 * Theta);
+    m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
+  }
+  for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], set.free_dofs));
+  for (int j = 0; j < Ja; ++j) {
+    for (int k = 0; k < JD; ++k) {
+      const Eigen::VectorXd Al = terms.A[sz(j)] * terms.lift[sz(k)];
+      m.A_lift_hat.push_back(Theta.transpose() * restrict_to(Al, set.free_dofs));
+      for (int l = 0; l < JD; ++l) m.lift_AA.push_back(terms.lift[sz(l)].dot(Al));
+    }
+  }
+  for (int j = 0; j < Jf; ++j) {
+    for (int k = 0; k < JD; ++k) m.lift_f.push_back(terms.f[sz(j)].dot(terms.lift[sz(k)]));
+  }
+
+  // Contact surface: chain nodes in ascending global index; check the DOF convention.
+  std::vector<int> nodes = set.slave;
+  nodes.insert(nodes.end(), set.master.begin(), set.master.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  require(2 * nodes.size() == set.contact_dofs.size(),
+          "offline: " + std::to_string(set.contact_dofs.size()) + " contact DOFs for " + std::to_string(nodes.size()) +
+              " contact nodes (expected both components of each)");
+  std::map<int, int> local;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    require(set.contact_dofs[2 * i] == 2 * nodes[i] && set.contact_dofs[2 * i + 1] == 2 * nodes[i] + 1,
+            "offline: contact_dofs are not the two components of the ascending contact nodes");
+    local[nodes[i]] = static_cast<int>(i);
+  }
+  ContactSurface& surf = m.surface;
+  std::map<int, int> slave_set;
+  for (int s : set.slave) slave_set[s] = 1;
+  for (int node : nodes) {
+    surf.reference_nodes.push_back(reference.nodes[sz(node)]);
+    surf.body.push_back(slave_set.count(node) ? mesh::kSlaveBody : mesh::kMasterBody);
+  }
+  for (int s : set.slave) surf.slave.push_back(local[s]);
+  for (int s : set.master) surf.master.push_back(local[s]);
+  surf.discretization = contact::discretization_from_string(set.constraint);
+  surf.num_constraints = R_hf;
+
+  m.Theta_c = Eigen::MatrixXd::Zero(n_c, N);
+  for (int i = 0; i < n_c; ++i) {
+    const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
+    if (fi >= 0) m.Theta_c.row(i) = Theta.row(fi);
+  }
+  m.lift_c = lift_c;
+
+  m.kept_rows = kept;
+  m.Xi = Xi;
+  // (55): C_j = Xi' Q_j Theta_c.
+  for (int j = 0; j < eim_k.size(); ++j) {
+    const auto rn = unflatten_index(eim_k.magic_points[sz(j)], n_c);
+    m.kappa_row.push_back(rn.first);
+    m.kappa_dof.push_back(rn.second);
+    const Eigen::MatrixXd Qj = unflatten_column(eim_k.Q.col(j), R_kept, n_c);
+    m.C_kappa.push_back(Xi.transpose() * (Qj * m.Theta_c));
+  }
+  m.B_kappa = eim_k.B;
+  m.eim_kappa_errors = eim_k.errors;
+  // (54): D^gamma = Xi' Q^gamma (B^gamma)^-1, the inverse applied online.
+  m.gamma_row = eim_g.magic_points;
+  m.B_gamma = eim_g.B;
+  m.XiQ_gamma = Xi.transpose() * eim_g.Q;
+  m.eim_gamma_errors = eim_g.errors;
+  // The a posteriori error estimate's offline data (error_estimate.hpp).
+  m.estimate = build_estimate_data({&terms, &thetas, cases::reference_mu(spec.parameters), &set.free_dofs, &set.contact_dofs,
+                                    &Theta, &m.Theta_c, &Xi, &eim_k.Q, &eim_g.Q, &set, &kept, &lift_c, &ds.weights,
+                                    &eim_k.magic_points, &eim_k.B, &eim_g.magic_points, &eim_g.B});
+  check_model(m);
+  // The online initial guess: the reduced solutions at the training values (P online solves).
+  {
+    OnlineSolver solver(m);
+    OnlineSettings cold;
+    cold.initial_guess = InitialGuess::Zero;
+    for (int p = 0; p < P; ++p) {
+      const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
+      if (!sol.converged()) continue;
+      m.training_u_hat.col(p) = sol.u_hat;
+      m.training_lambda_hat.col(p) = sol.lambda_hat;
+    }
+  }
+  rep.reduction_s = seconds_since(t0);
+
+  rec.num_dofs = set.num_dofs;
+  rec.free_dofs = set.free_dofs;
+  rec.Theta = Theta;
+  rec.lift = terms.lift;
+  rec.thetas = thetas;
+  rec.kept_rows = kept;
+  rec.num_constraints = R_hf;
+  rec.Xi = Xi;
+  rep.total_s = seconds_since(t_total);
+  return out;
+}
+
+}  // namespace contactrb::rb

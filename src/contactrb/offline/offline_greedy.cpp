@@ -1,0 +1,374 @@
+#include "contactrb/offline/offline_greedy.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include "contactrb/cases/affine_assembly.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/io/csv_writer.hpp"
+#include "contactrb/online/reconstruction.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string mu_text(const GreedyMu& mu) { return cases::mu_values_text(mu); }
+
+// The criterion at every training point for one model (online solves only), `jobs` threads with
+// one OnlineSolver each; every point writes its own slot, so the result does not depend on jobs.
+struct Sweep {
+  std::vector<double> criterion;
+  int failures = 0;  // online solves that did not converge
+};
+
+Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus, const OnlineSettings& online,
+                     int jobs) {
+  const std::size_t n = mus.size();
+  Sweep out;
+  out.criterion.assign(n, kInf);
+  std::vector<char> failed(n, 0);
+  std::vector<std::exception_ptr> errors(n);
+  std::exception_ptr setup_error;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  const auto work = [&](std::exception_ptr& own_setup_error) {
+    try {
+      OnlineSolver solver(model);
+      for (std::size_t i = next.fetch_add(1); i < n && !stop; i = next.fetch_add(1)) {
+        try {
+          const OnlineSolution s = solver.solve(mus[i], online);
+          failed[i] = s.converged() ? 0 : 1;
+          out.criterion[i] = relative_estimate(model, mus[i], s);
+        } catch (...) {  // nothing may escape a worker thread
+          errors[i] = std::current_exception();
+          stop = true;
+        }
+      }
+    } catch (...) {
+      own_setup_error = std::current_exception();
+      stop = true;
+    }
+  };
+  const std::size_t threads_count = std::max<std::size_t>(1, std::min(n, static_cast<std::size_t>(jobs)));
+  std::vector<std::exception_ptr> setup_errors(threads_count);
+  if (threads_count == 1) {
+    work(setup_errors[0]);
+  } else {
+    std::vector<std::thread> threads;
+    threads.reserve(threads_count);
+    for (std::size_t j = 0; j < threads_count; ++j) threads.emplace_back(work, std::ref(setup_errors[j]));
+    for (std::thread& t : threads) t.join();
+  }
+  for (const std::exception_ptr& e : setup_errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (char f : failed) out.failures += f;
+  return out;
+}
+
+// Progress: one line per step (ProgressMode conventions of snapshot_generation.hpp; a step is
+// long, so the Terminal mode prints lines as well).
+class GreedyProgress {
+ public:
+  GreedyProgress(ProgressMode mode, std::ostream* stream) : stream_(stream ? stream : &std::cerr), on_(mode != ProgressMode::None) {}
+  void start(const GreedyMu& mu, int index, int count, const io::Snapshot& s) {
+    if (!on_) return;
+    *stream_ << "greedy: start at mu = " << mu_text(mu) << " (training point " << index << " of " << count << "), HF "
+             << (s.converged ? "converged in " + std::to_string(s.iterations) + " iterations" : "FAILED (" + s.status + ")")
+             << ", " << std::fixed << std::setprecision(3) << s.time_s << " s" << std::defaultfloat
+             << std::setprecision(6) << "\n"
+             << std::flush;
+  }
+  void step(const GreedyStep& r, const char* stop_reason) {
+    if (!on_) return;
+    std::ostream& os = *stream_;
+    os << "greedy step " << r.step << ": " << r.snapshots << " snapshots, N " << r.N << ", R " << r.R << ", Mk " << r.Mk
+       << ", Mg " << r.Mg << ", max estimate " << std::setprecision(3) << r.max_estimate << " at mu = "
+       << mu_text(r.argmax_mu);
+    if (r.online_failures > 0) os << " (" << r.online_failures << " online failures)";
+    os << std::fixed << std::setprecision(3) << ", build " << r.build_s << " s, sweep " << r.sweep_s << " s";
+    if (r.chosen >= 0) {
+      os << ", HF " << r.hf_s << " s" << std::defaultfloat << std::setprecision(3);
+      if (r.hf_converged) {
+        os << ", true error " << r.true_error << ", e_press " << r.true_e_press;
+      } else {
+        os << ", HF FAILED (" << r.hf_status << "): point excluded";
+      }
+    }
+    os << std::defaultfloat << std::setprecision(6);
+    if (stop_reason != nullptr) os << "; stop: " << stop_reason;
+    os << "\n" << std::flush;
+  }
+
+ private:
+  std::ostream* stream_;
+  bool on_;
+};
+
+// The HF solves of one greedy run must live in one discretization (generate_snapshots checks it
+// within one call; the greedy calls it once per point).
+void check_same_layout(const io::SnapshotSet& a, const io::SnapshotSet& b, const GreedyMu& mu) {
+  require(a.num_dofs == b.num_dofs && a.free_dofs == b.free_dofs && a.contact_dofs == b.contact_dofs &&
+              a.slave == b.slave && a.master == b.master && a.constraint == b.constraint,
+          "greedy: the HF discretization at mu = " + mu_text(mu) +
+              " differs from the one of the first snapshot (DOF map, contact chains or constraint)");
+}
+
+}  // namespace
+
+const char* to_string(GreedyOfflineStatus status) {
+  switch (status) {
+    case GreedyOfflineStatus::ToleranceReached: return "tolerance_reached";
+    case GreedyOfflineStatus::Budget: return "budget";
+    case GreedyOfflineStatus::Stagnated: return "stagnated";
+  }
+  return "unknown";
+}
+
+void check_settings(const GreedyOfflineSettings& s) {
+  require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
+          "greedy: the tolerance must be finite and > 0, got " + std::to_string(s.tolerance));
+  require(s.max_hf >= 1, "greedy: the HF budget must be >= 1, got " + std::to_string(s.max_hf));
+  require(s.jobs >= 1, "greedy: the number of jobs must be >= 1, got " + std::to_string(s.jobs));
+  check_settings(s.offline);
+}
+
+double reduced_energy_norm(const ReducedModel& model, const GreedyMu& mu, const Eigen::VectorXd& u_hat) {
+  const Eigen::Index N = u_hat.size();
+  require(N <= model.N_max, "reduced_energy_norm: u_hat has " + std::to_string(N) + " entries, the model N_max " +
+                                std::to_string(model.N_max));
+  const Eigen::VectorXd ta = cases::evaluate(model.thetas.a, mu);
+  const Eigen::VectorXd tl = cases::evaluate(model.thetas.lift, mu);
+  const int Ja = model.J_a(), JD = static_cast<int>(tl.size());
+  // u = u_D + P Theta u_hat:  u'Au = u_hat' Theta'A_00 Theta u_hat + 2 u_hat' Theta'(A u_D)_0 + u_D'A u_D,
+  // each term affine in theta^a (49) and, for the lift, bilinear in theta^lift.
+  double q = 0.0;
+  for (int j = 0; j < Ja; ++j) {
+    q += ta(j) * u_hat.dot(model.A_hat[sz(j)].topLeftCorner(N, N) * u_hat);
+    for (int k = 0; k < JD; ++k) {
+      q += 2.0 * ta(j) * tl(k) * u_hat.dot(model.A_lift_hat[sz(j * JD + k)].head(N));
+      for (int l = 0; l < JD; ++l) q += ta(j) * tl(k) * tl(l) * model.lift_AA[sz((j * JD + k) * JD + l)];
+    }
+  }
+  return std::sqrt(std::max(0.0, q));  // rounding can make a tiny q negative
+}
+
+double relative_estimate(const ReducedModel& model, const GreedyMu& mu, const OnlineSolution& s) {
+  if (!s.converged() || !s.estimate.available || !std::isfinite(s.estimate.energy)) return kInf;
+  const double norm = reduced_energy_norm(model, mu, s.u_hat);
+  if (norm > 0.0) return s.estimate.energy / norm;
+  return s.estimate.energy > 0.0 ? kInf : 0.0;
+}
+
+int greedy_start_index(const std::vector<cases::ParameterSpec>& parameters, const std::vector<GreedyMu>& training) {
+  require(!training.empty(), "greedy: the training set is empty");
+  int best = 0;
+  double best_d = kInf;
+  for (std::size_t i = 0; i < training.size(); ++i) {
+    require(training[i].size() == static_cast<Eigen::Index>(parameters.size()),
+            "greedy: training point " + std::to_string(i) + " has " + std::to_string(training[i].size()) +
+                " values for " + std::to_string(parameters.size()) + " parameters");
+    double d = 0.0;
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      const cases::ParameterSpec& q = parameters[k];
+      const double width = q.max - q.min;
+      const double x = training[i](static_cast<Eigen::Index>(k)) - 0.5 * (q.min + q.max);
+      d += width > 0.0 ? (x / width) * (x / width) : x * x;
+    }
+    if (d < best_d) {  // strict: ties go to the smallest index
+      best_d = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const SnapshotRequest& request,
+                                       const GreedyOfflineSettings& settings) {
+  const auto t_total = Clock::now();
+  check_settings(settings);
+  const std::vector<GreedyMu>& training = request.mu;
+  require(!training.empty(), "greedy: the training set '" + request.set_name + "' is empty");
+  require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
+  const int P = static_cast<int>(training.size());
+
+  // HF data of the true error at the chosen points (offline side: A(mu) = sum theta^a_j A_j).
+  const mesh::Mesh reference = cases::reference_mesh(spec, request.level);
+  const cases::AffineTerms terms = cases::assemble_affine_terms(spec, reference);
+  const cases::AffineThetas thetas = cases::theta_functions(spec);
+
+  OnlineSettings online = settings.online;
+  online.error_estimate = true;
+  GreedyProgress progress(settings.progress, settings.progress_stream);
+
+  GreedyOfflineResult out;
+  std::vector<char> selected(sz(P), 0), excluded(sz(P), 0);
+  SnapshotRequest one = request;  // the request restricted to one point per HF solve
+  one.mu.clear();
+  const auto hf_solve = [&](int index) {
+    one.mu.assign(1, training[sz(index)]);
+    ++out.hf_solves;
+    return generate_snapshots(one, SnapshotRunOptions{});
+  };
+
+  // Start: one HF solve at the training point nearest the domain centre.
+  out.start = greedy_start_index(spec.parameters, training);
+  {
+    const auto t0 = Clock::now();
+    out.snapshots = hf_solve(out.start);
+    out.start_hf_s = seconds_since(t0);
+    const io::Snapshot& s = out.snapshots.snapshots.front();
+    progress.start(training[sz(out.start)], out.start, P, s);
+    require(s.converged, "greedy: the HF solve at the start point mu = " + mu_text(s.mu) + " failed (" + s.status +
+                             (s.message.empty() ? "" : ": " + s.message) + "); no model can be built");
+  }
+  out.snapshots.set_name = "greedy";
+  out.selected.push_back(out.start);
+  selected[sz(out.start)] = 1;
+
+  for (int step = 1;; ++step) {
+    const auto t_step = Clock::now();
+    GreedyStep row;
+    row.step = step;
+    row.snapshots = static_cast<int>(out.selected.size());
+    row.hf_solves = out.hf_solves;
+
+    // Extend's counterpart: the reduced model of the selected snapshots.
+    auto t0 = Clock::now();
+    out.offline = build_reduced_model(out.snapshots, spec, settings.offline);
+    row.build_s = seconds_since(t0);
+    const ReducedModel& model = out.offline.model;
+    row.N = model.N_max;
+    row.R = model.R_max;
+    row.Mk = model.Mk_max;
+    row.Mg = model.Mg_max;
+
+    // Evaluate: the relative estimate over the training set (the excluded points do not count).
+    t0 = Clock::now();
+    const Sweep sweep = sweep_estimate(model, training, online, settings.jobs);
+    row.sweep_s = seconds_since(t0);
+    row.online_failures = sweep.failures;
+    row.max_estimate = -kInf;
+    int next = -1;  // the argmax over the points not selected yet: the next HF solve
+    double next_estimate = -kInf;
+    for (int i = 0; i < P; ++i) {
+      if (excluded[sz(i)]) continue;
+      if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
+        row.max_estimate = sweep.criterion[sz(i)];
+        row.argmax = i;
+      }
+      if (!selected[sz(i)] && sweep.criterion[sz(i)] > next_estimate) {
+        next_estimate = sweep.criterion[sz(i)];
+        next = i;
+      }
+    }
+    row.argmax_mu = training[sz(row.argmax)];
+
+    const char* stop = nullptr;
+    if (row.max_estimate <= settings.tolerance) {
+      out.status = GreedyOfflineStatus::ToleranceReached;
+      stop = "tolerance reached";
+    } else if (out.hf_solves >= settings.max_hf) {
+      out.status = GreedyOfflineStatus::Budget;
+      stop = "HF budget spent";
+    } else if (next < 0) {
+      out.status = GreedyOfflineStatus::Stagnated;
+      stop = "every training point is selected (stagnated)";
+    } else {
+      // Extend: the HF solve at the largest estimate among the points not selected yet. Where the
+      // overall max is at a selected point, the estimate there is its floor (docs/offline-online.md,
+      // "Greedy sampling"): another solve there adds nothing, a new point still enriches the
+      // bases, the cone and the EIM. Then the current model's true error there.
+      row.chosen = next;
+      const GreedyMu& mu = training[sz(row.chosen)];
+      row.chosen_mu = mu;
+      OnlineSolver solver(model);
+      const OnlineSolution rb = solver.solve(mu, online);
+      t0 = Clock::now();
+      io::SnapshotSet s = hf_solve(row.chosen);
+      row.hf_s = seconds_since(t0);
+      io::Snapshot& snap = s.snapshots.front();
+      row.hf_converged = snap.converged;
+      row.hf_status = snap.status;
+      if (snap.converged) {
+        check_same_layout(out.snapshots, s, mu);
+        if (rb.converged()) {
+          const ReducedReconstruction& rec = out.offline.reconstruction;
+          const fem::SparseMatrix A = cases::combine(terms.A, cases::evaluate(thetas.a, mu));
+          const Eigen::VectorXd d = reconstruct_displacement(rec, mu, rb.u_hat) - snap.u;
+          const double norm_hf = std::sqrt(std::max(0.0, snap.u.dot(A * snap.u)));
+          const double norm_d = std::sqrt(std::max(0.0, d.dot(A * d)));
+          row.true_error = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;
+          // e_press: the L2(Gamma^c) norm of the P0 pressures, weights |I_r|(mu) of the HF quadrature.
+          const Eigen::VectorXd dl = reconstruct_multipliers(rec, rb.lambda_hat) - snap.lambda;
+          const double lh = std::sqrt(snap.weight.dot(snap.lambda.cwiseAbs2()));
+          const double ld = std::sqrt(snap.weight.dot(dl.cwiseAbs2()));
+          row.true_e_press = lh > 0.0 ? ld / lh : ld;
+        }
+        out.snapshots.snapshots.push_back(std::move(snap));
+        out.selected.push_back(row.chosen);
+        selected[sz(row.chosen)] = 1;
+      } else {
+        // No snapshot to add: the point leaves the training set (reported in the step).
+        out.excluded.push_back(row.chosen);
+        excluded[sz(row.chosen)] = 1;
+      }
+    }
+    row.step_s = seconds_since(t_step);
+    progress.step(row, stop);
+    out.steps.push_back(row);
+    if (stop != nullptr) break;
+  }
+  out.total_s = seconds_since(t_total);
+  return out;
+}
+
+void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path) {
+  const std::vector<io::SnapshotParameter>& params = result.snapshots.parameters;
+  std::vector<std::string> columns{"step", "snapshots", "hf_solves", "N", "R", "Mk", "Mg", "max_estimate"};
+  for (const io::SnapshotParameter& q : params) columns.push_back("argmax_" + q.name);
+  columns.push_back("online_failures");
+  for (const io::SnapshotParameter& q : params) columns.push_back("chosen_" + q.name);
+  for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s"}) columns.push_back(c);
+  io::CsvWriter csv(columns);
+  const auto value = [](const GreedyMu& mu, std::size_t k) {
+    return static_cast<Eigen::Index>(k) < mu.size() ? mu(static_cast<Eigen::Index>(k)) : std::nan("");
+  };
+  for (const GreedyStep& r : result.steps) {
+    std::vector<io::CsvCell> row{static_cast<long long>(r.step), static_cast<long long>(r.snapshots),
+                                 static_cast<long long>(r.hf_solves), static_cast<long long>(r.N),
+                                 static_cast<long long>(r.R), static_cast<long long>(r.Mk),
+                                 static_cast<long long>(r.Mg), r.max_estimate};
+    for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.argmax_mu, k));
+    row.emplace_back(static_cast<long long>(r.online_failures));
+    for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.chosen_mu, k));
+    for (const io::CsvCell& c : std::vector<io::CsvCell>{r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s,
+                                                         r.hf_s, r.step_s}) {
+      row.push_back(c);
+    }
+    csv.add_row(row);
+  }
+  csv.write(path);
+}
+
+}  // namespace contactrb::rb

@@ -1,0 +1,125 @@
+#include "contactrb/offline/pod.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "contactrb/common/error.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+
+std::string dims(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + "x" + std::to_string(c); }
+
+// Truncation, given the singular values sigma (decreasing) and the numerical rank.
+int truncated_size(const Eigen::VectorXd& sigma, int rank, const PODSettings& settings, double& threshold) {
+  const Eigen::Index P = sigma.size();
+  if (settings.max_modes >= 0) {
+    threshold = 0.0;
+    return std::min(settings.max_modes, rank);
+  }
+  int N = 0;
+  if (settings.truncation == PODTruncation::SingularValue) {
+    threshold = settings.relative ? settings.tolerance * (P > 0 ? sigma(0) : 0.0) : settings.tolerance;
+    while (N < rank && sigma(N) > threshold) ++N;
+    return N;
+  }
+  threshold = settings.relative ? settings.tolerance * sigma.norm() : settings.tolerance;
+  // Smallest N with sqrt(sum_{i>=N} sigma_i^2) <= threshold (tail sums from the end).
+  double tail = 0.0;
+  N = static_cast<int>(P);
+  for (Eigen::Index i = P - 1; i >= 0; --i) {
+    if (std::sqrt(tail + sigma(i) * sigma(i)) > threshold) break;
+    tail += sigma(i) * sigma(i);
+    N = static_cast<int>(i);
+  }
+  return std::min(N, rank);
+}
+
+// POD from the weighted snapshots B = W S (W' W = M, W = L' P for a Cholesky factor, W = I for
+// the Euclidean product): B = U Sigma V' (thin SVD), phi_i = W^-1 u_i. Then |B x| = |S x|_M,
+// so Sigma are the M-singular values of S and Phi' M Phi = U' U = I.
+// to_modes(U_N) = W^-1 U_N; apply_M(X) = M X (for the re-orthonormalization).
+template <class ToModes, class ApplyM>
+PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const ToModes& to_modes,
+                   const ApplyM& apply_M) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PODResult result;
+  const Eigen::Index P = B.cols();
+  // JacobiSVD of a tall matrix starts with a column-pivoting Householder QR (Eigen's default
+  // preconditioner) and diagonalizes R by two-sided Jacobi rotations: singular values accurate
+  // to about 1e-16 sigma_1, the small ones included (the correlation matrix S' M S would square
+  // the condition number and lose them below about 1e-8 sigma_1).
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeThinU);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  result.singular_values = Eigen::VectorXd::Zero(P);
+  result.singular_values.head(sv.size()) = sv;
+  const Eigen::VectorXd& sigma = result.singular_values;
+  const double largest = P > 0 ? sigma(0) : 0.0;
+  int rank = 0;
+  while (rank < sv.size() && sigma(rank) > 0.0 && sigma(rank) > settings.rank_tolerance * largest) ++rank;
+  result.rank = rank;
+  const int N = truncated_size(sigma, rank, settings, result.threshold);
+  result.N = N;
+  result.discarded_energy = sigma.tail(P - N).squaredNorm();
+
+  Eigen::MatrixXd basis = to_modes(Eigen::MatrixXd(svd.matrixU().leftCols(N)));
+  // One Cholesky re-orthonormalization Phi <- Phi L^-T with Phi' M Phi = L L' (L lower
+  // triangular, so span{phi_1..phi_k} is kept for every k): removes the round-off of W^-1
+  // (about 1e-16 cond(W)) from the M-orthonormality.
+  if (N > 0) {
+    const Eigen::MatrixXd Mbasis = apply_M(basis);
+    Eigen::MatrixXd G = basis.transpose() * Mbasis;
+    G = 0.5 * (G + G.transpose()).eval();
+    Eigen::LLT<Eigen::MatrixXd> llt(G);
+    if (llt.info() == Eigen::Success) {
+      const Eigen::MatrixXd Lt = llt.matrixU();
+      basis = Lt.triangularView<Eigen::Upper>().solve<Eigen::OnTheRight>(basis);
+    }
+  }
+  result.basis = std::move(basis);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace
+
+void check_settings(const PODSettings& s) {
+  require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
+          "pod: tolerance (eps_POD) must be finite and >= 0, got " + std::to_string(s.tolerance));
+  require(s.max_modes >= -1, "pod: max_modes must be >= -1 (-1: truncate by tolerance), got " +
+                                 std::to_string(s.max_modes));
+  require(std::isfinite(s.rank_tolerance) && s.rank_tolerance >= 0.0 && s.rank_tolerance < 1.0,
+          "pod: rank_tolerance must lie in [0, 1), got " + std::to_string(s.rank_tolerance));
+}
+
+PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M, const PODSettings& settings) {
+  check_settings(settings);
+  require(M.rows() == snapshots.rows() && M.cols() == snapshots.rows(),
+          "pod: the inner-product matrix M is " + dims(M.rows(), M.cols()) + " but the snapshots are " +
+              dims(snapshots.rows(), snapshots.cols()) + " (M must be N_hf x N_hf)");
+  require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
+  // P M P' = L L' (AMD ordering), so u' M u = |L' P u|^2: W = L' P.
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(M);
+  require(llt.info() == Eigen::Success, "pod: the inner-product matrix M is not symmetric positive definite");
+  const Eigen::MatrixXd PS = llt.permutationP() * snapshots;
+  const Eigen::MatrixXd B = llt.matrixU() * PS;
+  const auto to_modes = [&](const Eigen::MatrixXd& U) {
+    const Eigen::MatrixXd X = llt.matrixU().solve(U);  // L' X = U
+    return Eigen::MatrixXd(llt.permutationPinv() * X);
+  };
+  return pod_impl(B, settings, to_modes, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(M * X); });
+}
+
+PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings) {
+  check_settings(settings);
+  require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
+  return pod_impl(
+      snapshots, settings, [](const Eigen::MatrixXd& U) { return U; }, [](const Eigen::MatrixXd& X) { return X; });
+}
+
+}  // namespace contactrb::rb

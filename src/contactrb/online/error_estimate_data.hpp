@@ -1,0 +1,61 @@
+#pragma once
+// The reduced-size arrays of the a posteriori error estimate (docs/offline-online.md, "Error
+// estimate"), stored in the ReducedModel (field `estimate`) and in the model file; built by
+// build_estimate_data (offline/error_estimate.hpp), evaluated online by ErrorEstimator
+// (online/error_estimator.hpp). Kept in a
+// header of its own so that reduced_model.hpp does not see the estimator.
+//
+// Column layout of residual_T (the affine terms of the primal residual, (49) and the contact
+// term, in this order; d_max = J^f + J^a J^D + J^a N_max + Mk_max R_max columns):
+//   [ f_j,0 (j < J^f) | -(A_j lift_k)_0 (j, k) | -A_j,00 Theta_n (j, n < N_max) |
+//     -E_c' Q_i' Xi_r (i < Mk_max, r < R_max) ]
+// with coefficients theta^f_j; theta^a_j theta^lift_k; theta^a_j u_hat_n; phi_i lambda_hat_r.
+#include <Eigen/Core>
+#include <vector>
+
+namespace contactrb::rb {
+
+// Columns of the column-pivoted QR whose pivot is below this fraction of the largest are dropped
+// (their contribution to |T y| is below the rounding of the kept ones). Offline (the whole
+// residual_T) and online (the columns of the leading sizes) alike.
+inline constexpr double kEstimateRankTolerance = 1e-13;
+
+// Number of columns of residual_T for the given sizes (the layout above).
+inline Eigen::Index residual_columns(int Jf, int Ja, int JD, int N, int Mk, int R) {
+  return static_cast<Eigen::Index>(Jf + Ja * JD + Ja * N) + static_cast<Eigen::Index>(Mk) * R;
+}
+
+struct EstimateData {
+  // X = A_00(mu_ref): the energy product at the reference value (whatever the POD product).
+  // theta^a_j(mu_ref), for the coercivity bound alpha(mu) = min_j theta^a_j(mu) / theta^a_j(mu_ref).
+  Eigen::VectorXd theta_a_reference;
+  // rho x d_max: ||r||_{X'} = |residual_T y| for every coefficient vector y (the R factor of the
+  // column-pivoted QR of L^-1 [terms], X = L L', rows below the rank tolerance dropped).
+  Eigen::MatrixXd residual_T;
+  // EIM reconstructions on the kept rows: K Theta_c ~ sum_i phi_i QTheta_kappa[i] (R_kept x N_max
+  // each, Mk_max matrices); gamma ~ Q_gamma phi^gamma (R_kept x Mg_max).
+  std::vector<Eigen::MatrixXd> QTheta_kappa;
+  Eigen::MatrixXd Q_gamma;
+  // The EIM errors, measured offline on the training snapshots (estimated, not bounded online):
+  // eim_residual(M) = max_p ||E_c' (K_p - I_M K_p)' lambda_p||_{X'} / ||lambda_p||_Lambda, M = 0..Mk_max;
+  // eim_slack(M, M') = max_p ((delta s_p)^-)' lambda_p / ||lambda_p||_Lambda, with the slack error
+  // delta s_p = (gamma_p - I_M' gamma_p) - (K_p - I_M K_p) u_0,c(mu_p).
+  Eigen::VectorXd eim_residual;  // Mk_max + 1
+  Eigen::MatrixXd eim_slack;     // (Mk_max + 1) x (Mg_max + 1)
+};
+
+// One online answer's estimate (OnlineSolution::estimate). The energy norm is |v|_A(mu) =
+// sqrt(v' A(mu) v) on the free DOFs. What is bounded and what is estimated: docs/offline-online.md.
+struct ErrorEstimate {
+  bool available = false;        // false: the model holds no estimate data, or the solve failed
+  double residual = 0.0;         // ||r(mu)||_{X'}: dual norm of the primal residual
+  double coercivity = 0.0;       // alpha(mu) <= inf_v |v|_A(mu)^2 / |v|_X^2 (min-theta bound)
+  double violation = 0.0;        // ||(K u - gamma)^+||_{Lambda'} on the kept rows (EIM K, gamma)
+  double complementarity = 0.0;  // (Xi lambda_hat)' (gamma - K u), EIM K, gamma
+  double multiplier_norm = 0.0;  // ||Xi lambda_hat||_Lambda, Lambda = L2(Gamma^c)
+  double eim_residual = 0.0;     // eim_residual(Mk) ||Xi lambda_hat||_Lambda (estimated EIM part of the residual)
+  double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
+  double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
+};
+
+}  // namespace contactrb::rb

@@ -1,0 +1,50 @@
+#pragma once
+// The online evaluation of the a posteriori error estimate (docs/offline-online.md, "Error
+// estimate"), from the reduced arrays of ReducedModel::estimate (built offline by
+// build_estimate_data, offline/error_estimate.hpp): the coefficient vector y of the leading sizes
+// (N, R, Mk), |T_sub y| with T_sub the R factor of the selected columns (computed once per size in
+// setup), the EIM constraints on the kept rows, and the combination.
+#include <Eigen/Core>
+#include <vector>
+
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/online/error_estimate_data.hpp"
+#include "contactrb/online/reduced_model.hpp"
+
+namespace contactrb::rb {
+
+// Throws contactrb::Error naming the first array of model.estimate whose shape disagrees with the
+// model (an empty estimate is accepted: available() is then false).
+void check_estimate_data(const ReducedModel& model);
+
+// The online evaluation for one set of leading sizes. Not thread-safe (workspaces).
+class ErrorEstimator {
+ public:
+  ErrorEstimator() = default;
+  // Copies the leading blocks of model.estimate for (N, R, Mk, Mg) and factors the selected
+  // residual columns. The model must have passed check_model.
+  void setup(const ReducedModel& model, int N, int R, int Mk, int Mg);
+  bool available() const { return available_; }
+
+  // u_hat (N), lambda_hat (R), phi = (B^kappa)^-1 kappa_hat (Mk) and phi_gamma = (B^gamma)^-1
+  // gamma_hat (Mg) of the linearization that produced (u_hat, lambda_hat), weight_kept = |I_r|(mu)
+  // on the kept rows.
+  ErrorEstimate evaluate(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
+                         const Eigen::VectorXd& phi, const Eigen::VectorXd& phi_gamma,
+                         const Eigen::VectorXd& weight_kept);
+
+ private:
+  bool available_ = false;
+  int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
+  cases::AffineThetas thetas_;
+  Eigen::VectorXd theta_ref_;
+  Eigen::MatrixXd T_;        // rank x d: R factor of the selected columns of residual_T (pivoted)
+  std::vector<Eigen::Index> perm_;  // column pivots: (P' y)(k) = y(perm_[k])
+  Eigen::MatrixXd QTheta_;   // R_kept x (Mk N): column i N + n = (Q_i Theta_c)[:, n]
+  Eigen::MatrixXd Q_gamma_;  // R_kept x Mg
+  Eigen::MatrixXd Xi_;       // R_kept x R
+  double eim_residual_ = 0.0, eim_slack_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
+  Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
+};
+
+}  // namespace contactrb::rb

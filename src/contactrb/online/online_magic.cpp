@@ -1,0 +1,270 @@
+#include "contactrb/online/online_magic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/contact/segment_hit.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+using Vec2 = Eigen::Vector2d;
+using WRow = Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator;
+inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+// ProjectionOptions::end_tolerance (projection.hpp), the default project_slave_nodes uses.
+constexpr double kEndTolerance = 1e-10;
+
+// The same clamped segment distance as project_slave_nodes, so the same segment wins.
+using contact::closest_on_segment;
+using Hit = contact::SegmentHit;
+}  // namespace
+
+void MagicPointEvaluator::setup(const ContactSurface& surface, const std::vector<int>& kappa_row,
+                                const std::vector<int>& kappa_dof, const std::vector<int>& gamma_row,
+                                const Eigen::MatrixXd& Theta_c) {
+  master_ = surface.master;
+  slave_chain_ = surface.slave;
+  closed_ = master_.size() > 2 && master_.front() == master_.back();
+  require(master_.size() >= 2, "OnlineSolver: the master chain has " + std::to_string(master_.size()) +
+                                   " node(s); at least 2 are needed");
+  kappa_row_ = kappa_row;
+  kappa_dof_ = kappa_dof;
+  gamma_row_ = gamma_row;
+  Theta_c_ = Theta_c;
+  node_slot_.assign(surface.reference_nodes.size(), -1);
+  pattern_.clear();
+  y_.resize(master_.size());
+}
+
+void MagicPointEvaluator::rebuild(const contact::ContactQuadrature& q) {
+  pattern_.clear();
+  slave_position_.clear();
+  for (const std::vector<int>* rows : {&kappa_row_, &gamma_row_}) {
+    for (int r : *rows) {
+      for (WRow it(q.W, r); it; ++it) {
+        pattern_.push_back(static_cast<int>(it.col()));
+        slave_position_.push_back(static_cast<int>(it.col()));
+      }
+      pattern_.push_back(-1);  // row separator
+    }
+  }
+  std::sort(slave_position_.begin(), slave_position_.end());
+  slave_position_.erase(std::unique(slave_position_.begin(), slave_position_.end()), slave_position_.end());
+  slave_node_.clear();
+  for (int s : slave_position_) slave_node_.push_back(slave_chain_[sz(s)]);
+  // Used nodes: the master chain (a closed chain lists its first node twice), then the slaves.
+  std::fill(node_slot_.begin(), node_slot_.end(), -1);
+  used_node_.clear();
+  auto use = [&](int v) {
+    if (node_slot_[sz(v)] < 0) {
+      node_slot_[sz(v)] = static_cast<int>(used_node_.size());
+      used_node_.push_back(v);
+    }
+  };
+  for (int v : master_) use(v);
+  for (int v : slave_node_) use(v);
+  const int n_used = static_cast<int>(used_node_.size());
+  Theta_r_.resize(2 * n_used, Theta_c_.cols());
+  for (int i = 0; i < n_used; ++i) {
+    Theta_r_.row(2 * i) = Theta_c_.row(2 * used_node_[sz(i)]);
+    Theta_r_.row(2 * i + 1) = Theta_c_.row(2 * used_node_[sz(i)] + 1);
+  }
+  X_.resize(sz(n_used));
+  lift_r_.resize(2 * n_used);
+  w_r_.resize(2 * n_used);
+  projection_.resize(slave_node_.size());
+}
+
+void MagicPointEvaluator::prepare(const std::vector<Eigen::Vector2d>& nodes, const contact::ContactQuadrature& q,
+                                  const Eigen::VectorXd& lift_mu) {
+  // The W pattern does not depend on mu (make_quadrature: only the values do); rebuild the
+  // restriction only when it differs from the one in use.
+  bool same = !pattern_.empty();
+  std::size_t p = 0;
+  for (const std::vector<int>* rows : {&kappa_row_, &gamma_row_}) {
+    for (int r : *rows) {
+      for (WRow it(q.W, r); same && it; ++it) same = p < pattern_.size() && pattern_[p++] == static_cast<int>(it.col());
+      same = same && p < pattern_.size() && pattern_[p++] == -1;
+    }
+  }
+  if (!same || p != pattern_.size()) rebuild(q);
+
+  for (std::size_t i = 0; i < used_node_.size(); ++i) {
+    const int v = used_node_[i];
+    X_[i] = nodes[sz(v)];
+    lift_r_.segment<2>(2 * static_cast<Eigen::Index>(i)) = lift_mu.segment<2>(2 * v);
+  }
+  // Position of a slave chain entry among the restricted slaves (they are few: linear search).
+  auto local = [&](int s) {
+    return static_cast<int>(std::lower_bound(slave_position_.begin(), slave_position_.end(), s) - slave_position_.begin());
+  };
+  auto terms = [&](const std::vector<int>& rows, std::vector<Term>& out, std::vector<int>& start) {
+    out.clear();
+    start.clear();
+    for (int r : rows) {
+      start.push_back(static_cast<int>(out.size()));
+      for (WRow it(q.W, r); it; ++it) out.push_back({local(static_cast<int>(it.col())), it.value()});
+    }
+    start.push_back(static_cast<int>(out.size()));
+  };
+  terms(kappa_row_, kappa_terms_, kappa_start_);
+  terms(gamma_row_, gamma_terms_, gamma_start_);
+}
+
+Vec2 MagicPointEvaluator::segment_normal(int k) const {
+  const Vec2 e = y_[sz(k + 1)] - y_[sz(k)];
+  const double len = e.norm();
+  return {e.y() / len, -e.x() / len};  // body on the left: outward (dy, -dx)/|e| (master_polyline.cpp)
+}
+
+// master_polyline.cpp: interior vertices average their two segments, the ends of an open chain
+// take their only segment's normal, a closed chain wraps (vertex 0 == vertex M).
+Vec2 MagicPointEvaluator::vertex_normal(int j) const {
+  const int M = static_cast<int>(master_.size()) - 1;
+  auto average = [&](int left, int right) {
+    const Vec2 nl = segment_normal(left);
+    const Vec2 nr = segment_normal(right);
+    if (nl == nr) return nl;
+    const Vec2 sum = nl + nr;
+    const double len = sum.norm();
+    return len > 0.0 ? Vec2(sum / len) : nl;
+  };
+  if (j > 0 && j < M) return average(j - 1, j);
+  if (closed_) return average(M - 1, 0);
+  return segment_normal(j == 0 ? 0 : M - 1);
+}
+
+// The lexicographic minimum of (squared distance, segment index) over every master segment, as
+// the all-pairs search of project_slave_nodes, visiting only the blocks whose box is not
+// farther than the best hit so far. The box bound is exact in floating point
+// (closest_on_segment clamps into the segment's box), so the answer is the all-pairs one.
+contact::SegmentHit MagicPointEvaluator::nearest_segment(const Vec2& x) {
+  const int M = static_cast<int>(master_.size()) - 1;
+  const int num_blocks = static_cast<int>(block_min_.size());
+  int first = 0;
+  for (int b = 0; b < num_blocks; ++b) {
+    const Vec2 c = x.cwiseMax(block_min_[sz(b)]).cwiseMin(block_max_[sz(b)]);
+    block_bound_[sz(b)] = (x - c).squaredNorm();
+    if (block_bound_[sz(b)] < block_bound_[sz(first)]) first = b;
+  }
+  Hit best;
+  auto scan = [&](int b) {
+    const int k1 = std::min(M, (b + 1) * kBlockSegments);
+    for (int k = b * kBlockSegments; k < k1; ++k) {
+      const Hit h = closest_on_segment(y_[sz(k)], y_[sz(k + 1)], k, x);
+      if (h.d2 < best.d2 || (h.d2 == best.d2 && h.segment < best.segment)) best = h;
+    }
+  };
+  scan(first);
+  for (int b = 0; b < num_blocks; ++b) {
+    if (b != first && block_bound_[sz(b)] <= best.d2) scan(b);
+  }
+  return best;
+}
+
+double MagicPointEvaluator::k_entry(const Projection& p, int slave_node, int dof) const {
+  // (27): k(w; v)_s = ((1 - xi) v_a + xi v_b - v_s) . n2; zero row for a non-candidate.
+  if (!p.candidate) return 0.0;
+  const int node = dof / 2, c = dof % 2;
+  double v = 0.0;
+  if (p.a == node) v += (1.0 - p.xi) * p.normal(c);
+  if (p.b == node) v += p.xi * p.normal(c);
+  if (slave_node == node) v -= p.normal(c);
+  return v;
+}
+
+void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat,
+                                   Eigen::VectorXd& gamma_hat) {
+  w_r_ = lift_r_;
+  w_r_.noalias() += Theta_r_ * u_hat;
+  if (!w_r_.allFinite()) throw Error("OnlineSolver: the contact-surface displacement is not finite");
+  const int M = static_cast<int>(master_.size()) - 1;  // segments
+  for (int j = 0; j <= M; ++j) {
+    const int slot = node_slot_[sz(master_[sz(j)])];
+    y_[sz(j)] = X_[sz(slot)] + w_r_.segment<2>(2 * slot);
+  }
+  for (int k = 0; k < M; ++k) {
+    if (!((y_[sz(k + 1)] - y_[sz(k)]).norm() > 0.0)) {
+      throw Error("project_slave_nodes: deformed master segment " + std::to_string(k) + " (nodes " +
+                  std::to_string(master_[sz(k)]) + ", " + std::to_string(master_[sz(k + 1)]) +
+                  ") has zero length; its normal is undefined");
+    }
+  }
+  // Bounding boxes of the blocks of kBlockSegments consecutive deformed master segments.
+  const int num_blocks = (M + kBlockSegments - 1) / kBlockSegments;
+  block_min_.resize(sz(num_blocks));
+  block_max_.resize(sz(num_blocks));
+  block_bound_.resize(sz(num_blocks));
+  for (int b = 0; b < num_blocks; ++b) {
+    const int k1 = std::min(M, (b + 1) * kBlockSegments);
+    Vec2 mn = y_[sz(b * kBlockSegments)], mx = mn;
+    for (int j = b * kBlockSegments + 1; j <= k1; ++j) {
+      mn = mn.cwiseMin(y_[sz(j)]);
+      mx = mx.cwiseMax(y_[sz(j)]);
+    }
+    block_min_[sz(b)] = mn;
+    block_max_[sz(b)] = mx;
+  }
+  for (std::size_t l = 0; l < slave_node_.size(); ++l) {
+    const int slot = node_slot_[sz(slave_node_[l])];
+    const Vec2& X = X_[sz(slot)];
+    const Vec2 x = X + w_r_.segment<2>(2 * slot);
+    const Hit best = nearest_segment(x);
+    // As project_slave_nodes: finite coordinates whose squared distances overflow leave no
+    // segment at a finite distance, and the search keeps its initial segment -1.
+    if (best.segment < 0 || !std::isfinite(best.d2)) {
+      throw Error("OnlineSolver: the distance from slave node " + std::to_string(slave_node_[l]) +
+                  " to the master boundary is not finite (positions overflow double precision when squared)");
+    }
+    Projection& p = projection_[l];
+    const int k = best.segment;
+    p.a = master_[sz(k)];
+    p.b = master_[sz(k + 1)];
+    p.xi = best.xi;
+    // MasterPolyline::normal_at: the continuous normal field.
+    const Vec2 na = vertex_normal(k), nb = vertex_normal(k + 1);
+    if (p.xi == 0.0) {
+      p.normal = na;
+    } else if (p.xi == 1.0 || na == nb) {
+      p.normal = nb;
+    } else {
+      const Vec2 n = (1.0 - p.xi) * na + p.xi * nb;
+      const double len = n.norm();
+      p.normal = len > 0.0 ? Vec2(n / len) : segment_normal(k);
+    }
+    const Vec2 rho = (1.0 - p.xi) * X_[sz(node_slot_[sz(p.a)])] + p.xi * X_[sz(node_slot_[sz(p.b)])];
+    const bool before_start = k == 0 && best.t_raw < -kEndTolerance;
+    const bool after_end = k == M - 1 && best.t_raw > 1.0 + kEndTolerance;
+    p.candidate = closed_ || !(before_start || after_end);
+    // (28): g = (X_s - rho) . n2; a non-candidate: its distance (never binds).
+    p.g = p.candidate ? (X - rho).dot(p.normal) : std::sqrt(best.d2);
+  }
+  for (std::size_t i = 0; i < kappa_row_.size(); ++i) {
+    double v = 0.0;
+    for (int t = kappa_start_[i]; t < kappa_start_[i + 1]; ++t) {
+      const Term& term = kappa_terms_[sz(t)];
+      v += term.weight * k_entry(projection_[sz(term.slave)], slave_node_[sz(term.slave)], kappa_dof_[i]);
+    }
+    kappa_hat(static_cast<Eigen::Index>(i)) = v;
+  }
+  // gamma = g - K u_D(mu) (the lift's contact term moved into the gap).
+  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
+    double v = 0.0;
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+      const Term& term = gamma_terms_[sz(t)];
+      const Projection& p = projection_[sz(term.slave)];
+      double k_lift = 0.0;
+      if (p.candidate) {
+        const auto lift = [&](int node) { return lift_r_.segment<2>(2 * node_slot_[sz(node)]); };
+        k_lift = p.normal.dot((1.0 - p.xi) * lift(p.a) + p.xi * lift(p.b) - lift(slave_node_[sz(term.slave)]));
+      }
+      v += term.weight * (p.g - k_lift);
+    }
+    gamma_hat(static_cast<Eigen::Index>(i)) = v;
+  }
+}
+
+}  // namespace contactrb::rb

@@ -1,0 +1,92 @@
+#pragma once
+// The EIM magic-point values of kappa and gamma (paper (50)-(52)) for collocation and LAC-Simpson
+// rows, from the slave nodes under the magic rows only ("restricted operator"): such a row is a
+// W-weighted sum of pointwise rows (10)-(11),
+//   K[r, n] = sum_s W(r, s) K_pt[s, n],   gamma_r = sum_s W(r, s) (g_pt[s] - K_pt[s, :] u_D,c(mu)).
+// Internal to OnlineSolver (no stable API).
+//
+// The pointwise rows follow contact::project_slave_nodes exactly (projection.hpp): closest point
+// on the deformed master polyline (the all-pairs answer, found by bounding boxes of
+// segment blocks) with ties to the lowest segment index, the
+// continuous normal field n2 (vertex normals = normalized average of the adjacent segment
+// normals), the end-of-open-chain candidate rule, a zero K row and g = distance for
+// non-candidates, contactrb::Error for a zero-length deformed master segment or a non-finite
+// displacement. Unlike project_slave_nodes it allocates nothing per step, needs the
+// displacement only on the master chain and on those slave nodes (w = u_D,c + Theta_c u_hat on
+// those rows), and computes segment normals only where a closest point lies. The online tests
+// compare it with the full contact-surface rows (constraint_rows) to 1e-10.
+#include <Eigen/Core>
+#include <vector>
+
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/segment_hit.hpp"
+#include "contactrb/online/reduced_model.hpp"
+
+namespace contactrb::rb {
+
+class MagicPointEvaluator {
+ public:
+  // kappa_row, gamma_row: magic rows in R_hf numbering; kappa_dof: contact-surface DOFs;
+  // Theta_c (n_c x N), lift_c (n_c x J^D): the model's contact-surface rows.
+  void setup(const ContactSurface& surface, const std::vector<int>& kappa_row, const std::vector<int>& kappa_dof,
+             const std::vector<int>& gamma_row, const Eigen::MatrixXd& Theta_c);
+
+  // Per mu: the contact-surface nodes in Omega(mu), the quadrature at mu (its W pattern decides
+  // which slave nodes are needed; rebuilt only when it changes) and u_D,c(mu) (n_c).
+  void prepare(const std::vector<Eigen::Vector2d>& nodes, const contact::ContactQuadrature& quadrature,
+               const Eigen::VectorXd& lift_mu);
+
+  // Per step: kappa_hat (Mk) and gamma_hat (Mg) at u_hat (N), sized by the caller.
+  void evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat);
+
+  int num_slave_nodes() const { return static_cast<int>(slave_node_.size()); }  // restricted slave nodes
+
+ private:
+  struct Term {
+    int slave = 0;  // restricted slave index
+    double weight = 0.0;
+  };
+  struct Projection {  // what a pointwise row needs (projection.hpp)
+    int a = 0, b = 0;  // local node indices of the closest segment's end points
+    double xi = 0.0;
+    Eigen::Vector2d normal{0.0, 0.0};
+    double g = 0.0;
+    bool candidate = false;
+  };
+  void rebuild(const contact::ContactQuadrature& quadrature);
+  Eigen::Vector2d segment_normal(int k) const;
+  Eigen::Vector2d vertex_normal(int j) const;
+  double k_entry(const Projection& p, int slave_node, int dof) const;  // K_pt[s, dof]
+  contact::SegmentHit nearest_segment(const Eigen::Vector2d& x);     // closest deformed master segment
+
+  // Master segments per bounding box of the closest-segment search (the search visits the
+  // nearest block and the blocks not farther than the best hit: a few instead of all).
+  static constexpr int kBlockSegments = 8;
+
+  // Setup.
+  std::vector<int> master_;                 // master chain (local node indices)
+  std::vector<int> slave_chain_;            // slave chain
+  bool closed_ = false;
+  std::vector<int> kappa_row_, kappa_dof_, gamma_row_;
+  Eigen::MatrixXd Theta_c_;
+  // Restriction (from the W pattern).
+  std::vector<int> pattern_;                // W columns of the magic rows, row by row (to detect changes)
+  std::vector<int> slave_position_;         // restricted slave index -> position in the slave chain
+  std::vector<int> slave_node_;             // restricted slave index -> local node
+  std::vector<int> used_node_;              // nodes whose displacement is needed: master chain nodes, then slaves
+  std::vector<int> node_slot_;              // local node -> index in used_node_ (-1)
+  Eigen::MatrixXd Theta_r_;                 // 2 |used| x N: the rows of Theta_c of used_node_
+  // Per mu.
+  std::vector<Term> kappa_terms_, gamma_terms_;
+  std::vector<int> kappa_start_, gamma_start_;  // CSR-like offsets into the term lists
+  std::vector<Eigen::Vector2d> X_;          // Omega(mu) position of each used node
+  Eigen::VectorXd lift_r_;                  // u_D,c(mu) on the used nodes
+  // Per step.
+  Eigen::VectorXd w_r_;                     // displacement of the used nodes
+  std::vector<Eigen::Vector2d> y_;          // deformed master chain
+  std::vector<Projection> projection_;      // one per restricted slave node
+  std::vector<Eigen::Vector2d> block_min_, block_max_;  // boxes of the deformed master blocks
+  std::vector<double> block_bound_;         // squared distance of the current slave node to each box
+};
+
+}  // namespace contactrb::rb

@@ -1,0 +1,480 @@
+#include "contactrb/online/online_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "contactrb/cases/geometric_map.hpp"
+#include "contactrb/common/error.hpp"
+#include "contactrb/contact/lac_integration.hpp"
+#include "contactrb/contact/projection.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+// |D|_F below this fraction of its cancellation-free bound: the reduced constraints are blind.
+constexpr double kBlindContactTolerance = 1e-10;
+}  // namespace
+
+namespace {
+using Clock = std::chrono::steady_clock;
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+int resolve(int requested, int maximum, int minimum, const char* name) {
+  const int v = requested < 0 ? maximum : requested;
+  require(v >= minimum && v <= maximum, std::string("OnlineSolver: ") + name + " = " + std::to_string(v) +
+                                            " outside [" + std::to_string(minimum) + ", " + std::to_string(maximum) +
+                                            "] (the model's maximum)");
+  return v;
+}
+
+// Row r of a row-major sparse matrix dotted with v.
+double row_dot(const RowSparse& K, int r, const Eigen::VectorXd& v) {
+  double s = 0.0;
+  for (RowSparse::InnerIterator it(K, r); it; ++it) s += it.value() * v(it.col());
+  return s;
+}
+}  // namespace
+
+OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) {
+  check_model(model);
+  N_ = resolve(sizes.N, model.N_max, 1, "N");
+  R_ = resolve(sizes.R, model.R_max, model.R_max > 0 ? 1 : 0, "R");
+  Mk_ = resolve(sizes.Mk, model.Mk_max, model.Mk_max > 0 ? 1 : 0, "Mk");
+  Mg_ = resolve(sizes.Mg, model.Mg_max, model.Mg_max > 0 ? 1 : 0, "Mg");
+  parameters_ = model.parameters;
+  {
+    // p = 1: sorted values (linear interpolation); p > 1: the points scaled to [0, 1] per
+    // parameter (nearest point), so that parameters of different units weigh alike.
+    const int p_dim = model.num_parameters();
+    std::vector<int> order(static_cast<std::size_t>(model.training_mu.cols()));
+    for (std::size_t p = 0; p < order.size(); ++p) order[p] = static_cast<int>(p);
+    if (p_dim == 1) {
+      std::stable_sort(order.begin(), order.end(),
+                       [&](int a, int b) { return model.training_mu(0, a) < model.training_mu(0, b); });
+    }
+    guess_.resize(N_ + R_, static_cast<Eigen::Index>(order.size()));
+    guess_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
+    guess_offset_.resize(p_dim);
+    guess_scale_.resize(p_dim);
+    for (int k = 0; k < p_dim; ++k) {
+      const cases::ParameterSpec& q = parameters_[sz(k)];
+      guess_offset_(k) = q.min;
+      guess_scale_(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
+    }
+    for (std::size_t p = 0; p < order.size(); ++p) {
+      if (p_dim == 1) guess_mu_.push_back(model.training_mu(0, order[p]));
+      guess_points_.col(static_cast<Eigen::Index>(p)) =
+          (model.training_mu.col(order[p]) - guess_offset_).cwiseProduct(guess_scale_);
+      guess_.col(static_cast<Eigen::Index>(p)) << model.training_u_hat.col(order[p]).head(N_),
+          model.training_lambda_hat.col(order[p]).head(R_);
+    }
+  }
+  thetas_ = model.thetas;
+  kacanov_alpha_ = model.kacanov_alpha;
+  kacanov_tolerance_ = model.kacanov_tolerance;
+  kacanov_max_iterations_ = model.kacanov_max_iterations;
+  for (const auto& A : model.A_hat) A_hat_.push_back(A.topLeftCorner(N_, N_));
+  for (const auto& f : model.f_hat) f_hat_.push_back(f.head(N_));
+  for (const auto& f : model.A_lift_hat) A_lift_hat_.push_back(f.head(N_));
+  lift_AA_ = model.lift_AA;
+  lift_f_ = model.lift_f;
+  // Column j = C_j' (N x R) stored column-major: D' = sum_j phi_j C_j' is one matrix-vector product.
+  Ct_.resize(static_cast<Eigen::Index>(N_) * R_, Mk_);
+  for (int j = 0; j < Mk_; ++j) {
+    Eigen::Map<Eigen::MatrixXd>(Ct_.col(j).data(), N_, R_) = model.C_kappa[sz(j)].topLeftCorner(R_, N_).transpose();
+  }
+  // The leading M x M block of B is the B of the first M EIM functions (B is lower triangular).
+  if (Mk_ > 0) B_kappa_lu_.compute(model.B_kappa.topLeftCorner(Mk_, Mk_));
+  if (Mg_ > 0) B_gamma_lu_.compute(model.B_gamma.topLeftCorner(Mg_, Mg_));
+  XiQ_gamma_ = model.XiQ_gamma.topLeftCorner(R_, Mg_);
+  Xi_ = model.Xi.leftCols(R_);
+  kept_rows_ = model.kept_rows;
+  for (int i = 0; i < Mk_; ++i) {
+    kappa_row_.push_back(model.kept_rows[sz(model.kappa_row[sz(i)])]);
+    kappa_dof_.push_back(model.kappa_dof[sz(i)]);
+  }
+  for (int i = 0; i < Mg_; ++i) gamma_row_.push_back(model.kept_rows[sz(model.gamma_row[sz(i)])]);
+  surface_ = model.surface;
+  Theta_c_ = model.Theta_c.leftCols(N_);
+  lift_c_ = model.lift_c;
+
+  // Contact-surface-only mesh: the chain nodes and the two boundary groups, no triangles
+  // (projection, quadrature and rows need only nodes and chains).
+  mesh_.nodes = surface_.reference_nodes;
+  auto edges = [](const std::vector<int>& chain) {
+    std::vector<mesh::Edge> e;
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k) e.push_back({chain[k], chain[k + 1]});
+    return e;
+  };
+  mesh_.boundaries[mesh::kSlaveBoundary] = edges(surface_.slave);
+  mesh_.boundaries[mesh::kMasterBoundary] = edges(surface_.master);
+  pair_.slave = surface_.slave;
+  pair_.master = surface_.master;
+  magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
+  lac_rows_ = kappa_row_;
+  lac_rows_.insert(lac_rows_.end(), gamma_row_.begin(), gamma_row_.end());
+  std::sort(lac_rows_.begin(), lac_rows_.end());
+  lac_rows_.erase(std::unique(lac_rows_.begin(), lac_rows_.end()), lac_rows_.end());
+  lac_positions_ = contact::lac_slave_positions(lac_rows_, static_cast<int>(surface_.slave.size()));
+  // Upper bound of |D|_F without cancellation per unit |phi|_1: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
+  d_bound_ = Xi_.norm() * Theta_c_.norm();
+
+  // Workspaces (see the header).
+  const Eigen::Index n_c = Theta_c_.rows();
+  A_.resize(N_, N_);
+  f_.resize(N_);
+  z_.resize(N_);
+  lift_mu_.resize(n_c);
+  w_.resize(n_c);
+  kappa_hat_.resize(Mk_);
+  gamma_hat_.resize(Mg_);
+  phi_.resize(Mk_);
+  phi_gamma_.resize(Mg_);
+  dg_.resize(R_);
+  c_.resize(R_);
+  t_.resize(N_);
+  Et_.resize(N_, R_);
+  Dt_.resize(N_, R_);
+  Q_.resize(R_, R_);
+  warm_.reserve(sz(R_));
+  for (Eigen::VectorXd* v : {&u_, &u_prev_, &r_, &r_prev_}) v->resize(N_);
+  lambda_prev_.resize(R_);
+  estimator_.setup(model, N_, R_, Mk_, Mg_);
+  weight_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
+}
+
+void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, bool restricted,
+                                  Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const {
+  const bool lac_subset = restricted && surface_.discretization == contact::Discretization::LAC;
+  const contact::PointwiseContact pw = lac_subset ? contact::project_slave_nodes(mesh_, pair_, w, lac_positions_)
+                                                  : contact::project_slave_nodes(mesh_, pair_, w);
+  const contact::ConstraintRows rows = lac_subset
+                                           ? contact::integrate_lac_rows(mesh_, pair_, quadrature_, pw, w, lac_rows_)
+                                           : contact::constraint_rows(mesh_, pair_, quadrature_, pw, w);
+  require(rows.K.rows() == surface_.num_constraints,
+          "OnlineSolver: the contact surface gives " + std::to_string(rows.K.rows()) + " constraints, the model " +
+              std::to_string(surface_.num_constraints));
+  kappa_hat.resize(Mk_);
+  for (int i = 0; i < Mk_; ++i) kappa_hat(i) = rows.K.coeff(kappa_row_[sz(i)], kappa_dof_[sz(i)]);
+  // gamma = g - K u_D(mu) (the lift's contact term moved into the gap).
+  gamma_hat.resize(Mg_);
+  for (int i = 0; i < Mg_; ++i) {
+    const int r = gamma_row_[sz(i)];
+    gamma_hat(i) = rows.g(r) - row_dot(rows.K, r, lift_c);
+  }
+}
+
+bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& message) {
+  // Omega(mu) on the contact surface: h_body(mu) applied to the reference chain nodes.
+  const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameters_, mu);
+  for (std::size_t i = 0; i < mesh_.nodes.size(); ++i) {
+    mesh_.nodes[i] = maps[sz(surface_.body[i])](surface_.reference_nodes[i]);
+  }
+  // The quadrature reads the slave chain only: rebuilt when the slave nodes moved (a mapped slave
+  // body), kept otherwise (a mapped master body, an imposed displacement).
+  bool slave_moved = quadrature_slave_.size() != surface_.slave.size();
+  for (std::size_t k = 0; k < surface_.slave.size() && !slave_moved; ++k) {
+    slave_moved = quadrature_slave_[k] != mesh_.nodes[sz(surface_.slave[k])];
+  }
+  if (slave_moved) {
+    quadrature_ = contact::make_quadrature(mesh_, pair_, surface_.discretization);
+    quadrature_slave_.clear();
+    for (int v : surface_.slave) quadrature_slave_.push_back(mesh_.nodes[sz(v)]);
+  }
+  require(quadrature_.W.rows() == surface_.num_constraints,
+          "OnlineSolver: the contact surface gives " + std::to_string(quadrature_.W.rows()) +
+              " constraints, the model " + std::to_string(surface_.num_constraints));
+  restricted_ = restricted;
+  // Collocation and LAC-Simpson rows: the allocation-free evaluator (online_magic.hpp).
+  pointwise_magic_ = restricted && surface_.discretization != contact::Discretization::LAC;
+  // (49)
+  const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
+  const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
+  const Eigen::VectorXd tl = cases::evaluate(thetas_.lift, mu);
+  const int Ja = static_cast<int>(A_hat_.size()), Jf = static_cast<int>(f_hat_.size());
+  const int JD = static_cast<int>(tl.size());
+  A_.setZero();
+  f_.setZero();
+  E_D_ = 0.0;
+  for (int j = 0; j < Ja; ++j) {
+    A_ += ta(j) * A_hat_[sz(j)];
+    for (int k = 0; k < JD; ++k) {
+      f_ -= ta(j) * tl(k) * A_lift_hat_[sz(j * JD + k)];
+      for (int l = 0; l < JD; ++l) E_D_ += 0.5 * ta(j) * tl(k) * tl(l) * lift_AA_[sz((j * JD + k) * JD + l)];
+    }
+  }
+  for (int j = 0; j < Jf; ++j) {
+    f_ += tf(j) * f_hat_[sz(j)];
+    for (int k = 0; k < JD; ++k) E_D_ -= tf(j) * tl(k) * lift_f_[sz(j * JD + k)];
+  }
+  // Once per query: the Cholesky factor of A_hat(mu) serves every step.
+  llt_.compute(A_);
+  if (llt_.info() != Eigen::Success) {
+    message = "A_hat(mu) is not positive definite";
+    return false;
+  }
+  z_ = llt_.solve(f_);  // A_hat^-1 f_hat
+  if (JD > 0) {
+    lift_mu_.noalias() = lift_c_ * tl;
+  } else {
+    lift_mu_.setZero();
+  }
+  if (pointwise_magic_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  warm_.clear();
+  return true;
+}
+
+bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+                        std::string& message) {
+  if (pointwise_magic_) {
+    magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
+  } else {
+    w_ = lift_mu_;
+    w_.noalias() += Theta_c_ * u_hat;
+    evaluate_magic(w_, lift_mu_, restricted_, kappa_hat_, gamma_hat_);
+  }
+  // (54): D^kappa = sum_j phi_j C_j, B^kappa phi = kappa_hat; assembled transposed (N x R).
+  double d_scale = 0.0;
+  if (Mk_ > 0) {
+    phi_ = B_kappa_lu_.solve(kappa_hat_);
+    Eigen::Map<Eigen::VectorXd>(Dt_.data(), Dt_.size()).noalias() = Ct_ * phi_;
+    d_scale = d_bound_ * phi_.cwiseAbs().sum();
+  } else {
+    Dt_.setZero();
+  }
+  // When the primal basis does not see the contact (K Theta = 0, e.g. the only POD mode
+  // of a patch test has no interface jump), D vanishes and the reduced multipliers are
+  // not determined by (53): the QP would return round-off over round-off. Fail instead.
+  const double d_norm = Dt_.norm();
+  if (R_ > 0 && d_norm <= kBlindContactTolerance * d_scale) {
+    message = "the reduced contact operator D^kappa vanishes (|D| = " + std::to_string(d_norm) +
+              "): the primal basis does not see the contact constraints, so the reduced multipliers "
+              "are undetermined; rebuild the model with a larger N";
+    return false;
+  }
+  if (Mg_ > 0) {
+    phi_gamma_ = B_gamma_lu_.solve(gamma_hat_);
+    dg_.noalias() = XiQ_gamma_ * phi_gamma_;
+  } else {
+    dg_.setZero();
+  }
+  // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y symmetrized,
+  // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
+  // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
+  // multipliers, whose QP is ill-conditioned there.)
+  Et_ = Dt_;
+  llt_.matrixL().solveInPlace(Et_);
+  llt_.matrixU().solveInPlace(Et_);
+  Q_.noalias() = Dt_.transpose() * Et_;
+  for (int j = 0; j < R_; ++j) {
+    for (int i = j + 1; i < R_; ++i) Q_(i, j) = Q_(j, i) = 0.5 * (Q_(i, j) + Q_(j, i));
+  }
+  c_.noalias() = Dt_.transpose() * z_;
+  c_ -= dg_;
+  const solve::QPResult& qp = qp_.solve(Q_, c_, warm_);
+  inner = qp.iterations;
+  if (qp.status != solve::QPStatus::Solved) {
+    message = std::string("reduced contact QP ") + solve::to_string(qp.status) + ": " + qp.message;
+    return false;
+  }
+  warm_ = qp.passive;
+  lambda_bar = qp.x;
+  // u_bar = A^-1 (f - D' lambda) = z - Y lambda.
+  u_bar = z_;
+  u_bar.noalias() -= Et_ * lambda_bar;
+  return true;
+}
+
+Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
+  const Eigen::Index P = guess_.cols();
+  if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
+  if (point.size() > 1) {
+    // The nearest training point in scaled coordinates (ties: the first).
+    const Eigen::VectorXd x = (point - guess_offset_).cwiseProduct(guess_scale_);
+    Eigen::Index best = 0;
+    (guess_points_.colwise() - x).colwise().squaredNorm().minCoeff(&best);
+    return guess_.col(best);
+  }
+  const double mu = point(0);
+  const auto hi = static_cast<Eigen::Index>(std::upper_bound(guess_mu_.begin(), guess_mu_.end(), mu) - guess_mu_.begin());
+  if (hi == 0) return guess_.col(0);
+  if (hi == P) return guess_.col(P - 1);
+  const double a = guess_mu_[sz(static_cast<int>(hi - 1))], b = guess_mu_[sz(static_cast<int>(hi))];
+  const double t = b > a ? (mu - a) / (b - a) : 0.0;
+  return (1.0 - t) * guess_.col(hi - 1) + t * guess_.col(hi);
+}
+
+solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSettings& ks, int depth,
+                                                       const Eigen::VectorXd& u_start,
+                                                       const Eigen::VectorXd& lambda_start) {
+  solve::KacanovResult result;
+  if (dU_.cols() < depth) {
+    dU_.resize(N_, depth);
+    dR_.resize(N_, depth);
+    dL_.resize(R_, depth);
+  }
+  // Safeguard floor: the damping the HF snapshots needed.
+  const double beta_min = std::min(1.0, kacanov_alpha_);
+  double beta = 1.0;
+  int m = 0;     // history columns in use
+  int next = 0;  // circular position of the next column
+  double r_prev_norm = 0.0;
+  u_ = u_start;
+  lambda_prev_ = lambda_start;
+  // Zero, not uninitialized: a first step that fails leaves them as they are, and they are
+  // returned (a model with M^k = 0 printed heap garbage as lambda_hat and contact_force).
+  result.u_bar.setZero(N_);
+  result.lambda_bar.setZero(R_);
+  for (int k = 1; k <= ks.max_iterations; ++k) {
+    solve::KacanovIteration it;
+    std::string message;
+    if (!step(u_, result.u_bar, result.lambda_bar, it.step_iterations, message)) {
+      result.status = solve::KacanovStatus::StepFailed;
+      result.iterations = k;
+      result.message = "Kacanov iteration " + std::to_string(k) + " failed: " + message;
+      return result;
+    }
+    if (!result.u_bar.allFinite() || !result.lambda_bar.allFinite()) {  // a NaN passes no test: stop here
+      result.status = solve::KacanovStatus::NonFinite;
+      result.iterations = k;
+      result.message = "Kacanov iteration " + std::to_string(k) + ": the reduced solution is not finite";
+      return result;
+    }
+    r_ = result.u_bar - u_;
+    const double r_norm = r_.norm();
+    // (63) at alpha = 1 (see OnlineIteration::Accelerated).
+    it.du = solve::relative_increment(result.u_bar, u_);
+    it.dlambda = solve::relative_increment(result.lambda_bar, lambda_prev_);
+    result.history.push_back(it);
+    if (std::max(it.du, it.dlambda) <= ks.tolerance) {
+      result.status = solve::KacanovStatus::Converged;
+      result.iterations = k;
+      result.u = result.u_bar;
+      result.lambda = result.lambda_bar;
+      return result;
+    }
+    if (k > 1) {
+      if (r_norm >= r_prev_norm) {
+        // Safeguard: no decrease of the residual. Forget the history, damp more.
+        m = 0;
+        next = 0;
+        beta = std::max(0.5 * beta, beta_min);
+      } else if (depth > 0) {
+        dU_.col(next) = u_ - u_prev_;
+        dR_.col(next) = r_ - r_prev_;
+        dL_.col(next) = result.lambda_bar - lambda_prev_;
+        next = (next + 1) % depth;
+        m = std::min(m + 1, depth);
+      }
+    }
+    u_prev_ = u_;
+    r_prev_ = r_;
+    r_prev_norm = r_norm;
+    lambda_prev_ = result.lambda_bar;
+    // Anderson (type II): gamma = argmin |r - dR gamma|, u <- u + beta r - (dU + beta dR) gamma.
+    u_ += beta * r_;
+    if (m > 0) {
+      using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 8>;
+      using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1>;
+      Small G(m, m);
+      SmallVec b(m);
+      for (int i = 0; i < m; ++i) {
+        b(i) = dR_.col(i).dot(r_);
+        for (int j = 0; j <= i; ++j) G(i, j) = G(j, i) = dR_.col(i).dot(dR_.col(j));
+      }
+      // Normal equations of at most 8 columns; a relative ridge keeps a nearly dependent
+      // history harmless (its columns then get small coefficients).
+      G.diagonal().array() += 1e-12 * G.diagonal().maxCoeff();
+      const Eigen::LLT<Small> small(G);
+      if (small.info() == Eigen::Success) {
+        const SmallVec gamma = small.solve(b);
+        for (int i = 0; i < m; ++i) u_ -= gamma(i) * (dU_.col(i) + beta * dR_.col(i));
+      }
+    }
+  }
+  result.status = solve::KacanovStatus::MaxIterations;
+  result.iterations = ks.max_iterations;
+  const solve::KacanovIteration& last = result.history.back();
+  result.message = "Kacanov (accelerated) did not converge in " + std::to_string(ks.max_iterations) +
+                   " iterations (last relative residuals: displacement " + std::to_string(last.du) +
+                   ", multipliers " + std::to_string(last.dlambda) + ", tolerance " + std::to_string(ks.tolerance) + ")";
+  return result;
+}
+
+OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& settings) {
+  const auto t0 = Clock::now();
+  cases::check_mu(parameters_, mu, "reduced model online solve");
+  const solve::KacanovSettings ks =
+      settings.kacanov ? *settings.kacanov
+                       : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};
+  solve::check_settings(ks);
+  require(settings.anderson_depth >= 0 && settings.anderson_depth <= 8,
+          "OnlineSettings::anderson_depth must be in [0, 8] (got " + std::to_string(settings.anderson_depth) + ")");
+  const bool accelerated = settings.iteration == OnlineIteration::Accelerated ||
+                           (settings.iteration == OnlineIteration::Automatic && !settings.kacanov);
+  qp_.set_settings(settings.qp);
+
+  OnlineSolution sol;
+  if (!prepare(mu, settings.restricted_rows, sol.message)) {
+    sol.u_hat = Eigen::VectorXd::Zero(N_);
+    sol.lambda_hat = Eigen::VectorXd::Zero(R_);
+    sol.energy = E_D_;  // of u_hat = 0 (prepare sets E_D_ before the factorization)
+    sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    return sol;
+  }
+
+  // [u_hat; lambda_hat] to start from; lambda only enters the first stopping test.
+  const Eigen::VectorXd start =
+      settings.initial_guess == InitialGuess::Interpolated ? interpolated_guess(mu) : Eigen::VectorXd::Zero(N_ + R_);
+  const Eigen::VectorXd u_start = start.head(N_), lambda_start = start.tail(R_);
+  // The first reduced QP starts from the guess's support (the QP is exact from any start).
+  for (int i = 0; i < R_; ++i) {
+    if (lambda_start(i) > 0.0) warm_.push_back(i);
+  }
+  solve::KacanovResult kr;
+  try {
+    if (accelerated) {
+      kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start);
+    } else {
+      const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
+                                                Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+                                                std::string& message) {
+        return step(u_hat, u_bar, lambda_bar, inner, message);
+      };
+      kr = solve::kacanov(step_fn, u_start, lambda_start, ks);
+    }
+  } catch (const Error& e) {  // e.g. a degenerate deformed master segment
+    kr.status = solve::KacanovStatus::StepFailed;
+    kr.message = e.what();
+  }
+  sol.status = kr.status;
+  sol.message = kr.message;
+  sol.iterations = kr.iterations;
+  sol.u_hat = kr.u_bar.size() == N_ && kr.u_bar.allFinite() ? kr.u_bar : Eigen::VectorXd::Zero(N_);
+  sol.lambda_hat =
+      kr.lambda_bar.size() == R_ && kr.lambda_bar.allFinite() ? kr.lambda_bar : Eigen::VectorXd::Zero(R_);
+  sol.energy = 0.5 * sol.u_hat.dot(A_ * sol.u_hat) - f_.dot(sol.u_hat) + E_D_;
+  double force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i) {
+    weight_kept_(static_cast<Eigen::Index>(i)) = quadrature_.weight(kept_rows_[i]);
+    force += weight_kept_(static_cast<Eigen::Index>(i)) * Xi_.row(static_cast<Eigen::Index>(i)).dot(sol.lambda_hat);
+  }
+  sol.contact_force = force;
+  // A finite reduced solution can still overflow the energy: not an answer, never "converged".
+  if (sol.converged() && (!std::isfinite(sol.energy) || !std::isfinite(sol.contact_force))) {
+    sol.status = solve::KacanovStatus::NonFinite;
+    sol.message = "the energy or the contact force of the reduced solution is not finite (energy " +
+                  std::to_string(sol.energy) + ", contact force " + std::to_string(sol.contact_force) + ")";
+  }
+  // The estimate at the last linearization (phi_, phi_gamma_ of the last step), as the returned
+  // pair is that linearization's solution.
+  if (settings.error_estimate && sol.converged()) {
+    sol.estimate = estimator_.evaluate(mu, sol.u_hat, sol.lambda_hat, phi_, phi_gamma_, weight_kept_);
+  }
+  sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  return sol;
+}
+
+}  // namespace contactrb::rb

@@ -1,0 +1,202 @@
+#pragma once
+// The online stage (Evaluation, in rbOOmit's terms): paper Algorithm 1, the reduced Kacanov
+// iteration on (53). Per mu: A_hat(mu), f_hat(mu) from (49); per iteration: kappa_hat and
+// gamma_hat at the EIM magic points from the contact-surface data only (the chain nodes mapped
+// to Omega(mu), the displacement u_D,c(mu) + Theta_c u_hat on the contact DOFs), D^kappa (54),
+// the reduced non-negative QP in dual form, u_hat = A_hat^-1 (f_hat - D' lambda_hat).
+// Nothing of HF size is touched. Sizes N <= N_max, R <= R_max, Mk <= Mk_max, Mg <= Mg_max use
+// the leading sub-blocks of the model's arrays.
+//
+// Magic-point evaluation: collocation and LAC-Simpson rows are weighted sums of pointwise rows
+// of a few slave nodes, so only the slave nodes under the magic rows are projected (the
+// "restricted operator", online_magic.hpp; the deformed master chain positions are still
+// computed whole, O(master nodes)). Exactly integrated LAC rows integrate over their
+// macro-segment against the deformed master: only the slave nodes of the magic rows'
+// macro-segments are projected and only those rows are integrated
+// (contact::integrate_lac_rows with a row list), then the magic entries are picked
+// (docs/offline-online.md).
+//
+// Cost per query (docs/online-performance.md): A_hat(mu) and its Cholesky factor once; per
+// step the magic points, D' (N x R) assembled and solved against A, Q = D A^-1 D', the QP warm
+// started from the previous step's passive set; no allocation of size N or R per step.
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/mesh/mesh.hpp"
+#include "contactrb/online/error_estimator.hpp"
+#include "contactrb/online/online_magic.hpp"
+#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/solve/kacanov.hpp"
+#include "contactrb/solve/nonnegative_qp.hpp"
+
+namespace contactrb::rb {
+
+// -1: the model's maximum.
+struct OnlineSizes {
+  int N = -1;
+  int R = -1;
+  int Mk = -1;
+  int Mg = -1;
+};
+
+// How the reduced Kacanov fixed point u_hat = G(u_hat) (G: one linearized step (53)) is reached.
+// The fixed point is the same; only the path and the number of steps differ.
+enum class OnlineIteration {
+  // Accelerated when OnlineSettings::kacanov is empty (the default), Relaxed when it is set
+  // (an explicit alpha is honoured, e.g. `contactrb online --alpha`).
+  Automatic,
+  // Paper (12): u^k = alpha u_bar + (1 - alpha) u^{k-1}, stopping test (63) (solve::kacanov, the
+  // HF snapshots' iteration).
+  Relaxed,
+  // alpha is not used: undamped steps (alpha = 1) with Anderson mixing of depth anderson_depth,
+  // safeguarded (a step whose residual |G(u) - u| does not decrease clears the history and
+  // halves the damping, down to the model's alpha). Stopping test (63) on the fixed-point
+  // residual: |G(u^k) - u^k| <= eps_KA |u^k| and |lambda_bar^k - lambda_bar^{k-1}| <= eps_KA
+  // |lambda_bar^{k-1}|, i.e. (63) on the unrelaxed step as in the Relaxed iteration
+  // (solve/kacanov.hpp), so both stop at the same distance from the fixed point. Measured
+  // (bench_online, docs/online-performance.md): 4-8 steps instead of 18-30 for the relaxed
+  // iteration at alpha = 0.3 when the relaxed test still read the relaxed increment (more now).
+  Accelerated,
+};
+
+// Where the reduced Kacanov iteration starts. The fixed point and the stopping test are the same;
+// a start near the answer needs fewer steps.
+enum class InitialGuess {
+  // The reduced solutions at the training values (ReducedModel::training_u_hat and
+  // training_lambda_hat, their leading N and R entries), interpolated linearly in mu between the
+  // two nearest training values (the nearest one outside their range). Reduced-size data only.
+  Interpolated,
+  // u_hat = 0 (the paper's Algorithm 1).
+  Zero,
+};
+
+struct OnlineSettings {
+  // Empty: the tolerance and iteration cap of the HF snapshots the model was built from (and
+  // their alpha, for the Relaxed iteration).
+  std::optional<solve::KacanovSettings> kacanov;
+  solve::QPSettings qp;
+  // false: recompute every row of the contact-surface mesh (the reference path of the tests).
+  // true: only the magic rows (from the slave nodes under them).
+  bool restricted_rows = true;
+  OnlineIteration iteration = OnlineIteration::Automatic;
+  // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
+  int anderson_depth = 3;
+  InitialGuess initial_guess = InitialGuess::Interpolated;
+  // Compute OnlineSolution::estimate (error_estimate.hpp); false only to time the solve without it.
+  bool error_estimate = true;
+};
+
+struct OnlineSolution {
+  solve::KacanovStatus status = solve::KacanovStatus::StepFailed;
+  std::string message;  // why it stopped, when not converged
+  int iterations = 0;
+  // Last linearized solution (as the HF solver returns). Always sized N and R and finite: when
+  // no step succeeded (StepFailed at the first step, A_hat(mu) not SPD) they are zero, and
+  // energy and contact_force are those of that zero solution.
+  Eigen::VectorXd u_hat;
+  Eigen::VectorXd lambda_hat;  // >= 0
+  double energy = 0.0;         // 1/2 u'A(mu)u - f(mu)'u of u = u_D(mu) + Theta u_hat (exact: (49) + lift terms)
+  double contact_force = 0.0;  // sum_r |I_r|(mu) (Xi lambda_hat)_r
+  double time_s = 0.0;
+  // A posteriori estimate of |u_hf - u_rb|_A(mu) and its parts (docs/offline-online.md); available
+  // when the solve converged and the model holds the estimate data. Included in time_s.
+  ErrorEstimate estimate;
+  bool converged() const { return status == solve::KacanovStatus::Converged; }
+};
+
+class OnlineSolver {
+ public:
+  // Borrows nothing: copies the leading blocks. Throws contactrb::Error for an inconsistent
+  // model or sizes outside [1, max] (R, Mk, Mg may be 0 only when their maximum is 0).
+  explicit OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes = {});
+
+  // Throws contactrb::Error for mu of the wrong size or outside the parameter domain, or invalid
+  // settings; non-convergence is a status. The double overload is for one-parameter models.
+  OnlineSolution solve(const cases::Mu& mu, const OnlineSettings& settings = {});
+  OnlineSolution solve(double mu, const OnlineSettings& settings = {}) {
+    return solve(cases::Mu::Constant(1, mu), settings);
+  }
+
+  int N() const { return N_; }
+  int R() const { return R_; }
+  int Mk() const { return Mk_; }
+  int Mg() const { return Mg_; }
+
+ private:
+  // Per mu: A_hat(mu) (49) and its Cholesky factor, z = A_hat^-1 f_hat(mu), the lift on the contact
+  // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
+  bool prepare(const cases::Mu& mu, bool restricted, std::string& message);
+  // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
+  bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+            std::string& message);
+  // The Accelerated iteration from u_start (see OnlineIteration).
+  solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
+                                           const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
+  // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
+  // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
+  // training point in coordinates scaled to [0, 1] per parameter.
+  Eigen::VectorXd interpolated_guess(const cases::Mu& mu) const;
+
+  // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
+  // magic points for the contact-DOF displacement w.
+  // restricted: only the magic rows (LAC: lac_rows_ from the slave nodes lac_positions_).
+  void evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorXd& lift_c, bool restricted,
+                      Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat) const;
+
+  int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
+  std::vector<cases::ParameterSpec> parameters_;
+  std::vector<double> guess_mu_;  // p = 1: training values, increasing
+  Eigen::MatrixXd guess_points_;  // p x P: training points scaled to [0, 1] per parameter
+  Eigen::VectorXd guess_offset_, guess_scale_;  // x = (mu - offset) .* scale
+  Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
+  cases::AffineThetas thetas_;
+  double kacanov_alpha_ = 0.3, kacanov_tolerance_ = 1e-3;
+  int kacanov_max_iterations_ = 500;
+  std::vector<Eigen::MatrixXd> A_hat_;
+  std::vector<Eigen::VectorXd> f_hat_, A_lift_hat_;
+  std::vector<double> lift_AA_, lift_f_;
+  Eigen::MatrixXd Ct_;                   // (N R) x Mk: column j = C_j' (N x R, column-major); vec(D') = Ct_ phi
+  Eigen::PartialPivLU<Eigen::MatrixXd> B_kappa_lu_, B_gamma_lu_;  // leading blocks (Remark 4)
+  Eigen::MatrixXd XiQ_gamma_;            // R x Mg
+  Eigen::MatrixXd Xi_;                   // R_kept x R
+  double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
+  std::vector<int> kept_rows_;
+  std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
+  std::vector<int> lac_rows_, lac_positions_;           // LAC: the magic rows, their slave chain positions
+  ContactSurface surface_;
+  Eigen::MatrixXd Theta_c_;              // n_c x N
+  Eigen::MatrixXd lift_c_;               // n_c x J^D
+  mesh::Mesh mesh_;                      // contact nodes in Omega(mu) (positions set per solve)
+  contact::ContactPair pair_;
+  contact::ContactQuadrature quadrature_;
+  std::vector<Eigen::Vector2d> quadrature_slave_;  // the slave node positions quadrature_ was built at
+  MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
+  solve::NonnegativeQPSolver qp_;
+
+  // Workspaces, sized in the constructor: a query allocates nothing of size N, R per step
+  // (the contact-surface projection and the QP's message aside).
+  Eigen::MatrixXd A_;                    // A_hat(mu)
+  Eigen::LLT<Eigen::MatrixXd> llt_;      // A_hat(mu) = L L'
+  Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
+  double E_D_ = 0.0;
+  bool restricted_ = true;
+  bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
+  Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
+  Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
+  Eigen::MatrixXd Dt_;                   // N x R: D'
+  Eigen::MatrixXd Et_;                   // N x R: Y = A^-1 D'
+  Eigen::MatrixXd Q_;                    // R x R: D A^-1 D'
+  std::vector<int> warm_;                // the previous step's QP passive set
+  // Accelerated iteration: current and previous iterates, residuals, history columns.
+  Eigen::VectorXd u_, u_prev_, r_, r_prev_, lambda_prev_;
+  Eigen::MatrixXd dU_, dR_, dL_;         // differences of u, of r = G(u) - u, of lambda_bar
+  ErrorEstimator estimator_;             // the leading blocks of the estimate's data
+  Eigen::VectorXd weight_kept_;          // |I_r|(mu) on the kept rows
+};
+
+}  // namespace contactrb::rb

@@ -1,0 +1,107 @@
+#include "contactrb/online/reduced_model.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/online/error_estimator.hpp"
+
+namespace contactrb::rb {
+
+namespace {
+std::string dims(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + " x " + std::to_string(c); }
+void expect_shape(const Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols, const std::string& name) {
+  require(m.rows() == rows && m.cols() == cols,
+          "reduced model: " + name + " is " + dims(m.rows(), m.cols()) + ", expected " + dims(rows, cols));
+}
+void expect_size(const Eigen::VectorXd& v, Eigen::Index n, const std::string& name) {
+  require(v.size() == n, "reduced model: " + name + " has size " + std::to_string(v.size()) + ", expected " +
+                             std::to_string(n));
+}
+void expect_indices(const std::vector<int>& idx, std::size_t count, int bound, const std::string& name) {
+  require(idx.size() == count, "reduced model: " + name + " has " + std::to_string(idx.size()) +
+                                   " entries, expected " + std::to_string(count));
+  for (int i : idx) {
+    require(i >= 0 && i < bound, "reduced model: " + name + " holds index " + std::to_string(i) +
+                                     " outside [0, " + std::to_string(bound) + ")");
+  }
+}
+}  // namespace
+
+void check_model(const ReducedModel& m) {
+  require(m.format_version == kReducedModelFormatVersion,
+          "reduced model: format version " + std::to_string(m.format_version) + ", this build reads version " +
+              std::to_string(kReducedModelFormatVersion));
+  require(m.N_max >= 1 && m.R_max >= 0 && m.Mk_max >= 0 && m.Mg_max >= 0,
+          "reduced model: invalid maxima N_max = " + std::to_string(m.N_max) + ", R_max = " + std::to_string(m.R_max) +
+              ", Mk_max = " + std::to_string(m.Mk_max) + ", Mg_max = " + std::to_string(m.Mg_max));
+  require(m.N_supremizers >= 0 && m.N_supremizers < m.N_max,
+          "reduced model: " + std::to_string(m.N_supremizers) + " supremizers in a basis of " +
+              std::to_string(m.N_max) + " (at least one POD mode comes first)");
+  const std::size_t Ja = m.thetas.a.size(), Jf = m.thetas.f.size(), JD = m.thetas.lift.size();
+  require(m.A_hat.size() == Ja && Ja >= 1, "reduced model: " + std::to_string(m.A_hat.size()) +
+                                               " matrices A_hat for " + std::to_string(Ja) + " theta^a");
+  require(m.f_hat.size() == Jf, "reduced model: " + std::to_string(m.f_hat.size()) + " vectors f_hat for " +
+                                    std::to_string(Jf) + " theta^f");
+  require(m.A_lift_hat.size() == Ja * JD, "reduced model: A_lift_hat count " + std::to_string(m.A_lift_hat.size()) +
+                                              ", expected J^a J^D = " + std::to_string(Ja * JD));
+  require(m.lift_AA.size() == Ja * JD * JD && m.lift_f.size() == Jf * JD, "reduced model: lift energy terms");
+  for (std::size_t j = 0; j < Ja; ++j) expect_shape(m.A_hat[j], m.N_max, m.N_max, "A_hat[" + std::to_string(j) + "]");
+  for (std::size_t j = 0; j < Jf; ++j) expect_size(m.f_hat[j], m.N_max, "f_hat[" + std::to_string(j) + "]");
+  for (std::size_t j = 0; j < m.A_lift_hat.size(); ++j) {
+    expect_size(m.A_lift_hat[j], m.N_max, "A_lift_hat[" + std::to_string(j) + "]");
+  }
+  cases::check_parameter_list(m.parameters, "reduced model");
+  cases::check_thetas(m.thetas, m.num_parameters(), "reduced model");
+  require(m.training_mu.rows() == m.num_parameters() || m.training_mu.size() == 0,
+          "reduced model: training points of " + std::to_string(m.training_mu.rows()) + " values for " +
+              std::to_string(m.num_parameters()) + " parameters");
+  require(m.training_mu.allFinite(), "reduced model: a training value is not finite");
+  expect_shape(m.training_u_hat, m.N_max, m.training_mu.cols(), "training_u_hat");
+  expect_shape(m.training_lambda_hat, m.R_max, m.training_mu.cols(), "training_lambda_hat");
+  require(m.training_u_hat.allFinite() && m.training_lambda_hat.allFinite(),
+          "reduced model: the training coordinates are not finite");
+  const ContactSurface& s = m.surface;
+  const int n_nodes = static_cast<int>(s.reference_nodes.size());
+  const int n_c = s.num_dofs();
+  require(n_nodes >= 3 && static_cast<int>(s.body.size()) == n_nodes,
+          "reduced model: contact surface with " + std::to_string(n_nodes) + " nodes and " +
+              std::to_string(s.body.size()) + " body ids");
+  expect_indices(s.slave, s.slave.size(), n_nodes, "slave chain");
+  expect_indices(s.master, s.master.size(), n_nodes, "master chain");
+  require(s.slave.size() >= 2 && s.master.size() >= 2, "reduced model: contact chains need two nodes each");
+  const int R_kept = m.R_kept();
+  expect_indices(m.kept_rows, m.kept_rows.size(), s.num_constraints, "kept_rows");
+  expect_shape(m.Xi, R_kept, m.R_max, "Xi");
+  expect_indices(m.kappa_row, static_cast<std::size_t>(m.Mk_max), R_kept, "kappa_row");
+  expect_indices(m.kappa_dof, static_cast<std::size_t>(m.Mk_max), n_c, "kappa_dof");
+  expect_shape(m.B_kappa, m.Mk_max, m.Mk_max, "B_kappa");
+  require(static_cast<int>(m.C_kappa.size()) == m.Mk_max, "reduced model: " + std::to_string(m.C_kappa.size()) +
+                                                              " matrices C_kappa for Mk_max = " +
+                                                              std::to_string(m.Mk_max));
+  for (std::size_t j = 0; j < m.C_kappa.size(); ++j) {
+    expect_shape(m.C_kappa[j], m.R_max, m.N_max, "C_kappa[" + std::to_string(j) + "]");
+  }
+  expect_indices(m.gamma_row, static_cast<std::size_t>(m.Mg_max), R_kept, "gamma_row");
+  expect_shape(m.B_gamma, m.Mg_max, m.Mg_max, "B_gamma");
+  expect_shape(m.XiQ_gamma, m.R_max, m.Mg_max, "XiQ_gamma");
+  expect_shape(m.Theta_c, n_c, m.N_max, "Theta_c");
+  expect_shape(m.lift_c, n_c, static_cast<Eigen::Index>(JD), "lift_c");
+  check_estimate_data(m);
+}
+
+long long model_doubles(const ReducedModel& m) {
+  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
+                m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
+                2 * static_cast<long long>(m.surface.reference_nodes.size());
+  for (const auto& a : m.A_hat) n += a.size();
+  for (const auto& f : m.f_hat) n += f.size();
+  for (const auto& f : m.A_lift_hat) n += f.size();
+  for (const auto& c : m.C_kappa) n += c.size();
+  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
+       m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
+  for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
+  return n;
+}
+
+}  // namespace contactrb::rb

@@ -1,0 +1,137 @@
+#pragma once
+// The reduced model: every array Algorithm 1 needs online (paper Section 4.3, (49), (54)-(55)),
+// plus the contact-surface data that evaluates the EIM magic points of kappa and gamma without
+// the HF mesh (DESIGN.md). Plain dense arrays stored at their largest sizes (N_max, R_max,
+// Mk_max, Mg_max); the online stage uses leading sub-blocks (rbOOmit's rb_solve(N)).
+//
+// Nothing here has the HF size: the largest arrays have one row per kept constraint
+// (R_kept, contact-surface rows) or per contact-surface DOF (n_c). The HF-size data needed to
+// reconstruct u and lambda on the HF mesh live apart, in ReducedReconstruction (offline side).
+//
+// Conventions (docs/offline-online.md):
+//   u = u_D(mu) + Theta u_hat,  u_D(mu) = sum_k theta^lift_k(mu) lift_k,
+//   lambda = Xi lambda_hat on the kept constraints (Remark 7), 0 on the dropped ones.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/parameter.hpp"
+#include "contactrb/cases/theta.hpp"
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/online/error_estimate_data.hpp"
+
+namespace contactrb::rb {
+
+// 3: N_supremizers, tolerance modes, the error estimate's arrays; 4: p parameters (the list, the
+// training points p x P, theta monomials with one factor per parameter).
+inline constexpr int kReducedModelFormatVersion = 4;
+
+// The two contact boundaries in Omega (reference configuration), the only geometry online.
+// Local contact nodes are the slave and master chain nodes in ascending global node index, so
+// contact-surface DOF 2 i + c is global DOF contact_dofs[2 i + c] of the snapshot set.
+struct ContactSurface {
+  std::vector<Eigen::Vector2d> reference_nodes;  // X_i in Omega(reference), one per contact node
+  std::vector<int> body;                         // 0 slave, 1 master (for the map h_body(mu))
+  std::vector<int> slave;                        // slave chain, local node indices
+  std::vector<int> master;                       // master chain (closed: first repeated at the end)
+  contact::Discretization discretization = contact::Discretization::Collocation;
+  int num_constraints = 0;  // R_hf: rows of the constraint discretization
+  int num_dofs() const { return 2 * static_cast<int>(reference_nodes.size()); }  // n_c
+};
+
+struct ReducedModel {
+  int format_version = kReducedModelFormatVersion;
+
+  // Provenance.
+  std::string case_name;
+  std::string case_kind;  // "builtin" | "toml"
+  std::string case_spec;  // name or TOML text
+  int level = 0;
+  std::vector<cases::ParameterSpec> parameters;  // names, units, domains, the geometric map data (kind, reference, body, center)
+  cases::AffineThetas thetas;      // theta^a, theta^f, theta^lift (online-safe monomials)
+
+  // Settings the model was built with (recorded, not used online except the Kacanov ones).
+  std::string inner_product;  // "energy" | "h1"
+  std::string dual_method;    // "cpg" | "angle" | "nmf"
+  // The offline tolerances and whether each was relative (rb::OfflineSettings; format 3 for
+  // the POD and EIM modes).
+  double eps_pod = 0.0;
+  bool eps_pod_relative = false;
+  double eps_du = 0.0;
+  bool eps_du_relative = false;  // eps_du divides each mu's error by |lambda(mu)| (format 2)
+  double eps_eim_k = 0.0;
+  bool eps_eim_k_relative = false;
+  double eps_eim_g = 0.0;
+  bool eps_eim_g_relative = false;
+  bool compression = true;
+  double kacanov_alpha = 0.3;  // the HF settings of the snapshots: the online defaults
+  double kacanov_tolerance = 1e-3;
+  int kacanov_max_iterations = 500;
+
+  int N_max = 0;
+  int N_supremizers = 0;  // the last N_supremizers of the N_max basis vectors are supremizers (format 3)
+  int R_max = 0;
+  int Mk_max = 0;
+  int Mg_max = 0;
+  Eigen::VectorXd singular_values;  // POD, all P values
+  // The online initial guess, from the training points (OnlineSettings::initial_guess): at each
+  // training point the reduced solution at the maximal sizes (u_hat, lambda_hat), or, where that
+  // reduced solve did not converge, the M-orthogonal projection of u_0(mu_p) on the POD basis and
+  // lambda_hat = 0.
+  Eigen::MatrixXd training_mu;         // p x P: the training points, as in the snapshot set
+  Eigen::MatrixXd training_u_hat;      // N_max x P
+  Eigen::MatrixXd training_lambda_hat; // R_max x P
+
+  // (49): A_hat(mu) = sum_j theta^a_j A_hat[j];
+  // f_hat(mu) = sum_j theta^f_j f_hat[j] - sum_{j,k} theta^a_j theta^lift_k A_lift_hat[j * J^D + k].
+  std::vector<Eigen::MatrixXd> A_hat;       // J^a, N_max x N_max: Theta' A_j,00 Theta
+  std::vector<Eigen::VectorXd> f_hat;       // J^f, N_max: Theta' f_j,0
+  std::vector<Eigen::VectorXd> A_lift_hat;  // J^a J^D, N_max: Theta' (A_j lift_k)_0
+  // Energy of the lift, so that 1/2 u'A u - f'u = 1/2 u_hat'A_hat u_hat - f_hat'u_hat + E_D(mu):
+  // E_D = 1/2 sum_{j,k,l} theta^a_j theta^lift_k theta^lift_l lift_AA[(j J^D + k) J^D + l]
+  //       - sum_{j,k} theta^f_j theta^lift_k lift_f[j J^D + k].
+  std::vector<double> lift_AA;  // lift_k' A_j lift_l
+  std::vector<double> lift_f;   // f_j' lift_k
+
+  // Dual cone and compression (Remark 7).
+  std::vector<int> kept_rows;  // constraint indices (0 .. R_hf-1) kept, increasing
+  Eigen::MatrixXd Xi;          // R_kept x R_max, >= 0 (contact-surface rows)
+
+  // EIM of kappa (50)-(52): magic pairs (kept-row index r_i, contact DOF n_i), B (lower
+  // triangular, unit diagonal), C_j = Xi' Q_j Theta_c (55), R_max x N_max each.
+  std::vector<int> kappa_row;  // index into kept_rows
+  std::vector<int> kappa_dof;  // index into the contact-surface DOFs
+  Eigen::MatrixXd B_kappa;     // Mk_max x Mk_max
+  std::vector<Eigen::MatrixXd> C_kappa;  // Mk_max matrices
+  std::vector<double> eim_kappa_errors;
+
+  // EIM of gamma = g - K u_D(mu): magic rows; D^gamma = XiQ_gamma B_gamma^-1 (54), the inverse
+  // applied online on the leading blocks.
+  std::vector<int> gamma_row;  // index into kept_rows
+  Eigen::MatrixXd B_gamma;     // Mg_max x Mg_max
+  Eigen::MatrixXd XiQ_gamma;   // R_max x Mg_max: Xi' Q^gamma
+  std::vector<double> eim_gamma_errors;
+
+  // Contact-surface data for the magic points.
+  ContactSurface surface;
+  Eigen::MatrixXd Theta_c;  // n_c x N_max: Theta on the contact DOFs (zero rows where constrained)
+  Eigen::MatrixXd lift_c;   // n_c x J^D: lift_k on the contact DOFs
+
+  // The a posteriori error estimate's arrays (error_estimate.hpp; format 3).
+  EstimateData estimate;
+
+  int J_a() const { return static_cast<int>(A_hat.size()); }
+  int J_f() const { return static_cast<int>(f_hat.size()); }
+  int J_lift() const { return static_cast<int>(lift_c.cols()); }
+  int R_kept() const { return static_cast<int>(kept_rows.size()); }
+  int num_parameters() const { return static_cast<int>(parameters.size()); }
+};
+
+// Throws contactrb::Error naming the first inconsistent array (sizes against the maxima, the
+// affine term counts, the contact surface). Used after building and after reading a file.
+void check_model(const ReducedModel& model);
+
+// Number of doubles held by the model's arrays (a size figure for the docs and tests).
+long long model_doubles(const ReducedModel& model);
+
+}  // namespace contactrb::rb
