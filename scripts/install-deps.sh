@@ -11,6 +11,7 @@ CONTACTRB_DEBIAN_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib
   python3-h5py  # the file-format test: an independent reader of model files (tests/io/test_model_h5py.py)
+  python3-dev pybind11-dev python3-pytest  # the Python module (python/, docs/python.md) and its tests
   python3-paraview xvfb  # the ParaView test: pvpython renders a VTU under xvfb-run (tests/io/paraview_check.py)
 )
 

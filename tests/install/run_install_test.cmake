@@ -71,3 +71,25 @@ endforeach()
 string(JSON cli_energy GET "${cli_json}" energy)
 run("consumer" COMMAND "${consumer_build}/consumer" "${model}" "${MU}" "${cli_energy}" OUTPUT_VARIABLE consumer_out)
 message(STATUS "consumer: ${consumer_out}")
+
+# The installed Python module (docs/python.md, "Install"), when it was built (-DPYTHON=... and
+# -DPYTHON_DIR=<its directory under the prefix>): imported from the prefix, not from the build
+# tree, its online energy is the CLI's, to the last digit.
+if(PYTHON AND PYTHON_DIR)
+  set(check [=[
+import sys
+import contactrb
+prefix, model, mu, energy = sys.argv[1:5]
+if not contactrb.__file__.startswith(prefix):
+    sys.exit(f"contactrb imported from {contactrb.__file__}, not from the prefix {prefix}")
+r = contactrb.Model.load(model).solve(float(mu))
+if r.energy != float(energy):
+    sys.exit(f"installed module: energy {r.energy!r}, the CLI's {energy}")
+print(f"python: energy {r.energy!r} = the CLI's")
+]=])
+  run("installed python module"
+      COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/${PYTHON_DIR}" "${PYTHON}" -c "${check}"
+              "${prefix}/${PYTHON_DIR}" "${model}" "${MU}" "${cli_energy}"
+      OUTPUT_VARIABLE python_out)
+  message(STATUS "${python_out}")
+endif()

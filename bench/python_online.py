@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""Per-query time of the Python module's online solves (docs/python.md, "Performance").
+
+On one model file, at n equispaced points of the first parameter's domain (the points of
+bench_online_loop), reports the wall time per query of
+  solve_many   one Model.solve_many call (the loop in C++, GIL released),
+  solve loop   a Python loop of Model.solve,
+  in-solver    the median of the solver's own time_s (what the C++ solve costs inside the loop),
+each the best of --repeats runs, wall clock and CPU time of the calling thread. Compare with bench_online_loop on the same model file:
+    PYTHONPATH=build/python python3 bench/python_online.py --model model.h5
+    CONTACTRB_BENCH_MODEL=model.h5 build/bench/bench_online_loop
+"""
+
+import argparse
+import time
+
+import numpy as np
+
+import contactrb
+
+
+def best_of(repeats, f):
+    """Best wall and best thread-CPU time of `repeats` calls (the CPU time is the one to compare
+    on a loaded machine, as bench_online_loop's CPU column)."""
+    best, best_cpu = float("inf"), float("inf")
+    for _ in range(repeats):
+        t0, c0 = time.perf_counter(), time.thread_time()
+        out = f()
+        best = min(best, time.perf_counter() - t0)
+        best_cpu = min(best_cpu, time.thread_time() - c0)
+    return best, best_cpu, out
+
+
+def main():
+    parser = argparse.ArgumentParser(description="per-query time of Model.solve_many and Model.solve")
+    parser.add_argument("--model", required=True)
+    parser.add_argument("--points", type=int, default=1000)
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    model = contactrb.Model.load(args.model)
+    p = model.parameters[0]
+    n = args.points
+    mu = np.tile(np.array([q.reference for q in model.parameters]), (n, 1))
+    mu[:, 0] = [p.min + (p.max - p.min) * i / (n - 1) for i in range(n)]  # as bench_online_loop
+    model.solve(mu[0])  # the solver is set up once, outside the timings
+    t_many, c_many, many = best_of(args.repeats, lambda: model.solve_many(mu))
+    t_loop, c_loop, _ = best_of(args.repeats, lambda: [model.solve(m) for m in mu])
+    print(f"model {args.model}: {model!r}, {n} points, best of {args.repeats}")
+    print(f"solve_many:  {1e6 * t_many / n:8.1f} us per query wall, {1e6 * c_many / n:8.1f} us CPU")
+    print(f"solve loop:  {1e6 * t_loop / n:8.1f} us per query wall, {1e6 * c_loop / n:8.1f} us CPU")
+    print(f"in-solver:   {1e6 * np.median(many['time_s']):8.1f} us per query (median time_s), "
+          f"{1e6 * np.sum(many['time_s']) / n:.1f} us mean")
+    print(f"converged:   {int(many['converged'].sum())} of {n}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,214 @@
+"""Snapshots, offline and online from Python against the CLI, to the last digit."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import contactrb
+from conftest import VALUES, cli_error, cli_json, run_cli
+
+POINTS = [0.15, 0.2, 0.2625, 0.3, 0.41, 0.45]
+
+
+def online_json(model_path, mu, *extra):
+    return cli_json("online", "--model", model_path, "--mu", repr(mu), *extra)
+
+
+def assert_equals_cli(r, j):
+    """An OnlineResult equals the JSON of `contactrb online` in every digit."""
+    assert r.converged == j["converged"]
+    assert r.status == j["status"]
+    assert r.iterations == j["iterations"]
+    assert r.energy == j["energy"]
+    assert r.force == j["contact_force"]
+    assert r.coefficients.tolist() == j["u_hat"]
+    assert r.multipliers.tolist() == j["lambda_hat"]
+    assert r.estimate == j["estimate"]["energy"]
+    assert r.sizes == j["sizes"]
+
+
+@pytest.mark.parametrize("mu", [0.15, 0.2625, 0.41])
+def test_solve_equals_cli_online(model, cli_model, mu):
+    assert_equals_cli(model.solve(mu), online_json(cli_model, mu))
+
+
+def test_solve_with_sizes_and_settings_equals_cli(model, cli_model):
+    N = model.sizes["N"] - 1
+    r = model.solve(0.33, N=N, alpha=0.5, tol=1e-6, start="zero")
+    assert_equals_cli(r, online_json(cli_model, 0.33, "--n", N, "--alpha", 0.5, "--tol", 1e-6, "--start", "zero"))
+
+
+def test_solve_many_equals_cli_batch_and_a_loop_of_solve(model, cli_model, tmp_path):
+    batch = tmp_path / "batch.txt"
+    batch.write_text("".join(f"{mu!r}\n" for mu in POINTS))
+    lines = [json.loads(line) for line in run_cli("online", "--model", cli_model, "--batch", batch).stdout.splitlines()]
+    many = model.solve_many(np.array(POINTS))
+    assert many["mu"].shape == (len(POINTS), 1)
+    for i, (mu, j) in enumerate(zip(POINTS, lines)):
+        assert many["energy"][i] == j["energy"]
+        assert many["force"][i] == j["contact_force"]
+        assert many["iterations"][i] == j["iterations"]
+        assert many["coefficients"][i].tolist() == j["u_hat"]
+        assert many["multipliers"][i].tolist() == j["lambda_hat"]
+        assert many["estimate"][i] == j["estimate"]["energy"]
+        assert contactrb.STATUS[many["status"][i]] == j["status"]
+        assert bool(many["converged"][i]) == j["converged"]
+        r = model.solve(mu)  # the same solver, one query at a time
+        assert r.energy == many["energy"][i] and r.force == many["force"][i]
+        assert np.array_equal(r.coefficients, many["coefficients"][i])
+        assert r.estimate == many["estimate"][i]
+
+
+def test_offline_from_cli_snapshots_equals_cli_model(cli_snapshots, cli_model, tmp_path):
+    snaps = contactrb.Snapshots.load(str(cli_snapshots))
+    assert len(snaps) == 5 and snaps.num_failed == 0
+    model = contactrb.offline(snaps)
+    assert model.sizes == contactrb.Model.load(str(cli_model)).sizes
+    assert_equals_cli(model.solve(0.33), online_json(cli_model, 0.33))
+    # Saved from Python, answered by the CLI.
+    path = tmp_path / "py_model.h5"
+    model.save(str(path))
+    assert_equals_cli(model.solve(0.27), online_json(path, 0.27))
+
+
+def test_snapshots_equal_cli_snapshots(cli_snapshots, tmp_path):
+    values = np.array([float(v) for v in VALUES.split(",")])
+    path = tmp_path / "py_snapshots.h5"
+    mine = contactrb.snapshots("hertz-a", values, jobs=2, path=str(path))
+    theirs = contactrb.Snapshots.load(str(cli_snapshots))
+    assert mine.set_name == theirs.set_name == "custom"
+    assert np.array_equal(mine.mu, theirs.mu)
+    assert np.array_equal(mine.u, theirs.u)
+    assert np.array_equal(mine.multipliers, theirs.multipliers)
+    assert np.array_equal(mine.iterations, theirs.iterations)
+    again = contactrb.Snapshots.load(str(path))  # the file written from Python reads back equal
+    assert np.array_equal(again.u, mine.u)
+
+
+def test_greedy_offline_equals_cli(tmp_path):
+    out = tmp_path / "greedy" / "model.h5"
+    out.parent.mkdir()
+    run_cli("offline", "--greedy", "--case", "hertz-a", "--values", VALUES, "--max-hf", 3, "-q", "--out", out)
+    values = np.array([float(v) for v in VALUES.split(",")])
+    model = contactrb.offline("hertz-a", "greedy", set=values, max_hf=3)
+    g = json.loads((out.parent / "greedy.json").read_text())
+    assert model.greedy["status"] == g["status"]
+    assert model.greedy["hf_solves"] == g["hf_solves"]
+    assert model.greedy["selected"][:, 0].tolist() == g["selected"]
+    assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
+
+
+def test_fields_on_the_hf_mesh_match_the_hf_solution(model):
+    # At a training value the reduced solution reproduces the snapshot up to the POD and solver
+    # tolerances; the mesh of Omega(mu) is the HF solver's, bitwise.
+    hf = contactrb.Case("hertz-a").solve(0.3)
+    r = model.solve(0.3)
+    f = model.fields(r)
+    assert np.array_equal(f["nodes"], hf.nodes)
+    assert np.array_equal(f["triangles"], hf.triangles)
+    assert f["displacement"].shape == hf.u.shape
+    error = np.linalg.norm(f["displacement"] - hf.u) / np.linalg.norm(hf.u)
+    assert error < 1e-2, error
+    assert f["multipliers"].shape == hf.multipliers.shape
+
+
+def test_write_fields_equals_cli_online_out(model, cli_model, tmp_path):
+    run_cli("online", "--model", cli_model, "--mu", "0.33", "--out", tmp_path / "cli")
+    files = model.write_fields(model.solve(0.33), str(tmp_path / "py"))
+    for key, name in [("multipliers", "multipliers.csv"), ("vtu", "solution.vtu"), ("contact_vtu", "contact.vtu")]:
+        assert open(files[key], "rb").read() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def test_evaluate_equals_cli(model, cli_model, tmp_path):
+    points = [0.2, 0.33]
+    values = tmp_path / "values.txt"
+    values.write_text("".join(f"{mu!r}\n" for mu in points))
+    run_cli("evaluate", "--model", cli_model, "--set", values, "--repeats", 1, "-q", "--out", tmp_path / "ev")
+    j = json.loads((tmp_path / "ev" / "evaluation.json").read_text())
+    e = contactrb.evaluate(model, np.array(points), repeats=1)
+    s = j["summary"]
+    for key in ["e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak"]:
+        assert e["summary"]["max_" + key] == s[key]["max"], key
+        assert e["summary"]["mean_" + key] == s[key]["mean"], key
+    assert e["sizes"] == j["sizes"]
+    rows = np.genfromtxt(tmp_path / "ev" / "evaluation.csv", delimiter=",", names=True)
+    assert np.array_equal(e["energy_rb"], rows["energy_rb"])
+    assert np.array_equal(e["energy_hf"], rows["energy_hf"])
+    assert np.array_equal(e["estimate"], rows["estimate"])
+
+
+def test_errors_are_exceptions_with_the_cli_message(model, cli_model, tmp_path):
+    message = cli_error("online", "--model", cli_model, "--mu", "7")
+    with pytest.raises(contactrb.Error) as e:
+        model.solve(7.0)
+    assert str(e.value) == message
+    missing = tmp_path / "missing.h5"
+    message = cli_error("online", "--model", missing, "--mu", "0.3")
+    with pytest.raises(contactrb.Error) as e:
+        contactrb.Model.load(str(missing))
+    assert str(e.value) == message
+    with pytest.raises(contactrb.Error, match=r"^point 1: "):
+        model.solve_many(np.array([0.3, 7.0]))
+    with pytest.raises(contactrb.Error, match="N must be >= 1"):
+        model.solve(0.3, N=0)
+    with pytest.raises(RuntimeError):  # contactrb.Error is a RuntimeError
+        model.solve(0.3, start="nowhere")
+
+
+def test_non_convergence_is_a_flagged_status(model):
+    r = model.solve(0.33, max_iterations=1, tol=1e-14)
+    assert not r.converged
+    assert r.status == "max_iterations"
+    assert r.message
+    assert math.isnan(r.estimate) and r.estimate_parts is None
+    many = model.solve_many(np.array([0.2, 0.33]), max_iterations=1, tol=1e-14)
+    assert not many["converged"].any()
+    assert [contactrb.STATUS[c] for c in many["status"]] == ["max_iterations"] * 2
+    assert np.isnan(many["estimate"]).all()
+
+
+def test_solve_many_fields_equal_the_fields_of_solve(model):
+    many = model.solve_many(np.array([0.2, 0.41]), fields=True)
+    assert many["displacement"].ndim == 3
+    for i, mu in enumerate([0.2, 0.41]):
+        assert np.array_equal(many["displacement"][i], model.fields(model.solve(mu))["displacement"])
+
+
+def test_evaluate_at_the_snapshot_points(model, cli_snapshots):
+    snaps = contactrb.Snapshots.load(str(cli_snapshots))
+    e = contactrb.evaluate(model, snaps, repeats=1)
+    assert np.array_equal(e["mu"], snaps.mu)
+    assert e["hf_converged"].all() and e["rb_converged"].all()
+    # The training points themselves: the model reproduces its snapshots up to its tolerances.
+    assert e["summary"]["max_e_displ"] < 1e-2, e["summary"]["max_e_displ"]
+
+
+def test_solve_many_from_two_threads_equals_serial(model):
+    import threading
+
+    points = np.linspace(0.15, 0.45, 200)
+    serial = model.solve_many(points)
+    out = [None, None]
+
+    def run(k):
+        out[k] = model.solve_many(points)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for k in range(2):
+        assert np.array_equal(out[k]["energy"], serial["energy"])
+        assert np.array_equal(out[k]["coefficients"], serial["coefficients"])
+
+
+def test_failed_snapshots_are_recorded_and_refused_by_offline():
+    snaps = contactrb.snapshots("hertz-a", np.array([0.2, 0.3]), max_iterations=1)
+    assert len(snaps) == 2 and snaps.num_failed == 2
+    assert not snaps.converged.any()
+    assert snaps.status == ["max_iterations", "max_iterations"]
+    with pytest.raises(contactrb.Error, match=r"^2 of 2 snapshot solves failed"):
+        contactrb.offline(snaps)
