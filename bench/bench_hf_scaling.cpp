@@ -3,7 +3,7 @@
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--lu umfpack|eigen] [--verbose] [--header]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -24,7 +24,7 @@
 using namespace contactrb;
 
 int main(int argc, char** argv) {
-  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur";
+  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
   int level = 0, repeat = 1, inner = -1, free_steps = -1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
     else if (a == "--lu") lu = next();
     else if (a == "--linear") linear = next();
     else if (a == "--inner") inner = std::stoi(next());
+    else if (a == "--passes") passes = next();
     else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
     settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
     settings.newton.linear_solver = hf::newton_linear_solver_from_string(linear);
     if (inner > 0) settings.newton.max_inner_iterations = inner;
+    settings.newton.inner_passes = hf::newton_inner_passes_from_string(passes);
     if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
