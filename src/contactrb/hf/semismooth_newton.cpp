@@ -235,14 +235,22 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     it.residual = st.kkt();
     it.merit = st.merit;
 
-    // Consistent linearization of the geometry (D, H) at u, lambda.
+    // Consistent linearization of the geometry (D, H) at u, lambda: in the Newton phase only
+    // (the Kacanov phase's frozen steps need K and d, already in st.maps). On hertz-a level 0 the
+    // 2 x (14-24 colours) map evaluations are most of an iteration's time.
+    const bool kacanov_phase = !newton_phase;
     auto t0 = Clock::now();
     contact::ContactLinearization lin;
-    try {
-      lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
-    } catch (const Error& e) {
-      return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
-                                                          ": the contact maps cannot be linearized: " + e.what());
+    if (!kacanov_phase) {
+      try {
+        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
+      } catch (const Error& e) {
+        return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
+                                                            ": the contact maps cannot be linearized: " + e.what());
+      }
+    } else {
+      lin.D.resize(R, N);
+      lin.H.resize(N, N);
     }
     it.colours = lin.colours;
     it.linearize_s = seconds_since(t0);
@@ -470,7 +478,6 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     // consistent linearization until the set repeats. From u = u_D the consistent passes alone
     // cycled on fine meshes (hertz-a level 5: a 2-cycle of 7 rows until the cap of 20 passes;
     // level 6: no convergence in 50 iterations; docs/benchmarks.md).
-    const bool kacanov_phase = !newton_phase;
     if (!(kacanov_phase ? solve_active(is_active, true) : solve_newton_system(is_active))) {
       return finish(solve::KacanovStatus::StepFailed, failure);
     }
