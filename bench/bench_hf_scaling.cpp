@@ -3,12 +3,14 @@
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--lu umfpack|eigen] [--verbose] [--header]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
 // (median over --repeat runs of setup + solve), iterations, status, contact force, energy,
-// KKT residual, active rows, peak RSS (MB).
+// KKT residual, active rows, peak RSS (MB), CPU time per repeat of setup + solve (user + system
+// of the process, s; on a loaded machine the wall times above are not the cost), CPU time of the
+// mesh generation (not in the other columns).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -24,7 +26,7 @@
 using namespace contactrb;
 
 int main(int argc, char** argv) {
-  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur";
+  std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
   int level = 0, repeat = 1, inner = -1, free_steps = -1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
@@ -39,7 +41,7 @@ int main(int argc, char** argv) {
     };
     if (a == "--header") {
       std::printf("case,level,dofs,slave_nodes,solver,constraint,mu,setup_s,solve_s,total_s,iterations,status,"
-                  "force,energy,kkt,active,peak_rss_mb\n");
+                  "force,energy,kkt,active,peak_rss_mb,cpu_s,mesh_cpu_s\n");
       return 0;
     }
     if (a == "--case") case_name = next();
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
     else if (a == "--lu") lu = next();
     else if (a == "--linear") linear = next();
     else if (a == "--inner") inner = std::stoi(next());
+    else if (a == "--passes") passes = next();
     else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
@@ -63,12 +66,22 @@ int main(int argc, char** argv) {
   try {
     std::optional<contact::Discretization> d;
     if (!constraint.empty()) d = contact::discretization_from_string(constraint);
+    rusage before{};
+    getrusage(RUSAGE_SELF, &before);
     const hf::ContactProblem problem = cases::make_problem(case_name, mu, level, d);
+    rusage after_mesh{};
+    getrusage(RUSAGE_SELF, &after_mesh);
+    auto cpu = [](const rusage& r) {
+      return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+             1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+    };
+    const double mesh_cpu_s = cpu(after_mesh) - cpu(before);
     hf::HFSettings settings;
     settings.method = hf::hf_method_from_string(solver);
     settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
     settings.newton.linear_solver = hf::newton_linear_solver_from_string(linear);
     if (inner > 0) settings.newton.max_inner_iterations = inner;
+    settings.newton.inner_passes = hf::newton_inner_passes_from_string(passes);
     if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
@@ -95,11 +108,12 @@ int main(int argc, char** argv) {
     }
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
-    std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f\n", case_name.c_str(), level,
+    const double cpu_s = (cpu(usage) - cpu(after_mesh)) / std::max(1, repeat);
+    std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f,%.4f,%.2f\n", case_name.c_str(), level,
                 problem.mesh.num_dofs(), problem.mesh.boundaries.at(mesh::kSlaveBoundary).size() + 1, solver.c_str(),
                 contact::to_string(problem.discretization), mu, median(setup), median(solve), median(total),
                 sol.iterations, solve::to_string(sol.status), sol.contact_force, sol.energy, sol.kkt.max(),
-                sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0);
+                sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0, cpu_s, mesh_cpu_s);
     return sol.converged ? 0 : 3;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_hf_scaling: %s\n", e.what());

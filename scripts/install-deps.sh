@@ -6,7 +6,7 @@ set -euo pipefail
 CONTACTRB_DEBIAN_PACKAGES=(
   build-essential cmake g++ pkg-config
   libeigen3-dev libcli11-dev libgmsh-dev libhdf5-dev libtomlplusplus-dev libsuitesparse-dev
-  libopenblas0-pthread
+  libopenblas0-pthread liblapack-dev  # LAPACK/BLAS (OpenBLAS at run time): the dense Newton systems (solve/dense_lu.hpp)
   nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib

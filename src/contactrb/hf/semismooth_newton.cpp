@@ -6,9 +6,9 @@
 #include <limits>
 #include <sstream>
 
-#include <Eigen/LU>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/dense_lu.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::hf {
@@ -125,6 +125,20 @@ NewtonLinearSolver newton_linear_solver_from_string(const std::string& name) {
   throw Error("unknown Newton linear solver '" + name + "' (expected schur or lu)");
 }
 
+const char* to_string(NewtonInnerPasses passes) {
+  switch (passes) {
+    case NewtonInnerPasses::Frozen: return "frozen";
+    case NewtonInnerPasses::Consistent: return "consistent";
+  }
+  return "unknown";
+}
+
+NewtonInnerPasses newton_inner_passes_from_string(const std::string& name) {
+  if (name == "frozen") return NewtonInnerPasses::Frozen;
+  if (name == "consistent") return NewtonInnerPasses::Consistent;
+  throw Error("unknown Newton inner passes '" + name + "' (expected frozen or consistent)");
+}
+
 void check_settings(const NewtonSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
           "Newton tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
@@ -170,6 +184,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     return res;
   }
   std::vector<char> previous_active(static_cast<std::size_t>(R), 0);
+  bool newton_phase = s.inner_passes == NewtonInnerPasses::Consistent;
   int free_steps = 0;
   solve::SparseLU lu(s.lu);
   // ActiveSchur: A_00 = L L' once for the whole solve, z = A_00^-1 b. Each step then reads
@@ -220,42 +235,35 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     it.residual = st.kkt();
     it.merit = st.merit;
 
-    // Consistent linearization of the geometry (D, H) at u, lambda.
+    // Consistent linearization of the geometry (D, H) at u, lambda: in the Newton phase only
+    // (the Kacanov phase's frozen steps need K and d, already in st.maps). On hertz-a level 0 the
+    // 2 x (14-24 colours) map evaluations are most of an iteration's time.
+    const bool kacanov_phase = !newton_phase;
     auto t0 = Clock::now();
     contact::ContactLinearization lin;
-    try {
-      lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
-    } catch (const Error& e) {
-      return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
-                                                          ": the contact maps cannot be linearized: " + e.what());
+    if (!kacanov_phase) {
+      try {
+        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
+      } catch (const Error& e) {
+        return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
+                                                            ": the contact maps cannot be linearized: " + e.what());
+      }
+    } else {
+      lin.D.resize(R, N);
+      lin.H.resize(N, N);
     }
     it.colours = lin.colours;
     it.linearize_s = seconds_since(t0);
     const RowSparse D0 = p.dofs->restrict_columns(lin.D);
 
-    // The (1, 1) block A_00 + H of every inner system. `frozen`: the fallback when that
-    // Jacobian is singular (e.g. a slave node at an open master end, where the finite
-    // differences straddle the candidate switch): H = 0 and D = -K, the Jacobian of the
-    // Kacanov step with the geometry frozen, nonsingular when K_A has full row rank.
+    // Two linearizations. Consistent: [A_00 + H, K_A'; -D_A, 0]. Frozen: H = 0, D = -K, the
+    // Jacobian of the Kacanov step with the geometry frozen at u: the linearized problem is then
+    // a strictly convex QP (A_00 SPD), on which the primal-dual active-set passes settle. The
+    // frozen one is also the fallback when the consistent Jacobian is singular (e.g. a slave
+    // node at an open master end, where the finite differences straddle the candidate switch).
     t0 = Clock::now();
-    bool frozen = false;
-    std::vector<Eigen::Triplet<double>> base;
-    auto build_base = [&]() {
-      base.clear();
-      base.reserve(static_cast<std::size_t>(p.A00->nonZeros() + lin.H.nonZeros()));
-      for (int j = 0; j < p.A00->outerSize(); ++j) {
-        for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) base.emplace_back(a.row(), a.col(), a.value());
-      }
-      if (frozen) return;
-      for (int j = 0; j < lin.H.outerSize(); ++j) {
-        for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
-          const int fr = global_to_free[static_cast<std::size_t>(h.row())];
-          const int fc = global_to_free[static_cast<std::size_t>(h.col())];
-          if (fr >= 0 && fc >= 0) base.emplace_back(fr, fc, h.value());
-        }
-      }
-    };
-    std::vector<Eigen::Triplet<double>> h_free;  // H on the free DOFs (free indices)
+    bool singular_consistent = false;  // this iteration: consistent Jacobian found singular
+    std::vector<Eigen::Triplet<double>> a_trip, h_free;  // A_00 (SaddleLU only) and H, free indices
     for (int j = 0; j < lin.H.outerSize(); ++j) {
       for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
         const int fr = global_to_free[static_cast<std::size_t>(h.row())];
@@ -263,46 +271,34 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         if (fr >= 0 && fc >= 0) h_free.emplace_back(fr, fc, h.value());
       }
     }
-    if (!schur) build_base();
+    if (!schur) {
+      a_trip.reserve(static_cast<std::size_t>(p.A00->nonZeros()));
+      for (int j = 0; j < p.A00->outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) a_trip.emplace_back(a.row(), a.col(), a.value());
+      }
+    }
     const Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
 
-    // Inner primal-dual active set on the linearized problem (geometry frozen at u): the
-    // active set is read off the complementarity function of the LINEARIZED gap
-    // d + D du, until it repeats. The first inner pass is the plain semi-smooth Newton step;
-    // the following ones keep the outer iterate away from configurations the linearization
-    // does not describe (a first step from u = u_D ignoring contact penetrates deeply).
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
-    // The plain semi-smooth Newton step (first inner pass), kept for the line search.
-    Eigen::VectorXd du_first, lambda_first;
-    int passes = 0;
-    auto keep_first = [&]() {
-      if (passes++ == 0) {
-        du_first = du;
-        lambda_first = lambda_next;
-      }
-    };
-    std::vector<char> is_active(static_cast<std::size_t>(R), 0);
-    auto predicted_active = [&](std::vector<char>& out) {
-      const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
-      int changed = 0;
-      for (int r = 0; r < R; ++r) {
-        // A non-candidate row (zero K row: no master faces the slave node) never binds.
-        const bool candidate = st.K0.outerIndexPtr()[r + 1] > st.K0.outerIndexPtr()[r];
-        const char a = candidate && lambda_next(r) - evaluate.c()(r) * d_lin(r) > 0.0 ? 1 : 0;
-        if (a != out[static_cast<std::size_t>(r)]) ++changed;
-        out[static_cast<std::size_t>(r)] = a;
-      }
-      return changed;
-    };
-    predicted_active(is_active);
-    for (int r = 0; r < R; ++r) it.changed += is_active[static_cast<std::size_t>(r)] != previous_active[static_cast<std::size_t>(r)];
-    for (int inner = 0;; ++inner) {
+    std::string failure;  // set when a frozen system is singular: the step fails
+
+    // One linear system on the active rows `act`: sets du, lambda_next. Returns false when the
+    // system is singular (failure holds the message if it was the frozen one).
+    auto solve_active = [&](const std::vector<char>& act, bool frozen) -> bool {
       std::vector<int> active;
       for (int r = 0; r < R; ++r) {
-        if (is_active[static_cast<std::size_t>(r)]) active.push_back(r);
+        if (act[static_cast<std::size_t>(r)]) active.push_back(r);
       }
       const int m = static_cast<int>(active.size());
+      ++it.factorizations;
+      it.active = m;
+      auto singular_message = [&](const std::string& what) {
+        if (frozen) {
+          failure = "semi-smooth Newton iteration " + std::to_string(k) + ": " + what + "; " + residual_text(st);
+        }
+        return false;
+      };
       if (schur) {
         // E: the free DOFs the active rows (K_A, D_A) and H touch, ascending.
         std::vector<int> E;
@@ -355,8 +351,39 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
           rhs(a) = z(fi) - st.u0(fi);
         }
         for (int fi : E) e_position[static_cast<std::size_t>(fi)] = -1;
+        if (frozen) {
+          // H = 0, D = -K: w = r_E - G K_E' lambda_A with r_E = z_E - u_0,E, and K_E w = d_A
+          // gives the SPD system of the active rows alone (Kacanov's dual system, paper (12)):
+          //   (K_E G K_E') lambda_A = K_E r_E - d_A,
+          // size |A| instead of |E| + |A| (hertz-a level 6: 393 against ~1 800).
+          const Eigen::MatrixXd GKt = G * KE.transpose();
+          Eigen::MatrixXd Q = KE * GKt;
+          const Eigen::VectorXd rE = rhs.head(e);
+          const Eigen::VectorXd q = KE * rE - rhs.tail(m);
+          // Symmetric equilibration (rows of K carry the units of the constraint weights).
+          Eigen::VectorXd scale(m);
+          for (int a = 0; a < m; ++a) scale(a) = Q(a, a) > 0.0 ? 1.0 / std::sqrt(Q(a, a)) : 1.0;
+          Q = scale.asDiagonal() * Q * scale.asDiagonal();
+          solve::DenseLU dense;
+          const bool finite_system = dense.compute(std::move(Q));
+          const double rcond = dense.rcond();
+          if (!finite_system || !(rcond >= s.min_rcond) || rcond == 0.0) {
+            std::ostringstream os;
+            os << "the frozen-geometry system of the active rows (" << m << " rows) is singular (reciprocal condition "
+               << rcond << " < min_rcond " << s.min_rcond << ")";
+            return singular_message(os.str());
+          }
+          const Eigen::VectorXd lambda_A = scale.cwiseProduct(dense.solve(scale.cwiseProduct(q)));
+          const Eigen::VectorXd yE = KE.transpose() * lambda_A;
+          Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+          for (int a = 0; a < e; ++a) y(E[static_cast<std::size_t>(a)]) = yE(a);
+          du = z - inverse.solve(y) - st.u0;
+          lambda_next.setZero();
+          for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = lambda_A(a);
+          return true;
+        }
         Eigen::MatrixXd M = Eigen::MatrixXd::Zero(e + m, e + m);
-        M.topLeftCorner(e, e) = G * HE;
+        if (!frozen) M.topLeftCorner(e, e) = G * HE;
         M.topLeftCorner(e, e).diagonal().array() += 1.0;
         M.topRightCorner(e, m) = G * KE.transpose();
         M.bottomLeftCorner(m, e) = Eigen::MatrixXd(RE);
@@ -370,22 +397,14 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
           if (cmax > 0.0) col_scale(e + a) = 1.0 / cmax;
         }
         M = row_scale.asDiagonal() * M * col_scale.asDiagonal();
-        ++it.factorizations;
-        const Eigen::PartialPivLU<Eigen::MatrixXd> dense(M);
-        const double rcond = e + m > 0 ? dense.rcond() : 1.0;
-        const bool singular = !(rcond >= s.min_rcond) || !M.allFinite();
-        if (singular && !frozen) {
-          frozen = true;
-          it.frozen = true;
-          --inner;
-          continue;
-        }
-        if (singular) {
+        solve::DenseLU dense;  // LAPACK (OpenBLAS)
+        const bool finite_system = dense.compute(std::move(M));
+        const double rcond = dense.rcond();
+        if (!finite_system || !(rcond >= s.min_rcond) || rcond == 0.0) {
           std::ostringstream os;
-          os << "semi-smooth Newton iteration " << k << ": the reduced Newton system (" << e << " contact DOFs, " << m
-             << " active rows) is singular (reciprocal condition " << rcond << " < min_rcond " << s.min_rcond
-             << "); " << residual_text(st);
-          return finish(solve::KacanovStatus::StepFailed, os.str());
+          os << "the reduced Newton system (" << e << " contact DOFs, " << m
+             << " active rows) is singular (reciprocal condition " << rcond << " < min_rcond " << s.min_rcond << ")";
+          return singular_message(os.str());
         }
         const Eigen::VectorXd x = col_scale.cwiseProduct(dense.solve(row_scale.cwiseProduct(rhs)));
         const Eigen::VectorXd yE = HE * x.head(e) + KE.transpose() * x.tail(m);
@@ -394,13 +413,11 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         du = z - inverse.solve(y) - st.u0;
         lambda_next.setZero();
         for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(e + a);
-        keep_first();
-        it.active = m;
-        if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
-        continue;
+        return true;
       }
       // [A_00 + H, K_A'; -D_A, 0] [du; lambda_A] = [b - A_00 u_0; d_A].
-      std::vector<Eigen::Triplet<double>> trip = base;
+      std::vector<Eigen::Triplet<double>> trip = a_trip;
+      if (!frozen) trip.insert(trip.end(), h_free.begin(), h_free.end());
       Eigen::VectorXd rhs(n + m);
       rhs.head(n) = top;
       for (int a = 0; a < m; ++a) {
@@ -415,28 +432,66 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       }
       Eigen::SparseMatrix<double> J(n + m, n + m);
       J.setFromTriplets(trip.begin(), trip.end());
-      ++it.factorizations;
-      if (lu.compute(J) != solve::SparseLUStatus::Success && !frozen) {
-        frozen = true;
-        it.frozen = true;
-        if (!schur) build_base();
-        --inner;
-        continue;
-      }
-      if (lu.status() != solve::SparseLUStatus::Success) {
-        return finish(solve::KacanovStatus::StepFailed,
-                      "semi-smooth Newton iteration " + std::to_string(k) + ": the Newton system (" +
-                          std::to_string(n) + " free DOFs, " + std::to_string(m) + " active rows) is " +
-                          solve::to_string(lu.status()) + "; " + residual_text(st));
+      if (lu.compute(J) != solve::SparseLUStatus::Success) {
+        return singular_message("the Newton system (" + std::to_string(n) + " free DOFs, " + std::to_string(m) +
+                                " active rows) is " + solve::to_string(lu.status()));
       }
       const Eigen::VectorXd x = lu.solve(rhs);
       du = x.head(n);
       lambda_next.setZero();
       for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(n + a);
-      keep_first();
-      it.active = m;
-      if (predicted_active(is_active) == 0 || inner + 1 >= s.max_inner_iterations) break;
+      return true;
+    };
+    // A solve on the consistent Jacobian, falling back to the frozen one (for the rest of the
+    // iteration) when it is singular.
+    auto solve_newton_system = [&](const std::vector<char>& act) {
+      if (!singular_consistent && solve_active(act, false)) return true;
+      if (!singular_consistent) {
+        singular_consistent = true;
+        it.frozen = true;
+      }
+      return solve_active(act, true);
+    };
+
+    // Predicted active set: the complementarity function of the LINEARIZED gap, d + D du
+    // (consistent) or d - K du (frozen). Returns the number of rows that changed in `out`.
+    std::vector<char> is_active(static_cast<std::size_t>(R), 0);
+    auto predicted_active = [&](std::vector<char>& out, bool frozen) {
+      const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st.maps.d - st.K0 * du) : Eigen::VectorXd(st.maps.d + D0 * du);
+      int changed = 0;
+      for (int r = 0; r < R; ++r) {
+        // A non-candidate row (zero K row: no master faces the slave node) never binds.
+        const bool candidate = st.K0.outerIndexPtr()[r + 1] > st.K0.outerIndexPtr()[r];
+        const char a = candidate && lambda_next(r) - evaluate.c()(r) * d_lin(r) > 0.0 ? 1 : 0;
+        if (a != out[static_cast<std::size_t>(r)]) ++changed;
+        out[static_cast<std::size_t>(r)] = a;
+      }
+      return changed;
+    };
+    predicted_active(is_active, false);  // du = 0: the active set of the iterate itself
+    for (int r = 0; r < R; ++r) it.changed += is_active[static_cast<std::size_t>(r)] != previous_active[static_cast<std::size_t>(r)];
+
+    // Kacanov phase (inner_passes Frozen, until the active set settles): the step solves the
+    // frozen-geometry linearization exactly (a strictly convex QP: primal-dual active-set passes
+    // on it settle), i.e. an undamped Kacanov step. Newton phase: the plain semi-smooth Newton step
+    // on the consistent linearization, then, if it predicts another active set, passes on the
+    // consistent linearization until the set repeats. From u = u_D the consistent passes alone
+    // cycled on fine meshes (hertz-a level 5: a 2-cycle of 7 rows until the cap of 20 passes;
+    // level 6: no convergence in 50 iterations; docs/benchmarks.md).
+    if (!(kacanov_phase ? solve_active(is_active, true) : solve_newton_system(is_active))) {
+      return finish(solve::KacanovStatus::StepFailed, failure);
     }
+    const Eigen::VectorXd du_first = du, lambda_first = lambda_next;
+    int passes = 1;
+    const bool pass_frozen = kacanov_phase || singular_consistent;
+    while (passes < s.max_inner_iterations && predicted_active(is_active, pass_frozen) != 0) {
+      if (!(pass_frozen ? solve_active(is_active, true) : solve_newton_system(is_active))) {
+        return finish(solve::KacanovStatus::StepFailed, failure);
+      }
+      ++passes;
+    }
+    // The frozen passes found the active set at once: the iterate is near enough for Newton.
+    if (kacanov_phase && passes == 1) newton_phase = true;
     previous_active = is_active;
     it.factorize_s = seconds_since(t0);
     const Eigen::VectorXd dlambda = lambda_next - st.lambda;

@@ -14,11 +14,13 @@
 // (NewtonLinearSolver): by default reduced EXACTLY to the few DOFs E that H, K_A, D_A touch,
 // with A_00 factorized once per solve and the block (A_00^-1)[E, E] from sparse substitutions
 // (solve/selected_inverse.hpp); or, for comparison, by a sparse LU of the whole saddle point
-// (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed. Globalization:
-// a backtracking line search on the merit 1/2 |F|^2 (F with the complementarity rows in
-// force units, |I_r| min(lambda_r, c_r d_r)), where a full step that changes the active set
-// is accepted without a decrease while the active set is still moving (the combinatorial
-// phase of primal-dual active sets), a bounded number of times.
+// (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
+// Globalization: a Kacanov phase first (NewtonInnerPasses::Frozen): from the start, each step
+// solves the frozen-geometry linearization (H = 0, D = -K, a convex QP) exactly by active-set
+// passes, until those passes find the active set at once; then Newton steps. Every step is
+// followed by a backtracking line search on the merit 1/2 |F|^2 (F with the complementarity
+// rows in force units, |I_r| min(lambda_r, c_r d_r)); optionally a bounded number of full steps
+// without a decrease (max_free_steps).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
@@ -40,6 +42,17 @@ enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
 const char* to_string(NewtonLinearSolver solver);
 NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  // "schur" | "lu"
 
+// Frozen (default): a Kacanov phase first. Each iteration solves the frozen-geometry
+// linearization exactly (active-set passes on a convex QP: an undamped Kacanov step) until one
+// pass finds the active set at once; the following iterations are semi-smooth Newton steps with
+// the consistent linearization (passes on it when the set still moves). Consistent (the earlier
+// method): Newton steps from the start. Measured (docs/benchmarks.md, "HF solver scaling"):
+// hertz-a level 5 (88k DOFs) 8 iterations / 27 systems against 11 / ~70, and the consistent
+// passes cycled (a 2-cycle of 7 rows until the cap of 20 passes) or did not converge (level 6).
+enum class NewtonInnerPasses { Frozen, Consistent };
+const char* to_string(NewtonInnerPasses passes);
+NewtonInnerPasses newton_inner_passes_from_string(const std::string& name);  // "frozen" | "consistent"
+
 struct NewtonSettings {
   double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
   int max_iterations = 50;
@@ -51,8 +64,9 @@ struct NewtonSettings {
   // per step, no convergence in 50 iterations); with 0 it converges in 14, and levels 0-4 take
   // the same iterations either way (docs/benchmarks.md, "HF solver scaling").
   int max_free_steps = 0;
-  // Inner primal-dual active-set passes on the linearized problem per Newton iteration.
+  // Inner primal-dual active-set passes on the linearized problem per Newton iteration (systems).
   int max_inner_iterations = 20;
+  NewtonInnerPasses inner_passes = NewtonInnerPasses::Frozen;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
