@@ -8,6 +8,7 @@ CONTACTRB_DEBIAN_PACKAGES=(
   libeigen3-dev libcli11-dev libgmsh-dev libhdf5-dev libtomlplusplus-dev libsuitesparse-dev
   libopenblas0-pthread
   nlohmann-json3-dev
+  libopenmpi-dev openmpi-bin  # optional at build time: mpirun runs (docs/cluster.md)
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib
   python3-paraview xvfb  # the ParaView test: pvpython renders a VTU under xvfb-run (tests/io/paraview_check.py)

@@ -33,6 +33,7 @@
 #include "contactrb/rb/offline_greedy.hpp"
 #include "contactrb/rb/reduced_model.hpp"
 #include "contactrb/rb/snapshot_generation.hpp"
+#include "contactrb/rb/snapshot_parts.hpp"
 
 namespace contactrb::app {
 
@@ -306,6 +307,7 @@ int run_offline(const OfflineOptions& opt) {
 
   const io::SnapshotSet set =
       compute ? compute_snapshots(opt, snapshots_path, lock) : io::read_snapshot_file(snapshots_path);
+  rb::refuse_snapshot_part(set, snapshots_path);
   if (set.num_failed() > 0) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
     return kExitSolveFailed;

@@ -12,16 +12,19 @@
 // 3 some solve did not converge (and, in batch mode, no bad line).
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "batch_lines.hpp"
 #include "commands.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
@@ -50,6 +53,7 @@ struct OnlineOptions {
   std::optional<double> tolerance;
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
   std::string out;  // --out DIR: reconstructed fields
+  int jobs = 1;     // --batch: threads (batch_lines.hpp)
 };
 
 // What --out needs, read before any solve (everything that can fail first).
@@ -175,7 +179,7 @@ void write_batch_collections(const std::string& out, std::size_t num_parameters,
   }
 }
 
-int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::OnlineSolver& solver,
+int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb::OnlineSizes& sizes,
               const rb::OnlineSettings& settings, const FieldOutput* fields) {
   const std::vector<cases::ParameterSpec>& parameters = model.parameters;
   std::ifstream file;
@@ -188,12 +192,11 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
     require(file.good(), "cannot open batch file '" + printable(opt.batch) + "'");
     in = &file;
   }
-  int bad = 0, not_converged = 0, k = 0;
-  std::string line;
-  bool too_long = false;
+  std::atomic<int> bad{0}, not_converged{0};
+  std::mutex written_mutex;
   std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
-  while (read_batch_line(*in->rdbuf(), line, too_long)) {
-    ++k;
+  // On opt.jobs threads, in input order (batch_lines.hpp).
+  const auto answer = [&](rb::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
     nlohmann::json j;
     try {
       require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
@@ -208,6 +211,7 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
                          field_roles(dir, "--out"));
         ensure_output_directory(dir);
         j["files"] = write_fields(*fields, model, mu, s, dir);
+        const std::lock_guard<std::mutex> lock(written_mutex);
         written.emplace_back(k, mu);
       }
       if (!s.converged()) ++not_converged;
@@ -217,8 +221,12 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
       ++bad;
     }
     // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
-    std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // flushed: answers stream through pipes
-  }
+    return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  };
+  const int k = answer_batch_lines(
+      model, sizes, opt.jobs, [&](std::string& line, bool& too_long) { return read_batch_line(*in->rdbuf(), line, too_long); },
+      answer, std::cout);
+  std::sort(written.begin(), written.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (fields != nullptr) write_batch_collections(opt.out, parameters.size(), written);
   if (bad > 0) {
     std::cerr << "contactrb: error: " << bad << " of " << k << " batch lines could not be answered\n";
@@ -254,7 +262,7 @@ int run_online(const OnlineOptions& opt) {
   rb::OnlineSolver solver(model, sizes);
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
-    if (opt.out.empty()) return run_batch(opt, model, solver, settings, nullptr);
+    if (opt.out.empty()) return run_batch(opt, model, sizes, settings, nullptr);
     std::vector<FileRole> outputs;
     for (const char* c : kBatchCollections) {
       outputs.push_back({std::string(c) + " in --out", (std::filesystem::path(opt.out) / c).string()});
@@ -264,7 +272,7 @@ int run_online(const OnlineOptions& opt) {
     const FieldOutput fields = read_field_output(model, opt.model);
     // One run's files, never mixed with another's: the lock is held until the collections are written.
     const OutputLock lock(opt.out);
-    return run_batch(opt, model, solver, settings, &fields);
+    return run_batch(opt, model, sizes, settings, &fields);
   }
   const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
 
@@ -304,6 +312,8 @@ Command add_online_command(CLI::App& app) {
                    "File with one parameter point per line (p numbers separated by blanks or commas, name=value "
                    "pairs, or a JSON object), or - for stdin");
   what->require_option(1);
+  sub->add_option("--jobs,-j", opt->jobs, "With --batch: threads, one solver each (answers in input order)")
+      ->capture_default_str();
   sub->add_option("--n", opt->sizes.n, "Primal size N (default: the model's N_max)");
   sub->add_option("--r", opt->sizes.r, "Dual size R (default: R_max)");
   sub->add_option("--mk", opt->sizes.mk, "EIM size of kappa (default: Mk_max)");
