@@ -12,7 +12,6 @@
 // 3 some solve did not converge (and, in batch mode, no bad line).
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -26,6 +25,7 @@
 
 #include "batch_lines.hpp"
 #include "commands.hpp"
+#include "mpi_world.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
@@ -180,11 +180,11 @@ void write_batch_collections(const std::string& out, std::size_t num_parameters,
 }
 
 int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb::OnlineSizes& sizes,
-              const rb::OnlineSettings& settings, const FieldOutput* fields) {
+              const rb::OnlineSettings& settings, const FieldOutput* fields, MpiWorld* world = nullptr) {
   const std::vector<cases::ParameterSpec>& parameters = model.parameters;
   std::ifstream file;
   std::istream* in = &std::cin;
-  if (opt.batch != "-") {
+  if (opt.batch != "-" && (world == nullptr || world->rank() == 0)) {
     // A regular file below the size limit: a directory would answer nothing and exit 0, a
     // device such as /dev/urandom would be answered forever.
     check_input_file(opt.batch, "batch file", InputKind::Text);
@@ -192,12 +192,17 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
     require(file.good(), "cannot open batch file '" + printable(opt.batch) + "'");
     in = &file;
   }
-  std::atomic<int> bad{0}, not_converged{0};
+  // Under mpirun: every rank has read the model, rank 0 opened the batch (batch_lines.hpp).
+  if (world != nullptr && !world->agree(true)) {
+    if (world->rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
+    return 1;
+  }
   std::mutex written_mutex;
   std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
   // On opt.jobs threads, in input order (batch_lines.hpp).
   const auto answer = [&](rb::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
     nlohmann::json j;
+    LineAnswer a;
     try {
       require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
                              (parameters.size() == 1 ? std::string("one number") : "one parameter point") + ")");
@@ -214,18 +219,21 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
         const std::lock_guard<std::mutex> lock(written_mutex);
         written.emplace_back(k, mu);
       }
-      if (!s.converged()) ++not_converged;
+      a.not_converged = !s.converged();
     } catch (const Error& e) {
       // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
       j = {{"line", k}, {"error", printable_line(e.what())}};
-      ++bad;
+      a.bad = true;
     }
     // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
-    return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    a.text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return a;
   };
-  const int k = answer_batch_lines(
+  const BatchCounts counts = answer_batch_lines(
       model, sizes, opt.jobs, [&](std::string& line, bool& too_long) { return read_batch_line(*in->rdbuf(), line, too_long); },
-      answer, std::cout);
+      answer, std::cout, world);
+  if (world != nullptr && world->rank() != 0) return 0;  // rank 0 prints and reports
+  const int k = counts.lines, bad = counts.bad, not_converged = counts.not_converged;
   std::sort(written.begin(), written.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (fields != nullptr) write_batch_collections(opt.out, parameters.size(), written);
   if (bad > 0) {
@@ -241,6 +249,8 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
 
 int run_online(const OnlineOptions& opt) {
   const bool single = opt.mu.has_value();  // --mu, else --batch
+  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
+  require(!world || (!single && opt.out.empty()), "under mpirun, online answers --batch without --out only");
   // A plain number is checked before the model is read (its errors come first, as for p = 1).
   if (single && opt.mu->find_first_of("=,") == std::string::npos) (void)parse_mu_option(*opt.mu, "--mu");
   const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
@@ -262,7 +272,7 @@ int run_online(const OnlineOptions& opt) {
   rb::OnlineSolver solver(model, sizes);
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
-    if (opt.out.empty()) return run_batch(opt, model, sizes, settings, nullptr);
+    if (opt.out.empty()) return run_batch(opt, model, sizes, settings, nullptr, world.get());
     std::vector<FileRole> outputs;
     for (const char* c : kBatchCollections) {
       outputs.push_back({std::string(c) + " in --out", (std::filesystem::path(opt.out) / c).string()});
@@ -312,7 +322,7 @@ Command add_online_command(CLI::App& app) {
                    "File with one parameter point per line (p numbers separated by blanks or commas, name=value "
                    "pairs, or a JSON object), or - for stdin");
   what->require_option(1);
-  sub->add_option("--jobs,-j", opt->jobs, "With --batch: threads, one solver each (answers in input order)")
+  sub->add_option("--jobs,-j", opt->jobs, "With --batch: threads, one solver each (answers in input order; 0: every hardware thread)")
       ->capture_default_str();
   sub->add_option("--n", opt->sizes.n, "Primal size N (default: the model's N_max)");
   sub->add_option("--r", opt->sizes.r, "Dual size R (default: R_max)");

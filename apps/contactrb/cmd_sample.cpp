@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -45,6 +46,7 @@ struct SampleOptions {
   int bins = 50;
   bool no_plot = false;
   bool allow_failures = false;
+  std::string points;  // --points FILE: every point and its outputs
   std::string out;
 };
 
@@ -66,6 +68,41 @@ std::string stem_of(const std::string& out) {
   return (p.parent_path() / p.stem()).string();
 }
 
+// --points: one line per point, "index,<parameter names>,converged,<outputs>", numbers
+// round-trip exact (%.17g); an output without a value (not converged) is empty.
+void write_points(const std::string& path, const rb::ReducedModel& model, const rb::SampleDistribution& dist,
+                  std::uint64_t seed, Outputs& out, bool with_peak) {
+  const auto columns = out.named(with_peak);
+  write_file_atomically(path, [&](std::ostream& os) {
+    os << "index";
+    for (const cases::ParameterSpec& q : model.parameters) os << ',' << q.name;
+    os << ",converged";
+    for (const auto& [name, column] : columns) os << ',' << name;
+    os << '\n';
+    char buffer[32];
+    const auto number = [&](double x) {
+      if (std::isfinite(x)) {
+        std::snprintf(buffer, sizeof buffer, "%.17g", x);
+        os << buffer;
+      }
+    };
+    for (std::size_t i = 0; i < out.contact_force.size(); ++i) {
+      os << i;
+      const cases::Mu mu = rb::sample_point(dist, model.parameters, seed, i);
+      for (Eigen::Index k = 0; k < mu.size(); ++k) {
+        os << ',';
+        number(mu(k));
+      }
+      os << ',' << (std::isnan(out.contact_force[i]) ? 0 : 1);
+      for (const auto& [name, column] : columns) {
+        os << ',';
+        number((*column)[i]);
+      }
+      os << '\n';
+    }
+  });
+}
+
 int run_sample(const SampleOptions& opt) {
   const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
   const int rank = world ? world->rank() : 0, ranks = world ? world->size() : 1;
@@ -80,6 +117,10 @@ int run_sample(const SampleOptions& opt) {
                                                                 "(the histograms and the figure are written next to it)");
   std::vector<FileRole> outputs{{"--out", opt.out}, {"the histograms next to --out", hist_path}};
   if (!opt.no_plot) outputs.push_back({"the figure next to --out", png_path});
+  if (!opt.points.empty()) {
+    check_output_file(opt.points);
+    outputs.push_back({"--points", opt.points});
+  }
   check_file_roles({{"--model", opt.model}}, outputs);
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
   const rb::SampleDistribution dist = rb::parse_distribution(opt.dist, model.parameters);
@@ -158,6 +199,7 @@ int run_sample(const SampleOptions& opt) {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());
     stats.write(opt.out);
     hist.write(hist_path);
+    if (!opt.points.empty()) write_points(opt.points, model, dist, opt.seed, out, with_peak);
     if (!script.empty()) {
       run_python_script(script, {opt.out, hist_path, png_path},
                         "the statistics are in " + opt.out + " and " + hist_path + " (or use --no-plot)");
@@ -196,6 +238,7 @@ Command add_sample_command(CLI::App& app) {
   sub->add_option("--bins", opt->bins, "Histogram bins")->capture_default_str();
   sub->add_flag("--no-plot", opt->no_plot, "No PNG figure (no Python needed)");
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some queries did not converge");
+  sub->add_option("--points", opt->points, "Also a CSV of every point: index, mu, converged and the outputs");
   sub->add_option("--out", opt->out,
                   "Statistics CSV (output,count,mean,sd,min,max,q05,q50,q95); <stem>_histograms.csv and <stem>.png "
                   "next to it")
