@@ -26,6 +26,8 @@ int launcher_size() {
 
 }  // namespace
 
+int mpirun_processes() { return launcher_size(); }
+
 #if CONTACTRB_HAVE_MPI
 
 bool built_with_mpi() { return true; }

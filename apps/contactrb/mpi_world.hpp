@@ -40,4 +40,7 @@ class MpiWorld {
 // True when this build has MPI.
 bool built_with_mpi();
 
+// The number of processes mpirun started (from its environment), 0 when not started by it.
+int mpirun_processes();
+
 }  // namespace contactrb::app

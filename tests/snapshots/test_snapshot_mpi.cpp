@@ -76,4 +76,9 @@ TEST(SnapshotMpi, SetupErrorEndsEveryRank) {
   EXPECT_NE(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.exit_code, 124) << "timed out: a hang";
   EXPECT_NE(r.err.find("under mpirun each rank solves one value at a time"), std::string::npos) << r.err;
+  // A command that does not split its work is refused, not run once per process.
+  const CliResult other = mpirun(2, "offline --case hertz-a --out " + shell_quote(dir.file("m.h5")));
+  EXPECT_EQ(other.exit_code, 1) << other.out << other.err;
+  EXPECT_NE(other.err.find("`contactrb offline` does not run under mpirun with several processes"), std::string::npos)
+      << other.err;
 }
