@@ -107,6 +107,8 @@ int run_sample(const SampleOptions& opt) {
   const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
   const int rank = world ? world->rank() : 0, ranks = world ? world->size() : 1;
   require(opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n) + ")");
+  // The outputs are held in memory for the quantiles: 40 bytes per point (4 GB at the limit).
+  require(opt.n <= 100000000, "--n must be at most 100000000 (got " + std::to_string(opt.n) + ")");
   require(opt.jobs >= 0, "--jobs must be >= 0 (0: every hardware thread; got " + std::to_string(opt.jobs) + ")");
   require(opt.bins >= 1 && opt.bins <= 100000, "--bins must be in [1, 100000] (got " + std::to_string(opt.bins) + ")");
   const int jobs = opt.jobs == 0 ? rb::hardware_jobs() : opt.jobs;
