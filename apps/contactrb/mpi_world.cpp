@@ -33,7 +33,9 @@ int mpirun_processes() { return launcher_size(); }
 bool built_with_mpi() { return true; }
 
 std::unique_ptr<MpiWorld> MpiWorld::start_if_launched() {
-  if (launcher_size() == 0) return nullptr;
+  // One process has nothing to share: no MPI (a child of an MPI program, e.g. ParaView's
+  // pvpython, inherits its OMPI_*/PMIX_* variables and must not initialize MPI).
+  if (launcher_size() <= 1) return nullptr;
   return std::unique_ptr<MpiWorld>(new MpiWorld());
 }
 

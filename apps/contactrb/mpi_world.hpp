@@ -8,8 +8,9 @@ namespace contactrb::app {
 
 class MpiWorld {
  public:
-  // The world when this process was started by mpirun (the launcher's environment:
-  // OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK), nullptr otherwise. Throws contactrb::Error
+  // The world when this process was started by mpirun with more than one process (the
+  // launcher's environment: OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_SIZE), nullptr otherwise
+  // (`mpirun -np 1` runs as a plain start). Throws contactrb::Error
   // when started by mpirun with more than one process by a build without MPI (every process
   // would do the whole run and write the same files).
   static std::unique_ptr<MpiWorld> start_if_launched();
