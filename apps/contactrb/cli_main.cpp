@@ -12,6 +12,7 @@
 
 #include "cli_main.hpp"
 #include "commands.hpp"
+#include "mpi_world.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/common/version.hpp"
@@ -66,7 +67,15 @@ int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI:
   }
   try {
     for (const auto& command : commands) {
-      if (command.subcommand->parsed()) return command.run();
+      if (!command.subcommand->parsed()) continue;
+      // Under mpirun only the commands that split their work (docs/cluster.md): any other would
+      // run whole in every process, each writing the same files.
+      const std::string name = command.subcommand->get_name();
+      if (contactrb::app::mpirun_processes() > 1 && name != "snapshots" && name != "online" && name != "sample") {
+        throw contactrb::Error("`contactrb " + name + "` does not run under mpirun with several processes (each would do "
+                    "the whole run); mpirun runs snapshots, online --batch and sample");
+      }
+      return command.run();
     }
     std::cout << app.help();
     return 0;

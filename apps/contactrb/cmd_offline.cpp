@@ -33,6 +33,7 @@
 #include "contactrb/offline/offline_greedy.hpp"
 #include "contactrb/online/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
+#include "contactrb/offline/snapshot_parts.hpp"
 
 namespace contactrb::app {
 
@@ -308,6 +309,7 @@ int run_offline(const OfflineOptions& opt) {
 
   const io::SnapshotSet set =
       compute ? compute_snapshots(opt, snapshots_path, lock) : io::read_snapshot_file(snapshots_path);
+  rb::refuse_snapshot_part(set, snapshots_path);
   if (set.num_failed() > 0) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
     return kExitSolveFailed;

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -25,7 +26,9 @@
 #include <utility>
 #include <vector>
 
+#include "batch_lines.hpp"
 #include "commands.hpp"
+#include "mpi_world.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/common/input_file.hpp"
@@ -52,6 +55,7 @@ struct OnlineOptions {
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
   std::string out;  // --out DIR: reconstructed fields
   std::string format = "json";  // --format: of the --batch answers (json | csv | npy)
+  int jobs = 1;                 // --batch: threads (batch_lines.hpp)
 };
 
 // --out's code (online_fields.cpp); null in the light front, which hands --out to contactrb-full.
@@ -164,12 +168,13 @@ io::BatchRow batch_row(int k, const cases::Mu& mu, const rb::OnlineSolution& s) 
   return row;
 }
 
-int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::OnlineSolver& solver,
-              const rb::OnlineSettings& settings, const OnlineFields* fields) {
+int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb::OnlineSizes& sizes,
+              const rb::OnlineSettings& settings, const OnlineFields* fields, MpiWorld* world = nullptr) {
   const std::vector<cases::ParameterSpec>& parameters = model.parameters;
+  const bool root = world == nullptr || world->rank() == 0;
   std::ifstream file;
   std::istream* in = &std::cin;
-  if (opt.batch != "-") {
+  if (opt.batch != "-" && root) {
     // A regular file below the size limit: a directory would answer nothing and exit 0, a
     // device such as /dev/urandom would be answered forever.
     check_input_file(opt.batch, "batch file", InputKind::Text);
@@ -177,28 +182,29 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
     require(file.good(), "cannot open batch file '" + printable(opt.batch) + "'");
     in = &file;
   }
+  // Under mpirun: every rank has read the model, rank 0 opened the batch (batch_lines.hpp).
+  if (world != nullptr && !world->agree(true)) {
+    if (root) throw Error("an MPI rank could not start the run (its error is above)");
+    return 1;
+  }
   const bool json = opt.format == "json";
-  std::optional<io::CsvBatchWriter> csv;
-  std::optional<io::NpyBatchWriter> npy;
-  if (opt.format == "csv") {
+  const bool npy = opt.format == "npy";
+  if (opt.format == "csv" && root) {
     std::vector<std::string> names;
     for (const cases::ParameterSpec& q : parameters) names.push_back(q.name);
-    csv.emplace(std::cout, names);
-  } else if (opt.format == "npy") {
-    npy.emplace(parameters.size());
+    io::CsvBatchWriter header(std::cout, names);  // the header line; the rows are the answers' text
   }
-  // JSON lines are flushed one by one (answers stream through pipes); CSV rows only when the
-  // points come from stdin (a program in a dialogue), so that a file's batch is written in blocks.
-  const bool flush_rows = json || opt.batch == "-";
-  int bad = 0, not_converged = 0, k = 0;
-  std::string line;
-  bool too_long = false;
+  // npy: the rows are kept (the row count is in the file's header) and written at the end; the
+  // answers' text is not printed.
+  std::mutex rows_mutex;
+  std::vector<io::BatchRow> npy_rows;
   std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
-  while (read_batch_line(*in->rdbuf(), line, too_long)) {
-    ++k;
+  // On opt.jobs threads, in input order (batch_lines.hpp).
+  const auto answer = [&](rb::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
     nlohmann::json j;
     io::BatchRow row;
     row.line = k;
+    LineAnswer a;
     try {
       require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
                              (parameters.size() == 1 ? std::string("one number") : "one parameter point") + ")");
@@ -217,9 +223,10 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
         ensure_output_directory(dir);
         nlohmann::json files = fields->write(model, mu, s, dir);
         if (json) j["files"] = std::move(files);
+        const std::lock_guard<std::mutex> lock(rows_mutex);
         written.emplace_back(k, mu);
       }
-      if (!s.converged()) ++not_converged;
+      a.not_converged = !s.converged();
     } catch (const Error& e) {
       // The message may quote the line's bytes: escaped, so that the JSON line is valid UTF-8.
       if (json) {
@@ -227,22 +234,37 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
       } else {
         row = io::BatchRow{};
         row.line = k;
-        std::cerr << "contactrb: error: batch line " << k << ": " << printable_line(e.what()) << "\n";
+        std::cerr << "contactrb: error: batch line " + std::to_string(k) + ": " + printable_line(e.what()) + "\n";
       }
-      ++bad;
+      a.bad = true;
     }
     if (json) {
       // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
-      std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
-    } else if (csv) {
-      csv->write(row);
+      a.text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    } else if (npy) {
+      const std::lock_guard<std::mutex> lock(rows_mutex);
+      npy_rows.push_back(std::move(row));
     } else {
-      npy->write(row);
+      io::append_csv_batch_row(a.text, row, parameters.size());
+      a.text.pop_back();  // answer_batch_lines ends the line
     }
-    if (flush_rows) std::cout.flush();
+    return a;
+  };
+  std::ostream none(nullptr);  // npy: nothing per line
+  const BatchCounts counts = answer_batch_lines(
+      model, sizes, opt.jobs,
+      [&](std::string& line, bool& too_long) { return read_batch_line(*in->rdbuf(), line, too_long); }, answer,
+      npy ? none : std::cout, world);
+  if (!root) return 0;  // rank 0 prints and reports
+  if (npy) {
+    std::sort(npy_rows.begin(), npy_rows.end(), [](const auto& a, const auto& b) { return a.line < b.line; });
+    io::NpyBatchWriter w(parameters.size());
+    for (const io::BatchRow& r : npy_rows) w.write(r);
+    w.finish(std::cout);
   }
-  if (npy) npy->finish(std::cout);
   std::cout.flush();
+  const int k = counts.lines, bad = counts.bad, not_converged = counts.not_converged;
+  std::sort(written.begin(), written.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (fields != nullptr) write_batch_collections(opt.out, parameters.size(), written);
   if (bad > 0) {
     std::cerr << "contactrb: error: " << bad << " of " << k << " batch lines could not be answered\n";
@@ -257,6 +279,10 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, rb::Onlin
 
 int run_online(const OnlineOptions& opt) {
   const bool single = opt.mu.has_value();  // --mu, else --batch
+  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
+  require(!world || (!single && opt.out.empty()), "under mpirun, online answers --batch without --out only");
+  require(!world || opt.format != "npy", "under mpirun, online --batch writes JSON or CSV lines (--format npy: run "
+                                         "without mpirun, with --jobs)");
   require(!single || opt.format == "json",
           "--format " + opt.format + " is for --batch (--mu prints one JSON object)");
   // A plain number is checked before the model is read (its errors come first, as for p = 1).
@@ -277,10 +303,9 @@ int run_online(const OnlineOptions& opt) {
     solve::check_settings(k);
     settings.kacanov = k;
   }
-  rb::OnlineSolver solver(model, sizes);
   if (!single) {
     require(!opt.batch.empty(), "--batch needs a file name, or - for stdin");
-    if (opt.out.empty()) return run_batch(opt, model, solver, settings, nullptr);
+    if (opt.out.empty()) return run_batch(opt, model, sizes, settings, nullptr, world.get());
     const OnlineFieldHooks& hooks = require_field_hooks();
     std::vector<FileRole> outputs;
     for (const char* c : kBatchCollections) {
@@ -291,9 +316,10 @@ int run_online(const OnlineOptions& opt) {
     const std::unique_ptr<OnlineFields> fields = hooks.read(model, opt.model);
     // One run's files, never mixed with another's: the lock is held until the collections are written.
     const OutputLock lock(opt.out);
-    return run_batch(opt, model, solver, settings, fields.get());
+    return run_batch(opt, model, sizes, settings, fields.get());
   }
   const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
+  rb::OnlineSolver solver(model, sizes);
 
   // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
   std::unique_ptr<OnlineFields> fields;
@@ -347,6 +373,9 @@ Command add_online_command(CLI::App& app, const OnlineFieldHooks* fields) {
                   "Directory for the reconstructed solution on the HF mesh (solution.vtu, solution_deformed.vtu, "
                   "contact.vtu, multipliers.csv); with --batch one subdirectory NNNNNN per line and the ParaView "
                   "collections solutions.pvd, solutions_deformed.pvd, contact.pvd");
+  sub->add_option("--jobs,-j", opt->jobs,
+                  "With --batch: threads, one solver each (answers in input order; 0: every hardware thread)")
+      ->capture_default_str();
   sub->add_option("--format", opt->format,
                   "Output of --batch: json (one JSON line per input line) | csv (a header, then one row per line: "
                   "line, mu, status, iterations, energy, contact_force, estimate) | npy (the same numbers as a "

@@ -14,12 +14,15 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "mpi_snapshots.hpp"
+#include "mpi_world.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
+#include "contactrb/offline/snapshot_parts.hpp"
 
 namespace contactrb::app {
 
@@ -41,10 +44,15 @@ struct SnapshotsOptions {
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   bool allow_failures = false;
   bool quiet = false;
+  std::string part;  // "k/K": part k of K of the values (rb/snapshot_parts.hpp)
   std::string out;
 };
 
 int run_snapshots(const SnapshotsOptions& opt) {
+  // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
+  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
+  require(!world || opt.jobs == 1, "--jobs " + std::to_string(opt.jobs) +
+                                       ": under mpirun each rank solves one value at a time (start more ranks)");
   // Cheap checks first.
   const cases::CaseSpec spec =
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
@@ -60,17 +68,23 @@ int run_snapshots(const SnapshotsOptions& opt) {
   check_output_file(opt.out);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
+  std::optional<rb::SnapshotPart> part;
+  if (!opt.part.empty()) part = rb::parse_snapshot_part(opt.part);
 
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   const auto t0 = Clock::now();
   rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   request.settings = settings;
+  if (part) rb::restrict_to_part(request, *part);
   rb::SnapshotRunOptions run;
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  if (part) run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;  // a warm start would need other parts' values
   const auto t1 = Clock::now();
-  const io::SnapshotSet set = rb::generate_snapshots(request, run);
+  std::optional<io::SnapshotSet> gathered = world ? mpi_generate_snapshots(*world, request, run) : rb::generate_snapshots(request, run);
+  if (!gathered) return 0;  // an MPI rank other than 0: its results are in rank 0's file
+  const io::SnapshotSet set = std::move(*gathered);
   const auto t2 = Clock::now();
   {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // as every output set
@@ -83,7 +97,8 @@ int run_snapshots(const SnapshotsOptions& opt) {
   const std::size_t rows = set.snapshots.empty() ? 0 : static_cast<std::size_t>(set.snapshots.front().lambda.size());
   std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
-            << " constraints, " << opt.jobs << (opt.jobs == 1 ? " job\n" : " jobs\n");
+            << " constraints, "
+            << (world ? std::to_string(world->size()) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));
   std::cout << "solves: " << s.solves << "\n"
             << "failures: " << s.failures << "\n";
   if (s.failures < s.solves) {
@@ -136,6 +151,7 @@ Command add_snapshots_command(CLI::App& app) {
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some solves failed (they are recorded)");
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
+  sub->add_option("--part", opt->part, "k/K: only part k of K of the values (array jobs; join with `contactrb merge`)");
   sub->add_option("--out", opt->out, "Output HDF5 file (written atomically)")->required();
   return {sub, [opt] { return run_snapshots(*opt); }};
 }

@@ -31,6 +31,7 @@ Command add_cases_command(CLI::App& app);
 Command add_mesh_command(CLI::App& app);
 Command add_solve_command(CLI::App& app);
 Command add_snapshots_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
 Command add_offline_command(CLI::App& app);
 // A file a command reads or writes, with the words that name it in a message
 // ("--snapshots", "offline.json next to --out").
@@ -59,6 +60,7 @@ const OnlineFieldHooks* online_field_hooks();
 
 // `fields` null: --out is refused as an internal error (the front hands it to contactrb-full).
 Command add_online_command(CLI::App& app, const OnlineFieldHooks* fields);
+Command add_sample_command(CLI::App& app);
 Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);

@@ -18,6 +18,7 @@
 
 #include "cli_main.hpp"
 #include "commands.hpp"
+#include "mpi_world.hpp"
 
 #ifndef CONTACTRB_FULL_NAME
 #define CONTACTRB_FULL_NAME "contactrb-full"
@@ -32,6 +33,8 @@ namespace {
 // need more than the online library or whose output the full program gives (help, version).
 bool answers_itself(int argc, char** argv) {
   if (argc < 2 || std::string_view(argv[1]) != "online") return false;
+  // Under mpirun the full program answers (this one is built without MPI, to start fast).
+  if (contactrb::app::mpirun_processes() > 1) return false;
   for (int i = 2; i < argc; ++i) {
     const std::string_view a(argv[i]);
     if (a == "--out" || a.starts_with("--out=") || a == "-h" || a == "--help" || a == "--version") return false;

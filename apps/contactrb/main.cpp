@@ -11,8 +11,9 @@ int main(int argc, char** argv) {
   return run_cli(argc, argv, [](CLI::App& app) {
     return std::vector<Command>{
         add_cases_command(app),     add_mesh_command(app),   add_solve_command(app),
-        add_snapshots_command(app), add_offline_command(app), add_online_command(app, online_field_hooks()),
-        add_evaluate_command(app),  add_report_command(app), add_demo_command(app),
+        add_snapshots_command(app), add_merge_command(app),    add_offline_command(app),
+        add_online_command(app, online_field_hooks()),         add_sample_command(app),
+        add_evaluate_command(app),  add_report_command(app),   add_demo_command(app),
     };
   });
 }

@@ -33,17 +33,15 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-// `args` is appended to the command line as is (quote paths with shell_quote); the command
-// runs in `working_dir` when it is not empty, in the test's working directory otherwise;
-// `env` ("NAME=value NAME2=value2", quoted as needed) is set for the command only.
-inline CliResult run_cli(const std::string& args, const std::string& working_dir = "", const std::string& env = "") {
+// Runs `command` (a shell command line, quoted as needed) in `working_dir` when it is not
+// empty, with `env` ("NAME=value NAME2=value2") set for it.
+inline CliResult run_shell(const std::string& command, const std::string& working_dir = "", const std::string& env = "") {
   static int counter = 0;
   const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
                                          ("contactrb_cli_stderr_" + std::to_string(static_cast<long>(::getpid())) +
                                           "_" + std::to_string(counter++));
   const std::string cd = working_dir.empty() ? std::string() : "cd " + shell_quote(working_dir) + " && ";
-  const std::string cmd =
-      cd + (env.empty() ? "" : "env " + env + " ") + shell_quote(CONTACTRB_CLI) + " " + args + " 2>" + shell_quote(err_file.string());
+  const std::string cmd = cd + (env.empty() ? "" : "env " + env + " ") + command + " 2>" + shell_quote(err_file.string());
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("popen failed for: " + cmd);
   CliResult r;
@@ -58,6 +56,13 @@ inline CliResult run_cli(const std::string& args, const std::string& working_dir
   r.err = ss.str();
   std::filesystem::remove(err_file);
   return r;
+}
+
+// `args` is appended to the command line as is (quote paths with shell_quote); the command
+// runs in `working_dir` when it is not empty, in the test's working directory otherwise;
+// `env` ("NAME=value NAME2=value2", quoted as needed) is set for the command only.
+inline CliResult run_cli(const std::string& args, const std::string& working_dir = "", const std::string& env = "") {
+  return run_shell(shell_quote(CONTACTRB_CLI) + " " + args, working_dir, env);
 }
 
 // Value after "key: " on its own line of `text`, or "" when absent.

@@ -50,17 +50,14 @@ CsvBatchWriter::CsvBatchWriter(std::ostream& out, const std::vector<std::string>
   out_ << h;
 }
 
-void CsvBatchWriter::write(const BatchRow& row) {
-  std::string& s = buffer_;
-  s.clear();
+void append_csv_batch_row(std::string& s, const BatchRow& row, std::size_t p) {
   append_int(s, row.line);
   if (!row.answered) {
-    s.append(p_, ',');
+    s.append(p, ',');
     s += ",error,,,,\n";
-    out_ << s;
     return;
   }
-  require(static_cast<std::size_t>(row.mu.size()) == p_, "CsvBatchWriter: mu has the wrong size");
+  require(static_cast<std::size_t>(row.mu.size()) == p, "CsvBatchWriter: mu has the wrong size");
   for (Eigen::Index k = 0; k < row.mu.size(); ++k) {
     s += ',';
     append_double(s, row.mu(k));
@@ -76,7 +73,12 @@ void CsvBatchWriter::write(const BatchRow& row) {
   s += ',';
   if (row.has_estimate) append_double(s, row.estimate);
   s += '\n';
-  out_ << s;
+}
+
+void CsvBatchWriter::write(const BatchRow& row) {
+  buffer_.clear();
+  append_csv_batch_row(buffer_, row, p_);
+  out_ << buffer_;
 }
 
 void NpyBatchWriter::write(const BatchRow& row) {

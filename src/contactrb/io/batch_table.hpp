@@ -33,6 +33,9 @@ struct BatchRow {
 // The status column of npy: the solver's code, or this for a line that could not be answered.
 inline constexpr double kBatchErrorStatus = -1.0;
 
+// Appends the CSV line of `row` (with its '\n') for p parameters (CsvBatchWriter::write's text).
+void append_csv_batch_row(std::string& s, const BatchRow& row, std::size_t p);
+
 class CsvBatchWriter {
  public:
   // Writes the header line to `out` (kept by reference).

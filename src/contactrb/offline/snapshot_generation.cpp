@@ -48,21 +48,7 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// The discretization a solver works in; must agree across mu.
-struct Layout {
-  bool valid = false;
-  int num_dofs = 0;
-  std::vector<int> free_dofs;
-  std::vector<int> contact_dofs;
-  std::vector<int> slave;
-  std::vector<int> master;
-  std::string constraint;
-
-  bool operator==(const Layout& o) const {
-    return num_dofs == o.num_dofs && free_dofs == o.free_dofs && contact_dofs == o.contact_dofs && slave == o.slave &&
-           master == o.master && constraint == o.constraint;
-  }
-};
+using Layout = SnapshotLayout;
 
 Layout layout_of(const hf::HFSolver& solver) {
   Layout l;
@@ -227,18 +213,14 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   return r;
 }
 
-io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const SnapshotRunOptions& options) {
-  require(options.jobs >= 1, "the number of jobs must be >= 1 (got " + std::to_string(options.jobs) + ")");
+SnapshotSchedule snapshot_schedule(const SnapshotRequest& request, const SnapshotRunOptions& options) {
   require(!request.mu.empty(), "the parameter set '" + request.set_name + "' is empty");
-  require(static_cast<bool>(request.make_problem), "no problem factory given");
-
   const std::size_t n = request.mu.size();
-  std::vector<io::Snapshot> snapshots(n);
-  std::vector<Layout> layouts(n);
-  Progress progress(options.progress, options.progress_stream, n);
+  SnapshotSchedule schedule;
   // The schedule: waves of indices; start[i] is the index i warm-starts from (or none).
-  std::vector<std::vector<std::size_t>> waves;
-  std::vector<std::optional<std::size_t>> start(n);
+  std::vector<std::vector<std::size_t>>& waves = schedule.waves;
+  std::vector<std::optional<std::size_t>>& start = schedule.start;
+  start.resize(n);
   const bool warm = options.warm_start == SnapshotRunOptions::WarmStart::On ||
                     (options.warm_start == SnapshotRunOptions::WarmStart::Automatic &&
                      request.settings.method == hf::HFMethod::Newton);
@@ -307,7 +289,21 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
       begin = end;
     }
   }
-  for (const std::vector<std::size_t>& wave : waves) {
+  return schedule;
+}
+
+io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const SnapshotRunOptions& options) {
+  require(options.jobs >= 1, "the number of jobs must be >= 1 (got " + std::to_string(options.jobs) + ")");
+  require(!request.mu.empty(), "the parameter set '" + request.set_name + "' is empty");
+  require(static_cast<bool>(request.make_problem), "no problem factory given");
+
+  const std::size_t n = request.mu.size();
+  std::vector<io::Snapshot> snapshots(n);
+  std::vector<Layout> layouts(n);
+  Progress progress(options.progress, options.progress_stream, n);
+  const SnapshotSchedule schedule = snapshot_schedule(request, options);
+  const std::vector<std::optional<std::size_t>>& start = schedule.start;
+  for (const std::vector<std::size_t>& wave : schedule.waves) {
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
       for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
@@ -327,6 +323,13 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
     }
   }
 
+  return assemble_snapshot_set(request, std::move(snapshots), layouts);
+}
+
+io::SnapshotSet assemble_snapshot_set(const SnapshotRequest& request, std::vector<io::Snapshot> snapshots,
+                                      const std::vector<SnapshotLayout>& layouts) {
+  const std::size_t n = request.mu.size();
+  require(snapshots.size() == n && layouts.size() == n, "internal: one snapshot and one layout per parameter value");
   io::SnapshotSet set;
   set.case_name = request.case_name;
   set.case_kind = request.case_kind;
@@ -363,6 +366,21 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   set.snapshots = std::move(snapshots);
   return set;
 }
+
+SnapshotLayout solve_snapshot(const SnapshotRequest& request, std::size_t index, io::Snapshot& out,
+                              const io::Snapshot* start) {
+  Layout layout;
+  solve_one(request, index, out, layout, start);
+  return layout;
+}
+
+struct SnapshotProgress::State {
+  Progress progress;
+};
+SnapshotProgress::SnapshotProgress(ProgressMode mode, std::ostream* stream, std::size_t total)
+    : state_(new State{Progress(mode, stream, total)}) {}
+SnapshotProgress::~SnapshotProgress() = default;
+void SnapshotProgress::finished(const io::Snapshot& s) { state_->progress.finished(s); }
 
 SnapshotSummary summarize(const io::SnapshotSet& set) {
   SnapshotSummary s;

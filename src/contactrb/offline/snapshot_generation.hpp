@@ -9,6 +9,7 @@
 // do). A failed solve (not converged, or an exception while building or solving) is
 // recorded with its status and message, never dropped.
 #include <functional>
+#include <cstddef>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -98,5 +99,58 @@ struct SnapshotSummary {
   double cpu_time_total_s = 0.0;  // sum of the per-solve CPU times
 };
 SnapshotSummary summarize(const io::SnapshotSet& set);
+
+// The pieces of generate_snapshots, for drivers that distribute the solves over processes
+// (apps/contactrb/mpi_snapshots.cpp, snapshots --part): the same calls in the same schedule
+// give the same bytes.
+
+// The discretization a solver works in (what a snapshot file records once); must agree across mu.
+struct SnapshotLayout {
+  bool valid = false;  // false: no solver was built (an exception before it)
+  int num_dofs = 0;
+  std::vector<int> free_dofs;
+  std::vector<int> contact_dofs;
+  std::vector<int> slave;
+  std::vector<int> master;
+  std::string constraint;
+
+  bool operator==(const SnapshotLayout& o) const {
+    return num_dofs == o.num_dofs && free_dofs == o.free_dofs && contact_dofs == o.contact_dofs && slave == o.slave &&
+           master == o.master && constraint == o.constraint;
+  }
+};
+
+// The warm-start schedule of SnapshotRunOptions::warm_start: waves of indices, and the index
+// each point starts from (nullopt: cold). One wave of all indices when warm starts are off.
+struct SnapshotSchedule {
+  std::vector<std::vector<std::size_t>> waves;
+  std::vector<std::optional<std::size_t>> start;
+};
+SnapshotSchedule snapshot_schedule(const SnapshotRequest& request, const SnapshotRunOptions& options);
+
+// One parameter value (request.mu[index]) built, solved and extracted into `out`, starting from
+// `start` when it is a converged snapshot of the same sizes. Never throws: an exception becomes
+// a failed snapshot. Returns the solver's layout (invalid when no solver was built).
+SnapshotLayout solve_snapshot(const SnapshotRequest& request, std::size_t index, io::Snapshot& out,
+                              const io::Snapshot* start);
+
+// The set of `snapshots` (one per value of request.mu, in order) with the metadata of
+// `request`. Throws contactrb::Error when two valid layouts differ.
+io::SnapshotSet assemble_snapshot_set(const SnapshotRequest& request, std::vector<io::Snapshot> snapshots,
+                                      const std::vector<SnapshotLayout>& layouts);
+
+// Progress reports of finished solves (ProgressMode), safe to call from several threads.
+class SnapshotProgress {
+ public:
+  SnapshotProgress(ProgressMode mode, std::ostream* stream, std::size_t total);
+  ~SnapshotProgress();
+  SnapshotProgress(const SnapshotProgress&) = delete;
+  SnapshotProgress& operator=(const SnapshotProgress&) = delete;
+  void finished(const io::Snapshot& s);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace contactrb::rb

@@ -1,0 +1,191 @@
+#include "mpi_snapshots.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/common/printable.hpp"
+#include "contactrb/offline/snapshot_wire.hpp"
+
+#if CONTACTRB_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace contactrb::app {
+
+#if CONTACTRB_HAVE_MPI
+
+namespace {
+
+enum Tag : int { kReady = 1, kResult = 2, kTask = 3, kStop = 4 };
+
+void send(const std::vector<char>& bytes, int to, Tag tag) {
+  require(bytes.size() < static_cast<std::size_t>(INT_MAX), "internal: an MPI message of 2 GB or more");
+  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
+}
+
+// The next message from `from` (MPI_ANY_SOURCE: anyone), or none when `wait` is false and
+// nothing has arrived. Waits by probing and sleeping: OpenMPI's blocking calls spin, which
+// would take a core from the solves of this machine.
+bool probe(int from, bool wait, MPI_Status& status) {
+  for (;;) {
+    int flag = 0;
+    MPI_Iprobe(from, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+    if (flag != 0) return true;
+    if (!wait) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+std::vector<char> receive(const MPI_Status& status) {
+  int count = 0;
+  MPI_Get_count(&status, MPI_BYTE, &count);
+  std::vector<char> bytes(static_cast<std::size_t>(count));
+  MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return bytes;
+}
+
+io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options) {
+  const std::size_t n = request.mu.size();
+  std::vector<io::Snapshot> snapshots(n);
+  std::vector<rb::SnapshotLayout> layouts(n);
+  rb::SnapshotProgress progress(options.progress, options.progress_stream, n);
+  const rb::SnapshotSchedule schedule = rb::snapshot_schedule(request, options);
+  const auto start_of = [&](std::size_t i) { return schedule.start[i] ? &snapshots[*schedule.start[i]] : nullptr; };
+  std::deque<int> idle;  // ranks waiting for a task
+  int ready = 0;         // ranks that said they are ready (each once)
+  std::vector<char> solved(n, 0);
+
+  // Handles one message of a worker: a first "ready" or a result.
+  const auto handle = [&](const MPI_Status& status) {
+    const std::vector<char> bytes = receive(status);
+    if (status.MPI_TAG == kReady) {
+      ++ready;
+    } else if (status.MPI_TAG == kResult) {
+      std::uint64_t i = 0;
+      io::Snapshot s;
+      rb::SnapshotLayout layout;
+      rb::unpack_solved(bytes, i, s, layout);
+      require(i < n && solved[i] == 0, "internal: rank " + std::to_string(status.MPI_SOURCE) +
+                                           " returned value " + std::to_string(i) + ", which it was not given");
+      solved[i] = 1;
+      snapshots[i] = std::move(s);
+      layouts[i] = std::move(layout);
+      progress.finished(snapshots[i]);
+    } else {
+      throw Error("internal: unexpected MPI message tag " + std::to_string(status.MPI_TAG));
+    }
+    idle.push_back(status.MPI_SOURCE);
+  };
+
+  for (const std::vector<std::size_t>& wave : schedule.waves) {
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> local_done{false};
+    std::exception_ptr local_error;
+    // Rank 0's own solver thread: takes indices from the same counter as the other ranks.
+    std::thread local([&] {
+      try {
+        for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
+          const std::size_t i = wave[k];
+          layouts[i] = rb::solve_snapshot(request, i, snapshots[i], start_of(i));
+          solved[i] = 1;
+          progress.finished(snapshots[i]);
+        }
+      } catch (...) {
+        local_error = std::current_exception();
+      }
+      local_done = true;
+    });
+    std::size_t outstanding = 0;  // tasks sent and not returned
+    for (;;) {
+      while (!idle.empty()) {
+        const std::size_t k = next.fetch_add(1);
+        if (k >= wave.size()) break;
+        const std::size_t i = wave[k];
+        send(rb::pack_task(i, start_of(i)), idle.front(), kTask);
+        idle.pop_front();
+        ++outstanding;
+      }
+      if (local_done && outstanding == 0) break;
+      MPI_Status status;
+      // Blocking when only the other ranks are still at work.
+      if (probe(MPI_ANY_SOURCE, local_done.load(), status)) {
+        const bool result = status.MPI_TAG == kResult;
+        handle(status);
+        if (result) --outstanding;
+      } else {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    }
+    local.join();
+    if (local_error) std::rethrow_exception(local_error);
+  }
+  // Every worker is idle once it has said it is ready: then stop them all.
+  while (ready < world.size() - 1) {
+    MPI_Status status;
+    probe(MPI_ANY_SOURCE, true, status);
+    handle(status);
+  }
+  for (int r = 1; r < world.size(); ++r) send({}, r, kStop);
+  return rb::assemble_snapshot_set(request, std::move(snapshots), layouts);
+}
+
+void run_worker(const rb::SnapshotRequest& request) {
+  send({}, 0, kReady);
+  for (;;) {
+    MPI_Status status;
+    probe(0, true, status);
+    const std::vector<char> bytes = receive(status);
+    if (status.MPI_TAG == kStop) return;
+    require(status.MPI_TAG == kTask, "internal: unexpected MPI message tag " + std::to_string(status.MPI_TAG));
+    std::uint64_t i = 0;
+    bool has_start = false;
+    io::Snapshot start;
+    rb::unpack_task(bytes, i, has_start, start);
+    require(i < request.mu.size(), "internal: task index " + std::to_string(i) + " out of range");
+    io::Snapshot s;
+    const rb::SnapshotLayout layout = rb::solve_snapshot(request, i, s, has_start ? &start : nullptr);
+    send(rb::pack_solved(i, s, layout), 0, kResult);
+  }
+}
+
+}  // namespace
+
+std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb::SnapshotRequest& request,
+                                                      const rb::SnapshotRunOptions& options) {
+  const bool ok = !request.mu.empty() && static_cast<bool>(request.make_problem);
+  if (!world.agree(ok)) {
+    if (world.rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
+    return std::nullopt;
+  }
+  try {
+    if (world.rank() == 0) return run_rank0(world, request, options);
+    run_worker(request);
+    return std::nullopt;
+  } catch (const std::exception& e) {
+    // A rank that leaves the protocol would leave the others waiting for it: end the job.
+    std::cerr << "contactrb: internal error on MPI rank " << world.rank() << ": " << printable(e.what())
+              << " (ending the MPI job)\n"
+              << std::flush;
+    world.abort(2);
+  }
+}
+
+#else
+
+std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld&, const rb::SnapshotRequest&,
+                                                      const rb::SnapshotRunOptions&) {
+  throw Error("internal: MPI snapshots in a build without MPI");
+}
+
+#endif
+
+}  // namespace contactrb::app

@@ -1,0 +1,86 @@
+// mpirun -np K contactrb snapshots (apps/contactrb/mpi_snapshots.cpp): the gathered file holds
+// the serial file's data bit for bit (all but the timings), rank 0 reports the progress, and a
+// value that does not converge is reported with its mu (exit 3), not a hang. Skipped, with the
+// reason, in a build without MPI (CONTACTRB_MPIEXEC empty).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli/cli_runner.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "snapshot_fixtures.hpp"
+
+using contactrb::test::CliResult;
+using contactrb::test::shell_quote;
+
+namespace {
+
+const std::string kValues = "--case hertz-a --values 0.2,0.25,0.3,0.35,0.4";
+
+// mpirun as root needs both variables; --oversubscribe: more ranks than cores. `timeout`
+// turns a hang into exit code 124.
+CliResult mpirun(int ranks, const std::string& args) {
+  const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
+                              std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
+  return contactrb::test::run_shell(command, "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+}
+
+int count(const std::string& text, const std::string& word) {
+  int n = 0;
+  for (auto p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) ++n;
+  return n;
+}
+
+#define SKIP_WITHOUT_MPI()                                                                     \
+  if (std::string(CONTACTRB_MPIEXEC).empty()) {                                               \
+    GTEST_SKIP() << "this build has no MPI (CONTACTRB_WITH_MPI off or no MPI C library found)"; \
+  }
+
+}  // namespace
+
+TEST(SnapshotMpi, RanksGatherTheSerialFile) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_snapshots");
+  const CliResult serial = contactrb::test::run_cli("snapshots " + kValues + " -q --out " + shell_quote(dir.file("serial.h5")));
+  ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+  const auto reference = contactrb::io::read_snapshot_file(dir.file("serial.h5"));
+  for (int ranks : {1, 2, 3}) {
+    SCOPED_TRACE(std::to_string(ranks) + " ranks");
+    const std::string out = dir.file("mpi" + std::to_string(ranks) + ".h5");
+    const CliResult r = mpirun(ranks, "snapshots " + kValues + " --out " + shell_quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    // One process has nothing to share: `mpirun -np 1` runs as a plain start.
+    EXPECT_NE(r.out.find(ranks == 1 ? std::string(" 1 job\n") : std::to_string(ranks) + " MPI ranks"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(count(r.out, "wrote "), 1) << r.out;  // rank 0 alone reports
+    EXPECT_EQ(count(r.err, "snapshot "), 5) << r.err;  // one progress line per value
+    const auto gathered = contactrb::io::read_snapshot_file(out);
+    contactrb::test::expect_same_data(reference, gathered, false);
+  }
+}
+
+TEST(SnapshotMpi, ValueThatDoesNotConvergeIsNamed) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_fail");
+  const CliResult r = mpirun(2, "snapshots " + kValues + " --max-iterations 1 -q --out " + shell_quote(dir.file("s.h5")));
+  EXPECT_NE(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.exit_code, 124) << "timed out: a hang";
+  EXPECT_NE(r.err.find("5 of 5 solves failed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mu = 0.35: max_iterations"), std::string::npos) << r.err;
+  const auto set = contactrb::io::read_snapshot_file(dir.file("s.h5"));  // recorded, not dropped
+  EXPECT_EQ(set.num_failed(), 5);
+}
+
+TEST(SnapshotMpi, SetupErrorEndsEveryRank) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_setup");
+  const CliResult r = mpirun(2, "snapshots " + kValues + " --jobs 2 -q --out " + shell_quote(dir.file("s.h5")));
+  EXPECT_NE(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.exit_code, 124) << "timed out: a hang";
+  EXPECT_NE(r.err.find("under mpirun each rank solves one value at a time"), std::string::npos) << r.err;
+  // A command that does not split its work is refused, not run once per process.
+  const CliResult other = mpirun(2, "offline --case hertz-a --out " + shell_quote(dir.file("m.h5")));
+  EXPECT_EQ(other.exit_code, 1) << other.out << other.err;
+  EXPECT_NE(other.err.find("`contactrb offline` does not run under mpirun with several processes"), std::string::npos)
+      << other.err;
+}
