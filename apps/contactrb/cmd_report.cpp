@@ -4,12 +4,7 @@
 // writes the CSV data and study.json, plots the figures with scripts/plot_report.py and
 // writes report.md (tables and links to the figures).
 //
-// The plotting script is looked up in: $CONTACTRB_SCRIPTS (a directory; an error if it does
-// not hold plot_report.py), <binary dir>/../share/contactrb and <binary dir>/../../share/contactrb
-// (installed: contactrb-full is in libexec/contactrb), then the source tree
-// (CONTACTRB_SCRIPTS_DIR, set by CMake; else derived from this file's path). The interpreter
-// is $CONTACTRB_PYTHON, else /usr/bin/python3 (Debian's python3-matplotlib and python3-numpy).
-#include <sys/wait.h>
+// The plotting script and its interpreter: plot_script.hpp (as `sample`'s).
 #include <unistd.h>
 
 #include <cerrno>
@@ -26,6 +21,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "plot_script.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
@@ -37,9 +33,6 @@ namespace contactrb::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Exit code of plot_report.py when matplotlib / numpy cannot be imported.
-constexpr int kPlotMissingModules = 2;
 
 struct ReportOptions {
   std::string case_name;
@@ -61,63 +54,6 @@ struct ReportOptions {
   int comparisons = rb::StudySettings{}.constraint_comparisons;
   int repeats = rb::StudySettings{}.online_repeats;
 };
-
-fs::path source_scripts_dir() {
-#ifdef CONTACTRB_SCRIPTS_DIR
-  return fs::path(CONTACTRB_SCRIPTS_DIR);
-#else
-  return fs::path(__FILE__).parent_path().parent_path().parent_path() / "scripts";
-#endif
-}
-
-// The plotting script; throws contactrb::Error listing the places tried.
-fs::path find_plot_script() {
-  const char* name = "plot_report.py";
-  if (const char* env = std::getenv("CONTACTRB_SCRIPTS"); env != nullptr && *env != '\0') {
-    const fs::path p = fs::path(env) / name;
-    require(fs::is_regular_file(p), "CONTACTRB_SCRIPTS is set to '" + std::string(env) + "', which has no " + name);
-    return p;
-  }
-  std::vector<fs::path> tried;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
-    // Installed, this runs as <prefix>/libexec/contactrb/contactrb-full (apps/contactrb/CMakeLists.txt).
-    tried.push_back(exe.parent_path().parent_path().parent_path() / "share" / "contactrb" / name);
-  }
-  tried.push_back(source_scripts_dir() / name);
-  std::string list;
-  for (const fs::path& p : tried) {
-    if (fs::is_regular_file(p)) return p;
-    list += (list.empty() ? "" : ", ") + p.string();
-  }
-  throw Error(std::string("cannot find the plotting script ") + name + " (tried " + list +
-              "); set CONTACTRB_SCRIPTS to the directory that holds it, or use --no-plots");
-}
-
-// Runs `python script dir` (no shell); returns its exit code (-1: killed by a signal).
-int run_plot_script(const std::string& python, const fs::path& script, const std::string& dir, bool quiet) {
-  std::cout.flush();
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  require(pid >= 0, std::string("cannot start the plotting script: fork failed: ") + std::strerror(errno));
-  if (pid == 0) {
-    if (quiet) {
-      if (FILE* null = std::freopen("/dev/null", "w", stdout); null == nullptr) ::_exit(127);
-    }
-    const std::string s = script.string();
-    std::vector<char*> argv{const_cast<char*>(python.c_str()), const_cast<char*>(s.c_str()),
-                            const_cast<char*>(dir.c_str()), nullptr};
-    ::execv(python.c_str(), argv.data());
-    ::_exit(127);  // exec failed: no interpreter
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    require(errno == EINTR, std::string("waiting for the plotting script failed: ") + std::strerror(errno));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 void write_text(const std::string& path, const std::string& text) {
   io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
@@ -163,8 +99,8 @@ int run_report(const ReportOptions& opt) {
   ensure_output_directory(out);
   require(::access(out.c_str(), W_OK) == 0, "output directory '" + out + "' is not writable");
   // Find the plotter before the long work, so that a broken installation fails at once.
-  fs::path script;
-  if (!opt.no_plots) script = find_plot_script();
+  std::string script;
+  if (!opt.no_plots) script = find_script("plot_report.py", "use --no-plots");
 
   const rb::StudyResult r = rb::run_study(spec, s);
   // Held to the end (figures included): one run's files, never mixed with another's.
@@ -191,21 +127,9 @@ int run_report(const ReportOptions& opt) {
     std::cout << "wrote " << report_md << " (no figures: --no-plots)\n";
     return 0;
   }
-  const char* py_env = std::getenv("CONTACTRB_PYTHON");
-  const std::string python = (py_env != nullptr && *py_env != '\0') ? py_env : "/usr/bin/python3";
-  const int code = run_plot_script(python, script, out, opt.quiet);
-  if (code == 127) {
-    throw Error("cannot run the Python interpreter '" + python + "' for the figures (set CONTACTRB_PYTHON, or use " +
-                "--no-plots); the CSV files and report.md (without figures) are in " + out);
-  }
-  if (code == kPlotMissingModules) {
-    throw Error("the figures need matplotlib and numpy for " + python +
-                " (Debian: apt-get install python3-matplotlib python3-numpy); the CSV files and report.md "
-                "(without figures) are in " +
-                out);
-  }
-  require(code == 0, "the plotting script " + script.string() + " failed (exit code " + std::to_string(code) +
-                         "); the CSV files and report.md (without figures) are in " + out);
+  run_python_script(script, {out},
+                    "use --no-plots to skip the figures; the CSV files and report.md (without figures) are in " + out,
+                    opt.quiet);
   std::vector<std::string> figures{"pod_singular_values.png", "dual_cone_error.png", "eim_error.png",
                                    "errors_training.png"};
   if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");

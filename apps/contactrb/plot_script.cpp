@@ -25,7 +25,12 @@ std::string find_script(const std::string& name, const std::string& hint) {
   std::vector<fs::path> tried;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+  if (!ec) {
+    tried.push_back(exe.parent_path().parent_path() / "share" / "contactrb" / name);
+    // Installed, the commands that plot run as <prefix>/libexec/contactrb/contactrb-full
+    // (apps/contactrb/CMakeLists.txt).
+    tried.push_back(exe.parent_path().parent_path().parent_path() / "share" / "contactrb" / name);
+  }
 #ifdef CONTACTRB_SCRIPTS_DIR
   tried.push_back(fs::path(CONTACTRB_SCRIPTS_DIR) / name);
 #endif
@@ -38,7 +43,8 @@ std::string find_script(const std::string& name, const std::string& hint) {
               "); set CONTACTRB_SCRIPTS to the directory that holds it, or " + hint);
 }
 
-void run_python_script(const std::string& script, const std::vector<std::string>& args, const std::string& what_is_there) {
+void run_python_script(const std::string& script, const std::vector<std::string>& args, const std::string& what_is_there,
+                       bool quiet) {
   const char* py_env = std::getenv("CONTACTRB_PYTHON");
   const std::string python = (py_env != nullptr && *py_env != '\0') ? py_env : "/usr/bin/python3";
   std::cout.flush();
@@ -46,6 +52,9 @@ void run_python_script(const std::string& script, const std::vector<std::string>
   const pid_t pid = ::fork();
   require(pid >= 0, std::string("cannot start the plotting script: fork failed: ") + std::strerror(errno));
   if (pid == 0) {
+    if (quiet) {
+      if (FILE* null = std::freopen("/dev/null", "w", stdout); null == nullptr) ::_exit(127);
+    }
     std::vector<std::string> all{python, script};
     all.insert(all.end(), args.begin(), args.end());
     std::vector<char*> argv;

@@ -14,8 +14,10 @@ inline constexpr int kPlotMissingModules = 2;
 // the user can do instead, e.g. "use --no-plot").
 std::string find_script(const std::string& name, const std::string& hint);
 
-// Runs the script with `args` and returns nothing; throws contactrb::Error saying what failed
-// (no interpreter, no matplotlib, the script's exit code), followed by `what_is_there`.
-void run_python_script(const std::string& script, const std::vector<std::string>& args, const std::string& what_is_there);
+// Runs the script with `args` (its stdout to /dev/null when `quiet`) and returns nothing; throws
+// contactrb::Error saying what failed (no interpreter, no matplotlib, the script's exit code),
+// followed by `what_is_there`.
+void run_python_script(const std::string& script, const std::vector<std::string>& args, const std::string& what_is_there,
+                       bool quiet = false);
 
 }  // namespace contactrb::app
