@@ -1,7 +1,7 @@
 // contactrb.Model (load, save, solve, solve_many, fields, write_fields) and contactrb.evaluate: the
 // library calls of `contactrb online` and `contactrb evaluate` (apps/contactrb/cmd_online.cpp,
-// cmd_evaluate.cpp). solve_many loops in C++ with the GIL released, on one OnlineSolver, as
-// `contactrb online --batch` does.
+// cmd_evaluate.cpp). solve_many loops in C++ with the GIL released, on one OnlineSolver (jobs = 1)
+// or on rb::for_each_query's threads, one solver each, as `contactrb online --batch --jobs` does.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -114,65 +114,132 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
   return r;
 }
 
+// The arrays of solve_many, one row per point; rows of different points are written by
+// different threads (jobs != 1), never the same row by two.
+struct ManyArrays {
+  RowMatrix U, L, displacement;
+  Eigen::VectorXd energy, force, estimate, time_s;
+  Eigen::VectorXi iterations;
+  Eigen::Matrix<std::int8_t, Eigen::Dynamic, 1> status;
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> converged;
+
+  ManyArrays(Eigen::Index n, const rb::ReducedReconstruction* rec)
+      : energy(n), force(n), estimate(n), time_s(n), iterations(n), status(n), converged(n) {
+    if (rec != nullptr) displacement.resize(n, rec->num_dofs);
+  }
+  // Row i, except coefficients and multipliers (sized once the solver's N and R are known).
+  void set(Eigen::Index i, const rb::OnlineSolution& s, const rb::ReducedReconstruction* rec, const cases::Mu& mu) {
+    energy(i) = s.energy;
+    force(i) = s.contact_force;
+    estimate(i) = s.estimate.available ? s.estimate.energy : kNaN;
+    time_s(i) = s.time_s;
+    iterations(i) = s.iterations;
+    status(i) = static_cast<std::int8_t>(s.status);
+    converged(i) = s.converged();
+    if (rec != nullptr) displacement.row(i) = rb::reconstruct_displacement(*rec, mu, s.u_hat).transpose();
+  }
+};
+
+// jobs == 1: the Model's own solver, under its lock (the solver holds per-query workspaces).
+void solve_many_serial(PyModel& m, const Eigen::MatrixXd& P, const rb::OnlineSizes& sizes,
+                       const rb::OnlineSettings& settings, const rb::ReducedReconstruction* rec, ManyArrays& a) {
+  const std::lock_guard<std::mutex> lock(m.solver_mutex);
+  rb::OnlineSolver& solver = m.online(sizes);
+  a.U.resize(P.rows(), solver.N());
+  a.L.resize(P.rows(), solver.R());
+  cases::Mu mu(P.cols());
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    mu = P.row(i).transpose();
+    rb::OnlineSolution s;
+    try {
+      s = solver.solve(mu, settings);
+    } catch (const Error& e) {
+      throw Error("point " + std::to_string(i) + ": " + e.what());
+    }
+    a.U.row(i) = s.u_hat.transpose();
+    a.L.row(i) = s.lambda_hat.transpose();
+    a.set(i, s, rec, mu);
+  }
+}
+
+// jobs > 1: rb::for_each_query, one OnlineSolver per thread built from the (read-only) model, so
+// the Model's solver and its lock are not used and two Python threads do not wait for each
+// other. A solver's answer at mu does not depend on its earlier queries (online_many.hpp), so
+// every row equals the serial one bit for bit. A point the solver refuses: every point is still
+// tried, and the lowest such index is reported, as the serial loop would report it.
+void solve_many_threads(const PyModel& m, const Eigen::MatrixXd& P, const rb::OnlineSizes& sizes,
+                        const rb::OnlineSettings& settings, const rb::ReducedReconstruction* rec, int jobs,
+                        ManyArrays& a) {
+  const auto n = static_cast<std::size_t>(P.rows());
+  std::vector<Eigen::VectorXd> u(n), lambda(n);
+  std::mutex error_mutex;
+  std::size_t error_index = n;
+  std::string error_message;
+  rb::for_each_query(m.model, sizes, n, jobs, [&](rb::OnlineSolver& solver, std::size_t k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    const cases::Mu mu = P.row(i).transpose();
+    rb::OnlineSolution s;
+    try {
+      s = solver.solve(mu, settings);
+    } catch (const Error& e) {
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (k < error_index) {
+        error_index = k;
+        error_message = e.what();
+      }
+      return;
+    }
+    a.set(i, s, rec, mu);
+    u[k] = std::move(s.u_hat);
+    lambda[k] = std::move(s.lambda_hat);
+  });
+  if (error_index < n) throw Error("point " + std::to_string(error_index) + ": " + error_message);
+  // Every solver has the same sizes: those of the first answer.
+  a.U.resize(P.rows(), u[0].size());
+  a.L.resize(P.rows(), lambda[0].size());
+  for (std::size_t k = 0; k < n; ++k) {
+    a.U.row(static_cast<Eigen::Index>(k)) = u[k].transpose();
+    a.L.row(static_cast<Eigen::Index>(k)) = lambda[k].transpose();
+  }
+}
+
 py::dict model_solve_many(PyModel& m, const py::object& points, const std::optional<int>& N, const std::optional<int>& R,
                           const std::optional<int>& Mk, const std::optional<int>& Mg,
                           const std::optional<double>& alpha, const std::optional<double>& tol,
-                          const std::optional<int>& max_iterations, const std::string& start, bool fields) {
+                          const std::optional<int>& max_iterations, const std::string& start, bool fields, int jobs) {
+  require(jobs >= 0, "jobs must be >= 0 (0: every hardware thread), got " + std::to_string(jobs));
   const Eigen::MatrixXd P = points_from_python(points, static_cast<int>(m.model.parameters.size()));
   const rb::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
   const rb::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
   const rb::ReducedReconstruction* rec = fields ? &m.reconstruction_data() : nullptr;  // may read the file
   const Eigen::Index n = P.rows();
-  RowMatrix U, L, displacement;
-  Eigen::VectorXd energy(n), force(n), estimate(n), time_s(n);
-  Eigen::VectorXi iterations(n);
-  Eigen::Matrix<std::int8_t, Eigen::Dynamic, 1> status(n);
-  Eigen::Matrix<bool, Eigen::Dynamic, 1> converged(n);
+  if (jobs == 0) jobs = rb::hardware_jobs();
+  ManyArrays a(n, rec);
   {
     py::gil_scoped_release release;  // no Python object is touched in the loop
-    const std::lock_guard<std::mutex> lock(m.solver_mutex);
-    rb::OnlineSolver& solver = m.online(sizes);
-    U.resize(n, solver.N());
-    L.resize(n, solver.R());
-    if (rec != nullptr) displacement.resize(n, rec->num_dofs);
-    cases::Mu mu(P.cols());
-    for (Eigen::Index i = 0; i < n; ++i) {
-      mu = P.row(i).transpose();
-      rb::OnlineSolution s;
-      try {
-        s = solver.solve(mu, settings);
-      } catch (const Error& e) {
-        throw Error("point " + std::to_string(i) + ": " + e.what());
-      }
-      U.row(i) = s.u_hat.transpose();
-      L.row(i) = s.lambda_hat.transpose();
-      energy(i) = s.energy;
-      force(i) = s.contact_force;
-      estimate(i) = s.estimate.available ? s.estimate.energy : kNaN;
-      time_s(i) = s.time_s;
-      iterations(i) = s.iterations;
-      status(i) = static_cast<std::int8_t>(s.status);
-      converged(i) = s.converged();
-      if (rec != nullptr) displacement.row(i) = rb::reconstruct_displacement(*rec, mu, s.u_hat).transpose();
+    if (jobs == 1 || n == 0) {  // n == 0: the Model's solver checks the sizes and gives N and R
+      solve_many_serial(m, P, sizes, settings, rec, a);
+    } else {
+      solve_many_threads(m, P, sizes, settings, rec, jobs, a);
     }
   }
   py::dict d;
   d["mu"] = P;
-  d["coefficients"] = U;
-  d["multipliers"] = L;
-  d["energy"] = energy;
-  d["force"] = force;
-  d["estimate"] = estimate;
-  d["iterations"] = iterations;
-  d["status"] = status;
-  d["converged"] = converged;
-  d["time_s"] = time_s;
+  d["coefficients"] = a.U;
+  d["multipliers"] = a.L;
+  d["energy"] = a.energy;
+  d["force"] = a.force;
+  d["estimate"] = a.estimate;
+  d["iterations"] = a.iterations;
+  d["status"] = a.status;
+  d["converged"] = a.converged;
+  d["time_s"] = a.time_s;
   if (rec != nullptr) {
     // (n, n_nodes, 2): DOF 2 i + c of row k is [k, i, c].
-    py::array_t<double> a({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(displacement.cols() / 2),
-                           static_cast<py::ssize_t>(2)});
-    std::copy(displacement.data(), displacement.data() + displacement.size(), a.mutable_data());
-    d["displacement"] = a;
+    py::array_t<double> arr({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(a.displacement.cols() / 2),
+                             static_cast<py::ssize_t>(2)});
+    std::copy(a.displacement.data(), a.displacement.data() + a.displacement.size(), arr.mutable_data());
+    d["displacement"] = arr;
   }
   return d;
 }
@@ -436,9 +503,11 @@ void bind_online(py::module_& m) {
       .def("solve_many", &model_solve_many, py::arg("mu"), py::kw_only(), py::arg("N") = py::none(),
            py::arg("R") = py::none(), py::arg("Mk") = py::none(), py::arg("Mg") = py::none(),
            py::arg("alpha") = py::none(), py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
-           py::arg("start") = "interpolated", py::arg("fields") = false,
+           py::arg("start") = "interpolated", py::arg("fields") = false, py::arg("jobs") = 1,
            "Online solves at the rows of an (n, p) array (or n values for p = 1), looped in C++ with the GIL\n"
-           "released; equal to a loop of solve(). Returns a dict of numpy arrays, one row per point:\n"
+           "released; equal to a loop of solve(). jobs: threads, one solver each (0: every hardware\n"
+           "thread); the rows are in input order and bitwise those of jobs=1 (time_s aside). Returns\n"
+           "a dict of numpy arrays, one row per point:\n"
            "mu, coefficients (n, N), multipliers (n, R), energy, force, estimate (NaN: none), iterations,\n"
            "status (codes: contactrb.STATUS[code]), converged, time_s; with fields=True also\n"
            "displacement (n, n_nodes, 2), the reconstructed displacement on the HF mesh. A point outside\n"

@@ -212,3 +212,67 @@ def test_failed_snapshots_are_recorded_and_refused_by_offline():
     assert snaps.status == ["max_iterations", "max_iterations"]
     with pytest.raises(contactrb.Error, match=r"^2 of 2 snapshot solves failed"):
         contactrb.offline(snaps)
+
+
+def assert_many_equal(a, b):
+    """Every array of two solve_many results equal, bit for bit (time_s, a clock reading, aside)."""
+    assert set(a) == set(b)
+    for key in a:
+        if key != "time_s":
+            assert a[key].dtype == b[key].dtype and np.array_equal(a[key], b[key], equal_nan=True), key
+
+
+@pytest.mark.parametrize("jobs", [2, 0])
+def test_solve_many_on_threads_equals_one_thread(model, jobs):
+    # 200 points: 13 chunks of 16 (online_many.hpp), so both threads answer points, in any order.
+    points = np.linspace(0.15, 0.45, 200)
+    assert_many_equal(model.solve_many(points, jobs=jobs), model.solve_many(points, jobs=1))
+    # Smaller sizes, the relaxed iteration stopped early (flagged statuses, NaN estimates), fields.
+    kw = dict(N=model.sizes["N"] - 1, alpha=0.5, tol=1e-8, max_iterations=24)
+    one = model.solve_many(points, jobs=1, **kw)
+    assert 0 < one["converged"].sum() < len(points) and len(set(one["iterations"])) > 3
+    assert np.isnan(one["estimate"][~one["converged"]]).all()
+    assert_many_equal(model.solve_many(points, jobs=jobs, **kw), one)
+    few = points[::20]
+    assert_many_equal(model.solve_many(few, jobs=jobs, fields=True), model.solve_many(few, jobs=1, fields=True))
+    empty = model.solve_many(np.zeros((0, 1)), jobs=jobs)
+    assert empty["coefficients"].shape == (0, model.sizes["N"])
+
+
+def test_solve_many_jobs_errors(model):
+    with pytest.raises(contactrb.Error, match=r"^jobs must be >= 0 \(0: every hardware thread\), got -1$"):
+        model.solve_many(np.array([0.3]), jobs=-1)
+    # A refused point: the lowest index and the message of jobs=1, whichever thread met it first.
+    points = np.linspace(0.15, 0.45, 200)
+    points[[37, 150]] = 7.0
+    with pytest.raises(contactrb.Error) as serial:
+        model.solve_many(points, jobs=1)
+    assert str(serial.value).startswith("point 37: ")
+    for jobs in (2, 0):
+        with pytest.raises(contactrb.Error) as threaded:
+            model.solve_many(points, jobs=jobs)
+        assert str(threaded.value) == str(serial.value)
+    with pytest.raises(contactrb.Error) as serial:
+        model.solve_many(points[:40], jobs=1, N=model.sizes["N"] + 1)
+    with pytest.raises(contactrb.Error) as threaded:
+        model.solve_many(points[:40], jobs=2, N=model.sizes["N"] + 1)
+    assert str(threaded.value) == str(serial.value)
+
+
+def test_solve_many_on_threads_from_two_python_threads_equals_serial(model):
+    import threading
+
+    points = np.linspace(0.15, 0.45, 300)
+    serial = model.solve_many(points)
+    out = [None, None]
+
+    def run(k):
+        out[k] = model.solve_many(points, jobs=2 if k == 0 else 1)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for k in range(2):
+        assert_many_equal(out[k], serial)
