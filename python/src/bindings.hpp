@@ -3,7 +3,7 @@
 // use is included here and only here, so that a move of a library header changes this one file.
 // The bindings call the same library functions as the CLI (apps/contactrb/cmd_*.cpp), in the
 // same order and with the same settings, so that their results are bitwise the CLI's
-// (tests/python/test_cli_equality.py).
+// (tests/python/test_cases_hf.py, test_online.py, test_three_parameters.py).
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
