@@ -71,9 +71,11 @@ int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI:
       // Under mpirun only the commands that split their work (docs/cluster.md): any other would
       // run whole in every process, each writing the same files.
       const std::string name = command.subcommand->get_name();
-      if (contactrb::app::mpirun_processes() > 1 && name != "snapshots" && name != "online" && name != "sample") {
+      const bool greedy = name == "offline" && command.subcommand->count("--greedy") > 0;
+      if (contactrb::app::mpirun_processes() > 1 && name != "snapshots" && name != "online" && name != "sample" &&
+          !greedy) {
         throw contactrb::Error("`contactrb " + name + "` does not run under mpirun with several processes (each would do "
-                    "the whole run); mpirun runs snapshots, online --batch and sample");
+                    "the whole run); mpirun runs snapshots, online --batch, sample and offline --greedy");
       }
       return command.run();
     }

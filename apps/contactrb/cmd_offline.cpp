@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "mpi_greedy.hpp"
+#include "mpi_world.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
@@ -186,7 +188,10 @@ nlohmann::json to_json(const Eigen::VectorXd& v) {
 // --greedy: the weak greedy over the set's points (or --values), then the same model file as
 // the POD path; the per-step table goes to greedy.csv and greedy.json, the selected HF snapshots to
 // snapshots.h5 (so that evaluate / report can rebuild or compare).
+// Under mpirun (mpi_greedy.hpp): every rank does the setup and the greedy, rank 0 alone prints
+// and writes the files.
 int run_greedy(const OfflineOptions& opt) {
+  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   require(!opt.case_name.empty() || !opt.case_file.empty(), "--greedy needs --case or --case-file (it computes its own snapshots)");
@@ -216,10 +221,19 @@ int run_greedy(const OfflineOptions& opt) {
                             {"greedy.csv next to --out", csv_path},
                             {"greedy.json next to --out", json_path}});
   const rb::SnapshotRequest request = snapshot_request(opt, spec);
+  if (world) {
+    if (world->rank() != 0) gs.progress = rb::ProgressMode::None;
+    gs.distribution = mpi_greedy_distribution(*world);
+    if (!world->agree(true)) {
+      if (world->rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
+      return 1;
+    }
+  }
 
   const auto t0 = Clock::now();
   const rb::GreedyOfflineResult g = rb::run_offline_greedy(spec, request, gs);
   const auto t1 = Clock::now();
+  if (world && world->rank() != 0) return 0;  // rank 0 holds the same result and writes it
   {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // one run's files together
     io::write_snapshot_file(g.snapshots, snapshots_path);
@@ -281,7 +295,7 @@ int run_greedy(const OfflineOptions& opt) {
             << (g.status == rb::GreedyOfflineStatus::ToleranceReached ? "" : " (tolerance NOT reached)") << "\n"
             << "sizes: N " << last.N << ", R " << last.R << ", Mk " << last.Mk << ", Mg " << last.Mg << "\n"
             << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (greedy "
-            << seconds(t0, t1) << ")\n"
+            << seconds(t0, t1) << (world ? ", " + std::to_string(world->size()) + " MPI ranks" : std::string()) << ")\n"
             << std::defaultfloat << "wrote " << opt.out << "\nwrote " << snapshots_path << "\nwrote " << csv_path
             << "\nwrote " << json_path << "\n";
   return 0;

@@ -35,18 +35,20 @@ std::string mu_text(const GreedyMu& mu) { return cases::mu_values_text(mu); }
 // one OnlineSolver each; every point writes its own slot, so the result does not depend on jobs.
 struct Sweep {
   std::vector<double> criterion;
-  int failures = 0;  // online solves that did not converge
+  std::vector<double> failed;  // 1: the online solve at that point did not converge
+  int failures = 0;            // online solves that did not converge
 };
 
+// Only the points [begin, end) are solved (one process's block); the others keep +inf / not failed.
 Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus, const OnlineSettings& online,
-                     int jobs) {
-  const std::size_t n = mus.size();
+                     int jobs, std::size_t begin, std::size_t end) {
+  const std::size_t n = end;
   Sweep out;
-  out.criterion.assign(n, kInf);
-  std::vector<char> failed(n, 0);
-  std::vector<std::exception_ptr> errors(n);
-  std::exception_ptr setup_error;
-  std::atomic<std::size_t> next{0};
+  out.criterion.assign(mus.size(), kInf);
+  out.failed.assign(mus.size(), 0.0);
+  std::vector<char> failed(mus.size(), 0);
+  std::vector<std::exception_ptr> errors(mus.size());
+  std::atomic<std::size_t> next{begin};
   std::atomic<bool> stop{false};
   const auto work = [&](std::exception_ptr& own_setup_error) {
     try {
@@ -66,7 +68,7 @@ Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus
       stop = true;
     }
   };
-  const std::size_t threads_count = std::max<std::size_t>(1, std::min(n, static_cast<std::size_t>(jobs)));
+  const std::size_t threads_count = std::max<std::size_t>(1, std::min(end - begin, static_cast<std::size_t>(jobs)));
   std::vector<std::exception_ptr> setup_errors(threads_count);
   if (threads_count == 1) {
     work(setup_errors[0]);
@@ -82,7 +84,34 @@ Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);
   }
-  for (char f : failed) out.failures += f;
+  for (std::size_t i = 0; i < failed.size(); ++i) {
+    out.failed[i] = failed[i];
+    out.failures += failed[i];
+  }
+  return out;
+}
+
+// The sweep over the whole training set: on this process alone, or its block on each process of
+// a distributed run, then gathered (every process gets the same criterion and failures).
+Sweep sweep_all(const ReducedModel& model, const std::vector<GreedyMu>& mus, const OnlineSettings& online, int jobs,
+                const GreedyDistribution& dist) {
+  if (!dist.active()) return sweep_estimate(model, mus, online, jobs, 0, mus.size());
+  const auto [begin, end] = dist.block(mus.size());
+  Sweep out;
+  std::exception_ptr error;
+  try {
+    out = sweep_estimate(model, mus, online, jobs, begin, end);
+  } catch (...) {  // the other processes wait in the gather: tell them first
+    error = std::current_exception();
+    out.criterion.assign(mus.size(), kInf);
+    out.failed.assign(mus.size(), 0.0);
+  }
+  const bool all_ok = dist.gather(out.criterion, !error);
+  if (error) std::rethrow_exception(error);
+  require(all_ok, "greedy: the estimate sweep failed on another MPI rank (its error is printed there)");
+  dist.gather(out.failed, true);
+  out.failures = 0;
+  for (double f : out.failed) out.failures += f != 0.0 ? 1 : 0;
   return out;
 }
 
@@ -228,7 +257,9 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   const auto hf_solve = [&](int index) {
     one.mu.assign(1, training[sz(index)]);
     ++out.hf_solves;
-    return generate_snapshots(one, SnapshotRunOptions{});
+    const auto solve = [&] { return generate_snapshots(one, SnapshotRunOptions{}); };
+    // Distributed: process 0 solves, every process gets its snapshot (the same set everywhere).
+    return settings.distribution.share ? settings.distribution.share(solve, one) : solve();
   };
 
   // Start: one HF solve at the training point nearest the domain centre.
@@ -265,7 +296,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
     // Evaluate: the relative estimate over the training set (the excluded points do not count).
     t0 = Clock::now();
-    const Sweep sweep = sweep_estimate(model, training, online, settings.jobs);
+    const Sweep sweep = sweep_all(model, training, online, settings.jobs, settings.distribution);
     row.sweep_s = seconds_since(t0);
     row.online_failures = sweep.failures;
     row.max_estimate = -kInf;

@@ -9,9 +9,12 @@
 //
 // Offline only (it holds the HF reference mesh and the affine terms for the true error).
 #include <Eigen/Core>
+#include <cstddef>
+#include <functional>
 #include <iosfwd>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
@@ -35,6 +38,24 @@ enum class GreedyOfflineStatus {
 const char* to_string(GreedyOfflineStatus status);  // "tolerance_reached" | "budget" | "stagnated"
 
 
+// The greedy over several processes (`mpirun -np K contactrb offline --greedy`,
+// apps/contactrb/mpi_greedy.cpp; src/ holds no MPI). Every process calls run_offline_greedy with
+// the same arguments and builds the same model at each step; each sweeps the estimate over its
+// `block` of the training set and `gather` gives every process all the blocks, so that every
+// process picks the same argmax as the serial run; the HF solve runs on process 0 only and
+// `share` gives its snapshot to every process. Empty functions: one process (the serial run).
+struct GreedyDistribution {
+  // [begin, end) of this process's points among n.
+  std::function<std::pair<std::size_t, std::size_t>(std::size_t n)> block;
+  // `values` has n entries on every process, this one having filled its block (ok false: its sweep
+  // threw). Afterwards every process holds every entry. Returns false when some process was not ok.
+  std::function<bool(std::vector<double>& values, bool ok)> gather;
+  // On process 0 `solve` is the HF solve of the one point of `one` (it may throw); every process
+  // returns its result (an exception on process 0 is thrown on every process).
+  std::function<io::SnapshotSet(const std::function<io::SnapshotSet()>& solve, const SnapshotRequest& one)> share;
+  bool active() const { return static_cast<bool>(gather); }
+};
+
 struct GreedyOfflineSettings {
   // Stop when max_mu Delta_u(mu) / |u_rb(mu)|_A(mu) <= tolerance (unit-free; relative_estimate()).
   // 1e-2: the estimate overestimates the relative energy-norm error 5-20 times on the built-in
@@ -56,6 +77,7 @@ struct GreedyOfflineSettings {
   OnlineSettings online;    // of the sweep (error_estimate is forced on)
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
+  GreedyDistribution distribution;             // empty: one process
 };
 // Throws contactrb::Error naming the first invalid setting (tolerance <= 0 or not finite,
 // max_hf < 1, jobs < 1, invalid offline settings).

@@ -1,0 +1,151 @@
+// mpirun -np 2 contactrb offline --greedy (apps/contactrb/mpi_greedy.cpp): the ranks split the
+// estimate sweep and rank 0 does the HF solves, yet the run selects the serial run's points and
+// writes its files: greedy.csv equal but the timing columns, the selected snapshots equal but the
+// timings, and every dataset of the model file equal byte for byte. A command that does not split
+// its work (offline without --greedy) is refused with a clear message, not a hang. Skipped, with
+// the reason, in a build without MPI (CONTACTRB_MPIEXEC empty).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli_runner.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "snapshot_fixtures.hpp"
+
+using contactrb::test::CliResult;
+using contactrb::test::shell_quote;
+
+namespace {
+
+const std::string kGreedy = "offline --greedy --case hertz-a --greedy-tol 1e-6 --max-hf 4";
+
+CliResult mpirun(int ranks, const std::string& args) {
+  const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
+                              std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
+  return contactrb::test::run_shell(command, "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+}
+
+int count(const std::string& text, const std::string& word) {
+  int n = 0;
+  for (auto p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) ++n;
+  return n;
+}
+
+#define SKIP_WITHOUT_MPI()                                                                     \
+  if (std::string(CONTACTRB_MPIEXEC).empty()) {                                               \
+    GTEST_SKIP() << "this build has no MPI (CONTACTRB_WITH_MPI off or no MPI C library found)"; \
+  }
+
+// greedy.csv as rows of cells, the timing columns (*_s) blanked.
+std::vector<std::vector<std::string>> csv_without_timings(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> timing;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+    if (rows.empty()) {
+      for (const std::string& c : cells) timing.push_back(c.size() > 2 && c.compare(c.size() - 2, 2, "_s") == 0);
+    } else {
+      for (std::size_t k = 0; k < cells.size() && k < timing.size(); ++k) {
+        if (timing[k]) cells[k] = "";
+      }
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// Every dataset of an HDF5 file: its path -> its bytes (native type; variable-length strings
+// as their text).
+herr_t collect(hid_t obj, const char* name, const H5O_info_t* info, void* data) {
+  if (info->type != H5O_TYPE_DATASET) return 0;
+  auto& out = *static_cast<std::map<std::string, std::string>*>(data);
+  const hid_t d = H5Dopen2(obj, name, H5P_DEFAULT);
+  const hid_t type = H5Dget_type(d);
+  const hid_t space = H5Dget_space(d);
+  const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+  std::string bytes;
+  if (H5Tis_variable_str(type) > 0) {
+    std::vector<char*> text(n, nullptr);
+    H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data());
+    for (char* t : text) bytes += std::string(t ? t : "") + '\0';
+    H5Dvlen_reclaim(type, space, H5P_DEFAULT, text.data());
+  } else {
+    const hid_t native = H5Tget_native_type(type, H5T_DIR_ASCEND);
+    bytes.resize(n * H5Tget_size(native));
+    H5Dread(d, native, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data());
+    H5Tclose(native);
+  }
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Dclose(d);
+  out[name] = bytes;
+  return 0;
+}
+
+std::map<std::string, std::string> datasets(const std::string& path) {
+  std::map<std::string, std::string> out;
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << path;
+  if (f < 0) return out;
+  H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, collect, &out, H5O_INFO_BASIC);
+  H5Fclose(f);
+  return out;
+}
+
+}  // namespace
+
+TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_greedy");
+  std::filesystem::create_directories(dir.path() / "serial");
+  std::filesystem::create_directories(dir.path() / "mpi");
+  const std::string serial_model = dir.file("serial/model.h5"), mpi_model = dir.file("mpi/model.h5");
+  const CliResult serial = contactrb::test::run_cli(kGreedy + " -q --out " + shell_quote(serial_model));
+  ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+  const CliResult r = mpirun(2, kGreedy + " --out " + shell_quote(mpi_model));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 MPI ranks"), std::string::npos) << r.out;
+  // Rank 0 alone reports: one summary, one start line and one line per step.
+  EXPECT_EQ(count(r.out, "wrote " + mpi_model), 1) << r.out;
+  EXPECT_EQ(count(r.err, "greedy: start at mu = 0.3"), 1) << r.err;
+  EXPECT_EQ(count(r.err, "greedy step "), 4) << r.err;
+
+  // The same steps: sizes, estimates bit for bit (17 digits), argmax, chosen points, true errors.
+  const auto a = csv_without_timings(dir.file("serial/greedy.csv"));
+  const auto b = csv_without_timings(dir.file("mpi/greedy.csv"));
+  ASSERT_EQ(a.size(), 5u);  // header + 4 steps
+  EXPECT_EQ(a, b);
+  // The same selected snapshots (all data but the timings).
+  const auto sa = contactrb::io::read_snapshot_file(dir.file("serial/snapshots.h5"));
+  const auto sb = contactrb::io::read_snapshot_file(dir.file("mpi/snapshots.h5"));
+  ASSERT_EQ(sa.snapshots.size(), 4u);
+  contactrb::test::expect_same_data(sa, sb, false);
+  // The model: every dataset byte for byte.
+  const auto ma = datasets(serial_model), mb = datasets(mpi_model);
+  ASSERT_GT(ma.size(), 10u);
+  ASSERT_EQ(ma.size(), mb.size());
+  for (const auto& [name, bytes] : ma) {
+    ASSERT_TRUE(mb.count(name)) << name;
+    EXPECT_TRUE(mb.at(name) == bytes) << name;
+  }
+}
+
+TEST(GreedyMpi, OfflineWithoutGreedyIsRefused) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_greedy_refused");
+  const CliResult r = mpirun(2, "offline --case hertz-a --out " + shell_quote(dir.file("m.h5")));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("`contactrb offline` does not run under mpirun with several processes"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("offline --greedy"), std::string::npos) << r.err;  // says what does run
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "m.h5"));
+}
