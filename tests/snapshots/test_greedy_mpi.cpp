@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -111,31 +112,60 @@ TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
   const std::string serial_model = dir.file("serial/model.h5"), mpi_model = dir.file("mpi/model.h5");
   const CliResult serial = contactrb::test::run_cli(kGreedy + " -q --out " + shell_quote(serial_model));
   ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
-  const CliResult r = mpirun(2, kGreedy + " --out " + shell_quote(mpi_model));
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("2 MPI ranks"), std::string::npos) << r.out;
-  // Rank 0 alone reports: one summary, one start line and one line per step.
-  EXPECT_EQ(count(r.out, "wrote " + mpi_model), 1) << r.out;
-  EXPECT_EQ(count(r.err, "greedy: start at mu = 0.3"), 1) << r.err;
-  EXPECT_EQ(count(r.err, "greedy step "), 4) << r.err;
+  // 3 ranks: blocks of unequal size (31 training points: 11, 10, 10).
+  for (int ranks : {2, 3}) {
+    SCOPED_TRACE(std::to_string(ranks) + " ranks");
+    const CliResult r = mpirun(ranks, kGreedy + " --out " + shell_quote(mpi_model));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find(std::to_string(ranks) + " MPI ranks"), std::string::npos) << r.out;
+    // Rank 0 alone reports: one summary, one start line and one line per step.
+    EXPECT_EQ(count(r.out, "wrote " + mpi_model), 1) << r.out;
+    EXPECT_EQ(count(r.err, "greedy: start at mu = 0.3"), 1) << r.err;
+    EXPECT_EQ(count(r.err, "greedy step "), 4) << r.err;
 
-  // The same steps: sizes, estimates bit for bit (17 digits), argmax, chosen points, true errors.
-  const auto a = csv_without_timings(dir.file("serial/greedy.csv"));
-  const auto b = csv_without_timings(dir.file("mpi/greedy.csv"));
-  ASSERT_EQ(a.size(), 5u);  // header + 4 steps
-  EXPECT_EQ(a, b);
-  // The same selected snapshots (all data but the timings).
-  const auto sa = contactrb::io::read_snapshot_file(dir.file("serial/snapshots.h5"));
-  const auto sb = contactrb::io::read_snapshot_file(dir.file("mpi/snapshots.h5"));
-  ASSERT_EQ(sa.snapshots.size(), 4u);
-  contactrb::test::expect_same_data(sa, sb, false);
-  // The model: every dataset byte for byte.
-  const auto ma = datasets(serial_model), mb = datasets(mpi_model);
-  ASSERT_GT(ma.size(), 10u);
-  ASSERT_EQ(ma.size(), mb.size());
-  for (const auto& [name, bytes] : ma) {
-    ASSERT_TRUE(mb.count(name)) << name;
-    EXPECT_TRUE(mb.at(name) == bytes) << name;
+    // The same steps: sizes, estimates bit for bit (17 digits), argmax, chosen points, true errors.
+    const auto a = csv_without_timings(dir.file("serial/greedy.csv"));
+    const auto b = csv_without_timings(dir.file("mpi/greedy.csv"));
+    ASSERT_EQ(a.size(), 5u);  // header + 4 steps
+    EXPECT_EQ(a, b);
+    // greedy.json the same but its times_s.
+    const auto json = [&](const std::string& path) {
+      std::ifstream in(path);
+      nlohmann::json j = nlohmann::json::parse(in);
+      j.erase("times_s");
+      for (auto& step : j["steps"]) step.erase("times_s");
+      return j;
+    };
+    const nlohmann::json ja = json(dir.file("serial/greedy.json"));
+    EXPECT_EQ(ja["selected"].size(), 4u);
+    EXPECT_EQ(ja, json(dir.file("mpi/greedy.json")));
+    // The same selected snapshots (all data but the timings).
+    const auto sa = contactrb::io::read_snapshot_file(dir.file("serial/snapshots.h5"));
+    const auto sb = contactrb::io::read_snapshot_file(dir.file("mpi/snapshots.h5"));
+    ASSERT_EQ(sa.snapshots.size(), 4u);
+    contactrb::test::expect_same_data(sa, sb, false);
+    // The model: every dataset byte for byte.
+    const auto ma = datasets(serial_model), mb = datasets(mpi_model);
+    ASSERT_GT(ma.size(), 10u);
+    ASSERT_EQ(ma.size(), mb.size());
+    for (const auto& [name, bytes] : ma) {
+      ASSERT_TRUE(mb.count(name)) << name;
+      EXPECT_TRUE(mb.at(name) == bytes) << name;
+    }
+  }
+}
+
+// The HF solve at the start point fails (rank 0 solves it): every rank stops with the reason,
+// no hang, no file.
+TEST(GreedyMpi, FailedHfSolveEndsEveryRank) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_greedy_hf_failed");
+  const CliResult r = mpirun(2, kGreedy + " --max-iterations 1 -q --out " + shell_quote(dir.file("m.h5")));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("greedy: the HF solve at the start point mu = 0.3 failed (max_iterations"), std::string::npos)
+      << r.err;
+  for (const char* f : {"m.h5", "snapshots.h5", "greedy.csv", "greedy.json"}) {
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / f)) << f;
   }
 }
 
