@@ -1,9 +1,11 @@
 #include "mpi_greedy.hpp"
 
+#include <chrono>
 #include <climits>
 #include <cstdint>
 #include <exception>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "contactrb/common/error.hpp"
@@ -25,11 +27,24 @@ int to_int(std::size_t n, const char* what) {
   return static_cast<int>(n);
 }
 
-// Every rank: its block filled in `values`; afterwards every rank holds all blocks. The
-// Allreduce first, so that a rank whose sweep threw does not leave the others in the gather.
+// Waits for a non-blocking collective, polling with sleeps: a rank that finished its block (or
+// waits for rank 0's HF solve) would otherwise spin in OpenMPI's blocking call and take CPU from
+// the ranks still working (as in mpi_snapshots.cpp).
+void wait_polling(MPI_Request& request) {
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+// Every rank: its block filled in `values`; afterwards every rank holds all blocks (in point
+// order, as the serial sweep's vector). The Allreduce first, so that a rank whose sweep threw does not leave the others in the gather.
 bool all_gather(MpiWorld& world, std::vector<double>& values, bool ok) {
   int mine = ok ? 1 : 0, all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Request pending = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &pending);
+  wait_polling(pending);
   if (all == 0) return false;
   std::vector<int> counts, displs;
   for (int r = 0; r < world.size(); ++r) {
@@ -37,8 +52,9 @@ bool all_gather(MpiWorld& world, std::vector<double>& values, bool ok) {
     counts.push_back(to_int(e - b, "training points"));
     displs.push_back(to_int(b, "training points"));
   }
-  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                 MPI_COMM_WORLD);
+  MPI_Iallgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                  MPI_COMM_WORLD, &pending);
+  wait_polling(pending);
   return true;
 }
 
@@ -77,7 +93,10 @@ io::SnapshotSet share(MpiWorld& world, const std::function<io::SnapshotSet()>& s
     }
     head[1] = bytes.size();
   }
-  MPI_Bcast(head, 2, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  // The other ranks wait here during the whole HF solve.
+  MPI_Request pending = MPI_REQUEST_NULL;
+  MPI_Ibcast(head, 2, MPI_UINT64_T, 0, MPI_COMM_WORLD, &pending);
+  wait_polling(pending);
   bytes.resize(static_cast<std::size_t>(head[1]));
   MPI_Bcast(bytes.data(), static_cast<int>(head[1]), MPI_BYTE, 0, MPI_COMM_WORLD);
   if (world.rank() == 0) {
