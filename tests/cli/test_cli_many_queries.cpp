@@ -232,7 +232,7 @@ TEST_F(CliManyQueries, SampleUnderMpirunEqualsSerial) {
   const CliResult r = contactrb::test::run_shell(
       "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np 2 " + shell_quote(CONTACTRB_CLI) +
           " sample --model " + shell_quote(model_) + " --n 1001 --seed 2 --jobs 1 --no-plot --out " + shell_quote(parallel),
-      "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+      "", contactrb::test::mpirun_environment());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("2 MPI ranks"), std::string::npos) << r.out;
   EXPECT_EQ(file_text(serial), file_text(parallel));
@@ -253,7 +253,7 @@ TEST_F(CliManyQueries, BatchUnderMpirunPrintsTheSerialOutput) {
   EXPECT_EQ(serial.exit_code, 1) << serial.err;  // line 8
   const CliResult r = contactrb::test::run_shell("timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) +
                                                      " --oversubscribe -np 2 " + shell_quote(CONTACTRB_CLI) + " " + args,
-                                                 "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+                                                 "", contactrb::test::mpirun_environment());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.exit_code, 124) << "timed out: a hang";
   EXPECT_NE(r.err.find("1 of 300 batch lines could not be answered"), std::string::npos) << r.err;

@@ -29,7 +29,7 @@ const std::string kGreedy = "offline --greedy --case hertz-a --greedy-tol 1e-6 -
 CliResult mpirun(int ranks, const std::string& args) {
   const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
                               std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
-  return contactrb::test::run_shell(command, "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+  return contactrb::test::run_shell(command, "", contactrb::test::mpirun_environment());
 }
 
 int count(const std::string& text, const std::string& word) {

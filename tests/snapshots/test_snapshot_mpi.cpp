@@ -22,7 +22,7 @@ const std::string kValues = "--case hertz-a --values 0.2,0.25,0.3,0.35,0.4";
 CliResult mpirun(int ranks, const std::string& args) {
   const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
                               std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
-  return contactrb::test::run_shell(command, "", "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+  return contactrb::test::run_shell(command, "", contactrb::test::mpirun_environment());
 }
 
 int count(const std::string& text, const std::string& word) {
