@@ -16,32 +16,19 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
+#include "mpi_runner.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "snapshot_fixtures.hpp"
 
 using contactrb::test::CliResult;
+using contactrb::test::count;
+using contactrb::test::mpirun;
 using contactrb::test::shell_quote;
 
 namespace {
 
 const std::string kGreedy = "offline --greedy --case hertz-a --greedy-tol 1e-6 --max-hf 4";
 
-CliResult mpirun(int ranks, const std::string& args) {
-  const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
-                              std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
-  return contactrb::test::run_shell(command, "", contactrb::test::mpirun_environment());
-}
-
-int count(const std::string& text, const std::string& word) {
-  int n = 0;
-  for (auto p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) ++n;
-  return n;
-}
-
-#define SKIP_WITHOUT_MPI()                                                                     \
-  if (std::string(CONTACTRB_MPIEXEC).empty()) {                                               \
-    GTEST_SKIP() << "this build has no MPI (CONTACTRB_WITH_MPI off or no MPI C library found)"; \
-  }
 
 // greedy.csv as rows of cells, the timing columns (*_s) blanked.
 std::vector<std::vector<std::string>> csv_without_timings(const std::string& path) {
