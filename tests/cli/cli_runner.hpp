@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 #include <stdexcept>
 #include <string>
 #include <sys/wait.h>
@@ -76,6 +77,15 @@ inline std::string mpirun_environment() {
   env += " ASAN_OPTIONS=detect_leaks=0:abort_on_error=1";
 #endif
   return env;
+}
+
+// The lines of `text`, without their '\n'.
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
 }
 
 // Value after "key: " on its own line of `text`, or "" when absent.

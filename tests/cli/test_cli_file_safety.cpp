@@ -21,6 +21,7 @@
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::lines_of;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 using nlohmann::json;
@@ -49,13 +50,6 @@ int count_lines_starting(const std::string& text, const std::string& prefix) {
   return n;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(line);
-  return out;
-}
 
 // Exit 1 and exactly one "contactrb: error:" line that holds every word of `words`.
 void expect_user_error_words(const CliResult& r, const std::vector<std::string>& words) {

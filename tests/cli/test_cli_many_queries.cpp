@@ -21,19 +21,13 @@
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
 using contactrb::test::expect_user_error;
+using contactrb::test::lines_of;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 using nlohmann::json;
 
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(line);
-  return out;
-}
 
 std::string file_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

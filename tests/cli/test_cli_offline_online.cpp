@@ -19,6 +19,7 @@
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
 using contactrb::test::field_value;
+using contactrb::test::lines_of;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 using nlohmann::json;
@@ -26,13 +27,6 @@ using nlohmann::json;
 namespace {
 
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(line);
-  return out;
-}
 
 // Training values: 0.3 is one of them. Tight Kacanov settings so that the untruncated model
 // reproduces the HF solutions to solver tolerance.
