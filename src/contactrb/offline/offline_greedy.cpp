@@ -10,13 +10,13 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/run_threads.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/online/reconstruction.hpp"
 
@@ -70,14 +70,7 @@ Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus
   };
   const std::size_t threads_count = std::max<std::size_t>(1, std::min(end - begin, static_cast<std::size_t>(jobs)));
   std::vector<std::exception_ptr> setup_errors(threads_count);
-  if (threads_count == 1) {
-    work(setup_errors[0]);
-  } else {
-    std::vector<std::thread> threads;
-    threads.reserve(threads_count);
-    for (std::size_t j = 0; j < threads_count; ++j) threads.emplace_back(work, std::ref(setup_errors[j]));
-    for (std::thread& t : threads) t.join();
-  }
+  run_threads(threads_count, [&](std::size_t t) { work(setup_errors[t]); });
   for (const std::exception_ptr& e : setup_errors) {
     if (e) std::rethrow_exception(e);
   }
