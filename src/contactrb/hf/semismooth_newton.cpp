@@ -236,14 +236,16 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     it.merit = st.merit;
 
     // Consistent linearization of the geometry (D, H) at u, lambda: in the Newton phase only
-    // (the Kacanov phase's frozen steps need K and d, already in st.maps). On hertz-a level 0 the
-    // 2 x (14-24 colours) map evaluations are most of an iteration's time.
+    // (the Kacanov phase's frozen steps need K and d, already in st.maps). Analytic by default
+    // (the 2 x (24-32 colours) map evaluations of the finite differences were most of an
+    // iteration's time on hertz-a level 0, and their round-off stalled the rate on level 6).
     const bool kacanov_phase = !newton_phase;
     auto t0 = Clock::now();
     contact::ContactLinearization lin;
     if (!kacanov_phase) {
       try {
-        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
+        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, st.maps,
+                                         s.linearization);
       } catch (const Error& e) {
         return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
                                                             ": the contact maps cannot be linearized: " + e.what());
