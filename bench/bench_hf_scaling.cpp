@@ -100,8 +100,8 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d lin %.4f s linear algebra %.4f s\n",
-                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours,
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s\n",
+                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes,
                      it.linearize_s, it.factorize_s);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact/contact_fixtures.hpp"
+#include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
 
 using namespace contactrb;
@@ -200,4 +201,61 @@ TEST(ContactLinearization, FiniteDifferenceOptionAgreesWithTheAnalyticOne) {
     EXPECT_LT(dD.cwiseAbs().maxCoeff(), 1e-6 * Eigen::MatrixXd(a.D).cwiseAbs().maxCoeff()) << to_string(d);
     EXPECT_LT(dH.cwiseAbs().maxCoeff(), 1e-6 * Eigen::MatrixXd(a.H).cwiseAbs().maxCoeff()) << to_string(d);
   }
+}
+
+// Maps continued on prescribed branches (the branch passes of semi-smooth Newton): on u's own
+// branches they are the maps at u; across a master vertex the continued branch is the smooth
+// piece of the other side, whose first-order Taylor expansion from u predicts the maps at the
+// other side to second order, where u's own linearization misses by the kink (first order).
+TEST(ContactLinearization, MapsContinuedOnTheBranchesOfAnotherPoint) {
+  const int nseg = 16;
+  const Mesh m = join(mesh::rectangle(-0.3, 1.01, 0.3, 1.2, 6, 1, mesh::kSlaveBody), half_annulus(0.5, 1.0, nseg, 2));
+  const ContactPair pair = make_contact_pair(m);
+  const ContactQuadrature q = make_quadrature(m, pair, Discretization::Collocation);
+  const std::vector<char> movable = movable_except(m, {"m_bottom"});
+  const auto X = [&](int node) { return m.nodes[static_cast<std::size_t>(node)]; };
+  const int j = nseg / 2;
+  const Eigen::Vector2d yj = X(pair.master[static_cast<std::size_t>(j)]);
+  const Eigen::Vector2d before = yj - X(pair.master[static_cast<std::size_t>(j - 1)]);
+  const Eigen::Vector2d after = X(pair.master[static_cast<std::size_t>(j + 1)]) - yj;
+  const auto out = [](const Eigen::Vector2d& e) { return Eigen::Vector2d(e.y(), -e.x()).normalized(); };
+  const int node = pair.slave[3];
+  // u: slave node 3 on segment j - 1 (xi = 1 - 1e-3, just inside the master); v: on segment j
+  // (xi = 1e-3): the step u -> v crosses vertex j.
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs()), v = u;
+  u.segment<2>(2 * node) = yj - 1e-3 * before - 1e-5 * out(before) - X(node);
+  v.segment<2>(2 * node) = yj + 1e-3 * after - 1e-5 * out(after) - X(node);
+  const Eigen::VectorXd lambda = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(q.W.rows()));
+  const ContactMaps at_u = evaluate_contact_maps(m, pair, q, u), at_v = evaluate_contact_maps(m, pair, q, v);
+  ASSERT_EQ(at_u.pointwise.projection[3].segment, j - 1);
+  ASSERT_EQ(at_v.pointwise.projection[3].segment, j);
+  EXPECT_FALSE(same_branch(at_u.pointwise.projection[3], at_v.pointwise.projection[3]));
+  EXPECT_TRUE(same_branch(at_u.pointwise.projection[2], at_v.pointwise.projection[2]));
+
+  // Own branches: the maps themselves (to round-off) and the same linearization.
+  const ContactLinearization own = linearize_contact_on_branches(m, pair, q, u, lambda, movable, at_u.pointwise);
+  EXPECT_LT((own.maps.d - at_u.d).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT(Eigen::MatrixXd(own.maps.rows.K - at_u.rows.K).cwiseAbs().maxCoeff(), 1e-15);
+  const ContactLinearization plain = linearize_contact(m, pair, q, u, lambda, movable);
+  EXPECT_LT(Eigen::MatrixXd(own.D - plain.D).cwiseAbs().maxCoeff(), 1e-13);
+  EXPECT_LT(Eigen::MatrixXd(own.H - plain.H).cwiseAbs().maxCoeff(), 1e-12);
+
+  // v's branches continued to u: the Taylor expansion reaches v to second order in |v - u|.
+  const ContactLinearization cont = linearize_contact_on_branches(m, pair, q, u, lambda, movable, at_v.pointwise);
+  EXPECT_LT(cont.maps.pointwise.projection[3].xi, 0.0);  // the continuation of segment j's xi
+  const Eigen::VectorXd dv = v - u;
+  const Eigen::VectorXd f_u = at_u.rows.K.transpose() * lambda, f_v = at_v.rows.K.transpose() * lambda;
+  const Eigen::VectorXd f_cont = cont.maps.rows.K.transpose() * lambda;
+  const double d_cont = (at_v.d - cont.maps.d - cont.D * dv).cwiseAbs().maxCoeff();
+  const double d_own = (at_v.d - at_u.d - plain.D * dv).cwiseAbs().maxCoeff();
+  const double f_cont_err = (f_v - f_cont - cont.H * dv).cwiseAbs().maxCoeff();
+  const double f_own_err = (f_v - f_u - plain.H * dv).cwiseAbs().maxCoeff();
+  std::cout << "[ info     ] Taylor error at v: gap own " << d_own << " continued " << d_cont << ", force own "
+            << f_own_err << " continued " << f_cont_err << "\n";
+  EXPECT_LT(d_cont, 1e-3 * d_own);
+  EXPECT_LT(f_cont_err, 1e-3 * f_own_err);
+  EXPECT_LT(f_cont_err, 1e-6);
+  EXPECT_THROW(linearize_contact_on_branches(m, pair, make_quadrature(m, pair, Discretization::LAC), u,
+                                             Eigen::VectorXd::Ones(3), movable, at_v.pointwise),
+               Error);
 }

@@ -359,6 +359,36 @@ std::vector<std::vector<int>> row_inputs(const ContactPair& pair, const ContactQ
   return inputs;
 }
 
+PointwiseContact pointwise_on_branches(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& u,
+                                       const PointwiseContact& branches) {
+  const int S = static_cast<int>(pair.slave.size());
+  const std::vector<int> no_slots(static_cast<std::size_t>(mesh.num_dofs()), -1);  // values only
+  const DualGeometry geo(mesh, pair, u, no_slots);
+  PointwiseContact out;
+  out.projection.resize(static_cast<std::size_t>(S));
+  out.g.setZero(S);
+  out.K.resize(S, mesh.num_dofs());
+  out.K.reserve(Eigen::VectorXi::Constant(S, 6));
+  for (int s = 0; s < S; ++s) {
+    const SlaveProjection& b = branches.projection[static_cast<std::size_t>(s)];
+    SlaveProjection& p = out.projection[static_cast<std::size_t>(s)];
+    p = b;
+    if (b.segment < 0) continue;
+    const DVec2 x = geo.node(pair.slave[static_cast<std::size_t>(s)]);
+    if (b.xi != 0.0 && b.xi != 1.0) p.xi = geo.t_raw(b.segment, x).v;  // the continued interior branch
+    const DualRow row = pointwise_row(geo, pair, out, s);
+    out.g(s) = row.g.v;
+    if (!p.candidate) continue;
+    const Dual xi = projection_xi(geo, p, x);
+    p.normal = geo.normal_at(p.segment, xi).value();
+    for (const auto& [dof, k] : row.K) {
+      if (k.v != 0.0) out.K.coeffRef(s, dof) += k.v;
+    }
+  }
+  out.K.makeCompressed();
+  return out;
+}
+
 void analytic_linearization(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                             const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                             ContactLinearization& lin) {

@@ -22,6 +22,10 @@ namespace contactrb::contact::detail {
 std::vector<std::vector<int>> row_inputs(const ContactPair& pair, const ContactQuadrature& quadrature,
                                          const PointwiseContact& pw, const std::vector<char>& movable);
 
+// The pointwise maps (projection records, K rows, g) at u on the branches of `branches`.
+PointwiseContact pointwise_on_branches(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& u,
+                                       const PointwiseContact& branches);
+
 // Fills lin.D and lin.H at u from lin.maps (the maps at u). lin.evaluations and lin.colours stay 0.
 void analytic_linearization(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                             const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,

@@ -167,4 +167,29 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
   return lin;
 }
 
+bool same_branch(const SlaveProjection& a, const SlaveProjection& b) {
+  if (a.candidate != b.candidate) return false;
+  const auto clamp = [](double xi) { return xi == 0.0 ? 0 : xi == 1.0 ? 1 : 2; };
+  if (a.segment == b.segment) return clamp(a.xi) == clamp(b.xi);
+  return (a.segment + 1 == b.segment && a.xi == 1.0 && b.xi == 0.0) ||
+         (b.segment + 1 == a.segment && b.xi == 1.0 && a.xi == 0.0);
+}
+
+ContactLinearization linearize_contact_on_branches(const mesh::Mesh& mesh, const ContactPair& pair,
+                                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                                   const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                                   const PointwiseContact& branches) {
+  require(quadrature.discretization != Discretization::LAC,
+          "linearize_contact_on_branches: the exactly integrated LAC rows have no pointwise branches");
+  require(u.size() == mesh.num_dofs() && branches.projection.size() == pair.slave.size(),
+          "linearize_contact_on_branches: u has " + std::to_string(u.size()) + " entries for " +
+              std::to_string(mesh.num_dofs()) + " DOFs and " + std::to_string(branches.projection.size()) +
+              " branches for " + std::to_string(pair.slave.size()) + " slave nodes");
+  ContactMaps maps;
+  maps.pointwise = detail::pointwise_on_branches(mesh, pair, u, branches);
+  maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
+  maps.d = maps.rows.g - maps.rows.K * u;
+  return linearize_contact(mesh, pair, quadrature, u, lambda, movable, std::move(maps));
+}
+
 }  // namespace contactrb::contact

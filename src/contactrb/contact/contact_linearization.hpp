@@ -77,4 +77,21 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options = {});
 
+// Branches of the piecewise smooth pointwise maps: the closest segment and whether xi is clamped
+// (0 or 1, a vertex's wedge) or interior, and the candidate flag. Two projections lie on the same
+// branch when all three agree, or when both are the same vertex seen from its two segments
+// ((k, xi = 1) and (k + 1, xi = 0): the same maps and derivatives).
+bool same_branch(const SlaveProjection& a, const SlaveProjection& b);
+
+// The maps at u continued on prescribed branches (`branches`: one projection per slave node, e.g.
+// those of a predicted iterate; on a branch that is not u's own, xi is the smooth continuation of
+// the branch's formula, possibly slightly outside [0, 1]) and their analytic linearization there.
+// The semi-smooth Newton step on these is exact for the branches the step lands on
+// (hf/semismooth_newton.hpp, "branch passes"). Pointwise rows only (Collocation, LACSimpson);
+// throws contactrb::Error for LAC or on size mismatch.
+ContactLinearization linearize_contact_on_branches(const mesh::Mesh& mesh, const ContactPair& pair,
+                                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                                   const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                                   const PointwiseContact& branches);
+
 }  // namespace contactrb::contact
