@@ -295,7 +295,7 @@ void in_passes(const std::vector<int>& inputs, std::vector<int>& slot, Eval&& ev
 void scatter_d(const Dual& d, int r, double weight, const int* window, int count,
                std::vector<Eigen::Triplet<double>>& d_trip) {
   for (int q = 0; q < count; ++q) {
-    const double v = d.d[static_cast<std::size_t>(q)];
+    const double v = d.slot(q);
     if (v != 0.0) d_trip.emplace_back(r, window[q], weight * v);
   }
 }
@@ -307,7 +307,7 @@ void scatter_h(const DualRow& row, double load, const int* window, int count, co
   for (const auto& [dof, k] : row.K) {
     if (!movable[static_cast<std::size_t>(dof)]) continue;
     for (int q = 0; q < count; ++q) {
-      const double v = k.d[static_cast<std::size_t>(q)];
+      const double v = k.slot(q);
       if (v != 0.0) h_trip.emplace_back(dof, window[q], load * v);
     }
   }

@@ -3,7 +3,9 @@
 // contact maps (contact_linearization.cpp): a value and its partial derivatives with respect to
 // at most kDualWidth seeded inputs (the DOFs one constraint row depends on; rows with more
 // inputs are differentiated in several passes, kDualWidth inputs at a time). Internal to the
-// contact module. Unused derivative slots are always zero, so operations never branch on widths.
+// contact module. Only the slots [0, n) are set (no zero fill of the whole array: a dual is
+// created per operation, and on hertz-a level 0 the fill was most of the linearization's time);
+// a slot at or beyond n reads as zero (slot()).
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -15,32 +17,41 @@ inline constexpr int kDualWidth = 24;
 
 struct Dual {
   double v = 0.0;
-  int n = 0;  // slots [0, n) may be non-zero
-  std::array<double, kDualWidth> d{};
+  int n = 0;  // slots [0, n) are set, the others are zero
+  std::array<double, kDualWidth> d;  // NOLINT: deliberately not filled beyond n
 
   Dual() = default;
   Dual(double value) : v(value) {}  // NOLINT(google-explicit-constructor): constants mix freely
   static Dual input(double value, int slot) {
     Dual x(value);
-    if (slot >= 0) {
+    if (slot >= 0 && slot < kDualWidth) {
       x.n = slot + 1;
+      for (int i = 0; i < slot; ++i) x.d[static_cast<std::size_t>(i)] = 0.0;
       x.d[static_cast<std::size_t>(slot)] = 1.0;
     }
     return x;
   }
+  double slot(int i) const { return i >= 0 && i < n && i < kDualWidth ? d[static_cast<std::size_t>(i)] : 0.0; }
 };
 
 // r = alpha a + beta b on the derivatives (values set by the caller).
 inline Dual combine(double value, double alpha, const Dual& a, double beta, const Dual& b) {
   Dual r(value);
-  r.n = std::max(a.n, b.n);
-  for (int i = 0; i < r.n; ++i) r.d[static_cast<std::size_t>(i)] = alpha * a.d[static_cast<std::size_t>(i)] + beta * b.d[static_cast<std::size_t>(i)];
+  // n is always in [0, kDualWidth]; the clamps tell the compiler so (-Warray-bounds).
+  const std::size_t na = static_cast<std::size_t>(std::clamp(a.n, 0, kDualWidth));
+  const std::size_t nb = static_cast<std::size_t>(std::clamp(b.n, 0, kDualWidth));
+  const std::size_t common = std::min(na, nb);
+  for (std::size_t i = 0; i < common; ++i) r.d[i] = alpha * a.d[i] + beta * b.d[i];
+  for (std::size_t i = common; i < na; ++i) r.d[i] = alpha * a.d[i];
+  for (std::size_t i = common; i < nb; ++i) r.d[i] = beta * b.d[i];
+  r.n = static_cast<int>(std::max(na, nb));
   return r;
 }
 inline Dual scale(double value, double alpha, const Dual& a) {
   Dual r(value);
-  r.n = a.n;
-  for (int i = 0; i < r.n; ++i) r.d[static_cast<std::size_t>(i)] = alpha * a.d[static_cast<std::size_t>(i)];
+  const std::size_t na = static_cast<std::size_t>(std::clamp(a.n, 0, kDualWidth));
+  for (std::size_t i = 0; i < na; ++i) r.d[i] = alpha * a.d[i];
+  r.n = static_cast<int>(na);
   return r;
 }
 
