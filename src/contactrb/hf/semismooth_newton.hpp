@@ -72,6 +72,9 @@ struct NewtonSettings {
   // segment, clamped wedge at a vertex), it is solved again on the maps at u continued on the
   // branches it lands on. 0: off.
   int max_branch_passes = 2;
+  // ... in the iterations whose KKT residual is at most this (the last, quadratic steps, where a
+  // kink crossing costs a whole iteration).
+  double branch_passes_below = 1e-5;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
