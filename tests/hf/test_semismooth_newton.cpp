@@ -227,5 +227,19 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
   s = newton();
   s.newton.min_step = 2.0;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
+  const auto expect_named = [&](const hf::HFSettings& bad, const std::string& name) {
+    try {
+      (void)solver.solve(bad);
+      ADD_FAILURE() << name << ": no error";
+    } catch (const contactrb::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  s = newton();
+  s.newton.max_branch_passes = -1;
+  expect_named(s, "max_branch_passes");
+  s = newton();
+  s.newton.branch_passes_below = -1.0;
+  expect_named(s, "branch_passes_below");
   EXPECT_THROW(hf::hf_method_from_string("gauss"), contactrb::Error);
 }

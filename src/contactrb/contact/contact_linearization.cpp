@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/contact/contact_derivatives.hpp"
 
 namespace contactrb::contact {
 
@@ -14,53 +16,6 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 void sort_unique(std::vector<int>& v) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
-// Movable DOFs row r of (K, g) can depend on: the slave nodes of I_r and the master chain
-// positions from (first segment hit - 1) to (last segment hit + 2): the vertex normals n_k,
-// n_k+1 of a segment k use segments k - 1 .. k + 1 (docs/contact.md).
-std::vector<std::vector<int>> row_inputs(const ContactPair& pair, const ContactQuadrature& quadrature,
-                                         const PointwiseContact& pw, const std::vector<char>& movable) {
-  const int R = static_cast<int>(quadrature.W.rows());
-  const bool closed = pair.master.size() > 2 && pair.master.front() == pair.master.back();
-  const int M = static_cast<int>(pair.master.size()) - 1;  // segments
-  const int vertices = closed ? M : M + 1;                  // distinct chain positions
-  auto add_node = [&](std::vector<int>& out, int node) {
-    for (int c = 0; c < 2; ++c) {
-      const int dof = 2 * node + c;
-      if (movable[static_cast<std::size_t>(dof)]) out.push_back(dof);
-    }
-  };
-  auto add_position = [&](std::vector<int>& out, int pos) {
-    if (closed) {
-      pos = ((pos % vertices) + vertices) % vertices;
-    } else if (pos < 0 || pos >= vertices) {
-      return;
-    }
-    add_node(out, pair.master[static_cast<std::size_t>(pos)]);
-  };
-  std::vector<std::vector<int>> inputs(static_cast<std::size_t>(R));
-  for (int r = 0; r < R; ++r) {
-    std::vector<int>& in = inputs[static_cast<std::size_t>(r)];
-    int lo = M, hi = -1;
-    for (RowSparse::InnerIterator it(quadrature.W, r); it; ++it) {
-      const int p = static_cast<int>(it.col());
-      add_node(in, pair.slave[static_cast<std::size_t>(p)]);
-      const int k = pw.projection[static_cast<std::size_t>(p)].segment;
-      if (k < 0) continue;
-      lo = std::min(lo, k);
-      hi = std::max(hi, k);
-    }
-    if (hi >= 0) {
-      if (closed && hi - lo > M / 2) {  // the hits wrap around the closed chain's start
-        for (int pos = hi - 1; pos <= lo + M + 2; ++pos) add_position(in, pos);
-      } else {
-        for (int pos = lo - 1; pos <= hi + 2; ++pos) add_position(in, pos);
-      }
-    }
-    sort_unique(in);
-  }
-  return inputs;
 }
 
 }  // namespace
@@ -78,6 +33,16 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        const LinearizationOptions& options) {
+  require(u.size() == mesh.num_dofs(), "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
+                                           std::to_string(mesh.num_dofs()) + " DOFs");
+  return linearize_contact(mesh, pair, quadrature, u, lambda, movable,
+                           evaluate_contact_maps(mesh, pair, quadrature, u, options.projection), options);
+}
+
+ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair& pair,
+                                       const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                       ContactMaps maps_at_u, const LinearizationOptions& options) {
   const int N = mesh.num_dofs();
   const int R = static_cast<int>(quadrature.W.rows());
   require(u.size() == N, "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
@@ -87,11 +52,20 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
   require(static_cast<int>(movable.size()) == N, "linearize_contact: movable mask has " +
                                                      std::to_string(movable.size()) + " entries for " +
                                                      std::to_string(N) + " DOFs");
+  require(maps_at_u.d.size() == R && static_cast<int>(maps_at_u.pointwise.projection.size()) ==
+                                         static_cast<int>(pair.slave.size()),
+          "linearize_contact: the maps at u have " + std::to_string(maps_at_u.d.size()) + " rows and " +
+              std::to_string(maps_at_u.pointwise.projection.size()) + " projections for " + std::to_string(R) +
+              " constraint rows and " + std::to_string(pair.slave.size()) + " slave nodes");
   require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
 
   ContactLinearization lin;
-  lin.maps = evaluate_contact_maps(mesh, pair, quadrature, u, options.projection);
-  const std::vector<std::vector<int>> inputs = row_inputs(pair, quadrature, lin.maps.pointwise, movable);
+  lin.maps = std::move(maps_at_u);
+  if (options.method == LinearizationMethod::Analytic) {
+    detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
+    return lin;
+  }
+  const std::vector<std::vector<int>> inputs = detail::row_inputs(pair, quadrature, lin.maps.pointwise, movable);
 
   // Rows of H: DOF i gets the columns of every loaded row r (lambda_r != 0) whose inputs hold i.
   std::vector<int> h_row_of(static_cast<std::size_t>(N), -1);
@@ -191,6 +165,31 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
   lin.H.resize(N, N);
   lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
   return lin;
+}
+
+bool same_branch(const SlaveProjection& a, const SlaveProjection& b) {
+  if (a.candidate != b.candidate) return false;
+  const auto clamp = [](double xi) { return xi == 0.0 ? 0 : xi == 1.0 ? 1 : 2; };
+  if (a.segment == b.segment) return clamp(a.xi) == clamp(b.xi);
+  return (a.segment + 1 == b.segment && a.xi == 1.0 && b.xi == 0.0) ||
+         (b.segment + 1 == a.segment && b.xi == 1.0 && a.xi == 0.0);
+}
+
+ContactLinearization linearize_contact_on_branches(const mesh::Mesh& mesh, const ContactPair& pair,
+                                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                                   const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                                   const PointwiseContact& branches) {
+  require(quadrature.discretization != Discretization::LAC,
+          "linearize_contact_on_branches: the exactly integrated LAC rows have no pointwise branches");
+  require(u.size() == mesh.num_dofs() && branches.projection.size() == pair.slave.size(),
+          "linearize_contact_on_branches: u has " + std::to_string(u.size()) + " entries for " +
+              std::to_string(mesh.num_dofs()) + " DOFs and " + std::to_string(branches.projection.size()) +
+              " branches for " + std::to_string(pair.slave.size()) + " slave nodes");
+  ContactMaps maps;
+  maps.pointwise = detail::pointwise_on_branches(mesh, pair, u, branches);
+  maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
+  maps.d = maps.rows.g - maps.rows.K * u;
+  return linearize_contact(mesh, pair, quadrature, u, lambda, movable, std::move(maps));
 }
 
 }  // namespace contactrb::contact

@@ -7,15 +7,22 @@
 //   D = d'(u)           (R x num_dofs)       -- includes the motion of the projection (xi),
 //                                              of the continuous normal n2 and of rho
 //   H = (K(u)' lambda)' (num_dofs x num_dofs) -- the geometric stiffness of the contact forces
-// Both are the exact maps of projection.hpp / lac_integration.hpp differentiated by
-// column-coloured central differences (Curtis, Powell and Reid 1974): the sparsity of row r
-// is known from the projection (the slave nodes of I_r, and the master nodes from one
-// before the first to two after the last segment their projections hit, which carry the
-// vertex normals), columns that share no row are perturbed together, so a linearization
-// costs 2 x (number of colours) evaluations of the maps, independent of the mesh size.
+// Two methods (LinearizationOptions::method):
+//  Analytic (default): the maps of projection.hpp / lac_integration.hpp differentiated exactly
+//    (forward-mode dual numbers on the same formulas and branches, contact_derivatives.hpp),
+//    one pass over the constraint rows, exact to round-off.
+//  FiniteDifference: column-coloured central differences (Curtis, Powell and Reid 1974): the
+//    sparsity of row r is known from the projection (the slave nodes of I_r, and the master
+//    nodes from one before the first to two after the last segment their projections hit,
+//    which carry the vertex normals), columns that share no row are perturbed together, so a
+//    linearization costs 2 x (number of colours) evaluations of the maps. Kept as the
+//    independent check of the analytic one (tests/contact/test_contact_linearization.cpp).
+//    Its error is truncation (step)^2 plus round-off eps |x| / step: on hertz-a level 6
+//    (edges 1e-3 of the body) it stopped Newton's quadratic rate near 1e-9 (docs/solvers.md).
 // The maps are piecewise smooth (the closest segment switches at master vertices, where
-// they are continuous, docs/contact.md): there the difference quotient is a one-sided or
-// averaged slope, an element of the generalized Jacobian up to O(step).
+// they are continuous, docs/contact.md): there the analytic derivative is the one-sided
+// Jacobian of the branch taken at u, and the difference quotient a one-sided or averaged
+// slope; both are elements of the generalized Jacobian (the latter up to O(step)).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -26,7 +33,11 @@
 
 namespace contactrb::contact {
 
+enum class LinearizationMethod { Analytic, FiniteDifference };
+
 struct LinearizationOptions {
+  LinearizationMethod method = LinearizationMethod::Analytic;
+  // FiniteDifference only:
   // Finite-difference step, relative to the mean reference slave edge length. Central
   // differences: truncation (step)^2, round-off eps |x| / (step h); 1e-6 balances the two
   // for meshes with edges from 1e-1 to 1e-4 of the body size.
@@ -48,8 +59,8 @@ struct ContactLinearization {
   ContactMaps maps;                                // at u
   Eigen::SparseMatrix<double, Eigen::RowMajor> D;  // R x num_dofs, d'(u) on movable columns
   Eigen::SparseMatrix<double> H;                   // num_dofs x num_dofs, (K' lambda)' on movable rows/cols
-  int colours = 0;
-  int evaluations = 0;  // map evaluations (2 per colour)
+  int colours = 0;      // FiniteDifference: colours of the columns
+  int evaluations = 0;  // FiniteDifference: map evaluations (2 per colour)
 };
 
 // movable[i]: DOF i varies (free DOFs); the other columns and rows of D and H are zero.
@@ -59,5 +70,28 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        const LinearizationOptions& options = {});
+// The same, with the maps at u already evaluated (evaluate_contact_maps(mesh, pair, quadrature,
+// u, options.projection)): the semi-smooth Newton iterate holds them.
+ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair& pair,
+                                       const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                       ContactMaps maps_at_u, const LinearizationOptions& options = {});
+
+// Branches of the piecewise smooth pointwise maps: the closest segment and whether xi is clamped
+// (0 or 1, a vertex's wedge) or interior, and the candidate flag. Two projections lie on the same
+// branch when all three agree, or when both are the same vertex seen from its two segments
+// ((k, xi = 1) and (k + 1, xi = 0): the same maps and derivatives).
+bool same_branch(const SlaveProjection& a, const SlaveProjection& b);
+
+// The maps at u continued on prescribed branches (`branches`: one projection per slave node, e.g.
+// those of a predicted iterate; on a branch that is not u's own, xi is the smooth continuation of
+// the branch's formula, possibly slightly outside [0, 1]) and their analytic linearization there.
+// The semi-smooth Newton step on these is exact for the branches the step lands on
+// (hf/semismooth_newton.hpp, "branch passes"). Pointwise rows only (Collocation, LACSimpson);
+// throws contactrb::Error for LAC or on size mismatch.
+ContactLinearization linearize_contact_on_branches(const mesh::Mesh& mesh, const ContactPair& pair,
+                                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                                   const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                                   const PointwiseContact& branches);
 
 }  // namespace contactrb::contact

@@ -152,6 +152,9 @@ void check_settings(const NewtonSettings& s) {
   require(std::isfinite(s.min_rcond) && s.min_rcond >= 0.0 && s.min_rcond < 1.0,
           "Newton min_rcond must be in [0, 1) (got " + std::to_string(s.min_rcond) + ")");
   require(s.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(s.max_free_steps) + ")");
+  require(s.max_branch_passes >= 0,
+          "Newton max_branch_passes must be >= 0 (got " + std::to_string(s.max_branch_passes) + ")");
+  require(s.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + std::to_string(s.branch_passes_below) + ")");
 }
 
 NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0_start,
@@ -236,14 +239,16 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     it.merit = st.merit;
 
     // Consistent linearization of the geometry (D, H) at u, lambda: in the Newton phase only
-    // (the Kacanov phase's frozen steps need K and d, already in st.maps). On hertz-a level 0 the
-    // 2 x (14-24 colours) map evaluations are most of an iteration's time.
+    // (the Kacanov phase's frozen steps need K and d, already in st.maps). Analytic by default
+    // (the 2 x (24-32 colours) map evaluations of the finite differences were most of an
+    // iteration's time on hertz-a level 0; both take the same steps).
     const bool kacanov_phase = !newton_phase;
     auto t0 = Clock::now();
     contact::ContactLinearization lin;
     if (!kacanov_phase) {
       try {
-        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, s.linearization);
+        lin = contact::linearize_contact(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, st.maps,
+                                         s.linearization);
       } catch (const Error& e) {
         return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k) +
                                                             ": the contact maps cannot be linearized: " + e.what());
@@ -254,7 +259,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     }
     it.colours = lin.colours;
     it.linearize_s = seconds_since(t0);
-    const RowSparse D0 = p.dofs->restrict_columns(lin.D);
+    RowSparse D0 = p.dofs->restrict_columns(lin.D);
 
     // Two linearizations. Consistent: [A_00 + H, K_A'; -D_A, 0]. Frozen: H = 0, D = -K, the
     // Jacobian of the Kacanov step with the geometry frozen at u: the linearized problem is then
@@ -264,13 +269,17 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     t0 = Clock::now();
     bool singular_consistent = false;  // this iteration: consistent Jacobian found singular
     std::vector<Eigen::Triplet<double>> a_trip, h_free;  // A_00 (SaddleLU only) and H, free indices
-    for (int j = 0; j < lin.H.outerSize(); ++j) {
-      for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
-        const int fr = global_to_free[static_cast<std::size_t>(h.row())];
-        const int fc = global_to_free[static_cast<std::size_t>(h.col())];
-        if (fr >= 0 && fc >= 0) h_free.emplace_back(fr, fc, h.value());
+    auto set_h_free = [&](const Eigen::SparseMatrix<double>& H) {
+      h_free.clear();
+      for (int j = 0; j < H.outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator h(H, j); h; ++h) {
+          const int fr = global_to_free[static_cast<std::size_t>(h.row())];
+          const int fc = global_to_free[static_cast<std::size_t>(h.col())];
+          if (fr >= 0 && fc >= 0) h_free.emplace_back(fr, fc, h.value());
+        }
       }
-    }
+    };
+    set_h_free(lin.H);
     if (!schur) {
       a_trip.reserve(static_cast<std::size_t>(p.A00->nonZeros()));
       for (int j = 0; j < p.A00->outerSize(); ++j) {
@@ -489,6 +498,49 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         return finish(solve::KacanovStatus::StepFailed, failure);
       }
       ++passes;
+    }
+    // Branch passes (Newton phase, pointwise rows): the contact maps are piecewise smooth (the
+    // closest segment; a vertex's clamped wedge), and on fine hertz-a meshes slave nodes in
+    // contact end within 1e-5 of a segment of master vertices: a step that carries them across
+    // such a kink converges only linearly (level 5: 2.1e-8 -> 4.2e-9, 27 nodes crossing). When
+    // u + du lies on other branches than u, the step is solved again with the maps at u continued
+    // on the branches of u + du (contact::linearize_contact_on_branches): exact on piecewise
+    // linear maps; repeated while the branches move, at most max_branch_passes times. Only near
+    // the solution (KKT residual <= branch_passes_below): further out each pass costs a system
+    // and the step's other errors dominate (hertz-a level 6: passes at every Newton iteration
+    // 16.9 s CPU, 8 iterations; without 15.1 s, 9).
+    if (!pass_frozen && s.max_branch_passes > 0 && it.residual <= s.branch_passes_below &&
+        p.quadrature->discretization != contact::Discretization::LAC) {
+      for (int pass = 0; pass < s.max_branch_passes; ++pass) {
+        contact::PointwiseContact next;
+        try {
+          next = contact::project_slave_nodes(*p.mesh, *p.pair, p.dofs->lift() + p.dofs->extend(st.u0 + du),
+                                              s.linearization.projection);
+        } catch (const Error&) {
+          break;  // the full step cannot be evaluated: the line search shortens it
+        }
+        bool moved = false;
+        for (std::size_t q = 0; q < next.projection.size() && !moved; ++q) {
+          moved = !contact::same_branch(st.maps.pointwise.projection[q], next.projection[q]);
+        }
+        if (!moved) break;
+        contact::ContactLinearization branch;
+        try {
+          branch = contact::linearize_contact_on_branches(*p.mesh, *p.pair, *p.quadrature, st.u, st.lambda, movable, next);
+        } catch (const Error&) {
+          break;
+        }
+        // The step's system reads K, d (st) and D, H: all on the continued branches now. The
+        // merit and the line search keep the maps of u itself (the trials are evaluated afresh).
+        st.maps = std::move(branch.maps);
+        st.K0 = p.dofs->restrict_columns(st.maps.rows.K);
+        D0 = p.dofs->restrict_columns(branch.D);
+        set_h_free(branch.H);
+        // A singular system here keeps the previous pass's step (du, lambda_next are untouched).
+        if (!solve_newton_system(is_active)) break;
+        ++passes;
+        ++it.branch_passes;
+      }
     }
     // The frozen passes found the active set at once: the iterate is near enough for Newton.
     if (kacanov_phase && passes == 1) newton_phase = true;

@@ -67,6 +67,14 @@ struct NewtonSettings {
   // Inner primal-dual active-set passes on the linearized problem per Newton iteration (systems).
   int max_inner_iterations = 20;
   NewtonInnerPasses inner_passes = NewtonInnerPasses::Frozen;
+  // Branch passes per Newton-phase iteration (pointwise rows; semismooth_newton.cpp): when the
+  // step moves slave nodes to other branches of the piecewise smooth contact maps (closest
+  // segment, clamped wedge at a vertex), it is solved again on the maps at u continued on the
+  // branches it lands on. 0: off.
+  int max_branch_passes = 2;
+  // ... in the iterations whose KKT residual is at most this (the last, quadratic steps, where a
+  // kink crossing costs a whole iteration).
+  double branch_passes_below = 1e-5;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
@@ -87,7 +95,8 @@ struct NewtonIteration {
   int reduced_size = 0;    // ActiveSchur: |E| of the last pass
   bool frozen = false;     // the consistent Jacobian was singular: frozen-geometry fallback step
   double step = 0.0;       // damping factor taken
-  int colours = 0;         // colours of the finite-difference linearization
+  int colours = 0;         // colours of the finite-difference linearization (0: analytic)
+  int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
   double linearize_s = 0.0, factorize_s = 0.0;
 };
 

@@ -1,0 +1,95 @@
+#pragma once
+// Forward-mode dual numbers over a few local inputs, for the analytic linearization of the
+// contact maps (contact_linearization.cpp): a value and its partial derivatives with respect to
+// at most kDualWidth seeded inputs (the DOFs one constraint row depends on; rows with more
+// inputs are differentiated in several passes, kDualWidth inputs at a time). Internal to the
+// contact module. Only the slots [0, n) are set (no zero fill of the whole array: a dual is
+// created per operation, and on hertz-a level 0 the fill was most of the linearization's time);
+// a slot at or beyond n reads as zero (slot()).
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace contactrb::contact::detail {
+
+inline constexpr int kDualWidth = 24;
+
+struct Dual {
+  double v = 0.0;
+  int n = 0;  // slots [0, n) are set, the others are zero
+  std::array<double, kDualWidth> d;  // NOLINT: deliberately not filled beyond n
+
+  Dual() = default;
+  Dual(double value) : v(value) {}  // NOLINT(google-explicit-constructor): constants mix freely
+  static Dual input(double value, int slot) {
+    Dual x(value);
+    if (slot >= 0 && slot < kDualWidth) {
+      x.n = slot + 1;
+      for (int i = 0; i < slot; ++i) x.d[static_cast<std::size_t>(i)] = 0.0;
+      x.d[static_cast<std::size_t>(slot)] = 1.0;
+    }
+    return x;
+  }
+  double slot(int i) const { return i >= 0 && i < n && i < kDualWidth ? d[static_cast<std::size_t>(i)] : 0.0; }
+};
+
+// r = alpha a + beta b on the derivatives (values set by the caller).
+inline Dual combine(double value, double alpha, const Dual& a, double beta, const Dual& b) {
+  Dual r(value);
+  // n is always in [0, kDualWidth]; the clamps tell the compiler so (-Warray-bounds).
+  const std::size_t na = static_cast<std::size_t>(std::clamp(a.n, 0, kDualWidth));
+  const std::size_t nb = static_cast<std::size_t>(std::clamp(b.n, 0, kDualWidth));
+  const std::size_t common = std::min(na, nb);
+  for (std::size_t i = 0; i < common; ++i) r.d[i] = alpha * a.d[i] + beta * b.d[i];
+  for (std::size_t i = common; i < na; ++i) r.d[i] = alpha * a.d[i];
+  for (std::size_t i = common; i < nb; ++i) r.d[i] = beta * b.d[i];
+  r.n = static_cast<int>(std::max(na, nb));
+  return r;
+}
+inline Dual scale(double value, double alpha, const Dual& a) {
+  Dual r(value);
+  const std::size_t na = static_cast<std::size_t>(std::clamp(a.n, 0, kDualWidth));
+  for (std::size_t i = 0; i < na; ++i) r.d[i] = alpha * a.d[i];
+  r.n = static_cast<int>(na);
+  return r;
+}
+
+inline Dual operator+(const Dual& a, const Dual& b) { return combine(a.v + b.v, 1.0, a, 1.0, b); }
+inline Dual operator-(const Dual& a, const Dual& b) { return combine(a.v - b.v, 1.0, a, -1.0, b); }
+inline Dual operator-(const Dual& a) { return scale(-a.v, -1.0, a); }
+inline Dual operator*(const Dual& a, const Dual& b) { return combine(a.v * b.v, b.v, a, a.v, b); }
+inline Dual operator*(double s, const Dual& a) { return scale(s * a.v, s, a); }
+inline Dual operator*(const Dual& a, double s) { return scale(s * a.v, s, a); }
+inline Dual operator/(const Dual& a, const Dual& b) {
+  const double q = a.v / b.v;
+  return combine(q, 1.0 / b.v, a, -q / b.v, b);
+}
+inline Dual operator/(const Dual& a, double s) { return scale(a.v / s, 1.0 / s, a); }
+inline Dual operator+(const Dual& a, double s) { return scale(a.v + s, 1.0, a); }
+inline Dual operator+(double s, const Dual& a) { return scale(a.v + s, 1.0, a); }
+inline Dual operator-(double s, const Dual& a) { return scale(s - a.v, -1.0, a); }
+inline Dual operator-(const Dual& a, double s) { return scale(a.v - s, 1.0, a); }
+inline Dual& operator+=(Dual& a, const Dual& b) { return a = a + b; }
+inline Dual sqrt(const Dual& a) {
+  const double r = std::sqrt(a.v);
+  return scale(r, r > 0.0 ? 0.5 / r : 0.0, a);
+}
+
+struct DVec2 {
+  Dual x, y;
+  double vx() const { return x.v; }
+  double vy() const { return y.v; }
+  Eigen::Vector2d value() const { return {x.v, y.v}; }
+};
+inline DVec2 constant(const Eigen::Vector2d& v) { return {Dual(v.x()), Dual(v.y())}; }
+inline DVec2 operator+(const DVec2& a, const DVec2& b) { return {a.x + b.x, a.y + b.y}; }
+inline DVec2 operator-(const DVec2& a, const DVec2& b) { return {a.x - b.x, a.y - b.y}; }
+inline DVec2 operator*(const Dual& s, const DVec2& a) { return {s * a.x, s * a.y}; }
+inline DVec2 operator*(double s, const DVec2& a) { return {s * a.x, s * a.y}; }
+inline DVec2 operator/(const DVec2& a, const Dual& s) { return {a.x / s, a.y / s}; }
+inline Dual dot(const DVec2& a, const DVec2& b) { return a.x * b.x + a.y * b.y; }
+inline Dual dot(const DVec2& a, const Eigen::Vector2d& b) { return a.x * b.x() + a.y * b.y(); }
+inline Dual norm(const DVec2& a) { return sqrt(dot(a, a)); }
+
+}  // namespace contactrb::contact::detail
