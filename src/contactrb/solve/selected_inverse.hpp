@@ -38,6 +38,11 @@ class SelectedInverse {
 
   // Throw contactrb::Error unless status() == Success and the sizes / indices are valid.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  // x = A^-1 b for b supported on the indices `in` (values b_in): the forward substitution runs
+  // along the elimination-tree chains of `in` only. out == nullptr: the whole x (a full backward
+  // substitution); else only x[out] (the backward one along the chains of `out`), zero elsewhere.
+  Eigen::VectorXd solve_sparse(const std::vector<int>& in, const Eigen::VectorXd& b_in,
+                               const std::vector<int>* out = nullptr) const;
   Eigen::MatrixXd block(const std::vector<int>& idx);
   int cached_columns() const;
 
