@@ -3,7 +3,7 @@
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen] [--verbose] [--header]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen] [--krylov 100 (0: dense LU)] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -27,7 +27,7 @@ using namespace contactrb;
 
 int main(int argc, char** argv) {
   std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
-  int level = 0, repeat = 1, inner = -1, free_steps = -1;
+  int level = 0, repeat = 1, inner = -1, free_steps = -1, krylov = -1;
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
   for (int i = 1; i < argc; ++i) {
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
     else if (a == "--inner") inner = std::stoi(next());
     else if (a == "--passes") passes = next();
     else if (a == "--free-steps") free_steps = std::stoi(next());
+    else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -83,6 +84,7 @@ int main(int argc, char** argv) {
     if (inner > 0) settings.newton.max_inner_iterations = inner;
     settings.newton.inner_passes = hf::newton_inner_passes_from_string(passes);
     if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
+    if (krylov >= 0) settings.newton.krylov_max_iterations = krylov;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;
@@ -100,9 +102,9 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d lin %.4f s linear algebra %.4f s\n",
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d lin %.4f s linear algebra %.4f s krylov %d\n",
                      it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours,
-                     it.linearize_s, it.factorize_s);
+                     it.linearize_s, it.factorize_s, it.krylov);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
     }

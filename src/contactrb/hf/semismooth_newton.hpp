@@ -72,6 +72,11 @@ struct NewtonSettings {
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
   // as singular (the frozen-geometry fallback below), like a zero pivot of the sparse LU.
   double min_rcond = 1e-14;
+  // ActiveSchur, Newton phase: GMRES preconditioned by the frozen-geometry system, to this
+  // relative residual of the equilibrated reduced system; the dense LU when it does not
+  // converge in krylov_max_iterations products (0: always the dense LU).
+  int krylov_max_iterations = 100;
+  double krylov_tolerance = 1e-13;
   contact::LinearizationOptions linearization;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
@@ -89,6 +94,7 @@ struct NewtonIteration {
   double step = 0.0;       // damping factor taken
   int colours = 0;         // colours of the finite-difference linearization
   double linearize_s = 0.0, factorize_s = 0.0;
+  int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
 
 // What the solver needs of an HF problem (views; the HF solver owns them).
