@@ -470,11 +470,16 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
               out.head(e) = v.head(e) - GKt * out.tail(m);
               return out.cwiseQuotient(col_scale);
             };
-            const solve::GmresResult kr = solve::gmres(apply, precondition, row_scale.cwiseProduct(rhs),
-                                                       s.krylov_tolerance, s.krylov_max_iterations);
+            // From the iterate itself (w = 0, lambda_A = lambda at u): rhs - M x0 vanishes at the
+            // solution, so the tolerance applies to the correction, not to u (the reduced
+            // unknowns are the new iterate, whose size is the load's).
+            Eigen::VectorXd x0s = Eigen::VectorXd::Zero(e + m);
+            for (int a = 0; a < m; ++a) x0s(e + a) = st.lambda(active[static_cast<std::size_t>(a)]) / col_scale(e + a);
+            const Eigen::VectorXd r0s = row_scale.cwiseProduct(rhs) - apply(x0s);
+            const solve::GmresResult kr = solve::gmres(apply, precondition, r0s, s.krylov_tolerance, s.krylov_max_iterations);
             it.krylov += kr.iterations;
             if (kr.converged) {
-              const Eigen::VectorXd x = col_scale.cwiseProduct(kr.x);
+              const Eigen::VectorXd x = col_scale.cwiseProduct(x0s + kr.x);
               set_step(E, HE * x.head(e) + KEt * x.tail(m));
               lambda_next.setZero();
               for (int a = 0; a < m; ++a) lambda_next(active[static_cast<std::size_t>(a)]) = x(e + a);

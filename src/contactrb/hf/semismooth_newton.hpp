@@ -72,8 +72,8 @@ struct NewtonSettings {
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
   // as singular (the frozen-geometry fallback below), like a zero pivot of the sparse LU.
   double min_rcond = 1e-14;
-  // ActiveSchur, Newton phase: GMRES preconditioned by the frozen-geometry system, to this
-  // relative residual of the equilibrated reduced system; the dense LU when it does not
+  // ActiveSchur, Newton phase: GMRES preconditioned by the frozen-geometry system, from the
+  // iterate, to this residual of the equilibrated reduced system relative to the iterate's; the dense LU when it does not
   // converge in krylov_max_iterations products (0: always the dense LU).
   int krylov_max_iterations = 100;
   double krylov_tolerance = 1e-13;

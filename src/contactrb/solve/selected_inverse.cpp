@@ -19,6 +19,8 @@ void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, 
             const double* x, const int* incx, const double* beta, double* y, const int* incy);
 void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a, const int* lda,
             double* x, const int* incx);
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+            const int* lda, const double* beta, double* c, const int* ldc);
 void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
             const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
 }
@@ -35,20 +37,6 @@ const char* to_string(SelectedInverseStatus status) {
 }
 
 namespace {
-// out (X.cols() x ncols) = X' B, B: the u x ncols column-major block at b (u = X.rows()).
-void gemm_tn(const Eigen::MatrixXd& X, const double* b, int ncols, Eigen::MatrixXd& out) {
-  const int m = static_cast<int>(X.cols()), k = static_cast<int>(X.rows());
-  out.resize(m, ncols);
-  if (m == 0 || ncols == 0) return;
-  if (k == 0) {
-    out.setZero();
-    return;
-  }
-  const char t = 'T', nt = 'N';
-  const double one = 1.0, zero = 0.0;
-  dgemm_(&t, &nt, &m, &ncols, &k, &one, X.data(), &k, b, &k, &zero, out.data(), &m);
-}
-
 // One cached column x = L^-1 P e_i: its pattern (ascending, the elimination-tree path) and values.
 struct SparseColumn {
   std::vector<int> rows;
@@ -471,10 +459,27 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
         for (; c < col.size() && col[c].first < end; ++c) Xc(col[c].first - begin, a) = col[c].second;
       }
       const int nn = np - first_new;  // the new columns are the last ones of `present`
-      gemm_tn(Xc, Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(end - begin), nn, Gc);
+      const int rows_c = end - begin;
+      const double* Xnew = Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(rows_c);
+      const char t = 'T', nt = 'N', upper = 'U';
+      const double one = 1.0, zero = 0.0;
+      // Old columns x new ones (dgemm), new x new (dsyrk, one triangle: the first call has
+      // only new columns, and this halves its flops).
+      if (first_new > 0) {
+        Gc.resize(first_new, nn);
+        dgemm_(&t, &nt, &first_new, &nn, &rows_c, &one, Xc.data(), &rows_c, Xnew, &rows_c, &zero, Gc.data(), &first_new);
+        for (int b = 0; b < nn; ++b) {
+          const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
+          for (int a = 0; a < first_new; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
+        }
+      }
+      Gc.resize(nn, nn);
+      dsyrk_(&upper, &t, &nn, &rows_c, &one, Xnew, &rows_c, &zero, Gc.data(), &nn);
       for (int b = 0; b < nn; ++b) {
         const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
-        for (int a = 0; a < np; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
+        for (int a = 0; a < nn; ++a) {
+          right(present[static_cast<std::size_t>(first_new + a)], jb) += a <= b ? Gc(a, b) : Gc(b, a);
+        }
       }
     }
     Eigen::MatrixXd G(total, total);
