@@ -13,8 +13,9 @@
 //   [ -D_A        0    ] [ lambda_A ] = [ d_A          ],     lambda = 0 off A,
 // (NewtonLinearSolver): by default reduced EXACTLY to the few DOFs E that H, K_A, D_A touch,
 // with A_00 factorized once per solve and the block (A_00^-1)[E, E] from sparse substitutions
-// (solve/selected_inverse.hpp); or, for comparison, by a sparse LU of the whole saddle point
-// (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
+// (solve/selected_inverse.hpp), the reduced system solved by GMRES preconditioned by the
+// frozen-geometry one (solve/gmres.hpp; a dense LU as the fallback); or, for comparison, by a
+// sparse LU of the whole saddle point (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
 // Globalization: a Kacanov phase first (NewtonInnerPasses::Frozen): from the start, each step
 // solves the frozen-geometry linearization (H = 0, D = -K, a convex QP) exactly by active-set
 // passes, until those passes find the active set at once; then Newton steps. Every step is
@@ -36,7 +37,8 @@
 namespace contactrb::hf {
 
 // ActiveSchur: A_00 = L L' once per solve (CHOLMOD), then per system a dense one of size
-//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md); SaddleLU: one sparse
+//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md), |A| with the frozen
+//   geometry, GMRES on it in the Newton phase; SaddleLU: one sparse
 //   LU of the (n + |A|)-square saddle point per system (the first implementation, kept to compare).
 enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
 const char* to_string(NewtonLinearSolver solver);
