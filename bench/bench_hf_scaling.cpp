@@ -4,7 +4,7 @@
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen]
-//                    [--linearization analytic|fd] [--branch-passes N] [--verbose] [--header]
+//                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)] [--verbose] [--header]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -28,7 +28,7 @@ using namespace contactrb;
 
 int main(int argc, char** argv) {
   std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
-  int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1;
+  int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1, krylov = -1;
   std::string linearization = "analytic";
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--branch-passes") branch_passes = std::stoi(next());
     else if (a == "--linearization") linearization = next();
+    else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown --linearization %s (analytic or fd)\n", linearization.c_str());
       return 2;
     }
+    if (krylov >= 0) settings.newton.krylov_max_iterations = krylov;
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;
@@ -111,9 +113,9 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s\n",
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s krylov %d\n",
                      it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes,
-                     it.linearize_s, it.factorize_s);
+                     it.linearize_s, it.factorize_s, it.krylov);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
     }

@@ -13,8 +13,9 @@
 //   [ -D_A        0    ] [ lambda_A ] = [ d_A          ],     lambda = 0 off A,
 // (NewtonLinearSolver): by default reduced EXACTLY to the few DOFs E that H, K_A, D_A touch,
 // with A_00 factorized once per solve and the block (A_00^-1)[E, E] from sparse substitutions
-// (solve/selected_inverse.hpp); or, for comparison, by a sparse LU of the whole saddle point
-// (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
+// (solve/selected_inverse.hpp), the reduced system solved by GMRES preconditioned by the
+// frozen-geometry one (solve/gmres.hpp; a dense LU as the fallback); or, for comparison, by a
+// sparse LU of the whole saddle point (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
 // Globalization: a Kacanov phase first (NewtonInnerPasses::Frozen): from the start, each step
 // solves the frozen-geometry linearization (H = 0, D = -K, a convex QP) exactly by active-set
 // passes, until those passes find the active set at once; then Newton steps. Every step is
@@ -36,7 +37,8 @@
 namespace contactrb::hf {
 
 // ActiveSchur: A_00 = L L' once per solve (CHOLMOD), then per system a dense one of size
-//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md); SaddleLU: one sparse
+//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md), |A| with the frozen
+//   geometry, GMRES on it in the Newton phase; SaddleLU: one sparse
 //   LU of the (n + |A|)-square saddle point per system (the first implementation, kept to compare).
 enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
 const char* to_string(NewtonLinearSolver solver);
@@ -80,6 +82,11 @@ struct NewtonSettings {
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
   // as singular (the frozen-geometry fallback below), like a zero pivot of the sparse LU.
   double min_rcond = 1e-14;
+  // ActiveSchur, Newton phase: GMRES preconditioned by the frozen-geometry system, from the
+  // iterate, to this residual of the equilibrated reduced system relative to the iterate's; the dense LU when it does not
+  // converge in krylov_max_iterations products (0: always the dense LU).
+  int krylov_max_iterations = 100;
+  double krylov_tolerance = 1e-13;
   contact::LinearizationOptions linearization;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
@@ -98,6 +105,7 @@ struct NewtonIteration {
   int colours = 0;         // colours of the finite-difference linearization (0: analytic)
   int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
   double linearize_s = 0.0, factorize_s = 0.0;
+  int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
 
 // What the solver needs of an HF problem (views; the HF solver owns them).

@@ -11,9 +11,19 @@
 #include "contactrb/common/error.hpp"
 
 // BLAS (Debian: the libblas.so.3 alternative, OpenBLAS), Fortran calling convention.
-extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
-                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
-                       const double* beta, double* c, const int* ldc);
+extern "C" {
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc);
+void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a, const int* lda,
+            const double* x, const int* incx, const double* beta, double* y, const int* incy);
+void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a, const int* lda,
+            double* x, const int* incx);
+void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
+            const int* lda, const double* beta, double* c, const int* ldc);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
+}
 
 namespace contactrb::solve {
 
@@ -27,20 +37,6 @@ const char* to_string(SelectedInverseStatus status) {
 }
 
 namespace {
-// out (X.cols() x ncols) = X' B, B: the u x ncols column-major block at b (u = X.rows()).
-void gemm_tn(const Eigen::MatrixXd& X, const double* b, int ncols, Eigen::MatrixXd& out) {
-  const int m = static_cast<int>(X.cols()), k = static_cast<int>(X.rows());
-  out.resize(m, ncols);
-  if (m == 0 || ncols == 0) return;
-  if (k == 0) {
-    out.setZero();
-    return;
-  }
-  const char t = 'T', nt = 'N';
-  const double one = 1.0, zero = 0.0;
-  dgemm_(&t, &nt, &m, &ncols, &k, &one, X.data(), &k, b, &k, &zero, out.data(), &m);
-}
-
 // One cached column x = L^-1 P e_i: its pattern (ascending, the elimination-tree path) and values.
 struct SparseColumn {
   std::vector<int> rows;
@@ -54,7 +50,6 @@ struct SelectedInverse::Impl {
   SelectedInverseStatus status = SelectedInverseStatus::InvalidInput;
   int n = 0;
   std::vector<int> inverse_perm;            // original index -> position in P A P'
-  std::vector<double> work;                 // n, zero between uses
   std::vector<int> row_pos;                 // n, -1 between uses (block(): row -> dense row)
   std::unordered_map<int, int> column_of;   // original index -> position in `columns` / G
   std::vector<SparseColumn> columns;
@@ -72,27 +67,128 @@ struct SelectedInverse::Impl {
     G.resize(0, 0);
   }
 
-  // x = L^-1 e_q along the elimination-tree path of q (simplicial, packed L: the diagonal is
-  // the first entry of each column, every other row of column k is an ancestor of k).
-  SparseColumn forward_unit(int q) {
-    const int* Lp = static_cast<const int*>(L->p);
-    const int* Li = static_cast<const int*>(L->i);
-    const double* Lx = static_cast<const double*>(L->x);
-    SparseColumn x;
-    work[static_cast<std::size_t>(q)] = 1.0;
-    for (int k = q; k >= 0;) {
-      const double xk = work[static_cast<std::size_t>(k)] / Lx[Lp[k]];
-      work[static_cast<std::size_t>(k)] = 0.0;
-      x.rows.push_back(k);
-      x.values.push_back(xk);
-      int parent = -1;
-      for (int p = Lp[k] + 1; p < Lp[k + 1]; ++p) {
-        work[static_cast<std::size_t>(Li[p])] -= Lx[p] * xk;
-        if (parent < 0 || Li[p] < parent) parent = Li[p];
+  // Supernodal structure (CHOLMOD, relaxed supernodes): supernode of each column and the parent
+  // of each supernode in the supernodal elimination tree (the supernode of the first row below
+  // its diagonal block; -1 at a root). A parent's index is larger than its children's.
+  std::vector<int> supernode_of;
+  std::vector<int> supernode_parent;
+  std::vector<std::vector<int>> path_columns;  // per supernode, scratch of forward_batch()
+  std::vector<int> block_of;                   // per supernode, -1 between uses
+  std::vector<char> chain_mark;                // per supernode, 0 between uses
+  std::vector<double> work;                    // n, zero between uses (solve_sparse)
+
+  // The supernodes on the chains from the supernodes of the (permuted) rows q to the root,
+  // ascending (children before parents).
+  std::vector<int> chains(const std::vector<int>& q) {
+    std::vector<int> out;
+    for (int r : q) {
+      for (int s = supernode_of[static_cast<std::size_t>(r)]; s >= 0 && !chain_mark[static_cast<std::size_t>(s)];
+           s = supernode_parent[static_cast<std::size_t>(s)]) {
+        chain_mark[static_cast<std::size_t>(s)] = 1;
+        out.push_back(s);
       }
-      k = parent;
     }
-    return x;
+    for (int s : out) chain_mark[static_cast<std::size_t>(s)] = 0;
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  // x_j = L^-1 e_{q_j} for a batch of permuted indices q_j. The pattern of x_j is the path from
+  // q_j to the root of the elimination tree (Gilbert's theorem), in supernodal terms the chain of
+  // supernodes from the one holding q_j to the root. One sweep over the union of these chains,
+  // children before parents: in supernode s, B_s (its columns x the batch columns J_s whose
+  // chain passes through s) gets B_s = L_ss^-1 B_s (dtrsm), then L_below,s B_s (dgemm) is
+  // subtracted from the ancestors' blocks. Dense BLAS per supernode instead of one scalar sparse
+  // substitution per column (the first version, simplicial L: 4 of the 15 CPU seconds of a
+  // hertz-a level 6 solve, docs/benchmarks.md "HF solver scaling").
+  std::vector<SparseColumn> forward_batch(const std::vector<int>& q) {
+    const int* super = static_cast<const int*>(L->super);
+    const int* pi = static_cast<const int*>(L->pi);
+    const int* px = static_cast<const int*>(L->px);
+    const int* Ls = static_cast<const int*>(L->s);
+    const double* Lx = static_cast<const double*>(L->x);
+    const int nb = static_cast<int>(q.size());
+    std::vector<int> touched;
+    std::vector<int> start_position(static_cast<std::size_t>(nb));
+    for (int j = 0; j < nb; ++j) {
+      const int s0 = supernode_of[static_cast<std::size_t>(q[static_cast<std::size_t>(j)])];
+      start_position[static_cast<std::size_t>(j)] = static_cast<int>(path_columns[static_cast<std::size_t>(s0)].size());
+      for (int s = s0; s >= 0; s = supernode_parent[static_cast<std::size_t>(s)]) {
+        auto& cols = path_columns[static_cast<std::size_t>(s)];
+        if (cols.empty()) touched.push_back(s);
+        cols.push_back(j);  // ascending in j: batch columns are visited in order
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    std::vector<Eigen::MatrixXd> blocks(touched.size());
+    for (std::size_t a = 0; a < touched.size(); ++a) {
+      const int s = touched[a];
+      block_of[static_cast<std::size_t>(s)] = static_cast<int>(a);
+      blocks[a].setZero(super[s + 1] - super[s], static_cast<Eigen::Index>(path_columns[static_cast<std::size_t>(s)].size()));
+    }
+    for (int j = 0; j < nb; ++j) {
+      const int qj = q[static_cast<std::size_t>(j)];
+      const int s0 = supernode_of[static_cast<std::size_t>(qj)];
+      blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(s0)])](qj - super[s0], start_position[static_cast<std::size_t>(j)]) = 1.0;
+    }
+    Eigen::MatrixXd W;
+    std::vector<int> column_map;
+    for (std::size_t a = 0; a < touched.size(); ++a) {
+      const int s = touched[a];
+      Eigen::MatrixXd& B = blocks[a];
+      const int nscol = super[s + 1] - super[s];
+      const int nsrow = pi[s + 1] - pi[s];
+      const int ncols = static_cast<int>(B.cols());
+      const double* Ls_x = Lx + px[s];
+      const char left = 'L', lower = 'L', notrans = 'N', nonunit = 'N';
+      const double one = 1.0, zero = 0.0;
+      dtrsm_(&left, &lower, &notrans, &nonunit, &nscol, &ncols, &one, Ls_x, &nsrow, B.data(), &nscol);
+      const int nbelow = nsrow - nscol;
+      if (nbelow == 0) continue;
+      W.resize(nbelow, ncols);
+      dgemm_(&notrans, &notrans, &nbelow, &ncols, &nscol, &one, Ls_x + nscol, &nsrow, B.data(), &nscol, &zero, W.data(),
+             &nbelow);
+      // Scatter into the ancestors: row r of supernode t, batch column J_s[c] at its place in J_t
+      // (J_s is a subset of J_t: a chain through s goes on through every ancestor).
+      const auto& js = path_columns[static_cast<std::size_t>(s)];
+      int last_t = -1;
+      Eigen::MatrixXd* Bt = nullptr;
+      for (int i = 0; i < nbelow; ++i) {
+        const int r = Ls[pi[s] + nscol + i];
+        const int t = supernode_of[static_cast<std::size_t>(r)];
+        if (t != last_t) {
+          last_t = t;
+          Bt = &blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(t)])];
+          const auto& jt = path_columns[static_cast<std::size_t>(t)];
+          column_map.resize(static_cast<std::size_t>(ncols));
+          for (int c = 0; c < ncols; ++c) {
+            column_map[static_cast<std::size_t>(c)] =
+                static_cast<int>(std::lower_bound(jt.begin(), jt.end(), js[static_cast<std::size_t>(c)]) - jt.begin());
+          }
+        }
+        const int row = r - super[t];
+        for (int c = 0; c < ncols; ++c) (*Bt)(row, column_map[static_cast<std::size_t>(c)]) -= W(i, c);
+      }
+    }
+    std::vector<SparseColumn> out(static_cast<std::size_t>(nb));
+    for (int j = 0; j < nb; ++j) {
+      SparseColumn& x = out[static_cast<std::size_t>(j)];
+      const int qj = q[static_cast<std::size_t>(j)];
+      for (int s = supernode_of[static_cast<std::size_t>(qj)]; s >= 0; s = supernode_parent[static_cast<std::size_t>(s)]) {
+        const auto& js = path_columns[static_cast<std::size_t>(s)];
+        const auto c = std::lower_bound(js.begin(), js.end(), j) - js.begin();
+        const Eigen::MatrixXd& B = blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(s)])];
+        for (int k = std::max(super[s], qj); k < super[s + 1]; ++k) {  // rows above q_j in its supernode are zero
+          x.rows.push_back(k);
+          x.values.push_back(B(k - super[s], c));
+        }
+      }
+    }
+    for (int s : touched) {
+      path_columns[static_cast<std::size_t>(s)].clear();
+      block_of[static_cast<std::size_t>(s)] = -1;
+    }
+    return out;
   }
 };
 
@@ -134,16 +230,31 @@ SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>
     cholmod_free_factor(&m.L, &m.common);
     return m.status;
   }
-  // Simplicial, packed, monotonic LL' for the column-by-column sparse substitutions.
-  if (!ok || !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, m.L, &m.common)) {
+  if (!ok || !m.L->is_super) {
     cholmod_free_factor(&m.L, &m.common);
     return m.status;
   }
   m.n = static_cast<int>(A.rows());
+  const int nsuper = static_cast<int>(m.L->nsuper);
+  const int* super = static_cast<const int*>(m.L->super);
+  const int* pi = static_cast<const int*>(m.L->pi);
+  const int* Ls = static_cast<const int*>(m.L->s);
+  m.supernode_of.assign(static_cast<std::size_t>(m.n), -1);
+  for (int s = 0; s < nsuper; ++s) {
+    for (int k = super[s]; k < super[s + 1]; ++k) m.supernode_of[static_cast<std::size_t>(k)] = s;
+  }
+  m.supernode_parent.assign(static_cast<std::size_t>(nsuper), -1);
+  for (int s = 0; s < nsuper; ++s) {
+    const int nscol = super[s + 1] - super[s];
+    if (pi[s + 1] - pi[s] > nscol) m.supernode_parent[static_cast<std::size_t>(s)] = m.supernode_of[static_cast<std::size_t>(Ls[pi[s] + nscol])];
+  }
+  m.path_columns.assign(static_cast<std::size_t>(nsuper), {});
+  m.chain_mark.assign(static_cast<std::size_t>(nsuper), 0);
+  m.work.assign(static_cast<std::size_t>(m.n), 0.0);
+  m.block_of.assign(static_cast<std::size_t>(nsuper), -1);
   m.inverse_perm.assign(static_cast<std::size_t>(m.n), 0);
   const int* perm = static_cast<const int*>(m.L->Perm);
   for (int k = 0; k < m.n; ++k) m.inverse_perm[static_cast<std::size_t>(perm[k])] = k;
-  m.work.assign(static_cast<std::size_t>(m.n), 0.0);
   m.row_pos.assign(static_cast<std::size_t>(m.n), -1);
   m.status = SelectedInverseStatus::Success;
   return m.status;
@@ -154,7 +265,14 @@ int SelectedInverse::rows() const { return impl_->n; }
 long SelectedInverse::factor_nonzeros() const {
   const Impl& m = *impl_;
   if (m.L == nullptr) return 0;
-  return static_cast<long>(static_cast<const int*>(m.L->p)[m.n]);
+  const int* super = static_cast<const int*>(m.L->super);
+  const int* pi = static_cast<const int*>(m.L->pi);
+  long count = 0;
+  for (std::size_t s = 0; s < m.L->nsuper; ++s) {
+    const long nscol = super[s + 1] - super[s], nsrow = pi[s + 1] - pi[s];
+    count += nscol * (nscol + 1) / 2 + nscol * (nsrow - nscol);
+  }
+  return count;
 }
 int SelectedInverse::cached_columns() const { return static_cast<int>(impl_->columns.size()); }
 
@@ -180,20 +298,98 @@ Eigen::VectorXd SelectedInverse::solve(const Eigen::VectorXd& b) const {
   return out;
 }
 
+Eigen::VectorXd SelectedInverse::solve_sparse(const std::vector<int>& in, const Eigen::VectorXd& b_in,
+                                              const std::vector<int>* out) const {
+  Impl& m = *impl_;
+  require(m.status == SelectedInverseStatus::Success,
+          std::string("SelectedInverse::solve_sparse: the factorization is ") + to_string(m.status));
+  require(b_in.size() == static_cast<Eigen::Index>(in.size()), "SelectedInverse::solve_sparse: " +
+                                                                   std::to_string(b_in.size()) + " values for " +
+                                                                   std::to_string(in.size()) + " indices");
+  auto permuted = [&](const std::vector<int>& idx) {
+    std::vector<int> q;
+    q.reserve(idx.size());
+    for (int i : idx) {
+      require(i >= 0 && i < m.n, "SelectedInverse::solve_sparse: index " + std::to_string(i) + " outside [0, " +
+                                     std::to_string(m.n) + ")");
+      q.push_back(m.inverse_perm[static_cast<std::size_t>(i)]);
+    }
+    return q;
+  };
+  const std::vector<int> q_in = permuted(in);
+  const int* super = static_cast<const int*>(m.L->super);
+  const int* pi = static_cast<const int*>(m.L->pi);
+  const int* px = static_cast<const int*>(m.L->px);
+  const int* Ls = static_cast<const int*>(m.L->s);
+  const double* Lx = static_cast<const double*>(m.L->x);
+  double* w = m.work.data();
+  const char lower = 'L', notrans = 'N', trans = 'T', nonunit = 'N';
+  const double one = 1.0, minus_one = -1.0, zero = 0.0;
+  const int inc = 1;
+  std::vector<double> below;
+  // Forward L v = P b: only the chains of `in` (v vanishes elsewhere, Gilbert's theorem).
+  for (std::size_t a = 0; a < in.size(); ++a) w[q_in[a]] += b_in(static_cast<Eigen::Index>(a));
+  const std::vector<int> forward = m.chains(q_in);
+  for (int s : forward) {
+    const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s], nbelow = nsrow - nscol;
+    const double* Lss = Lx + px[s];
+    dtrsv_(&lower, &notrans, &nonunit, &nscol, Lss, &nsrow, w + k1, &inc);
+    if (nbelow == 0) continue;
+    below.assign(static_cast<std::size_t>(nbelow), 0.0);
+    dgemv_(&notrans, &nbelow, &nscol, &one, Lss + nscol, &nsrow, w + k1, &inc, &zero, below.data(), &inc);
+    for (int i = 0; i < nbelow; ++i) w[Ls[pi[s] + nscol + i]] -= below[static_cast<std::size_t>(i)];
+  }
+  // Backward L' x' = v, root first: x' on a supernode needs x' on its ancestors only, so the
+  // chains of `out` suffice for x[out]; all supernodes for the whole x.
+  std::vector<int> backward;
+  std::vector<int> q_out;
+  if (out != nullptr) {
+    q_out = permuted(*out);
+    backward = m.chains(q_out);
+  } else {
+    backward.resize(m.L->nsuper);
+    for (std::size_t s = 0; s < backward.size(); ++s) backward[s] = static_cast<int>(s);
+  }
+  for (auto it = backward.rbegin(); it != backward.rend(); ++it) {
+    const int s = *it;
+    const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s], nbelow = nsrow - nscol;
+    const double* Lss = Lx + px[s];
+    if (nbelow > 0) {
+      below.resize(static_cast<std::size_t>(nbelow));
+      for (int i = 0; i < nbelow; ++i) below[static_cast<std::size_t>(i)] = w[Ls[pi[s] + nscol + i]];
+      dgemv_(&trans, &nbelow, &nscol, &minus_one, Lss + nscol, &nsrow, below.data(), &inc, &one, w + k1, &inc);
+    }
+    dtrsv_(&lower, &trans, &nonunit, &nscol, Lss, &nsrow, w + k1, &inc);
+  }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(m.n);
+  if (out != nullptr) {
+    for (std::size_t a = 0; a < out->size(); ++a) x((*out)[a]) = w[q_out[a]];
+  } else {
+    const int* perm = static_cast<const int*>(m.L->Perm);
+    for (int k = 0; k < m.n; ++k) x(perm[k]) = w[k];
+  }
+  // Restore the zero work vector on every supernode touched.
+  for (const std::vector<int>* touched : {&forward, static_cast<const std::vector<int>*>(&backward)}) {
+    for (int s : *touched) std::fill(w + super[s], w + super[s + 1], 0.0);
+  }
+  return x;
+}
+
 Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
   Impl& m = *impl_;
   require(m.status == SelectedInverseStatus::Success,
           std::string("SelectedInverse::block: the factorization is ") + to_string(m.status));
-  std::vector<int> fresh;
+  std::vector<int> fresh, fresh_permuted;
   for (int i : idx) {
     require(i >= 0 && i < m.n, "SelectedInverse::block: index " + std::to_string(i) + " outside [0, " +
                                    std::to_string(m.n) + ")");
     if (m.column_of.count(i) == 0) {
-      m.column_of.emplace(i, static_cast<int>(m.columns.size()));
-      m.columns.push_back(m.forward_unit(m.inverse_perm[static_cast<std::size_t>(i)]));
+      m.column_of.emplace(i, static_cast<int>(m.columns.size() + fresh.size()));
       fresh.push_back(i);
+      fresh_permuted.push_back(m.inverse_perm[static_cast<std::size_t>(i)]);
     }
   }
+  for (SparseColumn& x : m.forward_batch(fresh_permuted)) m.columns.push_back(std::move(x));
   const int total = static_cast<int>(m.columns.size());
   if (!fresh.empty()) {
     // G[:, new] = X' X[:, new], X = [x_1 .. x_total]. Only the rows U_new of the new columns'
@@ -263,10 +459,27 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
         for (; c < col.size() && col[c].first < end; ++c) Xc(col[c].first - begin, a) = col[c].second;
       }
       const int nn = np - first_new;  // the new columns are the last ones of `present`
-      gemm_tn(Xc, Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(end - begin), nn, Gc);
+      const int rows_c = end - begin;
+      const double* Xnew = Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(rows_c);
+      const char t = 'T', nt = 'N', upper = 'U';
+      const double one = 1.0, zero = 0.0;
+      // Old columns x new ones (dgemm), new x new (dsyrk, one triangle: the first call has
+      // only new columns, and this halves its flops).
+      if (first_new > 0) {
+        Gc.resize(first_new, nn);
+        dgemm_(&t, &nt, &first_new, &nn, &rows_c, &one, Xc.data(), &rows_c, Xnew, &rows_c, &zero, Gc.data(), &first_new);
+        for (int b = 0; b < nn; ++b) {
+          const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
+          for (int a = 0; a < first_new; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
+        }
+      }
+      Gc.resize(nn, nn);
+      dsyrk_(&upper, &t, &nn, &rows_c, &one, Xnew, &rows_c, &zero, Gc.data(), &nn);
       for (int b = 0; b < nn; ++b) {
         const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
-        for (int a = 0; a < np; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
+        for (int a = 0; a < nn; ++a) {
+          right(present[static_cast<std::size_t>(first_new + a)], jb) += a <= b ? Gc(a, b) : Gc(b, a);
+        }
       }
     }
     Eigen::MatrixXd G(total, total);

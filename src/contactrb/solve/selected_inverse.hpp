@@ -1,15 +1,18 @@
 #pragma once
-// A sparse SPD matrix factorized once (CHOLMOD), with two uses by the semi-smooth Newton solver
-// (hf/semismooth_newton.hpp, docs/solvers.md "Linear algebra of a Newton step"):
-//  - solve(b) = A^-1 b (one forward and one backward substitution);
+// A sparse SPD matrix factorized once (CHOLMOD, supernodal), with three uses by the semi-smooth
+// Newton solver (hf/semismooth_newton.hpp, docs/solvers.md "Linear algebra of a Newton step"):
+//  - solve(b) = A^-1 b;
+//  - solve_sparse(in, b_in, out): A^-1 b for a b supported on a few indices, on a few indices
+//    (or all): only the elimination-tree chains of `in` (forward) and of `out` (backward) are
+//    visited;
 //  - block(idx) = (A^-1)[idx, idx], a small dense block of the inverse on a few indices (the
 //    contact DOFs of the active rows), without ever forming A^-1 on more columns than asked.
 // With P A P' = L L', (A^-1)_ij = x_i . x_j where x_i = L^-1 P e_i. The pattern of x_i is the
 // path from P(i) to the root of the elimination tree (Gilbert's theorem), short under a
-// nested-dissection ordering (about the separator sizes, O(sqrt N) for 2D meshes), so each x_i
-// costs a sparse forward substitution along that path, not a solve over all N rows. The x_i
-// are cached: Newton iterations ask for nearly the same indices again, and only the indices
-// not seen before cost anything.
+// fill-reducing ordering (about the separator sizes, O(sqrt N) for 2D meshes). The x_i of a
+// request are computed together, supernode by supernode along the union of their paths (dense
+// dtrsm / dgemm per supernode), and cached: Newton iterations ask for nearly the same indices
+// again, and only the indices not seen before cost anything.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -27,8 +30,8 @@ class SelectedInverse {
   SelectedInverse(SelectedInverse&&) noexcept;
   SelectedInverse& operator=(SelectedInverse&&) noexcept;
 
-  // Ordering (CHOLMOD's default: AMD, METIS when AMD fills badly), supernodal numeric
-  // factorization, then conversion to a simplicial L for the sparse substitutions. A: symmetric
+  // Ordering (CHOLMOD's default: AMD, METIS when AMD fills badly) and supernodal numeric
+  // factorization (BLAS 3), kept supernodal for every substitution. A: symmetric
   // with both triangles stored (only the lower one is read). InvalidInput: not square, empty,
   // a non-finite entry or a CHOLMOD failure (out of memory). Drops the cached columns.
   SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A);
@@ -38,6 +41,11 @@ class SelectedInverse {
 
   // Throw contactrb::Error unless status() == Success and the sizes / indices are valid.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  // x = A^-1 b for b supported on the indices `in` (values b_in): the forward substitution runs
+  // along the elimination-tree chains of `in` only. out == nullptr: the whole x (a full backward
+  // substitution); else only x[out] (the backward one along the chains of `out`), zero elsewhere.
+  Eigen::VectorXd solve_sparse(const std::vector<int>& in, const Eigen::VectorXd& b_in,
+                               const std::vector<int>* out = nullptr) const;
   Eigen::MatrixXd block(const std::vector<int>& idx);
   int cached_columns() const;
 
