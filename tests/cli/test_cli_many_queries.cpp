@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -119,6 +120,67 @@ TEST_F(CliManyQueries, ThreadedBatchPrintsTheSerialOutput) {
     const std::vector<std::string> got = without_time(r.out);
     ASSERT_EQ(got.size(), expected.size()) << jobs;
     for (std::size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], expected[i]) << "line " << i + 1 << ", jobs " << jobs;
+  }
+}
+
+// --format csv and npy on threads: the serial run's bytes (no timing in them), from a file and
+// through a pipe (stdin), with bad lines among 700; the npy rows checked apart: one per line,
+// in input order, and the CSV's numbers.
+TEST_F(CliManyQueries, ThreadedCompactFormatsAreTheSerialBytes) {
+  const std::string batch = dir_->file("batch_compact.txt");
+  {
+    std::ofstream f(batch);
+    for (int i = 0; i < 700; ++i) {
+      if (i % 101 == 7) {
+        f << "x\n";
+      } else {
+        f << 0.9 + 0.22 * std::fmod(0.414213562373095 * i, 1.0) << "\n";
+      }
+    }
+  }
+  const std::string model = "online --model " + shell_quote(model_);
+  std::map<std::string, std::string> serial_out;
+  for (const std::string format : {"csv", "npy"}) {
+    const CliResult serial = run_cli(model + " --batch " + shell_quote(batch) + " --format " + format);
+    EXPECT_EQ(serial.exit_code, 1) << serial.err;  // the bad lines
+    EXPECT_NE(serial.err.find("batch line 8:"), std::string::npos) << serial.err;
+    serial_out[format] = serial.out;
+    for (int jobs : {2, 3}) {
+      const std::string j = " --jobs " + std::to_string(jobs) + " --format " + format;
+      const CliResult file = run_cli(model + " --batch " + shell_quote(batch) + j);
+      EXPECT_EQ(file.exit_code, 1) << format << jobs;
+      EXPECT_EQ(file.err, serial.err) << format << jobs;
+      EXPECT_TRUE(file.out == serial.out) << format << ", jobs " << jobs << ": the output differs";
+      const CliResult pipe =
+          contactrb::test::run_shell("cat " + shell_quote(batch) + " | " + shell_quote(CONTACTRB_CLI) + " " + model + " --batch -" + j);
+      EXPECT_EQ(pipe.exit_code, 1) << format << jobs;
+      EXPECT_TRUE(pipe.out == serial.out) << format << ", jobs " << jobs << ", stdin: the output differs";
+    }
+  }
+  // npy: a 10-byte preamble, the header (shape (700, 7)), then 700 rows of 7 float64.
+  const std::string& npy = serial_out["npy"];
+  ASSERT_GT(npy.size(), 10u);
+  const std::size_t header = static_cast<unsigned char>(npy[8]) + 256 * static_cast<unsigned char>(npy[9]);
+  EXPECT_NE(npy.find("'shape': (700, 7)"), std::string::npos);
+  ASSERT_EQ(npy.size(), 10 + header + 700 * 7 * sizeof(double));
+  const std::vector<std::string> csv = lines_of(serial_out["csv"]);
+  ASSERT_EQ(csv.size(), 701u);  // the header line, then one row per line
+  for (std::size_t i = 0; i < 700; ++i) {
+    double row[7];
+    std::memcpy(row, npy.data() + 10 + header + i * sizeof row, sizeof row);
+    EXPECT_EQ(row[0], static_cast<double>(i + 1));
+    const std::vector<std::string> cells = split(csv[i + 1]);
+    ASSERT_EQ(cells.size(), 7u) << csv[i + 1];
+    EXPECT_EQ(cells[0], std::to_string(i + 1));
+    if (i % 101 == 7) {
+      EXPECT_EQ(cells[2], "error");
+      EXPECT_EQ(row[2], -1.0);
+      EXPECT_TRUE(std::isnan(row[1]));
+    } else {
+      EXPECT_EQ(row[1], std::stod(cells[1])) << i;  // mu: shortest round-trip text
+      EXPECT_EQ(row[4], std::stod(cells[4])) << i;  // energy
+      EXPECT_EQ(row[5], std::stod(cells[5])) << i;  // contact_force
+    }
   }
 }
 
