@@ -51,11 +51,14 @@ struct SampleOptions {
 };
 
 // The outputs, in the order of the files. peak_pressure needs the model's reconstruction data.
+// max_gap, min_gap: of the deformed normal gap over the slave nodes (OnlineSolver::surface_gap).
 struct Outputs {
-  std::vector<double> contact_force, peak_pressure, energy, estimate, iterations;
+  std::vector<double> contact_force, peak_pressure, max_gap, min_gap, energy, estimate, iterations;
   std::vector<std::pair<std::string, std::vector<double>*>> named(bool with_peak) {
     std::vector<std::pair<std::string, std::vector<double>*>> v{{"contact_force", &contact_force}};
     if (with_peak) v.emplace_back("peak_pressure", &peak_pressure);
+    v.emplace_back("max_gap", &max_gap);
+    v.emplace_back("min_gap", &min_gap);
     v.emplace_back("energy", &energy);
     v.emplace_back("estimate", &estimate);
     v.emplace_back("iterations", &iterations);
@@ -159,6 +162,9 @@ int run_sample(const SampleOptions& opt) {
       out.energy[i] = s.energy;
       if (s.estimate.available) out.estimate[i] = s.estimate.energy;
       if (with_peak) out.peak_pressure[i] = (Xi.leftCols(s.lambda_hat.size()) * s.lambda_hat).maxCoeff();
+      const rb::OnlineSolver::SurfaceGap gap = solver.surface_gap(mu, s);
+      out.max_gap[i] = gap.max;
+      out.min_gap[i] = gap.min;
     }, 256);
   } catch (const Error& e) {
     error = e.what();

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "support/meshio_reader.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -213,7 +214,7 @@ TEST_F(CliManyQueries, SampleStatisticsAreThoseOfItsPoints) {
   // stats.csv: count, min, max, mean and median of each output recomputed from the points.
   const auto stats = read_csv(s1);
   const std::vector<std::string>& names = stats.at("output");
-  ASSERT_EQ(names, (std::vector<std::string>{"contact_force", "peak_pressure", "energy", "estimate", "iterations"}));
+  ASSERT_EQ(names, (std::vector<std::string>{"contact_force", "peak_pressure", "max_gap", "min_gap", "energy", "estimate", "iterations"}));
   for (std::size_t k = 0; k < names.size(); ++k) {
     std::vector<double> v;
     for (const std::string& c : points[names[k]]) {
@@ -249,6 +250,33 @@ TEST_F(CliManyQueries, SampleStatisticsAreThoseOfItsPoints) {
   ASSERT_EQ(answers.size(), 25u);
   for (std::size_t i = 0; i < answers.size(); ++i) {
     EXPECT_EQ(json::parse(answers[i]).at("contact_force").get<double>(), std::stod(points["contact_force"][i])) << i;
+  }
+}
+
+// max_gap and min_gap of `sample` (the deformed normal gap over the slave nodes, from the
+// model's contact surface) against the gap field of the reconstructed solution on the HF mesh
+// (`online --mu --out`, contact.vtu, read by meshio): another code path to the same numbers.
+TEST_F(CliManyQueries, SampleGapsAreThoseOfTheReconstructedSolution) {
+  SKIP_WITHOUT_MESHIO();
+  const std::string s = dir_->file("g.csv"), p = dir_->file("g_points.csv");
+  const CliResult r = sample("--n 3 --seed 3 --no-plot --out " + shell_quote(s) + " --points " + shell_quote(p));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  auto points = read_csv(p);
+  ASSERT_EQ(points["max_gap"].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string out = dir_->file("g" + std::to_string(i));
+    const CliResult o = run_cli("online --model " + shell_quote(model_) + " --mu " + points["lower radius R2"][i] +
+                                " --out " + shell_quote(out));
+    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+    const json f = contactrb::test::read_vtu_with_meshio(fs::path(out) / "contact.vtu");
+    ASSERT_FALSE(f.is_null());
+    const std::vector<double> gap = f["point_data"]["gap"].get<std::vector<double>>();
+    ASSERT_GT(gap.size(), 10u);
+    const double max = *std::max_element(gap.begin(), gap.end()), min = *std::min_element(gap.begin(), gap.end());
+    EXPECT_NEAR(std::stod(points["max_gap"][i]), max, 1e-12 * std::abs(max)) << i;
+    EXPECT_NEAR(std::stod(points["min_gap"][i]), min, 1e-12) << i;
+    EXPECT_GT(max, 0.5);   // the slave chain's open end
+    EXPECT_LT(min, 1e-3);  // in contact
   }
 }
 
