@@ -47,7 +47,7 @@ class Pipeline {
     }
   }
 
-  // Thread `t`'s loop: pieces of the oldest chunks with lines left, until the input is read
+  // A solver thread's loop: pieces of the oldest chunks with lines left, until the input is read
   // and every line handed out (or stop).
   void work(rb::OnlineSolver& solver) {
     guarded([&] {
