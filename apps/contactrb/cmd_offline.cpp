@@ -79,6 +79,7 @@ struct OfflineOptions {
   bool greedy = false;
   double greedy_tol = rb::GreedyOfflineSettings{}.tolerance;
   int max_hf = rb::GreedyOfflineSettings{}.max_hf;
+  int greedy_batch = rb::GreedyOfflineSettings{}.batch;
   std::string out;
 };
 
@@ -197,6 +198,7 @@ int run_greedy(const OfflineOptions& opt) {
   require(!opt.case_name.empty() || !opt.case_file.empty(), "--greedy needs --case or --case-file (it computes its own snapshots)");
   require(std::isfinite(opt.greedy_tol) && opt.greedy_tol > 0.0, "--greedy-tol must be a finite number > 0");
   require(opt.max_hf >= 1, "--max-hf must be >= 1 (got " + std::to_string(opt.max_hf) + ")");
+  require(opt.greedy_batch >= 1, "--greedy-batch must be >= 1 (got " + std::to_string(opt.greedy_batch) + ")");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   rb::GreedyOfflineSettings gs;
@@ -205,6 +207,7 @@ int run_greedy(const OfflineOptions& opt) {
   // sampling", gives the measured trade-off.
   gs.tolerance = opt.greedy_tol;
   gs.max_hf = opt.max_hf;
+  gs.batch = opt.greedy_batch;
   gs.jobs = opt.jobs;
   gs.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
   rb::check_settings(gs);
@@ -245,6 +248,7 @@ int run_greedy(const OfflineOptions& opt) {
     j["training"] = {{"set", request.set_name}, {"count", request.mu.size()}};
     j["tolerance"] = gs.tolerance;
     j["max_hf"] = gs.max_hf;
+    j["batch"] = gs.batch;
     j["status"] = rb::to_string(g.status);
     j["hf_solves"] = g.hf_solves;
     const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
@@ -264,6 +268,12 @@ int run_greedy(const OfflineOptions& opt) {
     j["excluded"] = excluded;
     j["sizes"] = {{"N", g.offline.model.N_max}, {"R", g.offline.model.R_max}, {"Mk", g.offline.model.Mk_max},
                   {"Mg", g.offline.model.Mg_max}};
+    // A step's HF points, the chosen (largest estimate) first.
+    const auto batch_points = [&](const rb::GreedyStep& r) {
+      nlohmann::json a = nlohmann::json::array();
+      for (int i : r.batch_points) a.push_back(point(request.mu[static_cast<std::size_t>(i)]));
+      return a;
+    };
     nlohmann::json steps = nlohmann::json::array();
     for (const rb::GreedyStep& r : g.steps) {
       steps.push_back({{"step", r.step},
@@ -280,6 +290,8 @@ int run_greedy(const OfflineOptions& opt) {
                        {"hf_status", r.hf_status},
                        {"true_error", finite_or_null(r.true_error)},
                        {"true_e_press", finite_or_null(r.true_e_press)},
+                       {"batch_mu", batch_points(r)},
+                       {"batch_failures", r.batch_failures},
                        {"times_s", {{"build", r.build_s}, {"sweep", r.sweep_s}, {"hf", r.hf_s}, {"step", r.step_s}}}});
     }
     j["steps"] = steps;
@@ -525,6 +537,11 @@ Command add_offline_command(CLI::App& app) {
       ->capture_default_str()
       ->needs(greedy_opt);
   sub->add_option("--max-hf", opt->max_hf, "With --greedy: budget of HF solves (the start point's included)")
+      ->capture_default_str()
+      ->needs(greedy_opt);
+  sub->add_option("--greedy-batch", opt->greedy_batch,
+                  "With --greedy: HF solves per step, at the largest estimates (run on --jobs threads, or over the "
+                  "MPI ranks under mpirun); 1: the classic greedy")
       ->capture_default_str()
       ->needs(greedy_opt);
   sub->add_option("--out", opt->out,

@@ -1,5 +1,6 @@
 #include "mpi_greedy.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cstdint>
 #include <exception>
@@ -58,18 +59,29 @@ bool all_gather(MpiWorld& world, std::vector<double>& values, bool ok) {
   return true;
 }
 
-// Rank 0 solves and broadcasts {status, size} then the bytes: the packed snapshot and layout
-// (status 0) or the error message (status 1), which every rank then throws.
-io::SnapshotSet share(MpiWorld& world, const std::function<io::SnapshotSet()>& solve, const rb::SnapshotRequest& one) {
-  std::uint64_t head[2] = {0, 0};
+// The step's point k on rank k mod size. Each rank packs its results as records [u64 length]
+// [pack_solved bytes] (status 0) or its error message (status 1); all ranks gather every rank's
+// {status, length} and then the bytes, so that each rank assembles the step's whole set, or throws
+// the first failing rank's error.
+io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& solve, const rb::SnapshotRequest& step) {
+  const std::size_t K = step.mu.size();
+  const auto size = static_cast<std::size_t>(world.size());
+  rb::SnapshotRequest part = step;
+  part.mu.clear();
+  std::vector<std::uint64_t> mine;
+  for (std::size_t k = static_cast<std::size_t>(world.rank()); k < K; k += size) {
+    mine.push_back(k);
+    part.mu.push_back(step.mu[k]);
+  }
+  std::uint64_t head[2] = {0, 0};  // status, bytes
   std::vector<char> bytes;
-  io::SnapshotSet set;
   std::exception_ptr error;
-  if (world.rank() == 0) {
+  if (!mine.empty()) {
     try {
-      set = solve();
-      require(set.snapshots.size() == 1, "internal: the greedy's HF solve gave " + std::to_string(set.snapshots.size()) +
-                                              " snapshots");
+      const io::SnapshotSet set = solve(part);
+      require(set.snapshots.size() == mine.size(), "internal: the greedy's HF solves gave " +
+                                                       std::to_string(set.snapshots.size()) + " snapshots for " +
+                                                       std::to_string(mine.size()) + " points");
       rb::SnapshotLayout layout;
       layout.valid = set.num_dofs > 0;  // assemble_snapshot_set leaves num_dofs 0 without a solver
       layout.num_dofs = set.num_dofs;
@@ -78,8 +90,13 @@ io::SnapshotSet share(MpiWorld& world, const std::function<io::SnapshotSet()>& s
       layout.slave = set.slave;
       layout.master = set.master;
       layout.constraint = set.constraint;
-      bytes = rb::pack_solved(0, set.snapshots.front(), layout);
-      to_int(bytes.size(), "bytes in one snapshot");
+      for (std::size_t j = 0; j < mine.size(); ++j) {
+        const std::vector<char> record = rb::pack_solved(mine[j], set.snapshots[j], layout);
+        const std::uint64_t length = record.size();
+        const char* l = reinterpret_cast<const char*>(&length);
+        bytes.insert(bytes.end(), l, l + sizeof length);
+        bytes.insert(bytes.end(), record.begin(), record.end());
+      }
     } catch (const std::exception& e) {
       error = std::current_exception();
       const std::string what = e.what();
@@ -91,25 +108,56 @@ io::SnapshotSet share(MpiWorld& world, const std::function<io::SnapshotSet()>& s
       bytes.assign(what.begin(), what.end());
       head[0] = 1;
     }
-    head[1] = bytes.size();
   }
-  // The other ranks wait here during the whole HF solve.
+  head[1] = bytes.size();
+  // Ranks without a point (or done first) wait here for the others' HF solves, polling.
+  std::vector<std::uint64_t> heads(2 * size);
   MPI_Request pending = MPI_REQUEST_NULL;
-  MPI_Ibcast(head, 2, MPI_UINT64_T, 0, MPI_COMM_WORLD, &pending);
+  MPI_Iallgather(head, 2, MPI_UINT64_T, heads.data(), 2, MPI_UINT64_T, MPI_COMM_WORLD, &pending);
   wait_polling(pending);
-  bytes.resize(static_cast<std::size_t>(head[1]));
-  MPI_Bcast(bytes.data(), static_cast<int>(head[1]), MPI_BYTE, 0, MPI_COMM_WORLD);
-  if (world.rank() == 0) {
-    if (error) std::rethrow_exception(error);
-    return set;
+  std::vector<int> counts(size), displs(size);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < size; ++r) {
+    counts[r] = to_int(heads[2 * r + 1], "bytes of one rank's HF solves");
+    displs[r] = to_int(total, "bytes of a step's HF solves");
+    total += heads[2 * r + 1];
   }
-  if (head[0] != 0) throw Error("greedy: the HF solve on MPI rank 0 failed: " + std::string(bytes.begin(), bytes.end()));
-  std::uint64_t index = 0;
-  std::vector<io::Snapshot> snapshots(1);
-  std::vector<rb::SnapshotLayout> layouts(1);
-  rb::unpack_solved(bytes, index, snapshots.front(), layouts.front());
-  require(index == 0, "internal: unexpected snapshot index from MPI rank 0");
-  return rb::assemble_snapshot_set(one, std::move(snapshots), layouts);
+  to_int(total, "bytes of a step's HF solves");
+  std::vector<char> all(total);
+  MPI_Iallgatherv(bytes.data(), counts[static_cast<std::size_t>(world.rank())], MPI_BYTE, all.data(), counts.data(),
+                  displs.data(), MPI_BYTE, MPI_COMM_WORLD, &pending);
+  wait_polling(pending);
+  if (error) std::rethrow_exception(error);
+  for (std::size_t r = 0; r < size; ++r) {
+    if (heads[2 * r] != 0) {
+      const auto begin = all.begin() + displs[r];
+      throw Error("greedy: the HF solve on MPI rank " + std::to_string(r) +
+                  " failed: " + std::string(begin, begin + counts[r]));
+    }
+  }
+  std::vector<io::Snapshot> snapshots(K);
+  std::vector<rb::SnapshotLayout> layouts(K);
+  std::vector<char> seen(K, 0);
+  for (std::size_t at = 0; at < total;) {
+    std::uint64_t length = 0;
+    require(total - at >= sizeof length, "internal: a truncated HF result from another MPI rank");
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(at), sizeof length, reinterpret_cast<char*>(&length));
+    at += sizeof length;
+    require(length <= total - at, "internal: a truncated HF result from another MPI rank");
+    const auto first = all.begin() + static_cast<std::ptrdiff_t>(at);
+    const std::vector<char> record(first, first + static_cast<std::ptrdiff_t>(length));
+    at += length;
+    std::uint64_t index = 0;
+    io::Snapshot snapshot;
+    rb::SnapshotLayout layout;
+    rb::unpack_solved(record, index, snapshot, layout);
+    require(index < K && !seen[index], "internal: an unexpected HF result index from another MPI rank");
+    seen[index] = 1;
+    snapshots[index] = std::move(snapshot);
+    layouts[index] = std::move(layout);
+  }
+  for (std::size_t k = 0; k < K; ++k) require(seen[k] != 0, "internal: an HF result missing after the MPI gather");
+  return rb::assemble_snapshot_set(step, std::move(snapshots), layouts);
 }
 
 }  // namespace
@@ -119,8 +167,8 @@ rb::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
   MpiWorld* w = &world;
   d.block = [w](std::size_t n) { return rank_block(n, w->rank(), w->size()); };
   d.gather = [w](std::vector<double>& values, bool ok) { return all_gather(*w, values, ok); };
-  d.share = [w](const std::function<io::SnapshotSet()>& solve, const rb::SnapshotRequest& one) {
-    return share(*w, solve, one);
+  d.share = [w](const rb::GreedyDistribution::SolveFn& solve, const rb::SnapshotRequest& step) {
+    return share(*w, solve, step);
   };
   return d;
 }

@@ -150,18 +150,20 @@ py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest
   };
   d["selected"] = points(g.selected);
   d["excluded"] = points(g.excluded);
-  std::vector<int> step, N, R;
+  std::vector<int> step, N, R, batch;
   std::vector<double> max_estimate, true_error;
   for (const rb::GreedyStep& s : g.steps) {
     step.push_back(s.step);
     N.push_back(s.N);
     R.push_back(s.R);
+    batch.push_back(static_cast<int>(s.batch_points.size()));
     max_estimate.push_back(s.max_estimate);
     true_error.push_back(s.true_error);
   }
   d["step"] = py::array_t<int>(static_cast<py::ssize_t>(step.size()), step.data());
   d["N"] = py::array_t<int>(static_cast<py::ssize_t>(N.size()), N.data());
   d["R"] = py::array_t<int>(static_cast<py::ssize_t>(R.size()), R.data());
+  d["batch_solves"] = py::array_t<int>(static_cast<py::ssize_t>(batch.size()), batch.data());
   d["max_estimate"] = py::array_t<double>(static_cast<py::ssize_t>(max_estimate.size()), max_estimate.data());
   d["true_error"] = py::array_t<double>(static_cast<py::ssize_t>(true_error.size()), true_error.data());
   d["snapshots"] = PySnapshots{g.snapshots, {}};
@@ -195,7 +197,7 @@ py::object as_case(const py::object& source) {
 
 std::shared_ptr<PyModel> offline(const py::object& source, const std::string& method, const py::object& set, int jobs,
                                  int level, const std::optional<std::string>& constraint, double alpha,
-                                 double tolerance, int max_iterations, double greedy_tol, int max_hf,
+                                 double tolerance, int max_iterations, double greedy_tol, int max_hf, int greedy_batch,
                                  const std::optional<std::string>& path, bool progress, const py::kwargs& kw) {
   for (const auto& item : kw) {
     static const std::vector<std::string> known = {"eps_pod", "N", "inner_product", "dual", "R", "eps_du",
@@ -226,11 +228,13 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     PyCase& c = case_object.cast<PyCase&>();
     require(std::isfinite(greedy_tol) && greedy_tol > 0.0, "greedy_tol must be a finite number > 0");
     require(max_hf >= 1, "max_hf must be >= 1 (got " + std::to_string(max_hf) + ")");
+    require(greedy_batch >= 1, "greedy_batch must be >= 1 (got " + std::to_string(greedy_batch) + ")");
     require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
     rb::GreedyOfflineSettings gs;
     gs.offline = settings;
     gs.tolerance = greedy_tol;
     gs.max_hf = max_hf;
+    gs.batch = greedy_batch;
     gs.jobs = jobs;
     gs.progress = progress_mode(progress);
     rb::check_settings(gs);
@@ -332,12 +336,14 @@ void bind_offline(py::module_& m) {
         py::arg("jobs") = 1, py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha,
         py::arg("tol") = k.tolerance, py::arg("max_iterations") = k.max_iterations,
         py::arg("greedy_tol") = rb::GreedyOfflineSettings{}.tolerance,
-        py::arg("max_hf") = rb::GreedyOfflineSettings{}.max_hf, py::arg("path") = py::none(),
+        py::arg("max_hf") = rb::GreedyOfflineSettings{}.max_hf,
+        py::arg("greedy_batch") = rb::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
         py::arg("progress") = false,
         "The offline stage, as `contactrb offline`: returns a Model (saved to path= when given).\n"
         "method='pod': source is a Snapshots, a snapshot file path, or a case (its `set` snapshots are\n"
         "computed first). method='greedy': source is a case; the weak greedy on the error estimate over\n"
-        "the set's points (greedy_tol, max_hf); model.greedy holds its table and selected snapshots.\n"
+        "the set's points (greedy_tol, max_hf; greedy_batch HF solves per step, on `jobs` threads);\n"
+        "model.greedy holds its table and selected snapshots.\n"
         "Offline settings (keywords, the CLI's defaults): eps_pod, N, inner_product ('energy'|'h1'),\n"
         "dual ('cpg'|'angle'|'nmf'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
         "compression, supremizers.");

@@ -76,10 +76,14 @@ TEST(CliOfflineGreedy, BadInputIsOneClearError) {
   user_error("--greedy-tol nan", "--greedy-tol must be a finite number > 0");
   user_error("--greedy-tol -1e-3", "--greedy-tol must be a finite number > 0");
   user_error("--set nosuchset", "nosuchset");
+  user_error("--greedy-batch 0", "--greedy-batch must be >= 1");
   // Greedy options without --greedy, and --greedy with a snapshot file: usage errors (CLI11).
   const CliResult a = run_cli("offline --case hertz-a --max-hf 3 --out " + out);
   EXPECT_NE(a.exit_code, 0);
   EXPECT_NE(a.err.find("--max-hf requires --greedy"), std::string::npos) << a.err;
+  const CliResult c = run_cli("offline --case hertz-a --greedy-batch 2 --out " + out);
+  EXPECT_NE(c.exit_code, 0);
+  EXPECT_NE(c.err.find("--greedy-batch requires --greedy"), std::string::npos) << c.err;
   const CliResult b = run_cli("offline --greedy --snapshots x.h5 --out " + out);
   EXPECT_NE(b.exit_code, 0);
   EXPECT_NE(b.err.find("--greedy excludes --snapshots"), std::string::npos) << b.err;

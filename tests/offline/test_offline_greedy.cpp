@@ -182,6 +182,55 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
   EXPECT_EQ(std::vector<int>(greedy().selected.begin(), greedy().selected.begin() + 3), a.selected);
 }
 
+TEST(OfflineGreedy, BatchSolvesTheLargestEstimatesWithinTheBudgetWhateverTheThreads) {
+  // Batch 3, budget 6: the start, a step of 3 solves, a step capped at 2, then a stop (Budget).
+  GreedyOfflineSettings s;
+  s.tolerance = 1e-6;
+  s.max_hf = 6;
+  s.batch = 3;
+  s.jobs = 1;
+  const GreedyOfflineResult a = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  s.jobs = 3;  // the step's solves in parallel
+  const GreedyOfflineResult b = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  EXPECT_EQ(a.status, GreedyOfflineStatus::Budget);
+  EXPECT_EQ(a.hf_solves, 6);
+  ASSERT_EQ(a.steps.size(), 3u);
+  EXPECT_EQ(a.steps[0].snapshots, 1);
+  EXPECT_EQ(a.steps[1].snapshots, 4);
+  EXPECT_EQ(a.steps[2].snapshots, 6);
+  EXPECT_EQ(a.steps[0].batch_points.size(), 3u);
+  EXPECT_EQ(a.steps[1].batch_points.size(), 2u);
+  EXPECT_TRUE(a.steps[2].batch_points.empty());
+  ASSERT_EQ(a.selected.size(), 6u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto& step = a.steps[k];
+    EXPECT_EQ(step.batch_failures, 0);
+    EXPECT_EQ(step.batch_points.front(), step.chosen);  // the largest estimate first
+    // The batch: distinct points, none selected before the step.
+    for (std::size_t i = 0; i < step.batch_points.size(); ++i) {
+      const auto end = a.selected.begin() + step.snapshots;
+      EXPECT_EQ(std::find(a.selected.begin(), end, step.batch_points[i]), end) << k << " " << i;
+      for (std::size_t j = 0; j < i; ++j) EXPECT_NE(step.batch_points[i], step.batch_points[j]);
+    }
+  }
+  // The first batch starts where the one-at-a-time greedy goes first (the same model and sweep).
+  ASSERT_GE(greedy().selected.size(), 2u);
+  EXPECT_EQ(a.steps[0].chosen, greedy().selected[1]);
+  // ... and its snapshot there is the same cold HF solve, bit for bit.
+  EXPECT_EQ(a.snapshots.snapshots[1].u, greedy().snapshots.snapshots[1].u);
+  EXPECT_EQ(a.snapshots.snapshots[1].lambda, greedy().snapshots.snapshots[1].lambda);
+  // Threads change nothing.
+  EXPECT_EQ(a.selected, b.selected);
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  for (std::size_t k = 0; k < a.steps.size(); ++k) {
+    EXPECT_EQ(a.steps[k].max_estimate, b.steps[k].max_estimate) << k;
+    EXPECT_EQ(a.steps[k].batch_points, b.steps[k].batch_points) << k;
+  }
+  for (std::size_t k = 0; k < a.snapshots.snapshots.size(); ++k) {
+    EXPECT_EQ(a.snapshots.snapshots[k].u, b.snapshots.snapshots[k].u) << k;
+  }
+}
+
 TEST(OfflineGreedy, StartIsTheTrainingPointNearestTheCentre) {
   using contactrb::cases::Mu;
   contactrb::cases::ParameterSpec p;
@@ -226,6 +275,9 @@ TEST(OfflineGreedy, BadSettingsAreRefused) {
   s = {};
   s.jobs = 0;
   refused(s, "jobs");
+  s = {};
+  s.batch = 0;
+  refused(s, "batch");
   s = {};
   s.offline.eps_pod = -1.0;
   refused(s, "eps_pod");

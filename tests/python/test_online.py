@@ -100,6 +100,23 @@ def test_greedy_offline_equals_cli(tmp_path):
     assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
 
 
+def test_batched_greedy_offline_equals_cli(tmp_path):
+    # greedy_batch=2 on 2 threads against --greedy-batch 2 on one: the same points and model.
+    out = tmp_path / "greedy" / "model.h5"
+    out.parent.mkdir()
+    run_cli("offline", "--greedy", "--case", "hertz-a", "--values", VALUES, "--max-hf", 4, "--greedy-batch", 2,
+            "-q", "--out", out)
+    values = np.array([float(v) for v in VALUES.split(",")])
+    model = contactrb.offline("hertz-a", "greedy", set=values, max_hf=4, greedy_batch=2, jobs=2)
+    g = json.loads((out.parent / "greedy.json").read_text())
+    assert g["batch"] == 2
+    assert model.greedy["hf_solves"] == g["hf_solves"] == 4
+    assert model.greedy["batch_solves"].tolist() == [len(step["batch_mu"]) for step in g["steps"]]
+    assert model.greedy["batch_solves"][0] == 2
+    assert model.greedy["selected"][:, 0].tolist() == g["selected"]
+    assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
+
+
 def test_fields_on_the_hf_mesh_match_the_hf_solution(model):
     # At a training value the reduced solution reproduces the snapshot up to the POD and solver
     # tolerances; the mesh of Omega(mu) is the HF solver's, bitwise.

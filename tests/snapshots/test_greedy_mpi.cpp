@@ -1,5 +1,6 @@
 // mpirun -np 2 contactrb offline --greedy (apps/contactrb/mpi_greedy.cpp): the ranks split the
-// estimate sweep and rank 0 does the HF solves, yet the run selects the serial run's points and
+// estimate sweep and a step's HF solves (rank 0 alone with one solve per step; --greedy-batch 2 on
+// two ranks), yet the run selects the serial run's points and
 // writes its files: greedy.csv equal but the timing columns, the selected snapshots equal but the
 // timings, and every dataset of the model file equal byte for byte. A command that does not split
 // its work (offline without --greedy) is refused with a clear message, not a hang. Skipped, with
@@ -89,31 +90,31 @@ std::map<std::string, std::string> datasets(const std::string& path) {
   return out;
 }
 
-}  // namespace
-
-TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
-  SKIP_WITHOUT_MPI();
-  contactrb::test::TempDir dir("mpi_greedy");
+// `command` serially, then under mpirun on 2 and 3 ranks: the same files (`steps` steps,
+// `selected` snapshots).
+void expect_ranks_write_the_serial_runs_files(const std::string& command, const std::string& name, std::size_t steps,
+                                              std::size_t selected) {
+  contactrb::test::TempDir dir(name);
   std::filesystem::create_directories(dir.path() / "serial");
   std::filesystem::create_directories(dir.path() / "mpi");
   const std::string serial_model = dir.file("serial/model.h5"), mpi_model = dir.file("mpi/model.h5");
-  const CliResult serial = contactrb::test::run_cli(kGreedy + " -q --out " + shell_quote(serial_model));
+  const CliResult serial = contactrb::test::run_cli(command + " -q --out " + shell_quote(serial_model));
   ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
   // 3 ranks: blocks of unequal size (31 training points: 11, 10, 10).
   for (int ranks : {2, 3}) {
     SCOPED_TRACE(std::to_string(ranks) + " ranks");
-    const CliResult r = mpirun(ranks, kGreedy + " --out " + shell_quote(mpi_model));
+    const CliResult r = mpirun(ranks, command + " --out " + shell_quote(mpi_model));
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find(std::to_string(ranks) + " MPI ranks"), std::string::npos) << r.out;
     // Rank 0 alone reports: one summary, one start line and one line per step.
     EXPECT_EQ(count(r.out, "wrote " + mpi_model), 1) << r.out;
     EXPECT_EQ(count(r.err, "greedy: start at mu = 0.3"), 1) << r.err;
-    EXPECT_EQ(count(r.err, "greedy step "), 4) << r.err;
+    EXPECT_EQ(count(r.err, "greedy step "), static_cast<int>(steps)) << r.err;
 
     // The same steps: sizes, estimates bit for bit (17 digits), argmax, chosen points, true errors.
     const auto a = csv_without_timings(dir.file("serial/greedy.csv"));
     const auto b = csv_without_timings(dir.file("mpi/greedy.csv"));
-    ASSERT_EQ(a.size(), 5u);  // header + 4 steps
+    ASSERT_EQ(a.size(), steps + 1);  // header + steps
     EXPECT_EQ(a, b);
     // greedy.json the same but its times_s.
     const auto json = [&](const std::string& path) {
@@ -124,12 +125,12 @@ TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
       return j;
     };
     const nlohmann::json ja = json(dir.file("serial/greedy.json"));
-    EXPECT_EQ(ja["selected"].size(), 4u);
+    EXPECT_EQ(ja["selected"].size(), selected);
     EXPECT_EQ(ja, json(dir.file("mpi/greedy.json")));
     // The same selected snapshots (all data but the timings).
     const auto sa = contactrb::io::read_snapshot_file(dir.file("serial/snapshots.h5"));
     const auto sb = contactrb::io::read_snapshot_file(dir.file("mpi/snapshots.h5"));
-    ASSERT_EQ(sa.snapshots.size(), 4u);
+    ASSERT_EQ(sa.snapshots.size(), selected);
     contactrb::test::expect_same_data(sa, sb, false);
     // The model: every dataset byte for byte.
     const auto ma = datasets(serial_model), mb = datasets(mpi_model);
@@ -140,6 +141,21 @@ TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
       EXPECT_TRUE(mb.at(name) == bytes) << name;
     }
   }
+}
+
+}  // namespace
+
+// One HF solve per step: rank 0 solves, every rank gets the snapshot.
+TEST(GreedyMpi, TwoRanksWriteTheSerialRunsFiles) {
+  SKIP_WITHOUT_MPI();
+  expect_ranks_write_the_serial_runs_files(kGreedy, "mpi_greedy", 4, 4);
+}
+
+// --greedy-batch 2: the step's two HF solves on ranks 0 and 1 (on 3 ranks, rank 2 has none),
+// the budget of 4 caps the second batch at one solve: steps of 1, 3 then 4 snapshots.
+TEST(GreedyMpi, BatchedHfSolvesAreSharedOutAndGiveTheSerialRunsFiles) {
+  SKIP_WITHOUT_MPI();
+  expect_ranks_write_the_serial_runs_files(kGreedy + " --greedy-batch 2", "mpi_greedy_batch", 3, 4);
 }
 
 // The HF solve at the start point fails (rank 0 solves it): every rank stops with the reason,

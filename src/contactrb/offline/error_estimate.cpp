@@ -9,15 +9,10 @@
 
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/index_cast.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
 
 namespace contactrb::rb {
-
-namespace {
-using Index = Eigen::Index;
-inline Index ix(std::size_t i) { return static_cast<Index>(i); }
-inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
-}  // namespace
 
 // The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
 // leading size: I_M F = Q[:, :M] B[:M, :M]^-1 F(magic[:M]) (B lower triangular).

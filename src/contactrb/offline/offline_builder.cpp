@@ -12,6 +12,7 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/index_cast.hpp"
 #include "contactrb/fem/cholesky.hpp"
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/offline/angle_greedy.hpp"
@@ -31,9 +32,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-using Index = Eigen::Index;
-inline Index ix(std::size_t i) { return static_cast<Index>(i); }
-inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
 
 // Selection matrix P (num_dofs x n_free): P(free_dofs[i], i) = 1, so P' A P = A_00.
 Eigen::SparseMatrix<double> free_selection(int num_dofs, const std::vector<int>& free_dofs) {

@@ -10,13 +10,13 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/run_threads.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/online/reconstruction.hpp"
 
@@ -70,14 +70,7 @@ Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus
   };
   const std::size_t threads_count = std::max<std::size_t>(1, std::min(end - begin, static_cast<std::size_t>(jobs)));
   std::vector<std::exception_ptr> setup_errors(threads_count);
-  if (threads_count == 1) {
-    work(setup_errors[0]);
-  } else {
-    std::vector<std::thread> threads;
-    threads.reserve(threads_count);
-    for (std::size_t j = 0; j < threads_count; ++j) threads.emplace_back(work, std::ref(setup_errors[j]));
-    for (std::thread& t : threads) t.join();
-  }
+  run_threads(threads_count, [&](std::size_t t) { work(setup_errors[t]); });
   for (const std::exception_ptr& e : setup_errors) {
     if (e) std::rethrow_exception(e);
   }
@@ -143,6 +136,10 @@ class GreedyProgress {
       } else {
         os << ", HF FAILED (" << r.hf_status << "): point excluded";
       }
+      if (r.batch_points.size() > 1) {
+        os << "; batch of " << r.batch_points.size() << " HF solves";
+        if (r.batch_failures > 0) os << ", " << r.batch_failures << " FAILED (points excluded)";
+      }
     }
     os << std::defaultfloat << std::setprecision(6);
     if (stop_reason != nullptr) os << "; stop: " << stop_reason;
@@ -179,6 +176,7 @@ void check_settings(const GreedyOfflineSettings& s) {
           "greedy: the tolerance must be finite and > 0, got " + std::to_string(s.tolerance));
   require(s.max_hf >= 1, "greedy: the HF budget must be >= 1, got " + std::to_string(s.max_hf));
   require(s.jobs >= 1, "greedy: the number of jobs must be >= 1, got " + std::to_string(s.jobs));
+  require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));
   check_settings(s.offline);
 }
 
@@ -252,21 +250,29 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
   GreedyOfflineResult out;
   std::vector<char> selected(sz(P), 0), excluded(sz(P), 0);
-  SnapshotRequest one = request;  // the request restricted to one point per HF solve
-  one.mu.clear();
-  const auto hf_solve = [&](int index) {
-    one.mu.assign(1, training[sz(index)]);
-    ++out.hf_solves;
-    const auto solve = [&] { return generate_snapshots(one, SnapshotRunOptions{}); };
-    // Distributed: process 0 solves, every process gets its snapshot (the same set everywhere).
-    return settings.distribution.share ? settings.distribution.share(solve, one) : solve();
+  // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
+  // starts (no warm start between the points of a step), so that each snapshot depends on its
+  // point only, not on the threads or processes that share the step out.
+  const auto hf_solve = [&](const std::vector<int>& indices) {
+    SnapshotRequest step = request;
+    step.mu.clear();
+    for (int i : indices) step.mu.push_back(training[sz(i)]);
+    out.hf_solves += static_cast<int>(indices.size());
+    const auto solve = [&settings](const SnapshotRequest& part) {
+      SnapshotRunOptions run;
+      run.jobs = settings.jobs;
+      run.warm_start = SnapshotRunOptions::WarmStart::Off;
+      return generate_snapshots(part, run);
+    };
+    // Distributed: each process solves its share, every process gets all (the same set everywhere).
+    return settings.distribution.share ? settings.distribution.share(solve, step) : solve(step);
   };
 
   // Start: one HF solve at the training point nearest the domain centre.
   out.start = greedy_start_index(spec.parameters, training);
   {
     const auto t0 = Clock::now();
-    out.snapshots = hf_solve(out.start);
+    out.snapshots = hf_solve({out.start});
     out.start_hf_s = seconds_since(t0);
     const io::Snapshot& s = out.snapshots.snapshots.front();
     progress.start(training[sz(out.start)], out.start, P, s);
@@ -300,19 +306,18 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     row.sweep_s = seconds_since(t0);
     row.online_failures = sweep.failures;
     row.max_estimate = -kInf;
-    int next = -1;  // the argmax over the points not selected yet: the next HF solve
-    double next_estimate = -kInf;
+    std::vector<int> candidates;  // the points not selected yet, largest estimate first: the next HF solves
     for (int i = 0; i < P; ++i) {
       if (excluded[sz(i)]) continue;
       if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
         row.max_estimate = sweep.criterion[sz(i)];
         row.argmax = i;
       }
-      if (!selected[sz(i)] && sweep.criterion[sz(i)] > next_estimate) {
-        next_estimate = sweep.criterion[sz(i)];
-        next = i;
-      }
+      if (!selected[sz(i)]) candidates.push_back(i);
     }
+    std::stable_sort(candidates.begin(), candidates.end(),  // stable: ties to the smallest index
+                     [&](int a, int b) { return sweep.criterion[sz(a)] > sweep.criterion[sz(b)]; });
+    const int next = candidates.empty() ? -1 : candidates.front();
     row.argmax_mu = training[sz(row.argmax)];
 
     const char* stop = nullptr;
@@ -326,23 +331,31 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
       out.status = GreedyOfflineStatus::Stagnated;
       stop = "every training point is selected (stagnated)";
     } else {
-      // Extend: the HF solve at the largest estimate among the points not selected yet. Where the
-      // overall max is at a selected point, the estimate there is its floor (docs/offline-online.md,
-      // "Greedy sampling"): another solve there adds nothing, a new point still enriches the
-      // bases, the cone and the EIM. Then the current model's true error there.
+      // Extend: the HF solves at the `batch` largest estimates among the points not selected yet
+      // (within the budget). Where the overall max is at a selected point, the estimate there is
+      // its floor (docs/offline-online.md, "Greedy sampling"): another solve there adds nothing, a
+      // new point still enriches the bases, the cone and the EIM. Then the current model's true
+      // error at the first of them.
+      const std::size_t count = std::min({candidates.size(), sz(settings.batch), sz(settings.max_hf - out.hf_solves)});
+      row.batch_points.assign(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(count));
       row.chosen = next;
       const GreedyMu& mu = training[sz(row.chosen)];
       row.chosen_mu = mu;
       OnlineSolver solver(model);
       const OnlineSolution rb = solver.solve(mu, online);
       t0 = Clock::now();
-      io::SnapshotSet s = hf_solve(row.chosen);
+      io::SnapshotSet s = hf_solve(row.batch_points);
       row.hf_s = seconds_since(t0);
+      require(s.snapshots.size() == count, "internal: the greedy's HF solves gave " +
+                                               std::to_string(s.snapshots.size()) + " snapshots for " +
+                                               std::to_string(count) + " points");
       io::Snapshot& snap = s.snapshots.front();
       row.hf_converged = snap.converged;
       row.hf_status = snap.status;
-      if (snap.converged) {
+      if (std::any_of(s.snapshots.begin(), s.snapshots.end(), [](const io::Snapshot& x) { return x.converged; })) {
         check_same_layout(out.snapshots, s, mu);
+      }
+      if (snap.converged) {
         if (rb.converged()) {
           const ReducedReconstruction& rec = out.offline.reconstruction;
           const fem::SparseMatrix A = cases::combine(terms.A, cases::evaluate(thetas.a, mu));
@@ -356,13 +369,20 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
           const double ld = std::sqrt(snap.weight.dot(dl.cwiseAbs2()));
           row.true_e_press = lh > 0.0 ? ld / lh : ld;
         }
-        out.snapshots.snapshots.push_back(std::move(snap));
-        out.selected.push_back(row.chosen);
-        selected[sz(row.chosen)] = 1;
-      } else {
-        // No snapshot to add: the point leaves the training set (reported in the step).
-        out.excluded.push_back(row.chosen);
-        excluded[sz(row.chosen)] = 1;
+      }
+      for (std::size_t k = 0; k < count; ++k) {
+        const int index = row.batch_points[k];
+        io::Snapshot& solved = s.snapshots[k];
+        if (solved.converged) {
+          out.snapshots.snapshots.push_back(std::move(solved));
+          out.selected.push_back(index);
+          selected[sz(index)] = 1;
+        } else {
+          // No snapshot to add: the point leaves the training set (reported in the step).
+          ++row.batch_failures;
+          out.excluded.push_back(index);
+          excluded[sz(index)] = 1;
+        }
       }
     }
     row.step_s = seconds_since(t_step);
@@ -380,7 +400,10 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
   for (const io::SnapshotParameter& q : params) columns.push_back("argmax_" + q.name);
   columns.push_back("online_failures");
   for (const io::SnapshotParameter& q : params) columns.push_back("chosen_" + q.name);
-  for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s"}) columns.push_back(c);
+  for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s", "batch_solves",
+                        "batch_failures"}) {
+    columns.push_back(c);
+  }
   io::CsvWriter csv(columns);
   const auto value = [](const GreedyMu& mu, std::size_t k) {
     return static_cast<Eigen::Index>(k) < mu.size() ? mu(static_cast<Eigen::Index>(k)) : std::nan("");
@@ -394,7 +417,8 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
     row.emplace_back(static_cast<long long>(r.online_failures));
     for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.chosen_mu, k));
     for (const io::CsvCell& c : std::vector<io::CsvCell>{r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s,
-                                                         r.hf_s, r.step_s}) {
+                                                         r.hf_s, r.step_s, static_cast<long long>(r.batch_points.size()),
+                                                         static_cast<long long>(r.batch_failures)}) {
       row.push_back(c);
     }
     csv.add_row(row);

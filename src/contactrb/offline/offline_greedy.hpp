@@ -42,17 +42,21 @@ const char* to_string(GreedyOfflineStatus status);  // "tolerance_reached" | "bu
 // apps/contactrb/mpi_greedy.cpp; src/ holds no MPI). Every process calls run_offline_greedy with
 // the same arguments and builds the same model at each step; each sweeps the estimate over its
 // `block` of the training set and `gather` gives every process all the blocks, so that every
-// process picks the same argmax as the serial run; the HF solve runs on process 0 only and
-// `share` gives its snapshot to every process. Empty functions: one process (the serial run).
+// process picks the same points as the serial run; the HF solves of a step are shared out by
+// `share` (point k of the step on process k mod K: with GreedyOfflineSettings::batch = 1 process 0
+// alone solves) and every process gets all the snapshots. Empty functions: one process.
 struct GreedyDistribution {
   // [begin, end) of this process's points among n.
   std::function<std::pair<std::size_t, std::size_t>(std::size_t n)> block;
   // `values` has n entries on every process, this one having filled its block (ok false: its sweep
   // threw). Afterwards every process holds every entry. Returns false when some process was not ok.
   std::function<bool(std::vector<double>& values, bool ok)> gather;
-  // On process 0 `solve` is the HF solve of the one point of `one` (it may throw); every process
-  // returns its result (an exception on process 0 is thrown on every process).
-  std::function<io::SnapshotSet(const std::function<io::SnapshotSet()>& solve, const SnapshotRequest& one)> share;
+  // The HF solves of the points of `step`: each process calls solve(part) on its part of them
+  // (a request with a subset of step.mu, possibly none: then it does not call solve; solve may
+  // throw) and every process returns the set of all of step.mu's snapshots, in step.mu's order,
+  // as solve(step) would (an exception on any process is thrown on every process).
+  using SolveFn = std::function<io::SnapshotSet(const SnapshotRequest& part)>;
+  std::function<io::SnapshotSet(const SolveFn& solve, const SnapshotRequest& step)> share;
   bool active() const { return static_cast<bool>(gather); }
 };
 
@@ -65,8 +69,14 @@ struct GreedyOfflineSettings {
   double tolerance = 1e-2;
   // Budget of HF solves, the start point's included (>= 1). A failed HF solve counts.
   int max_hf = 50;
-  // Threads of the estimate sweep (one OnlineSolver each; the result does not depend on it).
+  // Threads of the estimate sweep (one OnlineSolver each) and of a step's HF solves; the result
+  // does not depend on it.
   int jobs = 1;
+  // HF solves per step (>= 1): the `batch` largest estimates among the usable points not selected
+  // yet (a batched weak greedy: its solves run in parallel on `jobs` threads, or over the MPI
+  // processes). 1: the classic weak greedy, one solve per model build. Larger batches spend fewer
+  // builds and sweeps per HF solve, and may select points a one-at-a-time greedy would not.
+  int batch = 1;
   // Of every build_reduced_model call: the defaults of `contactrb offline`, compression (Remark 7)
   // included. Measured both ways (docs/offline-online.md, "Greedy sampling"): with few snapshots
   // the kept rows can miss a row the reduced solution then penetrates (hertz-a, 61 points, eps_KA
@@ -80,7 +90,7 @@ struct GreedyOfflineSettings {
   GreedyDistribution distribution;             // empty: one process
 };
 // Throws contactrb::Error naming the first invalid setting (tolerance <= 0 or not finite,
-// max_hf < 1, jobs < 1, invalid offline settings).
+// max_hf < 1, jobs < 1, batch < 1, invalid offline settings).
 void check_settings(const GreedyOfflineSettings& settings);
 
 // One step: the reduced model built from the `snapshots` selected so far, its estimate sweep,
@@ -95,7 +105,8 @@ struct GreedyStep {
   int argmax = -1;            // training index of the max
   GreedyMu argmax_mu;
   int online_failures = 0;    // training points whose online solve did not converge (counted as +inf)
-  // The HF solve of this step (-1 / NaN when the greedy stopped at this step).
+  // The HF solve of this step at the largest estimate (-1 / NaN when the greedy stopped at this
+  // step); with batch > 1 the step's other solves are in `batch_points`.
   int chosen = -1;
   GreedyMu chosen_mu;  // empty when the greedy stopped at this step
   bool hf_converged = false;
@@ -105,7 +116,11 @@ struct GreedyStep {
   // estimate estimates) and the contact-pressure error e_press (docs/offline-online.md).
   double true_error = kNaN;
   double true_e_press = kNaN;
-  // Wall times (s): build_reduced_model, the sweep, the HF solve, the whole step.
+  // Every HF solve of this step (training indices in decreasing estimate, `chosen` first; empty
+  // when the greedy stopped here) and how many of them failed (those points are excluded).
+  std::vector<int> batch_points;
+  int batch_failures = 0;
+  // Wall times (s): build_reduced_model, the sweep, the step's HF solves, the whole step.
   double build_s = 0.0, sweep_s = 0.0, hf_s = 0.0, step_s = 0.0;
 };
 
@@ -143,8 +158,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
 // The per-step table as CSV (one line per step: step,snapshots,hf_solves,N,R,Mk,Mg,max_estimate,
 // argmax_<name>...,online_failures,chosen_<name>...,hf_status,true_error,true_e_press,build_s,sweep_s,
-// hf_s,step_s; one argmax_ and one chosen_ column per parameter, chosen_ empty (NaN) when the greedy
-// stopped at that step), written atomically.
+// hf_s,step_s,batch_solves,batch_failures; one argmax_ and one chosen_ column per parameter, chosen_
+// empty (NaN) when the greedy stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 
 }  // namespace contactrb::rb

@@ -15,13 +15,13 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/run_threads.hpp"
 
 namespace contactrb::rb {
 
@@ -312,15 +312,7 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
         progress.finished(snapshots[i]);
       }
     };
-    const std::size_t jobs = std::min(wave.size(), static_cast<std::size_t>(options.jobs));
-    if (jobs <= 1) {
-      work();
-    } else {
-      std::vector<std::thread> threads;
-      threads.reserve(jobs);
-      for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
-      for (std::thread& t : threads) t.join();
-    }
+    run_threads(std::min(wave.size(), static_cast<std::size_t>(options.jobs)), [&](std::size_t) { work(); });
   }
 
   return assemble_snapshot_set(request, std::move(snapshots), layouts);

@@ -7,14 +7,9 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/index_cast.hpp"
 
 namespace contactrb::rb {
-
-namespace {
-using Index = Eigen::Index;
-inline Index ix(std::size_t i) { return static_cast<Index>(i); }
-inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
-}  // namespace
 
 void check_estimate_data(const ReducedModel& m) {
   const EstimateData& e = m.estimate;

@@ -2,42 +2,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <mutex>
 #include <thread>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/run_threads.hpp"
 
 namespace contactrb::rb {
 
 int hardware_jobs() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 namespace {
-
-// Runs work(t) on `threads` threads (t = 0..threads-1; on the caller when 1); rethrows the first
-// exception once all have stopped. work must return at once when `stop` is set.
-void run_threads(std::size_t threads, const std::function<void(std::size_t t)>& work, std::atomic<bool>& stop) {
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  const auto guarded = [&](std::size_t t) {
-    try {
-      work(t);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      stop = true;
-    }
-  };
-  if (threads <= 1) {
-    guarded(0);
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads);
-    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(guarded, t);
-    for (std::thread& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
-}
 
 // The chunks [c chunk, (c + 1) chunk) of [0, count) from one counter, until none is left or `stop`.
 void take_chunks(std::atomic<std::size_t>& next, std::size_t count, std::size_t chunk, const std::atomic<bool>& stop,

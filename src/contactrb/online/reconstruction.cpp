@@ -3,12 +3,11 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/index_cast.hpp"
 
 namespace contactrb::rb {
 
 namespace {
-using Index = Eigen::Index;
-inline Index ix(std::size_t i) { return static_cast<Index>(i); }
 std::string str(long long v) { return std::to_string(v); }
 }  // namespace
 

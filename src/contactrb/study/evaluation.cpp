@@ -13,10 +13,10 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/run_threads.hpp"
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/hf/hf_solver.hpp"
@@ -316,15 +316,7 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
       progress.finished(out.rows[i]);
     }
   };
-  const std::size_t jobs = std::min(n, static_cast<std::size_t>(options.jobs));
-  if (jobs == 1) {
-    work();
-  } else {
-    std::vector<std::thread> threads;
-    threads.reserve(jobs);
-    for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
-    for (std::thread& t : threads) t.join();
-  }
+  run_threads(std::min(n, static_cast<std::size_t>(options.jobs)), [&](std::size_t) { work(); });
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);
   }

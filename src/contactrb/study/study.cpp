@@ -12,6 +12,7 @@
 
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/index_cast.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/offline/angle_greedy.hpp"
@@ -27,9 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-using Index = Eigen::Index;
-inline Index ix(std::size_t i) { return static_cast<Index>(i); }
-inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
 
 // One line per stage on the progress stream (nothing when progress is None).
 class StudyLog {
