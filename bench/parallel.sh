@@ -3,9 +3,10 @@
 #  1. `snapshots` over a set on 1 and 2 MPI ranks (and 1 and 2 threads, --jobs), at mesh level
 #     LEVEL: the wall clock of the solves as the command reports it ("solves X s": without the
 #     process start, mpirun's and the reference mesh) and of the whole command,
-#  2. `online --batch` on 1 and 2 threads (--jobs) over LINES random lines,
+#  2. `online --batch` on 1 and 2 threads (--jobs) over LINES random lines, in each --format,
 #  3. `sample --n N` (all hardware threads).
 # Each run is repeated REPEAT times and the fastest kept (the machine may be shared).
+# MPIRUN_FLAGS (environment): extra options for mpirun.
 # CASE must have one parameter (the batch file is the first column of `sample --points`).
 #   bench/parallel.sh BUILD_DIR [CASE] [SET] [LEVEL] [LINES] [N] [REPEAT]
 #   e.g. bench/parallel.sh build hertz-b training 1 200000 1000000 3
@@ -65,15 +66,20 @@ snapshots=(snapshots --case "$case" --set "$set_name" --level "$level" -q --out 
 report "snapshots $case $set_name level $level, 1 -> 2 threads" "$(snap "$cli" "${snapshots[@]}")" \
   "$(snap "$cli" "${snapshots[@]}" --jobs 2)"
 if [[ -n "$mpirun" ]]; then
-  report "snapshots $case $set_name level $level, 1 -> 2 MPI ranks" \
-    "$(snap "$mpirun" --oversubscribe -np 1 "$cli" "${snapshots[@]}")" \
-    "$(snap "$mpirun" --oversubscribe -np 2 "$cli" "${snapshots[@]}")"
+  # MPIRUN_FLAGS: extra mpirun options, e.g. "--mca pml ob1" (MPI_Init without probing for
+  # Omni-Path/libfabric networks: 0.03 s instead of 0.23 s on the development machine).
+  read -r -a mpirun_flags <<<"${MPIRUN_FLAGS:-}"
+  report "snapshots $case $set_name level $level, 1 -> 2 MPI ranks${MPIRUN_FLAGS:+ ($MPIRUN_FLAGS)}" \
+    "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 1 "$cli" "${snapshots[@]}")" \
+    "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 2 "$cli" "${snapshots[@]}")"
 fi
 "$cli" sample --model model.h5 --n "$lines" --seed 1 --jobs 1 --no-plot --out p.csv --points points.csv >/dev/null
 cut -d, -f2 points.csv | tail -n +2 > batch.txt
-b1=$(best "$cli" online --model model.h5 --batch batch.txt --jobs 1)
-b2=$(best "$cli" online --model model.h5 --batch batch.txt --jobs 2)
-echo "online --batch $case, $lines lines: 1 thread ${b1} s ($(printf '%.0f' "$(echo "$lines / $b1" | bc -l)")/s), 2 threads ${b2} s ($(printf '%.0f' "$(echo "$lines / $b2" | bc -l)")/s): speed-up $(ratio "$b1" "$b2")"
+for format in json csv npy; do
+  b1=$(best "$cli" online --model model.h5 --batch batch.txt --format "$format" --jobs 1)
+  b2=$(best "$cli" online --model model.h5 --batch batch.txt --format "$format" --jobs 2)
+  echo "online --batch $case --format $format, $lines lines: 1 thread ${b1} s ($(printf '%.0f' "$(echo "$lines / $b1" | bc -l)")/s), 2 threads ${b2} s ($(printf '%.0f' "$(echo "$lines / $b2" | bc -l)")/s): speed-up $(ratio "$b1" "$b2")"
+done
 s1=$(best "$cli" sample --model model.h5 --n "$lines" --jobs 1 --no-plot --out q.csv)
 s2=$(best "$cli" sample --model model.h5 --n "$lines" --jobs 2 --no-plot --out q.csv)
 echo "sample $case, n = $lines: 1 thread ${s1} s, 2 threads ${s2} s: speed-up $(ratio "$s1" "$s2")"

@@ -3,8 +3,8 @@
 
 Usage: /usr/bin/python3 scripts/plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG
 
-One panel per output (contact force, peak pressure, energy, estimate, iterations): its
-histogram, with the mean and the 5 % and 95 % quantiles marked.
+One panel per output (contact force, peak pressure, max gap, min gap, energy, estimate,
+iterations): its histogram, with the mean and the 5 % and 95 % quantiles marked.
 
 Exit status: 0 on success, 1 with one line "plot_sample: error: ..." on stderr for a missing
 or malformed input, 2 when matplotlib or numpy cannot be imported.

@@ -10,6 +10,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/online/online_many.hpp"
+#include "batch_pipeline.hpp"
 #include "mpi_gather.hpp"
 
 #if CONTACTRB_HAVE_MPI
@@ -85,6 +86,7 @@ void gather_answers(MpiWorld& world, std::vector<Line>& lines, std::size_t m) {
   for (std::size_t i = begin; i < end; ++i) {
     const LineAnswer& a = lines[i].answer;
     mine.push_back(std::string(1, static_cast<char>('0' + (a.bad ? 1 : 0) + (a.not_converged ? 2 : 0))) + a.text);
+    mine.push_back(a.message);
   }
   const std::vector<char> bytes = pack(mine);
   int count = checked_int(bytes.size());
@@ -102,10 +104,12 @@ void gather_answers(MpiWorld& world, std::vector<Line>& lines, std::size_t m) {
   MPI_Gatherv(bytes.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
   if (world.rank() != 0) return;
   const std::vector<std::string> items = unpack(all.data(), all.size());
-  require(items.size() == m, "internal: gathered " + std::to_string(items.size()) + " answers of " + std::to_string(m));
+  require(items.size() == 2 * m, "internal: gathered " + std::to_string(items.size() / 2) + " answers of " + std::to_string(m));
   for (std::size_t i = 0; i < m; ++i) {
-    const int flags = items[i][0] - '0';
-    lines[i].answer = {items[i].substr(1), (flags & 1) != 0, (flags & 2) != 0};
+    const std::string& a = items[2 * i];
+    require(!a.empty(), "internal: an empty gathered answer");
+    const int flags = a[0] - '0';
+    lines[i].answer = {a.substr(1), items[2 * i + 1], (flags & 1) != 0, (flags & 2) != 0};
   }
 }
 
@@ -124,6 +128,7 @@ BatchCounts answer_batch_lines(const rb::ReducedModel& model, const rb::OnlineSi
   std::vector<std::unique_ptr<rb::OnlineSolver>> solvers;  // one per thread, for the whole batch
   for (int j = 0; j < jobs; ++j) solvers.push_back(std::make_unique<rb::OnlineSolver>(model, sizes));
   BatchCounts counts;
+  if (!world && jobs > 1) return pipeline_batch_lines(solvers, chunk, read, answer, out);
   try {
   for (;;) {
     std::size_t m = 0;
@@ -146,7 +151,8 @@ BatchCounts answer_batch_lines(const rb::ReducedModel& model, const rb::OnlineSi
     counts.lines += static_cast<int>(m);
     if (!root) continue;
     for (std::size_t i = 0; i < m; ++i) {
-      out << lines[i].answer.text << '\n';
+      out << lines[i].answer.text;
+      std::cerr << lines[i].answer.message;
       counts.bad += lines[i].answer.bad ? 1 : 0;
       counts.not_converged += lines[i].answer.not_converged ? 1 : 0;
     }

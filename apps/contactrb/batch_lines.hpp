@@ -21,9 +21,11 @@ namespace contactrb::app {
 // on rank 0 only.
 using ReadLine = std::function<bool(std::string& line, bool& too_long)>;
 
-// The answer to one line: the output line (without its '\n') and what to count.
+// The answer to one line: its output bytes (a text line with its '\n', or a binary row),
+// printed as they are, and what to count.
 struct LineAnswer {
   std::string text;
+  std::string message;         // for stderr (with its '\n'), printed in input order with the text
   bool bad = false;            // the line could not be answered
   bool not_converged = false;  // answered, without convergence
 };

@@ -21,6 +21,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -194,10 +195,10 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
     for (const cases::ParameterSpec& q : parameters) names.push_back(q.name);
     io::CsvBatchWriter header(std::cout, names);  // the header line; the rows are the answers' text
   }
-  // npy: the rows are kept (the row count is in the file's header) and written at the end; the
-  // answers' text is not printed.
-  std::mutex rows_mutex;
-  std::vector<io::BatchRow> npy_rows;
+  // npy: each answer is its row's bytes, collected in order (the row count is in the file's
+  // header) and written at the end.
+  std::ostringstream npy_rows;
+  std::mutex written_mutex;
   std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
   // On opt.jobs threads, in input order (batch_lines.hpp).
   const auto answer = [&](rb::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
@@ -223,7 +224,7 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
         ensure_output_directory(dir);
         nlohmann::json files = fields->write(model, mu, s, dir);
         if (json) j["files"] = std::move(files);
-        const std::lock_guard<std::mutex> lock(rows_mutex);
+        const std::lock_guard<std::mutex> lock(written_mutex);
         written.emplace_back(k, mu);
       }
       a.not_converged = !s.converged();
@@ -234,34 +235,27 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
       } else {
         row = io::BatchRow{};
         row.line = k;
-        std::cerr << "contactrb: error: batch line " + std::to_string(k) + ": " + printable_line(e.what()) + "\n";
+        a.message = "contactrb: error: batch line " + std::to_string(k) + ": " + printable_line(e.what()) + "\n";
       }
       a.bad = true;
     }
     if (json) {
       // replace: a non-UTF-8 byte that got through anyway becomes U+FFFD, never an exception.
       a.text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+      a.text += '\n';
     } else if (npy) {
-      const std::lock_guard<std::mutex> lock(rows_mutex);
-      npy_rows.push_back(std::move(row));
+      io::append_npy_batch_row(a.text, row, parameters.size());
     } else {
       io::append_csv_batch_row(a.text, row, parameters.size());
-      a.text.pop_back();  // answer_batch_lines ends the line
     }
     return a;
   };
-  std::ostream none(nullptr);  // npy: nothing per line
   const BatchCounts counts = answer_batch_lines(
       model, sizes, opt.jobs,
       [&](std::string& line, bool& too_long) { return read_batch_line(*in->rdbuf(), line, too_long); }, answer,
-      npy ? none : std::cout, world);
+      npy ? npy_rows : std::cout, world);
   if (!root) return 0;  // rank 0 prints and reports
-  if (npy) {
-    std::sort(npy_rows.begin(), npy_rows.end(), [](const auto& a, const auto& b) { return a.line < b.line; });
-    io::NpyBatchWriter w(parameters.size());
-    for (const io::BatchRow& r : npy_rows) w.write(r);
-    w.finish(std::cout);
-  }
+  if (npy) io::write_npy_batch(std::cout, io::npy_batch_columns(parameters.size()), npy_rows.str());
   std::cout.flush();
   const int k = counts.lines, bad = counts.bad, not_converged = counts.not_converged;
   std::sort(written.begin(), written.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

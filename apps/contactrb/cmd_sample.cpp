@@ -45,17 +45,24 @@ struct SampleOptions {
   int jobs = 0;  // 0: every hardware thread
   int bins = 50;
   bool no_plot = false;
+  bool gaps = false;  // --gaps: max_gap and min_gap
   bool allow_failures = false;
   std::string points;  // --points FILE: every point and its outputs
   std::string out;
 };
 
 // The outputs, in the order of the files. peak_pressure needs the model's reconstruction data.
+// max_gap, min_gap (--gaps): of the deformed normal gap over the slave nodes
+// (OnlineSolver::surface_gap).
 struct Outputs {
-  std::vector<double> contact_force, peak_pressure, energy, estimate, iterations;
-  std::vector<std::pair<std::string, std::vector<double>*>> named(bool with_peak) {
+  std::vector<double> contact_force, peak_pressure, max_gap, min_gap, energy, estimate, iterations;
+  std::vector<std::pair<std::string, std::vector<double>*>> named(bool with_peak, bool with_gaps) {
     std::vector<std::pair<std::string, std::vector<double>*>> v{{"contact_force", &contact_force}};
     if (with_peak) v.emplace_back("peak_pressure", &peak_pressure);
+    if (with_gaps) {
+      v.emplace_back("max_gap", &max_gap);
+      v.emplace_back("min_gap", &min_gap);
+    }
     v.emplace_back("energy", &energy);
     v.emplace_back("estimate", &estimate);
     v.emplace_back("iterations", &iterations);
@@ -71,8 +78,8 @@ std::string stem_of(const std::string& out) {
 // --points: one line per point, "index,<parameter names>,converged,<outputs>", numbers
 // round-trip exact (%.17g); an output without a value (not converged) is empty.
 void write_points(const std::string& path, const rb::ReducedModel& model, const rb::SampleDistribution& dist,
-                  std::uint64_t seed, Outputs& out, bool with_peak) {
-  const auto columns = out.named(with_peak);
+                  std::uint64_t seed, Outputs& out, bool with_peak, bool with_gaps) {
+  const auto columns = out.named(with_peak, with_gaps);
   write_file_atomically(path, [&](std::ostream& os) {
     os << "index";
     for (const cases::ParameterSpec& q : model.parameters) os << ',' << q.name;
@@ -143,7 +150,7 @@ int run_sample(const SampleOptions& opt) {
   const auto n = static_cast<std::size_t>(opt.n);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Outputs out;
-  for (auto& [name, column] : out.named(true)) column->assign(n, nan);
+  for (auto& [name, column] : out.named(true, true)) column->assign(n, nan);
   const auto [begin, end] = rank_block(n, rank, ranks);
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
@@ -159,6 +166,11 @@ int run_sample(const SampleOptions& opt) {
       out.energy[i] = s.energy;
       if (s.estimate.available) out.estimate[i] = s.estimate.energy;
       if (with_peak) out.peak_pressure[i] = (Xi.leftCols(s.lambda_hat.size()) * s.lambda_hat).maxCoeff();
+      if (opt.gaps) {
+        const rb::OnlineSolver::SurfaceGap gap = solver.surface_gap(mu, s);
+        out.max_gap[i] = gap.max;
+        out.min_gap[i] = gap.min;
+      }
     }, 256);
   } catch (const Error& e) {
     error = e.what();
@@ -171,7 +183,7 @@ int run_sample(const SampleOptions& opt) {
       return 1;
     }
     std::vector<std::vector<double>*> columns;
-    for (auto& [name, column] : out.named(true)) columns.push_back(column);
+    for (auto& [name, column] : out.named(true, true)) columns.push_back(column);
     gather_blocks(*world, columns);
     if (rank != 0) return 0;
   }
@@ -184,7 +196,7 @@ int run_sample(const SampleOptions& opt) {
   io::CsvWriter hist({"output", "bin", "lo", "hi", "count"});
   std::ostringstream table;
   table << std::setprecision(6);
-  for (auto& [name, column] : out.named(with_peak)) {
+  for (auto& [name, column] : out.named(with_peak, opt.gaps)) {
     const rb::OutputStats s = rb::output_stats(name, *column, opt.bins);
     stats.add_row({name, static_cast<long long>(s.count), s.mean, s.sd, s.min, s.max, s.q05, s.q50, s.q95});
     const double width = s.histogram.size() > 1 ? (s.max - s.min) / static_cast<double>(s.histogram.size()) : 0.0;
@@ -201,7 +213,7 @@ int run_sample(const SampleOptions& opt) {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());
     stats.write(opt.out);
     hist.write(hist_path);
-    if (!opt.points.empty()) write_points(opt.points, model, dist, opt.seed, out, with_peak);
+    if (!opt.points.empty()) write_points(opt.points, model, dist, opt.seed, out, with_peak, opt.gaps);
     if (!script.empty()) {
       run_python_script(script, {opt.out, hist_path, png_path},
                         "the statistics are in " + opt.out + " and " + hist_path + " (or use --no-plot)");
@@ -239,6 +251,9 @@ Command add_sample_command(CLI::App& app) {
   sub->add_option("--jobs,-j", opt->jobs, "Threads (per MPI rank; 0: every hardware thread)")->capture_default_str();
   sub->add_option("--bins", opt->bins, "Histogram bins")->capture_default_str();
   sub->add_flag("--no-plot", opt->no_plot, "No PNG figure (no Python needed)");
+  sub->add_flag("--gaps", opt->gaps,
+                "Also max_gap and min_gap: the deformed normal gap over every slave node (one more projection of "
+                "the contact surface per query: about as long as the solve)");
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some queries did not converge");
   sub->add_option("--points", opt->points, "Also a CSV of every point: index, mu, converged and the outputs");
   sub->add_option("--out", opt->out,

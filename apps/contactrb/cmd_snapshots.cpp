@@ -45,6 +45,7 @@ struct SnapshotsOptions {
   bool allow_failures = false;
   bool quiet = false;
   std::string part;  // "k/K": part k of K of the values (rb/snapshot_parts.hpp)
+  std::string warm_start = "auto";  // --warm-start (SnapshotRunOptions::warm_start)
   std::string out;
 };
 
@@ -80,7 +81,13 @@ int run_snapshots(const SnapshotsOptions& opt) {
   rb::SnapshotRunOptions run;
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  if (part) run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;  // a warm start would need other parts' values
+  if (opt.warm_start == "on") {
+    // A warm start would need other parts' values.
+    require(!part, "--warm-start on: a part (--part) is solved cold, it has not the other parts' values");
+    run.warm_start = rb::SnapshotRunOptions::WarmStart::On;
+  } else if (opt.warm_start == "off" || part) {
+    run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;
+  }
   const auto t1 = Clock::now();
   std::optional<io::SnapshotSet> gathered = world ? mpi_generate_snapshots(*world, request, run) : rb::generate_snapshots(request, run);
   if (!gathered) return 0;  // an MPI rank other than 0: its results are in rank 0's file
@@ -151,6 +158,11 @@ Command add_snapshots_command(CLI::App& app) {
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some solves failed (they are recorded)");
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
+  sub->add_option("--warm-start", opt->warm_start,
+                  "auto (on for the Newton method, off for Kacanov) | on: each value starts from the solution of the "
+                  "nearest value solved before it, in a fixed schedule (the same for any --jobs or MPI ranks) | off")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   sub->add_option("--part", opt->part, "k/K: only part k of K of the values (array jobs; join with `contactrb merge`)");
   sub->add_option("--out", opt->out, "Output HDF5 file (written atomically)")->required();
   return {sub, [opt] { return run_snapshots(*opt); }};

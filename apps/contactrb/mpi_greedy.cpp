@@ -1,17 +1,16 @@
 #include "mpi_greedy.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <climits>
 #include <cstdint>
 #include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/snapshot_wire.hpp"
 #include "mpi_gather.hpp"
+#include "poll_backoff.hpp"
 
 #if CONTACTRB_HAVE_MPI
 #include <mpi.h>
@@ -32,10 +31,11 @@ int to_int(std::size_t n, const char* what) {
 // waits for rank 0's HF solve) would otherwise spin in OpenMPI's blocking call and take CPU from
 // the ranks still working (as in mpi_snapshots.cpp).
 void wait_polling(MPI_Request& request) {
+  PollBackoff backoff;
   for (int done = 0;;) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (done) return;
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    backoff.sleep();
   }
 }
 

@@ -1,7 +1,7 @@
 #include "mpi_snapshots.hpp"
 
+#include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <climits>
 #include <cstdint>
 #include <deque>
@@ -14,6 +14,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/offline/snapshot_wire.hpp"
+#include "poll_backoff.hpp"
 
 #if CONTACTRB_HAVE_MPI
 #include <mpi.h>
@@ -33,16 +34,28 @@ void send(const std::vector<char>& bytes, int to, Tag tag) {
 }
 
 // The next message from `from` (MPI_ANY_SOURCE: anyone), or none when `wait` is false and
-// nothing has arrived. Waits by probing and sleeping: OpenMPI's blocking calls spin, which
-// would take a core from the solves of this machine.
-bool probe(int from, bool wait, MPI_Status& status) {
+// nothing has arrived. Waits by probing and sleeping (poll_backoff.hpp): OpenMPI's blocking
+// calls spin, which would take a core from the solves of this machine.
+bool probe(int from, bool wait, MPI_Status& status, PollBackoff& backoff) {
   for (;;) {
     int flag = 0;
     MPI_Iprobe(from, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
-    if (flag != 0) return true;
+    if (flag != 0) {
+      backoff.reset();
+      return true;
+    }
     if (!wait) return false;
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    backoff.sleep();
   }
+}
+
+// The coordinator's longest sleep: a hundredth of the mean solve time of the results so far
+// (a result then waits at most 1 % of a solve for its next task), between 0.1 and 5 ms; 1 ms
+// before the first result.
+PollBackoff::Duration coordinator_cap(double solve_seconds, int solves) {
+  if (solves == 0) return PollBackoff::Duration(1000);
+  const double us = 1e6 * solve_seconds / solves / 100;
+  return PollBackoff::Duration(static_cast<long>(std::clamp(us, 100.0, 5000.0)));
 }
 
 std::vector<char> receive(const MPI_Status& status) {
@@ -63,6 +76,9 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
   std::deque<int> idle;  // ranks waiting for a task
   int ready = 0;         // ranks that said they are ready (each once)
   std::vector<char> solved(n, 0);
+  PollBackoff backoff(coordinator_cap(0, 0));
+  double remote_seconds = 0;  // the solve times of the other ranks' results
+  int remote_solves = 0;
 
   // Handles one message of a worker: a first "ready" or a result.
   const auto handle = [&](const MPI_Status& status) {
@@ -79,6 +95,8 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
       solved[i] = 1;
       snapshots[i] = std::move(s);
       layouts[i] = std::move(layout);
+      remote_seconds += snapshots[i].time_s;
+      backoff.set_cap(coordinator_cap(remote_seconds, ++remote_solves));
       progress.finished(snapshots[i]);
     } else {
       throw Error("internal: unexpected MPI message tag " + std::to_string(status.MPI_TAG));
@@ -117,12 +135,12 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
       if (local_done && outstanding == 0) break;
       MPI_Status status;
       // Blocking when only the other ranks are still at work.
-      if (probe(MPI_ANY_SOURCE, local_done.load(), status)) {
+      if (probe(MPI_ANY_SOURCE, local_done.load(), status, backoff)) {
         const bool result = status.MPI_TAG == kResult;
         handle(status);
         if (result) --outstanding;
       } else {
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        backoff.sleep();
       }
     }
     local.join();
@@ -131,7 +149,7 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
   // Every worker is idle once it has said it is ready: then stop them all.
   while (ready < world.size() - 1) {
     MPI_Status status;
-    probe(MPI_ANY_SOURCE, true, status);
+    probe(MPI_ANY_SOURCE, true, status, backoff);
     handle(status);
   }
   for (int r = 1; r < world.size(); ++r) send({}, r, kStop);
@@ -140,9 +158,10 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
 
 void run_worker(const rb::SnapshotRequest& request) {
   send({}, 0, kReady);
+  PollBackoff backoff;  // the next task comes at once (at the coordinator's next poll), or kStop
   for (;;) {
     MPI_Status status;
-    probe(0, true, status);
+    probe(0, true, status, backoff);
     const std::vector<char> bytes = receive(status);
     if (status.MPI_TAG == kStop) return;
     require(status.MPI_TAG == kTask, "internal: unexpected MPI message tag " + std::to_string(status.MPI_TAG));

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "poll_backoff.hpp"
 
 #if CONTACTRB_HAVE_MPI
 #include <mpi.h>
@@ -58,7 +59,16 @@ bool MpiWorld::agree(bool ok) {
   agreed_ = true;
   int mine = ok ? 1 : 0;
   int all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  // Polled (poll_backoff.hpp): the ranks that finish their setup (or their part) first would
+  // otherwise spin until the last one gets here.
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+  PollBackoff backoff;
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) break;
+    backoff.sleep();
+  }
   return all == 1;
 }
 

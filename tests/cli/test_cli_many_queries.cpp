@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "support/meshio_reader.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -122,6 +124,67 @@ TEST_F(CliManyQueries, ThreadedBatchPrintsTheSerialOutput) {
   }
 }
 
+// --format csv and npy on threads: the serial run's bytes (no timing in them), from a file and
+// through a pipe (stdin), with bad lines among 700; the npy rows checked apart: one per line,
+// in input order, and the CSV's numbers.
+TEST_F(CliManyQueries, ThreadedCompactFormatsAreTheSerialBytes) {
+  const std::string batch = dir_->file("batch_compact.txt");
+  {
+    std::ofstream f(batch);
+    for (int i = 0; i < 700; ++i) {
+      if (i % 101 == 7) {
+        f << "x\n";
+      } else {
+        f << 0.9 + 0.22 * std::fmod(0.414213562373095 * i, 1.0) << "\n";
+      }
+    }
+  }
+  const std::string model = "online --model " + shell_quote(model_);
+  std::map<std::string, std::string> serial_out;
+  for (const std::string format : {"csv", "npy"}) {
+    const CliResult serial = run_cli(model + " --batch " + shell_quote(batch) + " --format " + format);
+    EXPECT_EQ(serial.exit_code, 1) << serial.err;  // the bad lines
+    EXPECT_NE(serial.err.find("batch line 8:"), std::string::npos) << serial.err;
+    serial_out[format] = serial.out;
+    for (int jobs : {2, 3}) {
+      const std::string j = " --jobs " + std::to_string(jobs) + " --format " + format;
+      const CliResult file = run_cli(model + " --batch " + shell_quote(batch) + j);
+      EXPECT_EQ(file.exit_code, 1) << format << jobs;
+      EXPECT_EQ(file.err, serial.err) << format << jobs;
+      EXPECT_TRUE(file.out == serial.out) << format << ", jobs " << jobs << ": the output differs";
+      const CliResult pipe =
+          contactrb::test::run_shell("cat " + shell_quote(batch) + " | " + shell_quote(CONTACTRB_CLI) + " " + model + " --batch -" + j);
+      EXPECT_EQ(pipe.exit_code, 1) << format << jobs;
+      EXPECT_TRUE(pipe.out == serial.out) << format << ", jobs " << jobs << ", stdin: the output differs";
+    }
+  }
+  // npy: a 10-byte preamble, the header (shape (700, 7)), then 700 rows of 7 float64.
+  const std::string& npy = serial_out["npy"];
+  ASSERT_GT(npy.size(), 10u);
+  const std::size_t header = static_cast<unsigned char>(npy[8]) + 256 * static_cast<unsigned char>(npy[9]);
+  EXPECT_NE(npy.find("'shape': (700, 7)"), std::string::npos);
+  ASSERT_EQ(npy.size(), 10 + header + 700 * 7 * sizeof(double));
+  const std::vector<std::string> csv = lines_of(serial_out["csv"]);
+  ASSERT_EQ(csv.size(), 701u);  // the header line, then one row per line
+  for (std::size_t i = 0; i < 700; ++i) {
+    double row[7];
+    std::memcpy(row, npy.data() + 10 + header + i * sizeof row, sizeof row);
+    EXPECT_EQ(row[0], static_cast<double>(i + 1));
+    const std::vector<std::string> cells = split(csv[i + 1]);
+    ASSERT_EQ(cells.size(), 7u) << csv[i + 1];
+    EXPECT_EQ(cells[0], std::to_string(i + 1));
+    if (i % 101 == 7) {
+      EXPECT_EQ(cells[2], "error");
+      EXPECT_EQ(row[2], -1.0);
+      EXPECT_TRUE(std::isnan(row[1]));
+    } else {
+      EXPECT_EQ(row[1], std::stod(cells[1])) << i;  // mu: shortest round-trip text
+      EXPECT_EQ(row[4], std::stod(cells[4])) << i;  // energy
+      EXPECT_EQ(row[5], std::stod(cells[5])) << i;  // contact_force
+    }
+  }
+}
+
 // Statistics against the --points file, answers against `online`, threads against one thread.
 TEST_F(CliManyQueries, SampleStatisticsAreThoseOfItsPoints) {
   const std::string s1 = dir_->file("u1.csv"), p1 = dir_->file("u1_points.csv");
@@ -187,6 +250,35 @@ TEST_F(CliManyQueries, SampleStatisticsAreThoseOfItsPoints) {
   ASSERT_EQ(answers.size(), 25u);
   for (std::size_t i = 0; i < answers.size(); ++i) {
     EXPECT_EQ(json::parse(answers[i]).at("contact_force").get<double>(), std::stod(points["contact_force"][i])) << i;
+  }
+}
+
+// max_gap and min_gap of `sample` (the deformed normal gap over the slave nodes, from the
+// model's contact surface) against the gap field of the reconstructed solution on the HF mesh
+// (`online --mu --out`, contact.vtu, read by meshio): another code path to the same numbers.
+TEST_F(CliManyQueries, SampleGapsAreThoseOfTheReconstructedSolution) {
+  SKIP_WITHOUT_MESHIO();
+  const std::string s = dir_->file("g.csv"), p = dir_->file("g_points.csv");
+  const CliResult r = sample("--n 3 --seed 3 --gaps --no-plot --out " + shell_quote(s) + " --points " + shell_quote(p));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  auto points = read_csv(p);
+  ASSERT_EQ(points["max_gap"].size(), 3u);
+  EXPECT_EQ(read_csv(s).at("output"),
+            (std::vector<std::string>{"contact_force", "peak_pressure", "max_gap", "min_gap", "energy", "estimate", "iterations"}));
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string out = dir_->file("g" + std::to_string(i));
+    const CliResult o = run_cli("online --model " + shell_quote(model_) + " --mu " + points["lower radius R2"][i] +
+                                " --out " + shell_quote(out));
+    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+    const json f = contactrb::test::read_vtu_with_meshio(fs::path(out) / "contact.vtu");
+    ASSERT_FALSE(f.is_null());
+    const std::vector<double> gap = f["point_data"]["gap"].get<std::vector<double>>();
+    ASSERT_GT(gap.size(), 10u);
+    const double max = *std::max_element(gap.begin(), gap.end()), min = *std::min_element(gap.begin(), gap.end());
+    EXPECT_NEAR(std::stod(points["max_gap"][i]), max, 1e-12 * std::abs(max)) << i;
+    EXPECT_NEAR(std::stod(points["min_gap"][i]), min, 1e-12) << i;
+    EXPECT_GT(max, 0.5);   // the slave chain's open end
+    EXPECT_LT(min, 1e-3);  // in contact
   }
 }
 

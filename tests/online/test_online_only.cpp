@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <vector>
 
+#include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reduced_model.hpp"
@@ -124,6 +125,24 @@ TEST_F(OnlineOnly, AnswersAsTheFullExecutableBitForBit) {
       EXPECT_TRUE(same(s.estimate.energy, j.at("estimate").at("energy").get<double>()));
     }
   }
+}
+
+// surface_gap answers for the solver's last solve only: another mu, or a u_hat of the wrong
+// size, is refused; the same mu gives the same numbers again (a pure function of the solution).
+TEST_F(OnlineOnly, SurfaceGapIsForTheLastSolve) {
+  const contactrb::rb::ReducedModel model = contactrb::io::read_reduced_model_file(model_);
+  contactrb::rb::OnlineSolver solver(model);
+  const contactrb::cases::Mu mu = contactrb::cases::Mu::Constant(1, 0.26);
+  EXPECT_THROW((void)solver.surface_gap(mu, {}), contactrb::Error);  // no solve yet
+  const contactrb::rb::OnlineSolution s = solver.solve(mu);
+  ASSERT_TRUE(s.converged()) << s.message;
+  const auto gap = solver.surface_gap(mu, s);
+  EXPECT_GT(gap.max, gap.min);
+  EXPECT_TRUE(same(gap.max, solver.surface_gap(mu, s).max));
+  EXPECT_THROW((void)solver.surface_gap(contactrb::cases::Mu::Constant(1, 0.41), s), contactrb::Error);
+  contactrb::rb::OnlineSolution shorter = s;
+  shorter.u_hat.conservativeResize(s.u_hat.size() - 1);
+  EXPECT_THROW((void)solver.surface_gap(mu, shorter), contactrb::Error);
 }
 
 // --format csv: one row per line with the JSON line's numbers, the same doubles to the last bit;

@@ -43,6 +43,39 @@ TEST(SnapshotMpi, RanksGatherTheSerialFile) {
   }
 }
 
+// The warm-start schedule (--warm-start on): rank 0 hands out each wave's values with the
+// snapshot each starts from; the gathered file is the serial warm-started file. The warm start
+// is checked to be taken: the iteration counts differ from the cold run's.
+TEST(SnapshotMpi, WarmStartedRanksGatherTheSerialFile) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_warm");
+  const std::string values = "--case hertz-a --values 0.2,0.22,0.25,0.28,0.3,0.33,0.35,0.4";
+  const CliResult cold = contactrb::test::run_cli("snapshots " + values + " -q --out " + shell_quote(dir.file("cold.h5")));
+  ASSERT_EQ(cold.exit_code, 0) << cold.out << cold.err;
+  const CliResult serial = contactrb::test::run_cli("snapshots " + values + " --warm-start on -q --out " +
+                                                    shell_quote(dir.file("serial.h5")));
+  ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+  const auto cold_set = contactrb::io::read_snapshot_file(dir.file("cold.h5"));
+  const auto reference = contactrb::io::read_snapshot_file(dir.file("serial.h5"));
+  int fewer = 0;
+  for (std::size_t i = 0; i < reference.snapshots.size(); ++i) {
+    fewer += reference.snapshots[i].iterations < cold_set.snapshots[i].iterations ? 1 : 0;
+  }
+  EXPECT_GT(fewer, 0) << "no value took fewer iterations warm-started: the warm start was not taken";
+  for (int ranks : {2, 3}) {
+    SCOPED_TRACE(std::to_string(ranks) + " ranks");
+    const std::string out = dir.file("mpi" + std::to_string(ranks) + ".h5");
+    const CliResult r = mpirun(ranks, "snapshots " + values + " --warm-start on -q --out " + shell_quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    contactrb::test::expect_same_data(reference, contactrb::io::read_snapshot_file(out), false);
+  }
+  // A part has not the other parts' values to start from.
+  const CliResult part = contactrb::test::run_cli("snapshots " + values + " --warm-start on --part 1/2 -q --out " +
+                                                  shell_quote(dir.file("part.h5")));
+  EXPECT_EQ(part.exit_code, 1) << part.out << part.err;
+  EXPECT_NE(part.err.find("--warm-start on: a part (--part) is solved cold"), std::string::npos) << part.err;
+}
+
 TEST(SnapshotMpi, ValueThatDoesNotConvergeIsNamed) {
   SKIP_WITHOUT_MPI();
   contactrb::test::TempDir dir("mpi_fail");

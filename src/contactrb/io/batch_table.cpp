@@ -81,25 +81,30 @@ void CsvBatchWriter::write(const BatchRow& row) {
   out_ << buffer_;
 }
 
-void NpyBatchWriter::write(const BatchRow& row) {
+void append_npy_batch_row(std::string& s, const BatchRow& row, std::size_t p) {
+  static_assert(std::endian::native == std::endian::little, "npy output: '<f8' written from memory");
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  data_.push_back(row.line);
+  const auto put = [&s](double x) { s.append(reinterpret_cast<const char*>(&x), sizeof x); };
+  put(row.line);
   if (!row.answered) {
-    data_.insert(data_.end(), p_, nan);
-    data_.insert(data_.end(), {kBatchErrorStatus, nan, nan, nan, nan});
+    for (std::size_t k = 0; k < p; ++k) put(nan);
+    for (double x : {kBatchErrorStatus, nan, nan, nan, nan}) put(x);
     return;
   }
-  require(static_cast<std::size_t>(row.mu.size()) == p_, "NpyBatchWriter: mu has the wrong size");
-  for (Eigen::Index k = 0; k < row.mu.size(); ++k) data_.push_back(row.mu(k));
-  data_.insert(data_.end(), {static_cast<double>(row.status), static_cast<double>(row.iterations), row.energy,
-                             row.contact_force, row.has_estimate ? row.estimate : nan});
+  require(static_cast<std::size_t>(row.mu.size()) == p, "NpyBatchWriter: mu has the wrong size");
+  for (Eigen::Index k = 0; k < row.mu.size(); ++k) put(row.mu(k));
+  for (double x : {static_cast<double>(row.status), static_cast<double>(row.iterations), row.energy, row.contact_force,
+                   row.has_estimate ? row.estimate : nan}) {
+    put(x);
+  }
 }
 
-void NpyBatchWriter::finish(std::ostream& out) const {
-  static_assert(std::endian::native == std::endian::little, "npy output: '<f8' written from memory");
-  const std::size_t rows = data_.size() / columns();
+void write_npy_batch(std::ostream& out, std::size_t columns, const std::string& data) {
+  const std::size_t row_bytes = columns * sizeof(double);
+  require(columns > 0 && data.size() % row_bytes == 0, "npy output: the data are not whole rows");
+  const std::size_t rows = data.size() / row_bytes;
   std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                     std::to_string(columns()) + "), }";
+                     std::to_string(columns) + "), }";
   // Format 1.0: magic (6), version (2), header length (2, little-endian), then the header
   // padded with blanks and ended by '\n' so that the data start at a multiple of 64 bytes.
   const std::size_t unpadded = 10 + dict.size() + 1;
@@ -111,7 +116,7 @@ void NpyBatchWriter::finish(std::ostream& out) const {
   const char len_bytes[2] = {static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
   out.write(len_bytes, 2);
   out << dict;
-  out.write(reinterpret_cast<const char*>(data_.data()), static_cast<std::streamsize>(data_.size() * sizeof(double)));
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
 }
 
 }  // namespace contactrb::io

@@ -48,17 +48,29 @@ class CsvBatchWriter {
   std::string buffer_;
 };
 
+// The npy columns for p parameters: line, mu_1 .. mu_p, status, iterations, energy,
+// contact_force, estimate.
+constexpr std::size_t npy_batch_columns(std::size_t p) { return p + 6; }
+
+// Appends the npy row of `row` for p parameters: p + 6 float64 values, their bytes as in memory
+// (NpyBatchWriter::write's data; rows formatted apart, e.g. on threads, then joined in order).
+void append_npy_batch_row(std::string& s, const BatchRow& row, std::size_t p);
+
+// The .npy file of rows made by append_npy_batch_row (`rows`: their bytes, in order), `columns`
+// values each, to `out`. Throws contactrb::Error when the bytes are not whole rows.
+void write_npy_batch(std::ostream& out, std::size_t columns, const std::string& rows);
+
 class NpyBatchWriter {
  public:
   explicit NpyBatchWriter(std::size_t num_parameters) : p_(num_parameters) {}
-  void write(const BatchRow& row);
+  void write(const BatchRow& row) { append_npy_batch_row(data_, row, p_); }
   // The whole .npy file (header and rows) to `out`.
-  void finish(std::ostream& out) const;
-  std::size_t columns() const { return p_ + 6; }
+  void finish(std::ostream& out) const { write_npy_batch(out, columns(), data_); }
+  std::size_t columns() const { return npy_batch_columns(p_); }
 
  private:
   std::size_t p_;
-  std::vector<double> data_;
+  std::string data_;  // the rows' bytes
 };
 
 }  // namespace contactrb::io

@@ -166,7 +166,21 @@ void OnlineSolver::evaluate_magic(const Eigen::VectorXd& w, const Eigen::VectorX
   }
 }
 
+OnlineSolver::SurfaceGap OnlineSolver::surface_gap(const cases::Mu& mu, const OnlineSolution& s) const {
+  require(prepared_ && prepared_mu_.size() == mu.size() && prepared_mu_ == mu,
+          "surface_gap: not the mu of this solver's last solve (or that solve stopped before its first step)");
+  require(s.u_hat.size() == N_, "surface_gap: u_hat has " + std::to_string(s.u_hat.size()) + " entries, N = " +
+                                    std::to_string(N_));
+  Eigen::VectorXd w = lift_mu_;
+  w.noalias() += Theta_c_ * s.u_hat;
+  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w);
+  const Eigen::VectorXd gap = pw.g - pw.K * w;  // (28) - (27) at the displacement itself
+  require(gap.size() > 0, "surface_gap: the contact surface has no slave node");
+  return {gap.maxCoeff(), gap.minCoeff()};
+}
+
 bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& message) {
+  prepared_ = false;
   // Omega(mu) on the contact surface: h_body(mu) applied to the reference chain nodes.
   const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameters_, mu);
   for (std::size_t i = 0; i < mesh_.nodes.size(); ++i) {
@@ -223,6 +237,8 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& me
   }
   if (pointwise_magic_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
   warm_.clear();
+  prepared_mu_ = mu;
+  prepared_ = true;
   return true;
 }
 

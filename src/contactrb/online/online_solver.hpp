@@ -122,6 +122,20 @@ class OnlineSolver {
     return solve(cases::Mu::Constant(1, mu), settings);
   }
 
+  // The deformed normal gap of a reduced solution on the whole slave boundary: at every slave
+  // node s, g(w)_s - k(w; w)_s (paper (27)-(28), contact/projection.hpp: > 0 open, 0 in contact,
+  // < 0 penetration; a node beyond the master's end: its distance to the master), with
+  // w = u_D,c(mu) + Theta_c u_hat on the model's contact surface in Omega(mu); its maximum and
+  // minimum over the nodes. The solve evaluates the EIM magic rows only; this projects every
+  // slave node once (the model holds the whole contact surface and Theta_c). `s` must be this
+  // solver's answer to its last solve, at `mu`: throws contactrb::Error for another mu, a solve
+  // that stopped before its first step, or a u_hat of the wrong size.
+  struct SurfaceGap {
+    double max = 0.0;
+    double min = 0.0;
+  };
+  SurfaceGap surface_gap(const cases::Mu& mu, const OnlineSolution& s) const;
+
   int N() const { return N_; }
   int R() const { return R_; }
   int Mk() const { return Mk_; }
@@ -185,6 +199,8 @@ class OnlineSolver {
   Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
   double E_D_ = 0.0;
   bool restricted_ = true;
+  cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
+  bool prepared_ = false;
   bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
   Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
   Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
