@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -88,24 +89,30 @@ std::vector<std::string> without_time(const std::string& out) {
   return lines;
 }
 
+// A batch file of 700 lines: 0.9 + 0.22 frac(step i), inside hertz-b's domain [0.9, 1.12], with
+// line i replaced by special(i) where that is not empty (bad lines, values outside the domain).
+void write_batch(const std::string& path, double step, const std::function<std::string(int)>& special) {
+  std::ofstream f(path);
+  for (int i = 0; i < 700; ++i) {
+    const std::string text = special(i);
+    if (!text.empty()) {
+      f << text << "\n";
+    } else {
+      f << 0.9 + 0.22 * std::fmod(step * i, 1.0) << "\n";
+    }
+  }
+}
+
 }  // namespace
 
 TEST_F(CliManyQueries, ThreadedBatchPrintsTheSerialOutput) {
   // 700 lines (more than one chunk of 2 x 64 and 3 x 64 lines), bad lines and a value outside
   // the domain [0.9, 1.12] among them.
   const std::string batch = dir_->file("batch.txt");
-  {
-    std::ofstream f(batch);
-    for (int i = 0; i < 700; ++i) {
-      if (i % 97 == 5) {
-        f << "not-a-number\n";
-      } else if (i == 333) {
-        f << "1.5\n";
-      } else {
-        f << 0.9 + 0.22 * std::fmod(0.618033988749895 * i, 1.0) << "\n";
-      }
-    }
-  }
+  write_batch(batch, 0.618033988749895, [](int i) -> std::string {
+    if (i % 97 == 5) return "not-a-number";
+    return i == 333 ? "1.5" : "";
+  });
   const std::string args = "online --model " + shell_quote(model_) + " --batch " + shell_quote(batch);
   const CliResult serial = run_cli(args);
   EXPECT_EQ(serial.exit_code, 1) << serial.err;  // the bad lines
@@ -129,16 +136,7 @@ TEST_F(CliManyQueries, ThreadedBatchPrintsTheSerialOutput) {
 // in input order, and the CSV's numbers.
 TEST_F(CliManyQueries, ThreadedCompactFormatsAreTheSerialBytes) {
   const std::string batch = dir_->file("batch_compact.txt");
-  {
-    std::ofstream f(batch);
-    for (int i = 0; i < 700; ++i) {
-      if (i % 101 == 7) {
-        f << "x\n";
-      } else {
-        f << 0.9 + 0.22 * std::fmod(0.414213562373095 * i, 1.0) << "\n";
-      }
-    }
-  }
+  write_batch(batch, 0.414213562373095, [](int i) -> std::string { return i % 101 == 7 ? "x" : ""; });
   const std::string model = "online --model " + shell_quote(model_);
   std::map<std::string, std::string> serial_out;
   for (const std::string format : {"csv", "npy"}) {
