@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
   int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1, krylov = -1;
   std::string linearization = "analytic";
   bool verbose = false;
-  double mu = 0.3, alpha = 0.3, tolerance = 1e-3;
+  double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
+  int newton_passes = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -58,6 +59,9 @@ int main(int argc, char** argv) {
     else if (a == "--passes") passes = next();
     else if (a == "--free-steps") free_steps = std::stoi(next());
     else if (a == "--branch-passes") branch_passes = std::stoi(next());
+    else if (a == "--branch-below") branch_below = std::stod(next());
+    else if (a == "--safeguard") safeguard = std::stod(next());
+    else if (a == "--newton-passes") newton_passes = std::stoi(next());
     else if (a == "--linearization") linearization = next();
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
@@ -89,6 +93,9 @@ int main(int argc, char** argv) {
     settings.newton.inner_passes = hf::newton_inner_passes_from_string(passes);
     if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
     if (branch_passes >= 0) settings.newton.max_branch_passes = branch_passes;
+    if (branch_below >= 0.0) settings.newton.branch_passes_below = branch_below;
+    if (safeguard >= 0.0) settings.newton.kacanov_safeguard = safeguard;
+    if (newton_passes > 0) settings.newton.max_newton_passes = newton_passes;
     if (linearization == "fd") {
       settings.newton.linearization.method = contact::LinearizationMethod::FiniteDifference;
     } else if (linearization != "analytic") {
@@ -113,8 +120,8 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s krylov %d\n",
-                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes,
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d lin %.4f s linear algebra %.4f s krylov %d\n",
+                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0,
                      it.linearize_s, it.factorize_s, it.krylov);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());

@@ -124,6 +124,46 @@ TEST(SemismoothNewton, FineLevelsConvergeInAtMostEightIterations) {
                        "ring-block level 2 lac", 8);
 }
 
+// hertz-a level 5 (88 164 DOFs) at mu 0.45: the first Newton step after the Kacanov phase
+// (merit 0.21) raised the merit, and without the Kacanov safeguard the backtracked Newton steps
+// crawled (steps of 1/128-1/4, 23 iterations). With it the exact frozen step is taken there
+// (merit 0.21 -> 0.065), every step is a full one and the solve takes 10 iterations, to the
+// same answer. (No smaller built-in mesh reproduces the crawl inside the case's mu range.)
+TEST(SemismoothNewton, KacanovSafeguardEndsTheCrawlOfHertzALevelFiveAtTheLargestMu) {
+  const hf::HFSolver solver(cases::make_problem("hertz-a", 0.45, 5, contact::Discretization::Collocation));
+  hf::HFSettings s = newton(1e-12);
+  const hf::HFSolution n = solver.solve(s);
+  ASSERT_TRUE(n.converged) << n.message;
+  EXPECT_LE(n.iterations, 10);
+  int kacanov_steps = 0;
+  std::vector<double> r;
+  for (const auto& it : n.newton_history) {
+    EXPECT_EQ(it.step, 1.0) << "a damped step at KKT " << it.residual;
+    kacanov_steps += it.kacanov_step ? 1 : 0;
+    r.push_back(it.residual);
+  }
+  r.push_back(n.kkt.max());
+  EXPECT_GE(kacanov_steps, 1);
+  // Superlinear end: the last two ratios of the KKT residual shrink, the last below 1e-2.
+  ASSERT_GE(r.size(), 3u);
+  const std::size_t m = r.size() - 1;
+  EXPECT_LT(r[m] / r[m - 1], 1e-2);
+  EXPECT_LT(r[m] / r[m - 1], r[m - 1] / r[m - 2]);
+  s.newton.kacanov_safeguard = 0.0;  // the previous globalization
+  const hf::HFSolution old = solver.solve(s);
+  ASSERT_TRUE(old.converged) << old.message;
+  EXPECT_GE(old.iterations, 15);
+  int damped = 0;
+  for (const auto& it : old.newton_history) damped += it.step < 1.0 ? 1 : 0;
+  EXPECT_GE(damped, 5);
+  EXPECT_LT(relative(n.u, old.u), 1e-9);
+  EXPECT_LT(relative(n.lambda, old.lambda), 1e-8);
+  EXPECT_NEAR(n.contact_force, old.contact_force, 1e-10 * old.contact_force);
+  EXPECT_EQ(n.active_constraints, old.active_constraints);
+  std::cout << "[ info     ] hertz-a level 5 mu 0.45: " << n.iterations << " iterations (" << kacanov_steps
+            << " safeguard steps), without the safeguard " << old.iterations << " (" << damped << " damped)\n";
+}
+
 // The active-rows reduction on a once-factorized A_00 (default) is exact algebra: it takes the
 // same steps as the sparse LU of the whole saddle point (same iterations, same active sets),
 // whether its Newton-phase systems go through GMRES (default) or the dense LU.
@@ -261,6 +301,12 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
   s = newton();
   s.newton.branch_passes_below = -1.0;
   expect_named(s, "branch_passes_below");
+  s = newton();
+  s.newton.kacanov_safeguard = -0.5;
+  expect_named(s, "kacanov_safeguard");
+  s = newton();
+  s.newton.max_newton_passes = 0;
+  expect_named(s, "max_newton_passes");
   s = newton();
   s.newton.krylov_max_iterations = -1;
   EXPECT_THROW(solver.solve(s), contactrb::Error);

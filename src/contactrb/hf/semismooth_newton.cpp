@@ -159,6 +159,10 @@ void check_settings(const NewtonSettings& s) {
   require(s.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(s.max_free_steps) + ")");
   require(s.max_branch_passes >= 0,
           "Newton max_branch_passes must be >= 0 (got " + std::to_string(s.max_branch_passes) + ")");
+  require(std::isfinite(s.kacanov_safeguard) && s.kacanov_safeguard >= 0.0,
+          "Newton kacanov_safeguard must be >= 0 (got " + std::to_string(s.kacanov_safeguard) + ")");
+  require(s.max_newton_passes >= 1,
+          "Newton max_newton_passes must be >= 1 (got " + std::to_string(s.max_newton_passes) + ")");
   require(s.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + std::to_string(s.branch_passes_below) + ")");
 }
 
@@ -601,7 +605,8 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     StepSource first_source = step_source;
     int passes = 1;
     const bool pass_frozen = kacanov_phase || singular_consistent;
-    while (passes < s.max_inner_iterations && predicted_active(is_active, pass_frozen) != 0) {
+    const int max_passes = pass_frozen ? s.max_inner_iterations : std::min(s.max_inner_iterations, s.max_newton_passes);
+    while (passes < max_passes && predicted_active(is_active, pass_frozen) != 0) {
       if (!(pass_frozen ? solve_active(is_active, true) : solve_newton_system(is_active))) {
         return finish(solve::KacanovStatus::StepFailed, failure);
       }
@@ -656,6 +661,67 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     // The frozen passes found the active set at once: the iterate is near enough for Newton.
     if (kacanov_phase && passes == 1) newton_phase = true;
     previous_active = is_active;
+
+    // Kacanov safeguard (Newton phase): the Newton step is good only where the slave nodes'
+    // remaining slip is below the master segment length (the contact forces are distributed by
+    // the hat functions of xi, whose slope jumps by |lambda_r| / h at each master vertex; on
+    // hertz-a the slave nodes in contact end next to master vertices). Further out, e.g. hertz-a
+    // level 5 at mu 0.45 from merit 0.21, the full Newton step raised the merit (0.24) where
+    // the exact frozen step lowered it to 0.065, and the backtracked Newton steps then crawled
+    // (steps of 1/128-1/4 for 14 iterations). So when the full Newton step does not reduce the
+    // merit to kacanov_safeguard x its value, the frozen step (Kacanov phase) is computed as
+    // well and the full step with the smaller merit goes first into the line search below.
+    // Not in iterations with branch passes (st holds the maps continued on other branches
+    // there; they happen only in the last, quadratic steps).
+    State full_trial;  // the full step of du, evaluated: the line search's first trial
+    bool have_full_trial = false;
+    if (!kacanov_phase && !pass_frozen && it.branch_passes == 0 && s.kacanov_safeguard > 0.0) {
+      const double phi_now = st.merit * st.merit;
+      auto evaluate_full = [&](State& out) {
+        try {
+          out = evaluate(st.u0 + du, lambda_next);
+        } catch (const Error&) {
+          return std::numeric_limits<double>::infinity();
+        }
+        return finite(out) ? out.merit * out.merit : std::numeric_limits<double>::infinity();
+      };
+      State newton_trial;
+      const double phi_newton = evaluate_full(newton_trial);
+      if (!(phi_newton <= s.kacanov_safeguard * s.kacanov_safeguard * phi_now)) {
+        const Eigen::VectorXd du_newton = du, lambda_newton = lambda_next;
+        const StepSource source_newton = step_source;
+        // The frozen passes from the iterate's own active set (du = 0), as in the Kacanov phase.
+        std::vector<char> frozen_active(static_cast<std::size_t>(R), 0);
+        du.setZero();
+        lambda_next = st.lambda;
+        predicted_active(frozen_active, true);
+        bool solved = solve_active(frozen_active, true);
+        for (int pass = 1; solved && pass < s.max_inner_iterations && predicted_active(frozen_active, true) != 0; ++pass) {
+          solved = solve_active(frozen_active, true);
+        }
+        State frozen_trial;
+        double phi_frozen = std::numeric_limits<double>::infinity();
+        if (solved) {
+          complete_step(du, step_source);
+          phi_frozen = evaluate_full(frozen_trial);
+        }
+        if (phi_frozen < phi_newton) {
+          it.kacanov_step = true;
+          previous_active = frozen_active;
+          full_trial = std::move(frozen_trial);
+          have_full_trial = true;
+        } else {
+          du = du_newton;
+          lambda_next = lambda_newton;
+          step_source = source_newton;
+          failure.clear();  // a singular frozen system here only means: keep the Newton step
+        }
+      }
+      if (!have_full_trial && std::isfinite(phi_newton)) {
+        full_trial = std::move(newton_trial);
+        have_full_trial = true;
+      }
+    }
     it.factorize_s = seconds_since(t0);
     const Eigen::VectorXd dlambda = lambda_next - st.lambda;
 
@@ -683,10 +749,15 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       if (tr.du == &du_first) complete_step(du_first, first_source);
       for (double t = tr.t_first; t >= tr.t_last && !accepted; t *= 0.5) {
         State trial;
-        try {
-          trial = evaluate(st.u0 + t * *tr.du, st.lambda + t * *tr.dl);
-        } catch (const Error&) {
-          continue;  // the geometry cannot be evaluated there: shorten the step
+        if (have_full_trial && tr.du == &du && t == 1.0) {
+          trial = std::move(full_trial);  // evaluated by the safeguard above
+          have_full_trial = false;
+        } else {
+          try {
+            trial = evaluate(st.u0 + t * *tr.du, st.lambda + t * *tr.dl);
+          } catch (const Error&) {
+            continue;  // the geometry cannot be evaluated there: shorten the step
+          }
         }
         if (!finite(trial)) continue;
         const double phi = trial.merit * trial.merit;

@@ -21,7 +21,9 @@
 // passes, until those passes find the active set at once; then Newton steps. Every step is
 // followed by a backtracking line search on the merit 1/2 |F|^2 (F with the complementarity
 // rows in force units, |I_r| min(lambda_r, c_r d_r)); optionally a bounded number of full steps
-// without a decrease (max_free_steps).
+// without a decrease (max_free_steps). In the Newton phase a full step that does not halve the
+// merit is compared with the exact frozen-geometry step, and the better one is tried first
+// (kacanov_safeguard).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
@@ -77,6 +79,18 @@ struct NewtonSettings {
   // ... in the iterations whose KKT residual is at most this (the last, quadratic steps, where a
   // kink crossing costs a whole iteration).
   double branch_passes_below = 1e-5;
+  // Kacanov safeguard (Newton phase, iterations without branch passes): when the full Newton
+  // step leaves the merit above kacanov_safeguard x the iterate's, the exact frozen-geometry
+  // step (the Kacanov phase's, active-set passes on the convex QP) is computed too and the full
+  // step with the smaller merit is taken (then the line search as before). 0: off. Measured
+  // (docs/solvers.md, "Globalization"): hertz-a level 5 at mu 0.45 23 -> 10 iterations (the
+  // first Newton step from merit 0.21 went to 0.24, the frozen one to 0.065); mu 0.15 / 0.3 and
+  // ring-block unchanged (the Newton step always wins there).
+  double kacanov_safeguard = 0.5;
+  // Inner passes on the consistent linearization per Newton-phase iteration (systems, <=
+  // max_inner_iterations). Their LCP is not monotone: where they do not settle in a few passes
+  // (hertz-a level 5, mu 0.45: the cap of 20 reached), the step is the safeguard's anyway.
+  int max_newton_passes = 4;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
@@ -90,7 +104,8 @@ struct NewtonSettings {
   contact::LinearizationOptions linearization;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
-// outside (0, 1/2) or a min_step outside (0, 1].
+// outside (0, 1/2), a min_step outside (0, 1], a negative kacanov_safeguard or
+// max_newton_passes < 1 (and the other bounds named in the messages).
 void check_settings(const NewtonSettings& settings);
 
 struct NewtonIteration {
@@ -104,6 +119,7 @@ struct NewtonIteration {
   double step = 0.0;       // damping factor taken
   int colours = 0;         // colours of the finite-difference linearization (0: analytic)
   int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
+  bool kacanov_step = false;  // Newton phase: the safeguard took the exact frozen-geometry step
   double linearize_s = 0.0, factorize_s = 0.0;
   int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
