@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   std::string linearization = "analytic";
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
-  int newton_passes = -1;
+  int newton_passes = -1, switch_passes = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     else if (a == "--branch-below") branch_below = std::stod(next());
     else if (a == "--safeguard") safeguard = std::stod(next());
     else if (a == "--newton-passes") newton_passes = std::stoi(next());
+    else if (a == "--switch-passes") switch_passes = std::stoi(next());
     else if (a == "--linearization") linearization = next();
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
@@ -96,6 +97,7 @@ int main(int argc, char** argv) {
     if (branch_below >= 0.0) settings.newton.branch_passes_below = branch_below;
     if (safeguard >= 0.0) settings.newton.kacanov_safeguard = safeguard;
     if (newton_passes > 0) settings.newton.max_newton_passes = newton_passes;
+    if (switch_passes > 0) settings.newton.switch_passes = switch_passes;
     if (linearization == "fd") {
       settings.newton.linearization.method = contact::LinearizationMethod::FiniteDifference;
     } else if (linearization != "analytic") {

@@ -161,6 +161,7 @@ void check_settings(const NewtonSettings& s) {
           "Newton max_branch_passes must be >= 0 (got " + std::to_string(s.max_branch_passes) + ")");
   require(std::isfinite(s.kacanov_safeguard) && s.kacanov_safeguard >= 0.0,
           "Newton kacanov_safeguard must be >= 0 (got " + std::to_string(s.kacanov_safeguard) + ")");
+  require(s.switch_passes >= 1, "Newton switch_passes must be >= 1 (got " + std::to_string(s.switch_passes) + ")");
   require(s.max_newton_passes >= 1,
           "Newton max_newton_passes must be >= 1 (got " + std::to_string(s.max_newton_passes) + ")");
   require(s.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + std::to_string(s.branch_passes_below) + ")");
@@ -659,7 +660,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     }
     complete_step(du, step_source);
     // The frozen passes found the active set at once: the iterate is near enough for Newton.
-    if (kacanov_phase && passes == 1) newton_phase = true;
+    if (kacanov_phase && passes <= s.switch_passes) newton_phase = true;
     previous_active = is_active;
 
     // Kacanov safeguard (Newton phase): the Newton step is good only where the slave nodes'

@@ -83,7 +83,7 @@ struct NewtonSettings {
   // step leaves the merit above kacanov_safeguard x the iterate's, the exact frozen-geometry
   // step (the Kacanov phase's, active-set passes on the convex QP) is computed too and the full
   // step with the smaller merit is taken (then the line search as before). 0: off. Measured
-  // (docs/solvers.md, "Globalization"): hertz-a level 5 at mu 0.45 23 -> 10 iterations (the
+  // (docs/solvers.md, "Globalization"): hertz-a level 5 at mu 0.45 22 -> 10 iterations (the
   // first Newton step from merit 0.21 went to 0.24, the frozen one to 0.065); mu 0.15 / 0.3 and
   // ring-block unchanged (the Newton step always wins there).
   double kacanov_safeguard = 0.5;
@@ -91,6 +91,9 @@ struct NewtonSettings {
   // max_inner_iterations). Their LCP is not monotone: where they do not settle in a few passes
   // (hertz-a level 5, mu 0.45: the cap of 20 reached), the step is the safeguard's anyway.
   int max_newton_passes = 4;
+  // The Kacanov phase ends after an iteration whose frozen passes settled in at most this many
+  // systems (1: the active set was found at once).
+  int switch_passes = 1;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
