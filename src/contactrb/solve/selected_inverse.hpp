@@ -20,6 +20,16 @@
 
 namespace contactrb::solve {
 
+// Fill-reducing ordering of the factorization. Cholmod: CHOLMOD's default (AMD; METIS as well
+// when AMD fills badly). NodeMetis: METIS nested dissection of the supervariable graph (runs of
+// consecutive indices with the same column pattern: the 2 DOFs of a node), one vertex per run.
+// Auto: NodeMetis from kNodeMetisFrom rows on, Cholmod below (docs/benchmarks.md, "HF solver
+// scaling": on hertz-a level 6, nnz(L) 2.5e7 against AMD's 3.2e7, half the flops, and the
+// selected-inverse columns' paths shorter).
+enum class FactorOrdering { Auto, Cholmod, NodeMetis };
+const char* to_string(FactorOrdering ordering);
+inline constexpr int kNodeMetisFrom = 20000;
+
 enum class SelectedInverseStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(SelectedInverseStatus status);
 
@@ -30,14 +40,18 @@ class SelectedInverse {
   SelectedInverse(SelectedInverse&&) noexcept;
   SelectedInverse& operator=(SelectedInverse&&) noexcept;
 
-  // Ordering (CHOLMOD's default: AMD, METIS when AMD fills badly) and supernodal numeric
+  // Ordering (`ordering`, above) and supernodal numeric
   // factorization (BLAS 3), kept supernodal for every substitution. A: symmetric
   // with both triangles stored (only the lower one is read). InvalidInput: not square, empty,
   // a non-finite entry or a CHOLMOD failure (out of memory). Drops the cached columns.
-  SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A);
+  SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering = FactorOrdering::Auto);
   SelectedInverseStatus status() const;
   int rows() const;
   long factor_nonzeros() const;  // nnz(L)
+  FactorOrdering ordering() const;  // the one used (NodeMetis falls back to Cholmod if METIS fails)
+  // Wall seconds of the last compute(): ordering + symbolic analysis, numeric factorization.
+  double analyze_seconds() const;
+  double factorize_seconds() const;
 
   // Throw contactrb::Error unless status() == Success and the sizes / indices are valid.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
