@@ -131,9 +131,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "  A_00: analysis %.4f s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
                    tm.analyze_s, tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s krylov %d line search %.4f s\n",
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
                      it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes,
-                     it.linearize_s, it.factorize_s, it.krylov, it.search_s);
+                     it.linearize_s, it.factorize_s, it.block_s, it.krylov, it.search_s);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
     }

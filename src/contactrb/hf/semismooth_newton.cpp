@@ -400,8 +400,10 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         it.reduced_size = e;
         Eigen::MatrixXd G;
         {
+          const auto t_block = Clock::now();
           const solve::ScopedBlasThreads threads(blas_threads);  // the first block: all columns new
           G = inverse.block(E);
+          it.block_s += seconds_since(t_block);
         }
         // H_E, K_E and the constraint rows stay sparse: G H_E and G K_E' cost |E| x nnz.
         std::vector<Eigen::Triplet<double>> h_trip, k_trip, r_trip;

@@ -115,6 +115,7 @@ struct NewtonIteration {
   int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
   double linearize_s = 0.0, factorize_s = 0.0;
   double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
+  double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
   int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
 

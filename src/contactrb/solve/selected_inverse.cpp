@@ -271,6 +271,8 @@ const char* to_string(FactorOrdering ordering) {
   return "unknown";
 }
 
+FactorOrdering auto_ordering(int rows) { return rows >= kNodeMetisFrom ? FactorOrdering::NodeMetis : FactorOrdering::Cholmod; }
+
 SelectedInverse::SelectedInverse() : impl_(std::make_unique<Impl>()) {}
 SelectedInverse::~SelectedInverse() = default;
 SelectedInverse::SelectedInverse(SelectedInverse&&) noexcept = default;
@@ -304,7 +306,7 @@ SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>
   m.common.final_asis = 1;
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
-  if (ordering == FactorOrdering::Auto) ordering = A.rows() >= kNodeMetisFrom ? FactorOrdering::NodeMetis : FactorOrdering::Cholmod;
+  if (ordering == FactorOrdering::Auto) ordering = auto_ordering(static_cast<int>(A.rows()));
   std::vector<int> given;
   if (ordering == FactorOrdering::NodeMetis) given = supervariable_metis(A, m.common);
   if (!given.empty()) {

@@ -20,15 +20,19 @@
 
 namespace contactrb::solve {
 
-// Fill-reducing ordering of the factorization. Cholmod: CHOLMOD's default (AMD; METIS as well
-// when AMD fills badly). NodeMetis: METIS nested dissection of the supervariable graph (runs of
+// Fill-reducing ordering of the factorization. Cholmod: CHOLMOD's default (AMD; when AMD fills
+// badly, flops / nnz(L) >= 500 and nnz(L) / nnz(A) >= 5, METIS on the whole graph as well, and the
+// better of the two). NodeMetis: METIS nested dissection of the supervariable graph (runs of
 // consecutive indices with the same column pattern: the 2 DOFs of a node), one vertex per run.
-// Auto: NodeMetis from kNodeMetisFrom rows on, Cholmod below (docs/benchmarks.md, "HF solver
-// scaling": on hertz-a level 6, nnz(L) 2.5e7 against AMD's 3.2e7, half the flops, and the
-// selected-inverse columns' paths shorter).
+// Auto: auto_ordering(rows), NodeMetis from kNodeMetisFrom rows on, Cholmod below. Measured on
+// hertz-a (docs/benchmarks.md, "HF solver scaling"): level 7 (1.2e6 rows) CHOLMOD's default
+// runs AMD and METIS (analysis 13.8 s wall, loaded machine) for the nnz(L) that NodeMetis gets in
+// 4.5 s; on levels 4-6 (2.7e4-3.1e5 rows) AMD alone, and NodeMetis's dearer analysis costs what
+// its smaller factor saves (CPU of the whole solve within the machine's noise).
 enum class FactorOrdering { Auto, Cholmod, NodeMetis };
 const char* to_string(FactorOrdering ordering);
-inline constexpr int kNodeMetisFrom = 20000;
+inline constexpr int kNodeMetisFrom = 500000;
+FactorOrdering auto_ordering(int rows);
 
 enum class SelectedInverseStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(SelectedInverseStatus status);
