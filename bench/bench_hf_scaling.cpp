@@ -5,6 +5,9 @@
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen]
 //                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)] [--verbose] [--header]
+//                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
+//                     block from 50 000 free DOFs; default: the hardware threads; 0: OPENBLAS_NUM_THREADS)]
+//                    [--ordering auto|cholmod|node-metis]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -19,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "contactrb/cases/builtin_problems.hpp"
@@ -29,6 +33,8 @@ using namespace contactrb;
 int main(int argc, char** argv) {
   std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
   int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1, krylov = -1;
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::string ordering = "auto";
   std::string linearization = "analytic";
   bool verbose = false;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
@@ -65,6 +71,8 @@ int main(int argc, char** argv) {
     else if (a == "--switch-passes") switch_passes = std::stoi(next());
     else if (a == "--linearization") linearization = next();
     else if (a == "--krylov") krylov = std::stoi(next());
+    else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--ordering") ordering = next();
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -105,6 +113,13 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (krylov >= 0) settings.newton.krylov_max_iterations = krylov;
+    settings.newton.blas_threads = threads;
+    if (ordering == "cholmod") settings.newton.ordering = solve::FactorOrdering::Cholmod;
+    else if (ordering == "node-metis") settings.newton.ordering = solve::FactorOrdering::NodeMetis;
+    else if (ordering != "auto") {
+      std::fprintf(stderr, "unknown --ordering %s (auto, cholmod or node-metis)\n", ordering.c_str());
+      return 2;
+    }
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
     std::vector<double> setup, solve, total;
@@ -121,10 +136,13 @@ int main(int argc, char** argv) {
       return v[v.size() / 2];
     };
     if (verbose) {
+      const hf::NewtonTimings& tm = sol.newton_timings;
+      std::fprintf(stderr, "  A_00: analysis %.4f s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
+                   tm.analyze_s, tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d lin %.4f s linear algebra %.4f s krylov %d\n",
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
                      it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0,
-                     it.linearize_s, it.factorize_s, it.krylov);
+                     it.linearize_s, it.factorize_s, it.block_s, it.krylov, it.search_s);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
     }

@@ -5,15 +5,20 @@
 #   bench/hf_scaling.sh BUILD_DIR [MAX_NEWTON_LEVEL] [MAX_KACANOV_LEVEL] > scaling.csv
 set -uo pipefail
 # One BLAS thread: the dense reduced systems are small, and the CPU-time column then measures
-# the work (the development machine is shared; OpenBLAS threads spin while waiting).
+# the work (the development machine is shared; OpenBLAS threads spin while waiting). Newton's
+# factorization of A_00 and its selected-inverse blocks (BLAS 3) still use the hardware threads
+# from 50 000 free DOFs on: bench_hf_scaling's --threads default (docs/benchmarks.md, "Ordering
+# and threads"; pass --threads 1 through THREADS=1 for a single-thread sweep).
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+threads=()
+[ -n "${THREADS:-}" ] && threads=(--threads "$THREADS")
 build=${1:-build}
 max_newton=${2:-6}
 max_kacanov=${3:-5}
 bin="$build/bench/bench_hf_scaling"
 "$bin" --header
 for level in $(seq 0 "$max_newton"); do
-  "$bin" --case hertz-a --level "$level" --mu 0.3 --solver newton --repeat $((level < 4 ? 3 : 1))
+  "$bin" --case hertz-a --level "$level" --mu 0.3 --solver newton --repeat $((level < 4 ? 3 : 1)) "${threads[@]}"
 done
 for level in $(seq 0 "$max_kacanov"); do
   "$bin" --case hertz-a --level "$level" --mu 0.3 --solver kacanov --repeat $((level < 4 ? 3 : 1))

@@ -12,6 +12,7 @@
 #include "contactrb/cases/builtin_problems.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 #include "hf_test_meshes.hpp"
 
 using namespace contactrb;
@@ -208,6 +209,34 @@ TEST(SemismoothNewton, ActiveSchurTakesTheStepsOfTheSaddlePointLU) {
   }
 }
 
+// The factorization's ordering (METIS on the node graph, CHOLMOD's default) and its BLAS threads
+// (2 from 0 rows on against the BLAS's own count) change round-off only: the same iterations,
+// active sets, and the solution to 1e-12.
+TEST(SemismoothNewton, OrderingAndBlasThreadsGiveTheSameSolution) {
+  const hf::HFSolver solver(cases::make_problem("hertz-a", 0.3, 1));
+  hf::HFSettings s = newton(1e-12);
+  s.newton.ordering = solve::FactorOrdering::Cholmod;
+  const hf::HFSolution a = solver.solve(s);
+  s.newton.ordering = solve::FactorOrdering::NodeMetis;
+  s.newton.blas_threads = 2;
+  s.newton.blas_threads_from = 0;
+  const hf::HFSolution b = solver.solve(s);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_TRUE(b.converged) << b.message;
+  ASSERT_EQ(a.iterations, b.iterations);
+  for (std::size_t k = 0; k < a.newton_history.size(); ++k) {
+    EXPECT_EQ(a.newton_history[k].active, b.newton_history[k].active) << "iteration " << k;
+  }
+  EXPECT_LT(relative(b.u, a.u), 1e-12);
+  EXPECT_LT(relative(b.lambda, a.lambda), 1e-12);
+  EXPECT_NEAR(b.contact_force, a.contact_force, 1e-12 * std::abs(a.contact_force));
+  EXPECT_GT(a.newton_timings.factor_nonzeros, 0);
+  EXPECT_EQ(a.newton_timings.blas_threads, solve::blas_threads());
+  if (solve::blas_threads_settable()) {
+    EXPECT_EQ(b.newton_timings.blas_threads, 2);
+  }
+}
+
 // Newton's local rate: the last steps shrink the KKT residual superlinearly
 // (r_{k+1} / r_k -> 0); a linear method at Kacanov's rate would keep the ratio near its
 // contraction factor (0.1-0.7 here).
@@ -310,6 +339,9 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
   s = newton();
   s.newton.switch_passes = 0;
   expect_named(s, "switch_passes");
+  s = newton();
+  s.newton.blas_threads = -1;
+  expect_named(s, "blas_threads");
   s = newton();
   s.newton.krylov_max_iterations = -1;
   EXPECT_THROW(solver.solve(s), contactrb::Error);

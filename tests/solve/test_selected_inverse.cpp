@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 
 using namespace contactrb;
@@ -34,6 +35,53 @@ Eigen::SparseMatrix<double> grid_matrix(int m) {
   }
   Eigen::SparseMatrix<double> A(m * m, m * m);
   A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+// A 2-D elasticity-like matrix: 2 unknowns per node of an m x m grid (index 2 * node + c), each
+// node coupled to its grid neighbours through a 2 x 2 block, so consecutive pairs of columns
+// share their pattern (the supervariables of FactorOrdering::NodeMetis); then the rows and
+// columns of `dropped` removed (nodes with one prescribed component: unpaired columns).
+Eigen::SparseMatrix<double> vector_grid_matrix(int m, const std::vector<int>& dropped = {}) {
+  std::vector<Eigen::Triplet<double>> t;
+  auto id = [m](int i, int j) { return i * m + j; };
+  auto couple = [&](int a, int b, double w) {  // w [2 -1; -1 2]-like coupling of nodes a, b
+    for (int c = 0; c < 2; ++c) {
+      for (int d = 0; d < 2; ++d) {
+        const double v = (c == d ? -1.0 : 0.3) * w;
+        t.emplace_back(2 * a + c, 2 * b + d, v);
+        t.emplace_back(2 * b + d, 2 * a + c, v);
+      }
+    }
+  };
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const int a = id(i, j);
+      t.emplace_back(2 * a, 2 * a, 9.0 + 0.01 * i);
+      t.emplace_back(2 * a + 1, 2 * a + 1, 9.0 + 0.02 * j);
+      t.emplace_back(2 * a, 2 * a + 1, 0.5);
+      t.emplace_back(2 * a + 1, 2 * a, 0.5);
+      if (i + 1 < m) couple(a, id(i + 1, j), 1.0);
+      if (j + 1 < m) couple(a, id(i, j + 1), 1.0 + 0.001 * i);
+    }
+  }
+  const int n = 2 * m * m;
+  Eigen::SparseMatrix<double> full(n, n);
+  full.setFromTriplets(t.begin(), t.end());
+  std::vector<int> keep_index(static_cast<std::size_t>(n), 0);
+  for (int d : dropped) keep_index[static_cast<std::size_t>(d)] = -1;
+  int kept = 0;
+  for (int k = 0; k < n; ++k) {
+    if (keep_index[static_cast<std::size_t>(k)] == 0) keep_index[static_cast<std::size_t>(k)] = kept++;
+  }
+  std::vector<Eigen::Triplet<double>> r;
+  for (int j = 0; j < n; ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(full, j); it; ++it) {
+      const int a = keep_index[static_cast<std::size_t>(it.row())], b = keep_index[static_cast<std::size_t>(j)];
+      if (a >= 0 && b >= 0) r.emplace_back(a, b, it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> A(kept, kept);
+  A.setFromTriplets(r.begin(), r.end());
   return A;
 }
 }  // namespace
@@ -117,4 +165,79 @@ TEST(SelectedInverse, StatusesForBadInput) {
   ASSERT_EQ(s.compute(grid_matrix(4)), solve::SelectedInverseStatus::Success);
   EXPECT_THROW(s.block({16}), Error);
   EXPECT_THROW(s.solve(Eigen::VectorXd::Ones(3)), Error);
+}
+
+// METIS on the supervariable graph (the node pairs; unpaired columns where a component was
+// dropped) is a valid ordering: blocks and solves equal the dense inverse's, and CHOLMOD's
+// default ordering's to round-off; Auto picks it from kNodeMetisFrom rows on.
+TEST(SelectedInverse, NodeMetisOrderingMatchesTheDenseInverseAndTheDefault) {
+  const Eigen::SparseMatrix<double> A = vector_grid_matrix(14, {0, 5, 101, 230, 391});
+  const Eigen::MatrixXd inv = Eigen::MatrixXd(A).inverse();
+  solve::SelectedInverse metis, amd;
+  ASSERT_EQ(metis.compute(A, solve::FactorOrdering::NodeMetis), solve::SelectedInverseStatus::Success);
+  ASSERT_EQ(amd.compute(A, solve::FactorOrdering::Cholmod), solve::SelectedInverseStatus::Success);
+  EXPECT_EQ(metis.ordering(), solve::FactorOrdering::NodeMetis);
+  EXPECT_EQ(amd.ordering(), solve::FactorOrdering::Cholmod);
+  const std::vector<int> idx = {0, 1, 2, 77, 200, 201, 386, static_cast<int>(A.rows()) - 1};
+  const Eigen::MatrixXd G = metis.block(idx), H = amd.block(idx);
+  for (std::size_t a = 0; a < idx.size(); ++a) {
+    for (std::size_t b = 0; b < idx.size(); ++b) {
+      const auto ea = static_cast<Eigen::Index>(a), eb = static_cast<Eigen::Index>(b);
+      EXPECT_NEAR(G(ea, eb), inv(idx[a], idx[b]), 1e-14) << idx[a] << ", " << idx[b];
+      EXPECT_NEAR(G(ea, eb), H(ea, eb), 1e-14) << idx[a] << ", " << idx[b];
+    }
+  }
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  EXPECT_LT((metis.solve(b) - inv * b).norm(), 1e-13 * (inv * b).norm());
+  EXPECT_LT((metis.solve(b) - amd.solve(b)).norm(), 1e-13 * amd.solve(b).norm());
+  const std::vector<int> in = {3, 200}, out = {1, 200, 300};
+  const Eigen::VectorXd x = metis.solve_sparse(in, Eigen::Vector2d(1.0, -2.0), &out);
+  for (int o : out) EXPECT_NEAR(x(o), inv(o, 3) - 2.0 * inv(o, 200), 1e-14) << o;
+  // Auto: CHOLMOD's default below kNodeMetisFrom rows, NodeMetis from there on.
+  solve::SelectedInverse small;
+  ASSERT_EQ(small.compute(A), solve::SelectedInverseStatus::Success);
+  EXPECT_EQ(small.ordering(), solve::FactorOrdering::Cholmod);
+  EXPECT_EQ(solve::auto_ordering(solve::kNodeMetisFrom - 1), solve::FactorOrdering::Cholmod);
+  EXPECT_EQ(solve::auto_ordering(solve::kNodeMetisFrom), solve::FactorOrdering::NodeMetis);
+  // A larger one (20 402 rows: METIS's separators, not a few leaves) solves to round-off.
+  solve::SelectedInverse large;
+  const Eigen::SparseMatrix<double> B = vector_grid_matrix(101);
+  ASSERT_EQ(large.compute(B, solve::FactorOrdering::NodeMetis), solve::SelectedInverseStatus::Success);
+  EXPECT_EQ(large.ordering(), solve::FactorOrdering::NodeMetis);
+  const Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(B.rows(), 1.0, -3.0);
+  EXPECT_LT((B * large.solve(c) - c).norm(), 1e-12 * c.norm());
+}
+
+// OpenBLAS threads (the Newton solver's blas_threads) change the order of the BLAS-3 sums only:
+// the factorization with 2 threads gives the single-thread solution and inverse block to 1e-12,
+// and the scope restores the previous count.
+TEST(SelectedInverse, ThreadedFactorizationGivesTheSingleThreadAnswer) {
+  if (!solve::blas_threads_settable()) GTEST_SKIP() << "the BLAS is not OpenBLAS: its threads cannot be set";
+  const Eigen::SparseMatrix<double> A = vector_grid_matrix(90);  // 16 200 rows: top separators ~180 wide
+  const int before = solve::blas_threads();
+  solve::SelectedInverse one, two;
+  std::vector<int> idx;
+  for (int k = 0; k < 400; ++k) idx.push_back((k * 7919) % static_cast<int>(A.rows()));
+  std::sort(idx.begin(), idx.end());
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  Eigen::MatrixXd G1, G2;
+  {
+    const solve::ScopedBlasThreads threads(1);
+    EXPECT_EQ(solve::blas_threads(), 1);
+    ASSERT_EQ(one.compute(A, solve::FactorOrdering::NodeMetis), solve::SelectedInverseStatus::Success);
+    G1 = one.block(idx);
+  }
+  EXPECT_EQ(solve::blas_threads(), before);
+  {
+    const solve::ScopedBlasThreads threads(2);
+    EXPECT_EQ(solve::blas_threads(), 2);
+    ASSERT_EQ(two.compute(A, solve::FactorOrdering::NodeMetis), solve::SelectedInverseStatus::Success);
+    G2 = two.block(idx);
+  }
+  EXPECT_EQ(solve::blas_threads(), before);
+  EXPECT_LT((G1 - G2).cwiseAbs().maxCoeff(), 1e-12 * G1.cwiseAbs().maxCoeff());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  const Eigen::VectorXd x1 = one.solve(b), x2 = two.solve(b);
+  EXPECT_LT((x1 - x2).norm(), 1e-12 * x1.norm());
+  EXPECT_LT((A * x1 - b).norm(), 1e-12 * b.norm());
 }

@@ -327,6 +327,7 @@ HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Ei
   sol.message = nr.message;
   sol.iterations = nr.iterations;
   sol.newton_history = nr.history;
+  sol.newton_timings = nr.timings;
   sol.u0 = nr.u0;
   sol.u = total(nr.u0);
   sol.lambda = nr.lambda;

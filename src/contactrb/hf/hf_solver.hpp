@@ -64,6 +64,7 @@ struct HFSolution {
   int iterations = 0;
   std::vector<solve::KacanovIteration> history;        // Kacanov
   std::vector<NewtonIteration> newton_history;         // Newton
+  NewtonTimings newton_timings;                        // Newton: the once-per-solve work
 
   Eigen::VectorXd u;       // total displacement u_D + u_0 (num_dofs): last linearized solution
   Eigen::VectorXd u0;      // its free part (num_free)

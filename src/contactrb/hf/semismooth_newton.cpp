@@ -8,6 +8,7 @@
 
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 #include "contactrb/solve/dense_lu.hpp"
 #include "contactrb/solve/gmres.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
@@ -141,6 +142,7 @@ NewtonInnerPasses newton_inner_passes_from_string(const std::string& name) {
 }
 
 void check_settings(const NewtonSettings& s) {
+  require(s.blas_threads >= 0, "Newton blas_threads must be >= 0 (got " + std::to_string(s.blas_threads) + ")");
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
           "Newton tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
   require(s.max_iterations >= 1, "Newton max_iterations must be >= 1 (got " + std::to_string(s.max_iterations) + ")");
@@ -188,6 +190,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
 
   NewtonResult res;
   State st;
+  const auto t_initial = Clock::now();
   try {
     st = evaluate(u0_start, lambda_start);
   } catch (const Error& e) {
@@ -196,6 +199,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     res.lambda = lambda_start;
     return res;
   }
+  res.timings.initial_s = seconds_since(t_initial);
   std::vector<char> previous_active(static_cast<std::size_t>(R), 0);
   bool newton_phase = s.inner_passes == NewtonInnerPasses::Consistent;
   int free_steps = 0;
@@ -209,8 +213,14 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   Eigen::VectorXd z;
   std::vector<int> e_position(static_cast<std::size_t>(n), -1);
   const bool schur = s.linear_solver == NewtonLinearSolver::ActiveSchur;
+  const int blas_threads = s.blas_threads > 0 && n >= s.blas_threads_from ? s.blas_threads : 0;
   if (schur) {
-    const solve::SelectedInverseStatus status = inverse.compute(*p.A00);
+    solve::SelectedInverseStatus status;
+    {
+      const solve::ScopedBlasThreads threads(blas_threads);
+      res.timings.blas_threads = solve::blas_threads();
+      status = inverse.compute(*p.A00, s.ordering);
+    }
     if (status != solve::SelectedInverseStatus::Success) {
       res.message = std::string("semi-smooth Newton: the stiffness A_00 (") + std::to_string(n) +
                     " free DOFs) cannot be factorized: " + solve::to_string(status);
@@ -218,7 +228,12 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       res.lambda = st.lambda;
       return res;
     }
+    res.timings.analyze_s = inverse.analyze_seconds();
+    res.timings.numeric_s = inverse.factorize_seconds();
+    res.timings.factor_nonzeros = inverse.factor_nonzeros();
+    const auto t_rhs = Clock::now();
     z = inverse.solve(*p.b);
+    res.timings.rhs_s = seconds_since(t_rhs);
   }
   auto finish = [&](solve::KacanovStatus status, std::string message) {
     res.status = status;
@@ -388,7 +403,13 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         const int e = static_cast<int>(E.size());
         for (int a = 0; a < e; ++a) e_position[static_cast<std::size_t>(E[static_cast<std::size_t>(a)])] = a;
         it.reduced_size = e;
-        const Eigen::MatrixXd G = inverse.block(E);
+        Eigen::MatrixXd G;
+        {
+          const auto t_block = Clock::now();
+          const solve::ScopedBlasThreads threads(blas_threads);  // the first block: all columns new
+          G = inverse.block(E);
+          it.block_s += seconds_since(t_block);
+        }
         // H_E, K_E and the constraint rows stay sparse: G H_E and G K_E' cost |E| x nnz.
         std::vector<Eigen::Triplet<double>> h_trip, k_trip, r_trip;
         if (!frozen) {
@@ -732,6 +753,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     // active set, the plain semi-smooth Newton direction (a descent direction of the merit,
     // which the passes' one need not be: on hertz-a level 5 the latter alone crawled with steps
     // of 1/16-1/64 for 6 iterations), backtracked; then the passes' direction backtracked.
+    const auto t_search = Clock::now();
     const double phi0 = st.merit * st.merit;
     bool accepted = false;
     State best;
@@ -789,6 +811,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       it.step = best_t;  // no decrease down to min_step: take the best trial, the cap ends a stall
       st = std::move(best);
     }
+    it.search_s = seconds_since(t_search);
     res.history.push_back(it);
     res.iterations = k + 1;
   }

@@ -34,6 +34,7 @@
 #include "contactrb/fem/dirichlet.hpp"
 #include "contactrb/mesh/mesh.hpp"
 #include "contactrb/solve/kacanov.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 #include "contactrb/solve/sparse_lu.hpp"
 
 namespace contactrb::hf {
@@ -104,6 +105,14 @@ struct NewtonSettings {
   // converge in krylov_max_iterations products (0: always the dense LU).
   int krylov_max_iterations = 100;
   double krylov_tolerance = 1e-13;
+  // ActiveSchur: OpenBLAS threads for the BLAS-3 parts (the supernodal factorization of A_00, the
+  // selected-inverse blocks) when A_00 has at least blas_threads_from rows; 0 leaves the BLAS's
+  // own count (OPENBLAS_NUM_THREADS) everywhere. The count is process-wide (solve/blas_threads.hpp):
+  // leave 0 when solves run in parallel threads. Measured: docs/benchmarks.md, "HF solver scaling".
+  int blas_threads = 0;
+  int blas_threads_from = 50000;
+  // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp).
+  solve::FactorOrdering ordering = solve::FactorOrdering::Auto;
   contact::LinearizationOptions linearization;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
@@ -124,6 +133,8 @@ struct NewtonIteration {
   int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
   bool kacanov_step = false;  // Newton phase: the safeguard took the exact frozen-geometry step
   double linearize_s = 0.0, factorize_s = 0.0;
+  double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
+  double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
   int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
 
@@ -137,11 +148,20 @@ struct NewtonProblem {
   const Eigen::VectorXd* b = nullptr;                // f_0 - (A u_D)_0
 };
 
+// Wall seconds of the once-per-solve work (ActiveSchur): CHOLMOD's ordering + symbolic analysis
+// of A_00, its numeric factorization, z = A_00^-1 b; and the initial evaluation.
+struct NewtonTimings {
+  double analyze_s = 0.0, numeric_s = 0.0, rhs_s = 0.0, initial_s = 0.0;
+  long factor_nonzeros = 0;  // nnz(L)
+  int blas_threads = 1;      // BLAS threads of the factorization
+};
+
 struct NewtonResult {
   solve::KacanovStatus status = solve::KacanovStatus::StepFailed;  // Converged, MaxIterations, StepFailed, NonFinite
   std::string message;
   int iterations = 0;
   std::vector<NewtonIteration> history;
+  NewtonTimings timings;
   Eigen::VectorXd u0;      // free part
   Eigen::VectorXd lambda;  // R
   double stationarity = 0.0, primal = 0.0, dual = 0.0, complementarity = 0.0;  // final HFKKT

@@ -20,6 +20,20 @@
 
 namespace contactrb::solve {
 
+// Fill-reducing ordering of the factorization. Cholmod: CHOLMOD's default (AMD; when AMD fills
+// badly, flops / nnz(L) >= 500 and nnz(L) / nnz(A) >= 5, METIS on the whole graph as well, and the
+// better of the two). NodeMetis: METIS nested dissection of the supervariable graph (runs of
+// consecutive indices with the same column pattern: the 2 DOFs of a node), one vertex per run.
+// Auto: auto_ordering(rows), NodeMetis from kNodeMetisFrom rows on, Cholmod below. Measured on
+// hertz-a (docs/benchmarks.md, "HF solver scaling"): level 7 (1.2e6 rows) CHOLMOD's default
+// runs AMD and METIS (analysis 13.8 s wall, loaded machine) for the nnz(L) that NodeMetis gets in
+// 4.5 s; on levels 4-6 (2.7e4-3.1e5 rows) AMD alone, and NodeMetis's dearer analysis costs what
+// its smaller factor saves (CPU of the whole solve within the machine's noise).
+enum class FactorOrdering { Auto, Cholmod, NodeMetis };
+const char* to_string(FactorOrdering ordering);
+inline constexpr int kNodeMetisFrom = 500000;
+FactorOrdering auto_ordering(int rows);
+
 enum class SelectedInverseStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(SelectedInverseStatus status);
 
@@ -30,14 +44,18 @@ class SelectedInverse {
   SelectedInverse(SelectedInverse&&) noexcept;
   SelectedInverse& operator=(SelectedInverse&&) noexcept;
 
-  // Ordering (CHOLMOD's default: AMD, METIS when AMD fills badly) and supernodal numeric
+  // Ordering (`ordering`, above) and supernodal numeric
   // factorization (BLAS 3), kept supernodal for every substitution. A: symmetric
   // with both triangles stored (only the lower one is read). InvalidInput: not square, empty,
   // a non-finite entry or a CHOLMOD failure (out of memory). Drops the cached columns.
-  SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A);
+  SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering = FactorOrdering::Auto);
   SelectedInverseStatus status() const;
   int rows() const;
   long factor_nonzeros() const;  // nnz(L)
+  FactorOrdering ordering() const;  // the one used (NodeMetis falls back to Cholmod if METIS fails)
+  // Wall seconds of the last compute(): ordering + symbolic analysis, numeric factorization.
+  double analyze_seconds() const;
+  double factorize_seconds() const;
 
   // Throw contactrb::Error unless status() == Success and the sizes / indices are valid.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
