@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -13,6 +14,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "commands.hpp"
@@ -132,14 +134,23 @@ EarlyStart start_early(const SnapshotsOptions& opt, int rank) {
   return e;
 }
 
+// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init (docs/cluster.md: MPI libraries whose
+// MPI_Init installs memory hooks, e.g. UCX's, race with a thread that allocates meanwhile).
+bool overlap_mpi_init() {
+  const char* v = std::getenv("CONTACTRB_MPI_INIT_OVERLAP");
+  return v == nullptr || std::string_view(v) != "0";
+}
+
 int run_snapshots(const SnapshotsOptions& opt) {
   // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
   const bool mpi = built_with_mpi() && mpirun_processes() > 1;
+  const bool overlap = mpi && overlap_mpi_init();
   EarlyStart early;
-  if (mpi) early = start_early(opt, mpirun_rank());
+  if (overlap) early = start_early(opt, mpirun_rank());
   // (A throw here or below waits for the thread of `early`: std::async's future.)
   const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
-  const std::shared_ptr<const Setup> setup = mpi ? early.setup.get() : std::make_shared<const Setup>(make_setup(opt, false));
+  const std::shared_ptr<const Setup> setup =
+      overlap ? early.setup.get() : std::make_shared<const Setup>(make_setup(opt, world != nullptr));
   const rb::SnapshotRequest& request = setup->request;
 
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };

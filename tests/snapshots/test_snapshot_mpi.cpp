@@ -42,6 +42,12 @@ TEST(SnapshotMpi, RanksGatherTheSerialFile) {
     const auto gathered = contactrb::io::read_snapshot_file(out);
     contactrb::test::expect_same_data(reference, gathered, false);
   }
+  // Without the work during MPI_Init (CONTACTRB_MPI_INIT_OVERLAP=0) each rank solves its first
+  // value after it: the same file.
+  const CliResult r = mpirun(2, "snapshots " + kValues + " -q --out " + shell_quote(dir.file("plain.h5")),
+                             "CONTACTRB_MPI_INIT_OVERLAP=0");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  contactrb::test::expect_same_data(reference, contactrb::io::read_snapshot_file(dir.file("plain.h5")), false);
 }
 
 // The warm-start schedule (--warm-start on): rank 0 hands out each wave's values with the
