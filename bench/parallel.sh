@@ -7,6 +7,8 @@
 #  3. `sample --n N` (all hardware threads).
 # Each run is repeated REPEAT times and the fastest kept (the machine may be shared).
 # MPIRUN_FLAGS (environment): extra options for mpirun.
+# SNAPSHOT_FLAGS (environment): extra options for `snapshots` (e.g. "--tol 1e-4"); a larger LEVEL
+# shows the speed-up where the fixed costs (process start, MPI_Init, mesh, file) matter less.
 # CASE must have one parameter (the batch file is the first column of `sample --points`).
 #   bench/parallel.sh BUILD_DIR [CASE] [SET] [LEVEL] [LINES] [N] [REPEAT]
 #   e.g. bench/parallel.sh build hertz-b training 1 200000 1000000 3
@@ -62,14 +64,15 @@ report() {  # label, then "solves total" of 1 and of 2
   read -r s2 w2 <<<"$3"
   echo "$1: solves ${s1} s -> ${s2} s (speed-up $(ratio "$s1" "$s2")); whole command ${w1} s -> ${w2} s (speed-up $(ratio "$w1" "$w2"))"
 }
-snapshots=(snapshots --case "$case" --set "$set_name" --level "$level" -q --out s.h5)
-report "snapshots $case $set_name level $level, 1 -> 2 threads" "$(snap "$cli" "${snapshots[@]}")" \
+read -r -a snapshot_flags <<<"${SNAPSHOT_FLAGS:-}"
+snapshots=(snapshots --case "$case" --set "$set_name" --level "$level" "${snapshot_flags[@]}" -q --out s.h5)
+report "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 threads" "$(snap "$cli" "${snapshots[@]}")" \
   "$(snap "$cli" "${snapshots[@]}" --jobs 2)"
 if [[ -n "$mpirun" ]]; then
   # MPIRUN_FLAGS: extra mpirun options, e.g. "--mca pml ob1" (MPI_Init without probing for
   # Omni-Path/libfabric networks: 0.03 s instead of 0.23 s on the development machine).
   read -r -a mpirun_flags <<<"${MPIRUN_FLAGS:-}"
-  report "snapshots $case $set_name level $level, 1 -> 2 MPI ranks${MPIRUN_FLAGS:+ ($MPIRUN_FLAGS)}" \
+  report "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 MPI ranks${MPIRUN_FLAGS:+ ($MPIRUN_FLAGS)}" \
     "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 1 "$cli" "${snapshots[@]}")" \
     "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 2 "$cli" "${snapshots[@]}")"
 fi

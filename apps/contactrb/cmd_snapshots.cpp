@@ -4,13 +4,17 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "commands.hpp"
@@ -49,11 +53,19 @@ struct SnapshotsOptions {
   std::string out;
 };
 
-int run_snapshots(const SnapshotsOptions& opt) {
-  // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
-  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
-  require(!world || opt.jobs == 1, "--jobs " + std::to_string(opt.jobs) +
-                                       ": under mpirun each rank solves one value at a time (start more ranks)");
+using Clock = std::chrono::steady_clock;
+
+// What the solves need (the setup of one process or MPI rank).
+struct Setup {
+  rb::SnapshotRequest request;
+  rb::SnapshotRunOptions run;
+  Clock::time_point start, solves_start;  // the setup's start (after the cheap checks), its end
+};
+
+// The options checked, the case and its reference mesh built.
+Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
+  require(!mpi || opt.jobs == 1, "--jobs " + std::to_string(opt.jobs) +
+                                     ": under mpirun each rank solves one value at a time (start more ranks)");
   // Cheap checks first.
   const cases::CaseSpec spec =
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
@@ -72,13 +84,12 @@ int run_snapshots(const SnapshotsOptions& opt) {
   std::optional<rb::SnapshotPart> part;
   if (!opt.part.empty()) part = rb::parse_snapshot_part(opt.part);
 
-  using Clock = std::chrono::steady_clock;
-  const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
-  const auto t0 = Clock::now();
-  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
-  request.settings = settings;
-  if (part) rb::restrict_to_part(request, *part);
-  rb::SnapshotRunOptions run;
+  Setup p;
+  p.start = Clock::now();
+  p.request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  p.request.settings = settings;
+  if (part) rb::restrict_to_part(p.request, *part);
+  rb::SnapshotRunOptions& run = p.run;
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
   if (opt.warm_start == "on") {
@@ -88,8 +99,65 @@ int run_snapshots(const SnapshotsOptions& opt) {
   } else if (opt.warm_start == "off" || part) {
     run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;
   }
-  const auto t1 = Clock::now();
-  std::optional<io::SnapshotSet> gathered = world ? mpi_generate_snapshots(*world, request, run) : rb::generate_snapshots(request, run);
+  p.solves_start = Clock::now();
+  return p;
+}
+
+// Under mpirun, MPI_Init mostly waits (0.2-0.3 s of little CPU with OpenMPI's default
+// transports: the other processes, the network probes), so a thread does the setup meanwhile
+// (`setup`) and then solves this rank's first task (`early`; mpi_snapshots.hpp, first_task;
+// `rank`: the launcher's rank, -1 when unknown: no early solve).
+struct EarlyStart {
+  std::future<std::shared_ptr<const Setup>> setup;
+  std::future<std::optional<EarlySolve>> early;
+};
+EarlyStart start_early(const SnapshotsOptions& opt, int rank) {
+  auto setup = std::make_shared<std::promise<std::shared_ptr<const Setup>>>();
+  EarlyStart e;
+  e.setup = setup->get_future();
+  e.early = std::async(std::launch::async, [&opt, rank, setup]() -> std::optional<EarlySolve> {
+    std::shared_ptr<const Setup> s;
+    try {
+      s = std::make_shared<const Setup>(make_setup(opt, true));
+    } catch (...) {
+      setup->set_exception(std::current_exception());
+      return std::nullopt;
+    }
+    setup->set_value(s);
+    const std::optional<std::size_t> i = rank >= 0 ? first_task(rb::snapshot_schedule(s->request, s->run), rank) : std::nullopt;
+    if (!i) return std::nullopt;
+    EarlySolve solved;
+    solved.index = *i;
+    solved.layout = rb::solve_snapshot(s->request, *i, solved.snapshot, nullptr);  // `s` keeps the request alive
+    return solved;
+  });
+  return e;
+}
+
+// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init (docs/cluster.md: MPI libraries whose
+// MPI_Init installs memory hooks, e.g. UCX's, race with a thread that allocates meanwhile).
+bool overlap_mpi_init() {
+  const char* v = std::getenv("CONTACTRB_MPI_INIT_OVERLAP");
+  return v == nullptr || std::string_view(v) != "0";
+}
+
+int run_snapshots(const SnapshotsOptions& opt) {
+  // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
+  const bool mpi = built_with_mpi() && mpirun_processes() > 1;
+  const bool overlap = mpi && overlap_mpi_init();
+  EarlyStart early;
+  if (overlap) early = start_early(opt, mpirun_rank());
+  // (A throw here or below waits for the thread of `early`: std::async's future.)
+  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
+  const std::shared_ptr<const Setup> setup =
+      overlap ? early.setup.get() : std::make_shared<const Setup>(make_setup(opt, world != nullptr));
+  const rb::SnapshotRequest& request = setup->request;
+
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  const auto t0 = setup->start;
+  const auto t1 = setup->solves_start;
+  std::optional<io::SnapshotSet> gathered = world ? mpi_generate_snapshots(*world, request, setup->run, std::move(early.early))
+                                                  : rb::generate_snapshots(request, setup->run);
   if (!gathered) return 0;  // an MPI rank other than 0: its results are in rank 0's file
   const io::SnapshotSet set = std::move(*gathered);
   const auto t2 = Clock::now();

@@ -22,6 +22,12 @@
 
 namespace contactrb::app {
 
+std::optional<std::size_t> first_task(const rb::SnapshotSchedule& schedule, int rank) {
+  const std::vector<std::size_t>& wave = schedule.waves.front();
+  if (rank < 0 || static_cast<std::size_t>(rank) >= wave.size()) return std::nullopt;
+  return wave[static_cast<std::size_t>(rank)];
+}
+
 #if CONTACTRB_HAVE_MPI
 
 namespace {
@@ -66,7 +72,26 @@ std::vector<char> receive(const MPI_Status& status) {
   return bytes;
 }
 
-io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options) {
+// The ranks that start with a task of their own (first_task): 0 .. preassigned - 1.
+std::size_t preassigned(const rb::SnapshotSchedule& schedule, int size) {
+  return std::min(schedule.waves.front().size(), static_cast<std::size_t>(size));
+}
+
+// The early solve when it is the one of index i, else a solve of i now (cold: a first-wave value).
+rb::SnapshotLayout solve_first(const rb::SnapshotRequest& request, std::size_t i,
+                               std::future<std::optional<EarlySolve>>& early, io::Snapshot& out) {
+  if (early.valid()) {
+    std::optional<EarlySolve> e = early.get();
+    if (e && e->index == i) {
+      out = std::move(e->snapshot);
+      return std::move(e->layout);
+    }
+  }
+  return rb::solve_snapshot(request, i, out, nullptr);
+}
+
+io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options,
+                          std::future<std::optional<EarlySolve>> early) {
   const std::size_t n = request.mu.size();
   std::vector<io::Snapshot> snapshots(n);
   std::vector<rb::SnapshotLayout> layouts(n);
@@ -74,18 +99,22 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
   const rb::SnapshotSchedule schedule = rb::snapshot_schedule(request, options);
   const auto start_of = [&](std::size_t i) { return schedule.start[i] ? &snapshots[*schedule.start[i]] : nullptr; };
   std::deque<int> idle;  // ranks waiting for a task
-  int ready = 0;         // ranks that said they are ready (each once)
+  std::vector<char> heard(static_cast<std::size_t>(world.size()), 0);  // ranks that sent a first message
+  int workers_heard = 0;
   std::vector<char> solved(n, 0);
   PollBackoff backoff(coordinator_cap(0, 0));
   double remote_seconds = 0;  // the solve times of the other ranks' results
   int remote_solves = 0;
 
-  // Handles one message of a worker: a first "ready" or a result.
+  // Handles one message of a worker: a first "ready" (a worker without a first task) or a result.
   const auto handle = [&](const MPI_Status& status) {
     const std::vector<char> bytes = receive(status);
-    if (status.MPI_TAG == kReady) {
-      ++ready;
-    } else if (status.MPI_TAG == kResult) {
+    char& first = heard[static_cast<std::size_t>(status.MPI_SOURCE)];
+    if (first == 0) {
+      first = 1;
+      ++workers_heard;
+    }
+    if (status.MPI_TAG == kResult) {
       std::uint64_t i = 0;
       io::Snapshot s;
       rb::SnapshotLayout layout;
@@ -98,19 +127,29 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
       remote_seconds += snapshots[i].time_s;
       backoff.set_cap(coordinator_cap(remote_seconds, ++remote_solves));
       progress.finished(snapshots[i]);
-    } else {
+    } else if (status.MPI_TAG != kReady) {
       throw Error("internal: unexpected MPI message tag " + std::to_string(status.MPI_TAG));
     }
     idle.push_back(status.MPI_SOURCE);
   };
 
-  for (const std::vector<std::size_t>& wave : schedule.waves) {
-    std::atomic<std::size_t> next{0};
+  for (std::size_t w = 0; w < schedule.waves.size(); ++w) {
+    const std::vector<std::size_t>& wave = schedule.waves[w];
+    // The first wave's first values are the ranks' own first tasks (rank r: the r-th).
+    const std::size_t own = w == 0 ? preassigned(schedule, world.size()) : 0;
+    std::atomic<std::size_t> next{own};
     std::atomic<bool> local_done{false};
     std::exception_ptr local_error;
-    // Rank 0's own solver thread: takes indices from the same counter as the other ranks.
+    // Rank 0's own solver thread: its first task, then indices from the same counter as the
+    // other ranks.
     std::thread local([&] {
       try {
+        if (own > 0) {
+          const std::size_t i = wave[0];
+          layouts[i] = solve_first(request, i, early, snapshots[i]);
+          solved[i] = 1;
+          progress.finished(snapshots[i]);
+        }
         for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
           const std::size_t i = wave[k];
           layouts[i] = rb::solve_snapshot(request, i, snapshots[i], start_of(i));
@@ -122,7 +161,7 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
       }
       local_done = true;
     });
-    std::size_t outstanding = 0;  // tasks sent and not returned
+    std::size_t outstanding = own > 0 ? own - 1 : 0;  // tasks of other ranks not returned
     for (;;) {
       while (!idle.empty()) {
         const std::size_t k = next.fetch_add(1);
@@ -146,8 +185,8 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
     local.join();
     if (local_error) std::rethrow_exception(local_error);
   }
-  // Every worker is idle once it has said it is ready: then stop them all.
-  while (ready < world.size() - 1) {
+  // Every worker is idle once it has sent its first message: then stop them all.
+  while (workers_heard < world.size() - 1) {
     MPI_Status status;
     probe(MPI_ANY_SOURCE, true, status, backoff);
     handle(status);
@@ -156,8 +195,16 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
   return rb::assemble_snapshot_set(request, std::move(snapshots), layouts);
 }
 
-void run_worker(const rb::SnapshotRequest& request) {
-  send({}, 0, kReady);
+void run_worker(const MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options,
+                std::future<std::optional<EarlySolve>> early) {
+  // The first message: the result of this rank's first task, or "ready" when it has none.
+  if (const std::optional<std::size_t> i = first_task(rb::snapshot_schedule(request, options), world.rank())) {
+    io::Snapshot s;
+    const rb::SnapshotLayout layout = solve_first(request, *i, early, s);
+    send(rb::pack_solved(*i, s, layout), 0, kResult);
+  } else {
+    send({}, 0, kReady);
+  }
   PollBackoff backoff;  // the next task comes at once (at the coordinator's next poll), or kStop
   for (;;) {
     MPI_Status status;
@@ -179,15 +226,16 @@ void run_worker(const rb::SnapshotRequest& request) {
 }  // namespace
 
 std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb::SnapshotRequest& request,
-                                                      const rb::SnapshotRunOptions& options) {
+                                                      const rb::SnapshotRunOptions& options,
+                                                      std::future<std::optional<EarlySolve>> early) {
   const bool ok = !request.mu.empty() && static_cast<bool>(request.make_problem);
   if (!world.agree(ok)) {
     if (world.rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
     return std::nullopt;
   }
   try {
-    if (world.rank() == 0) return run_rank0(world, request, options);
-    run_worker(request);
+    if (world.rank() == 0) return run_rank0(world, request, options, std::move(early));
+    run_worker(world, request, options, std::move(early));
     return std::nullopt;
   } catch (const std::exception& e) {
     // A rank that leaves the protocol would leave the others waiting for it: end the job.
@@ -201,7 +249,7 @@ std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb:
 #else
 
 std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld&, const rb::SnapshotRequest&,
-                                                      const rb::SnapshotRunOptions&) {
+                                                      const rb::SnapshotRunOptions&, std::future<std::optional<EarlySolve>>) {
   throw Error("internal: MPI snapshots in a build without MPI");
 }
 

@@ -29,6 +29,17 @@ int launcher_size() {
 
 int mpirun_processes() { return launcher_size(); }
 
+int mpirun_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}) {
+    const char* v = std::getenv(name);
+    if (v == nullptr || *v == '\0') continue;
+    char* end = nullptr;
+    const long r = std::strtol(v, &end, 10);
+    return *end == '\0' && r >= 0 && r < 1 << 30 ? static_cast<int>(r) : -1;
+  }
+  return -1;
+}
+
 #if CONTACTRB_HAVE_MPI
 
 bool built_with_mpi() { return true; }

@@ -44,4 +44,9 @@ bool built_with_mpi();
 // The number of processes mpirun started (from its environment), 0 when not started by it.
 int mpirun_processes();
 
+// This process's rank as the launcher's environment gives it (OMPI_COMM_WORLD_RANK, PMI_RANK or
+// PMIX_RANK), -1 when it gives none: known before MPI_Init, for work that starts before it
+// (cmd_snapshots.cpp). MpiWorld::rank() is the rank; a caller checks the two agree.
+int mpirun_rank();
+
 }  // namespace contactrb::app

@@ -10,11 +10,12 @@
 namespace contactrb::test {
 
 // --oversubscribe: more ranks than cores; `timeout` turns a hang into exit code 124; the
-// environment lets root run mpirun (mpirun_environment, cli_runner.hpp).
-inline CliResult mpirun(int ranks, const std::string& args) {
+// environment lets root run mpirun (mpirun_environment, cli_runner.hpp); `env`: more variables
+// ("NAME=value ...").
+inline CliResult mpirun(int ranks, const std::string& args, const std::string& env = "") {
   const std::string command = "timeout 300 " + shell_quote(CONTACTRB_MPIEXEC) + " --oversubscribe -np " +
                               std::to_string(ranks) + " " + shell_quote(CONTACTRB_CLI) + " " + args;
-  return run_shell(command, "", mpirun_environment());
+  return run_shell(command, "", mpirun_environment() + (env.empty() ? "" : " " + env));
 }
 
 // Occurrences of `word` in `text` (lines printed once by rank 0, not once per rank).

@@ -4,6 +4,7 @@
 // reason, in a build without MPI (CONTACTRB_MPIEXEC empty).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "cli/cli_runner.hpp"
@@ -41,6 +42,12 @@ TEST(SnapshotMpi, RanksGatherTheSerialFile) {
     const auto gathered = contactrb::io::read_snapshot_file(out);
     contactrb::test::expect_same_data(reference, gathered, false);
   }
+  // Without the work during MPI_Init (CONTACTRB_MPI_INIT_OVERLAP=0) each rank solves its first
+  // value after it: the same file.
+  const CliResult r = mpirun(2, "snapshots " + kValues + " -q --out " + shell_quote(dir.file("plain.h5")),
+                             "CONTACTRB_MPI_INIT_OVERLAP=0");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  contactrb::test::expect_same_data(reference, contactrb::io::read_snapshot_file(dir.file("plain.h5")), false);
 }
 
 // The warm-start schedule (--warm-start on): rank 0 hands out each wave's values with the
@@ -76,6 +83,23 @@ TEST(SnapshotMpi, WarmStartedRanksGatherTheSerialFile) {
   EXPECT_NE(part.err.find("--warm-start on: a part (--part) is solved cold"), std::string::npos) << part.err;
 }
 
+// Each rank solves its first value (the rank-th of the set) while MPI_Init waits, before any
+// message (mpi_snapshots.hpp, first_task): with more ranks than values, the ranks without one
+// ask the coordinator and get none; the file is still the serial one.
+TEST(SnapshotMpi, MoreRanksThanValuesGatherTheSerialFile) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_few");
+  const std::string values = "--case hertz-a --values 0.2,0.3";
+  const CliResult serial = contactrb::test::run_cli("snapshots " + values + " -q --out " + shell_quote(dir.file("serial.h5")));
+  ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+  const CliResult r = mpirun(3, "snapshots " + values + " --out " + shell_quote(dir.file("mpi.h5")));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("3 MPI ranks"), std::string::npos) << r.out;
+  EXPECT_EQ(count(r.err, "snapshot "), 2) << r.err;  // each value reported once, by rank 0
+  contactrb::test::expect_same_data(contactrb::io::read_snapshot_file(dir.file("serial.h5")),
+                                    contactrb::io::read_snapshot_file(dir.file("mpi.h5")), false);
+}
+
 TEST(SnapshotMpi, ValueThatDoesNotConvergeIsNamed) {
   SKIP_WITHOUT_MPI();
   contactrb::test::TempDir dir("mpi_fail");
@@ -95,6 +119,13 @@ TEST(SnapshotMpi, SetupErrorEndsEveryRank) {
   EXPECT_NE(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.exit_code, 124) << "timed out: a hang";
   EXPECT_NE(r.err.find("under mpirun each rank solves one value at a time"), std::string::npos) << r.err;
+  // An error of the setup, which runs on a thread while MPI_Init waits, is reported by the
+  // ranks (each has the same setup), and no file is written.
+  const CliResult domain = mpirun(2, "snapshots --case hertz-a --values 0.2,5 -q --out " + shell_quote(dir.file("d.h5")));
+  EXPECT_EQ(domain.exit_code, 1) << domain.out << domain.err;
+  EXPECT_NE(domain.err.find("mu = 5 (imposed displacement) is outside the domain [0.15, 0.45]"), std::string::npos)
+      << domain.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("d.h5")));
   // A command that does not split its work is refused, not run once per process.
   const CliResult other = mpirun(2, "offline --case hertz-a --out " + shell_quote(dir.file("m.h5")));
   EXPECT_EQ(other.exit_code, 1) << other.out << other.err;
