@@ -7,7 +7,7 @@ set -uo pipefail
 # One BLAS thread: the dense reduced systems are small, and the CPU-time column then measures
 # the work (the development machine is shared; OpenBLAS threads spin while waiting). Newton's
 # factorization of A_00 and its selected-inverse blocks (BLAS 3) still use the hardware threads
-# from 50 000 free DOFs on: bench_hf_scaling's --threads default (docs/benchmarks.md, "Ordering
+# from 200 000 free DOFs on: bench_hf_scaling's --threads default (docs/benchmarks.md, "Ordering
 # and threads"; pass --threads 1 through THREADS=1 for a single-thread sweep).
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 threads=()

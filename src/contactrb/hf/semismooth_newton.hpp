@@ -110,7 +110,7 @@ struct NewtonSettings {
   // own count (OPENBLAS_NUM_THREADS) everywhere. The count is process-wide (solve/blas_threads.hpp):
   // leave 0 when solves run in parallel threads. Measured: docs/benchmarks.md, "HF solver scaling".
   int blas_threads = 0;
-  int blas_threads_from = 50000;
+  int blas_threads_from = 200000;  // level 5 (8.8e4 rows): 2 threads no faster (docs/benchmarks.md)
   // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp).
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;
   contact::LinearizationOptions linearization;
