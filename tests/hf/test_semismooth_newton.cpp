@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cmath>
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "contactrb/cases/builtin_problems.hpp"
 #include "contactrb/common/error.hpp"
@@ -316,32 +319,25 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
   s = newton();
   s.newton.min_step = 2.0;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
-  const auto expect_named = [&](const hf::HFSettings& bad, const std::string& name) {
+  // Each bad value is refused with an error that names its setting.
+  const std::vector<std::pair<std::string, std::function<void(hf::NewtonSettings&)>>> named{
+      {"max_branch_passes", [](hf::NewtonSettings& n) { n.max_branch_passes = -1; }},
+      {"branch_passes_below", [](hf::NewtonSettings& n) { n.branch_passes_below = -1.0; }},
+      {"kacanov_safeguard", [](hf::NewtonSettings& n) { n.kacanov_safeguard = -0.5; }},
+      {"max_newton_passes", [](hf::NewtonSettings& n) { n.max_newton_passes = 0; }},
+      {"switch_passes", [](hf::NewtonSettings& n) { n.switch_passes = 0; }},
+      {"blas_threads", [](hf::NewtonSettings& n) { n.blas_threads = -1; }},
+  };
+  for (const auto& [name, spoil] : named) {
+    s = newton();
+    spoil(s.newton);
     try {
-      (void)solver.solve(bad);
+      (void)solver.solve(s);
       ADD_FAILURE() << name << ": no error";
     } catch (const contactrb::Error& e) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
-  };
-  s = newton();
-  s.newton.max_branch_passes = -1;
-  expect_named(s, "max_branch_passes");
-  s = newton();
-  s.newton.branch_passes_below = -1.0;
-  expect_named(s, "branch_passes_below");
-  s = newton();
-  s.newton.kacanov_safeguard = -0.5;
-  expect_named(s, "kacanov_safeguard");
-  s = newton();
-  s.newton.max_newton_passes = 0;
-  expect_named(s, "max_newton_passes");
-  s = newton();
-  s.newton.switch_passes = 0;
-  expect_named(s, "switch_passes");
-  s = newton();
-  s.newton.blas_threads = -1;
-  expect_named(s, "blas_threads");
+  }
   s = newton();
   s.newton.krylov_max_iterations = -1;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
