@@ -210,6 +210,19 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   //   [ I + G H_E   G K_E' ] [ w        ]   [ z_E - u_0,E ]
   //   [ -D_E        0      ] [ lambda_A ] = [ d_A         ],   G = (A_00^-1)[E, E].
   solve::SelectedInverse inverse;
+  // G = (A_00^-1)[E, E] (SelectedInverse::block) and G K_E', in storage reused by every system:
+  // at 1.2e6 DOFs they are ~80 and ~20 MB, and a new allocation per system was returned to the
+  // OS at its end and page-faulted again by the next (docs/benchmarks.md).
+  std::vector<double> g_storage, gkt_storage;
+  auto reuse = [](std::vector<double>& storage, int rows, int cols) {
+    const std::size_t size = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
+    if (storage.capacity() < size) {
+      storage = std::vector<double>();
+      storage.reserve(size + size / 4);
+    }
+    storage.resize(size);
+    return Eigen::Map<Eigen::MatrixXd>(storage.data(), rows, cols);
+  };
   Eigen::VectorXd z;
   std::vector<int> e_position(static_cast<std::size_t>(n), -1);
   const bool schur = s.linear_solver == NewtonLinearSolver::ActiveSchur;
@@ -403,13 +416,12 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         const int e = static_cast<int>(E.size());
         for (int a = 0; a < e; ++a) e_position[static_cast<std::size_t>(E[static_cast<std::size_t>(a)])] = a;
         it.reduced_size = e;
-        Eigen::MatrixXd G;
-        {
-          const auto t_block = Clock::now();
+        const auto t_block = Clock::now();
+        const Eigen::Map<const Eigen::MatrixXd> G = [&] {
           const solve::ScopedBlasThreads threads(blas_threads);  // the first block: all columns new
-          G = inverse.block(E);
-          it.block_s += seconds_since(t_block);
-        }
+          return inverse.block(E, g_storage);
+        }();
+        it.block_s += seconds_since(t_block);
         // H_E, K_E and the constraint rows stay sparse: G H_E and G K_E' cost |E| x nnz.
         std::vector<Eigen::Triplet<double>> h_trip, k_trip, r_trip;
         if (!frozen) {
@@ -441,7 +453,8 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
           // gives the SPD system of the active rows alone (Kacanov's dual system, paper (12)):
           //   (K_E G K_E') lambda_A = K_E r_E - d_A,
           // size |A| instead of |E| + |A| (hertz-a level 6: 393 against ~1 800).
-          const Eigen::MatrixXd GKt = G * KE.transpose();
+          Eigen::Map<Eigen::MatrixXd> GKt = reuse(gkt_storage, e, m);
+          GKt.noalias() = G * KE.transpose();
           Eigen::MatrixXd Q = KE * GKt;
           const Eigen::VectorXd rE = rhs.head(e);
           const Eigen::VectorXd q = KE * rE - rhs.tail(m);
@@ -472,7 +485,8 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         // level 7 ~4 000). Without convergence in krylov_max_iterations: the dense LU below,
         // which also judges singularity (min_rcond).
         if (s.krylov_max_iterations > 0 && m > 0) {
-          const Eigen::MatrixXd GKt = G * KE.transpose();  // |E| x |A|
+          Eigen::Map<Eigen::MatrixXd> GKt = reuse(gkt_storage, e, m);  // |E| x |A|
+          GKt.noalias() = G * KE.transpose();
           Eigen::MatrixXd Q = KE * GKt;
           Eigen::VectorXd q_scale(m);
           for (int a = 0; a < m; ++a) q_scale(a) = Q(a, a) > 0.0 ? 1.0 / std::sqrt(Q(a, a)) : 1.0;

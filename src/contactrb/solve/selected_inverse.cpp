@@ -57,7 +57,14 @@ struct SelectedInverse::Impl {
   std::vector<int> row_pos;                 // n, -1 between uses (block(): row -> dense row)
   std::unordered_map<int, int> column_of;   // original index -> position in `columns` / G
   std::vector<SparseColumn> columns;
-  Eigen::MatrixXd G;                        // x_i . x_j over the cached columns
+  // G(i, j) = x_i . x_j over the cached columns, column-major with leading dimension g_capacity
+  // (>= columns.size()): new columns are written in place, and the storage grows by a quarter
+  // beyond what is asked, so that a Newton iteration adding a few columns neither copies G nor
+  // touches fresh memory (at 1.2e6 DOFs G is ~3 500^2 doubles, ~100 MB: a new one per call was
+  // freed to the OS and page-faulted again by the next, docs/benchmarks.md).
+  std::vector<double> G;
+  int g_capacity = 0;
+  double& g(int i, int j) { return G[static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * static_cast<std::size_t>(g_capacity)]; }
 
   Impl() { cholmod_start(&common); }
   ~Impl() {
@@ -68,7 +75,8 @@ struct SelectedInverse::Impl {
     if (L != nullptr) cholmod_free_factor(&L, &common);
     column_of.clear();
     columns.clear();
-    G.resize(0, 0);
+    G = std::vector<double>();
+    g_capacity = 0;
   }
 
   // Supernodal structure (CHOLMOD, relaxed supernodes): supernode of each column and the parent
@@ -480,6 +488,11 @@ Eigen::VectorXd SelectedInverse::solve_sparse(const std::vector<int>& in, const 
 }
 
 Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
+  std::vector<double> storage;
+  return block(idx, storage);
+}
+
+Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>& idx, std::vector<double>& storage) {
   Impl& m = *impl_;
   require(m.status == SelectedInverseStatus::Success,
           std::string("SelectedInverse::block: the factorization is ") + to_string(m.status));
@@ -504,7 +517,6 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
     // over all of U_new (the first version) cost |U_new| x total x new; on hertz-a level 6
     // (1 400 columns, paths of ~3 000 rows) that was 7 of the 15 CPU seconds of a solve.
     const int old = total - static_cast<int>(fresh.size());
-    const int fresh_count = total - old;
     std::vector<int> union_rows;
     for (int j = old; j < total; ++j) {
       for (int r : m.columns[static_cast<std::size_t>(j)].rows) {
@@ -530,7 +542,20 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
     for (int r : union_rows) m.row_pos[static_cast<std::size_t>(r)] = -1;
     constexpr int kChunk = 256;
     const int u = static_cast<int>(union_rows.size());
-    Eigen::MatrixXd right = Eigen::MatrixXd::Zero(total, fresh_count);
+    if (total > m.g_capacity) {
+      // The first call (all the columns of the first system: hertz-a level 7, 3 960, the most
+      // of the solve) exactly; a quarter more than asked when later calls add columns.
+      const int capacity = old == 0 ? total : total + total / 4;
+      std::vector<double> grown(static_cast<std::size_t>(capacity) * static_cast<std::size_t>(capacity));
+      for (int j = 0; j < old; ++j) {
+        std::copy_n(&m.g(0, j), old, grown.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(capacity));
+      }
+      m.G = std::move(grown);
+      m.g_capacity = capacity;
+    }
+    // G[:, old:total] accumulates in place (zero first): the columns `right` of the new ones.
+    for (int j = old; j < total; ++j) std::fill_n(&m.g(0, j), total, 0.0);
+    auto right = [&m, old](int i, int jb) -> double& { return m.g(i, old + jb); };
     std::vector<std::size_t> cursor(static_cast<std::size_t>(total), 0);
     std::vector<int> present;
     Eigen::MatrixXd Xc, Gc;
@@ -586,20 +611,24 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
         }
       }
     }
-    Eigen::MatrixXd G(total, total);
-    if (old > 0) G.topLeftCorner(old, old) = m.G;
-    G.rightCols(fresh_count) = right;
-    G.bottomLeftCorner(fresh_count, old) = right.topRows(old).transpose();
-    m.G = std::move(G);
+    for (int i = old; i < total; ++i) {  // G[new, old] = G[old, new]'
+      for (int j = 0; j < old; ++j) m.g(i, j) = m.g(j, i);
+    }
   }
-  const Eigen::Index e = static_cast<Eigen::Index>(idx.size());
-  Eigen::MatrixXd out(e, e);
-  std::vector<int> pos(idx.size());
-  for (std::size_t a = 0; a < idx.size(); ++a) pos[a] = m.column_of[idx[a]];
-  for (Eigen::Index b = 0; b < e; ++b) {
-    for (Eigen::Index a = 0; a < e; ++a) out(a, b) = m.G(pos[static_cast<std::size_t>(a)], pos[static_cast<std::size_t>(b)]);
+  const std::size_t e = idx.size();
+  if (storage.capacity() < e * e) {
+    storage = std::vector<double>();  // no copy of the old contents
+    storage.reserve(e * e + e * e / 4);
   }
-  return out;
+  storage.resize(e * e);
+  std::vector<int> pos(e);
+  for (std::size_t a = 0; a < e; ++a) pos[a] = m.column_of[idx[a]];
+  for (std::size_t b = 0; b < e; ++b) {
+    const double* column = &m.g(0, pos[b]);
+    double* out = storage.data() + b * e;
+    for (std::size_t a = 0; a < e; ++a) out[a] = column[pos[a]];
+  }
+  return Eigen::Map<const Eigen::MatrixXd>(storage.data(), static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(e));
 }
 
 }  // namespace contactrb::solve

@@ -65,6 +65,10 @@ class SelectedInverse {
   Eigen::VectorXd solve_sparse(const std::vector<int>& in, const Eigen::VectorXd& b_in,
                                const std::vector<int>* out = nullptr) const;
   Eigen::MatrixXd block(const std::vector<int>& idx);
+  // The same block in `storage` (resized to |idx|^2, its capacity kept and grown by a quarter
+  // beyond what is asked): a caller asking at every iteration reuses the memory instead of
+  // allocating (and page-faulting) a new |idx|^2 matrix. Valid until `storage` changes.
+  Eigen::Map<const Eigen::MatrixXd> block(const std::vector<int>& idx, std::vector<double>& storage);
   int cached_columns() const;
 
  private:
