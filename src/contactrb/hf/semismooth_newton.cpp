@@ -227,6 +227,12 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   std::vector<int> e_position(static_cast<std::size_t>(n), -1);
   const bool schur = s.linear_solver == NewtonLinearSolver::ActiveSchur;
   const int blas_threads = s.blas_threads > 0 && n >= s.blas_threads_from ? s.blas_threads : 0;
+  // When the solver manages the threads (blas_threads > 0), everything but the two BLAS-3 parts
+  // runs with one OpenBLAS thread: the dense LUs of size |A| (dgetrf) and the BLAS-2 calls of the
+  // substitutions gain nothing from a second thread, and each woke OpenBLAS's worker, which then
+  // spins in sched_yield (hertz-a level 7 with 2 threads: ~12 % of the process's CPU samples in
+  // the scheduler, docs/benchmarks.md).
+  const solve::ScopedBlasThreads serial_blas(s.blas_threads > 0 ? 1 : 0);
   if (schur) {
     solve::SelectedInverseStatus status;
     {
