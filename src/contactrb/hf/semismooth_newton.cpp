@@ -187,6 +187,18 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     movable[static_cast<std::size_t>(g)] = 1;
   }
   const Evaluator evaluate(p, s);
+  // The free DOFs of the slave and master nodes (what a projection reads), ascending.
+  std::vector<int> contact_free;
+  for (const std::vector<int>* nodes : {&p.pair->slave, &p.pair->master}) {
+    for (int node : *nodes) {
+      for (int c = 0; c < 2; ++c) {
+        const int fi = global_to_free[static_cast<std::size_t>(2 * node + c)];
+        if (fi >= 0) contact_free.push_back(fi);
+      }
+    }
+  }
+  std::sort(contact_free.begin(), contact_free.end());
+  contact_free.erase(std::unique(contact_free.begin(), contact_free.end()), contact_free.end());
 
   NewtonResult res;
   State st;
@@ -667,10 +679,17 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     if (!pass_frozen && s.max_branch_passes > 0 && it.residual <= s.branch_passes_below &&
         p.quadrature->discretization != contact::Discretization::LAC) {
       for (int pass = 0; pass < s.max_branch_passes; ++pass) {
-        complete_step(du, step_source);  // the projection at u + du reads du beyond read_dofs
+        // The projection at u + du reads du at the contact nodes only (beyond read_dofs): the
+        // backward substitution along their chains gives those entries bitwise as the complete
+        // step would, without a substitution through all of L (~0.2 s at 1.2e6 DOFs).
+        Eigen::VectorXd du_contact = du;
+        if (!step_source.complete) {
+          const Eigen::VectorXd x = inverse.solve_sparse(step_source.E, step_source.yE, &contact_free);
+          for (int fi : contact_free) du_contact(fi) = z(fi) - x(fi) - st.u0(fi);
+        }
         contact::PointwiseContact next;
         try {
-          next = contact::project_slave_nodes(*p.mesh, *p.pair, p.dofs->lift() + p.dofs->extend(st.u0 + du),
+          next = contact::project_slave_nodes(*p.mesh, *p.pair, p.dofs->lift() + p.dofs->extend(st.u0 + du_contact),
                                               s.linearization.projection);
         } catch (const Error&) {
           break;  // the full step cannot be evaluated: the line search shortens it
