@@ -6,7 +6,8 @@
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen]
 //                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)] [--verbose] [--header]
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
-//                     block from 200 000 free DOFs; default: the hardware threads; 0: OPENBLAS_NUM_THREADS)]
+//                     block from 200 000 free DOFs, one elsewhere; default: the hardware threads;
+//                     0: OPENBLAS_NUM_THREADS everywhere)]
 //                    [--ordering auto|cholmod|node-metis]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
