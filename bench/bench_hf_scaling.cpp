@@ -8,7 +8,7 @@
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
 //                     block from 200 000 free DOFs, one elsewhere; default: the hardware threads;
 //                     0: OPENBLAS_NUM_THREADS everywhere)]
-//                    [--ordering auto|cholmod|node-metis]
+//                    [--ordering auto|cholmod|node-metis] [--keep-freed 1 (0: glibc's default malloc thresholds)]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -22,6 +22,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <malloc.h>
+
 #include <string>
 #include <thread>
 #include <vector>
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
   std::string ordering = "auto";
   std::string linearization = "analytic";
   bool verbose = false;
+  bool keep_freed = true;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1;
   for (int i = 1; i < argc; ++i) {
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
     else if (a == "--linearization") linearization = next();
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--keep-freed") keep_freed = std::stoi(next()) != 0;
     else if (a == "--ordering") ordering = next();
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
@@ -81,6 +85,16 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
       return 2;
     }
+  }
+  if (keep_freed) {
+    // glibc returns freed blocks above 32 MB (mmap) and a free heap top above the trim threshold
+    // to the OS, and every later use of such memory page-faults again (costly in this VM). Kept
+    // in the process, the 1 GB factor of A_00 at 1.2e6 DOFs (allocated inside CHOLMOD) reuses the
+    // memory freed by the mesh generation and the assembly: hertz-a level 7, 0.97M -> 0.65M page
+    // faults, numeric factorization 9.8 -> 5.8 s (docs/benchmarks.md, "Page faults"). Process-wide,
+    // so here and in contactrb-full's main only, never in the library.
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
   }
   try {
     std::optional<contact::Discretization> d;

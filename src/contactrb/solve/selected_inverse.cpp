@@ -293,17 +293,23 @@ SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>
   m.analyze_s = m.factorize_s = 0.0;
   m.status = SelectedInverseStatus::InvalidInput;
   if (A_in.rows() != A_in.cols() || A_in.rows() == 0) return m.status;
-  Eigen::SparseMatrix<double> A = A_in;
-  A.makeCompressed();
+  // A compressed A_in is read in place (a copy is ~250 MB of fresh memory at 1.2e6 DOFs).
+  Eigen::SparseMatrix<double> compressed;
+  if (!A_in.isCompressed()) {
+    compressed = A_in;
+    compressed.makeCompressed();
+  }
+  const Eigen::SparseMatrix<double>& A = A_in.isCompressed() ? A_in : compressed;
   for (Eigen::Index k = 0; k < A.nonZeros(); ++k) {
     if (!std::isfinite(A.valuePtr()[k])) return m.status;
   }
   cholmod_sparse view{};
   view.nrow = view.ncol = static_cast<std::size_t>(A.rows());
   view.nzmax = static_cast<std::size_t>(A.nonZeros());
-  view.p = A.outerIndexPtr();
-  view.i = A.innerIndexPtr();
-  view.x = A.valuePtr();
+  // CHOLMOD reads its input only (cholmod_analyze, cholmod_factorize take it as const data).
+  view.p = const_cast<int*>(A.outerIndexPtr());
+  view.i = const_cast<int*>(A.innerIndexPtr());
+  view.x = const_cast<double*>(A.valuePtr());
   view.stype = -1;  // symmetric, lower triangle read
   view.itype = CHOLMOD_INT;
   view.xtype = CHOLMOD_REAL;
