@@ -241,3 +241,27 @@ TEST(SelectedInverse, ThreadedFactorizationGivesTheSingleThreadAnswer) {
   EXPECT_LT((x1 - x2).norm(), 1e-12 * x1.norm());
   EXPECT_LT((A * x1 - b).norm(), 1e-12 * b.norm());
 }
+
+// The full backward substitution on two threads (the two subtrees below the first fork of the
+// elimination tree at once) does each supernode's arithmetic as the serial one: bitwise the
+// same x, and A x = b.
+TEST(SelectedInverse, TwoThreadSubstitutionIsBitwiseTheSerialOne) {
+  const Eigen::SparseMatrix<double> A = vector_grid_matrix(40);
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(A);
+  const solve::ScopedBlasThreads serial(1);
+  for (const solve::FactorOrdering ordering : {solve::FactorOrdering::Cholmod, solve::FactorOrdering::NodeMetis}) {
+    solve::SelectedInverse s;
+    ASSERT_EQ(s.compute(A, ordering), solve::SelectedInverseStatus::Success);
+    ASSERT_TRUE(s.has_substitution_fork()) << solve::to_string(ordering);
+    const std::vector<int> in{3, 700, 1501, 2222, 3199};
+    const Eigen::VectorXd b_in = (Eigen::VectorXd(5) << 1.0, -2.0, 0.5, 3.0, -1.5).finished();
+    const Eigen::VectorXd x1 = s.solve_sparse(in, b_in);
+    s.set_substitution_threads(2);
+    const Eigen::VectorXd x2 = s.solve_sparse(in, b_in);
+    s.set_substitution_threads(1);
+    EXPECT_TRUE((x1.array() == x2.array()).all()) << solve::to_string(ordering);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(A.rows());
+    for (std::size_t a = 0; a < in.size(); ++a) b(in[a]) = b_in(static_cast<Eigen::Index>(a));
+    EXPECT_LT((dense * x2 - b).norm(), 1e-12 * b.norm()) << solve::to_string(ordering);
+  }
+}

@@ -259,6 +259,8 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       res.lambda = st.lambda;
       return res;
     }
+    // Two threads for the full substitutions too (the BLAS is single-threaded there).
+    if (blas_threads >= 2) inverse.set_substitution_threads(2);
     res.timings.analyze_s = inverse.analyze_seconds();
     res.timings.numeric_s = inverse.factorize_seconds();
     res.timings.factor_nonzeros = inverse.factor_nonzeros();

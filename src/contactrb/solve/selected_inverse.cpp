@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -88,6 +89,60 @@ struct SelectedInverse::Impl {
   std::vector<int> block_of;                   // per supernode, -1 between uses
   std::vector<char> chain_mark;                // per supernode, 0 between uses
   std::vector<double> work;                    // n, zero between uses (solve_sparse)
+  // The full backward substitution on two threads: the supernodes from split_top up are the
+  // chain above the first fork of the (postordered) supernodal tree, done first; below it the
+  // subtrees of its children form the two index ranges [0, split_cut) and [split_cut, split_top),
+  // independent of each other (a supernode reads its ancestors only). split_top < 0: no fork.
+  int split_top = -1, split_cut = -1;
+  int substitution_threads = 1;
+
+  // Finds split_top, split_cut (the two ranges of about equal nnz(L)); leaves -1 unless the tree
+  // is one postordered tree (a supernode's subtree is the index range ending at it).
+  void find_split() {
+    split_top = split_cut = -1;
+    const int nsuper = static_cast<int>(L->nsuper);
+    const int* super = static_cast<const int*>(L->super);
+    const int* pi = static_cast<const int*>(L->pi);
+    std::vector<int> subtree(static_cast<std::size_t>(nsuper), 1);
+    std::vector<double> cost(static_cast<std::size_t>(nsuper), 0.0);
+    for (int s = 0; s < nsuper; ++s) {
+      cost[static_cast<std::size_t>(s)] += static_cast<double>(super[s + 1] - super[s]) * static_cast<double>(pi[s + 1] - pi[s]);
+      const int parent = supernode_parent[static_cast<std::size_t>(s)];
+      if (parent < 0) {
+        if (s != nsuper - 1) return;  // a forest
+        continue;
+      }
+      if (parent <= s) return;
+      subtree[static_cast<std::size_t>(parent)] += subtree[static_cast<std::size_t>(s)];
+      cost[static_cast<std::size_t>(parent)] += cost[static_cast<std::size_t>(s)];
+    }
+    int top = nsuper - 1;
+    while (true) {
+      if (subtree[static_cast<std::size_t>(top)] != top + 1) return;  // not postordered
+      std::vector<int> children;  // descending
+      for (int c = top - 1; c >= 0; c -= subtree[static_cast<std::size_t>(c)]) {
+        if (supernode_parent[static_cast<std::size_t>(c)] != top) return;
+        children.push_back(c);
+      }
+      if (children.empty()) return;
+      if (children.size() == 1) {
+        top = children[0];
+        continue;
+      }
+      // Children ascending tile [0, top); cut at the boundary nearest half of their cost.
+      const double total = cost[static_cast<std::size_t>(top)] - static_cast<double>(super[top + 1] - super[top]) * static_cast<double>(pi[top + 1] - pi[top]);
+      double prefix = 0.0, best = total;
+      for (auto it = children.rbegin(); it + 1 != children.rend(); ++it) {
+        prefix += cost[static_cast<std::size_t>(*it)];
+        if (std::abs(total - 2.0 * prefix) < best) {
+          best = std::abs(total - 2.0 * prefix);
+          split_cut = *it + 1;
+        }
+      }
+      split_top = top;
+      return;
+    }
+  }
 
   // The supernodes on the chains from the supernodes of the (permuted) rows q to the root,
   // ascending (children before parents).
@@ -371,6 +426,7 @@ SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>
   const int* perm = static_cast<const int*>(m.L->Perm);
   for (int k = 0; k < m.n; ++k) m.inverse_perm[static_cast<std::size_t>(perm[k])] = k;
   m.row_pos.assign(static_cast<std::size_t>(m.n), -1);
+  m.find_split();
   m.status = SelectedInverseStatus::Success;
   return m.status;
 }
@@ -393,6 +449,8 @@ double SelectedInverse::analyze_seconds() const { return impl_->analyze_s; }
 double SelectedInverse::factorize_seconds() const { return impl_->factorize_s; }
 FactorOrdering SelectedInverse::ordering() const { return impl_->ordering_used; }
 int SelectedInverse::cached_columns() const { return static_cast<int>(impl_->columns.size()); }
+void SelectedInverse::set_substitution_threads(int threads) { impl_->substitution_threads = std::max(1, threads); }
+bool SelectedInverse::has_substitution_fork() const { return impl_->status == SelectedInverseStatus::Success && impl_->split_top >= 0; }
 
 Eigen::VectorXd SelectedInverse::solve(const Eigen::VectorXd& b) const {
   Impl& m = *impl_;
@@ -468,16 +526,29 @@ Eigen::VectorXd SelectedInverse::solve_sparse(const std::vector<int>& in, const 
     backward.resize(m.L->nsuper);
     for (std::size_t s = 0; s < backward.size(); ++s) backward[s] = static_cast<int>(s);
   }
-  for (auto it = backward.rbegin(); it != backward.rend(); ++it) {
-    const int s = *it;
+  auto backward_one = [&](int s, std::vector<double>& buffer) {
     const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s], nbelow = nsrow - nscol;
     const double* Lss = Lx + px[s];
     if (nbelow > 0) {
-      below.resize(static_cast<std::size_t>(nbelow));
-      for (int i = 0; i < nbelow; ++i) below[static_cast<std::size_t>(i)] = w[Ls[pi[s] + nscol + i]];
-      dgemv_(&trans, &nbelow, &nscol, &minus_one, Lss + nscol, &nsrow, below.data(), &inc, &one, w + k1, &inc);
+      buffer.resize(static_cast<std::size_t>(nbelow));
+      for (int i = 0; i < nbelow; ++i) buffer[static_cast<std::size_t>(i)] = w[Ls[pi[s] + nscol + i]];
+      dgemv_(&trans, &nbelow, &nscol, &minus_one, Lss + nscol, &nsrow, buffer.data(), &inc, &one, w + k1, &inc);
     }
     dtrsv_(&lower, &trans, &nonunit, &nscol, Lss, &nsrow, w + k1, &inc);
+  };
+  if (out == nullptr && m.substitution_threads >= 2 && m.split_top >= 0) {
+    // The chain above the fork, then its two subtree ranges at once: each supernode's
+    // arithmetic is the serial one (same inputs, same calls), so x is bitwise the same.
+    const int nsuper = static_cast<int>(m.L->nsuper);
+    for (int s = nsuper - 1; s >= m.split_top; --s) backward_one(s, below);
+    std::thread upper_range([&] {
+      std::vector<double> buffer;
+      for (int s = m.split_top - 1; s >= m.split_cut; --s) backward_one(s, buffer);
+    });
+    for (int s = m.split_cut - 1; s >= 0; --s) backward_one(s, below);
+    upper_range.join();
+  } else {
+    for (auto it = backward.rbegin(); it != backward.rend(); ++it) backward_one(*it, below);
   }
   Eigen::VectorXd x = Eigen::VectorXd::Zero(m.n);
   if (out != nullptr) {

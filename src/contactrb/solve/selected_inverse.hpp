@@ -70,6 +70,11 @@ class SelectedInverse {
   // allocating (and page-faulting) a new |idx|^2 matrix. Valid until `storage` changes.
   Eigen::Map<const Eigen::MatrixXd> block(const std::vector<int>& idx, std::vector<double>& storage);
   int cached_columns() const;
+  // Threads of solve_sparse's full backward substitution (out == nullptr): 2 runs the two
+  // subtrees below the first fork of the elimination tree at once (bitwise the serial result;
+  // the BLAS must be single-threaded then, solve/blas_threads.hpp). Default 1.
+  void set_substitution_threads(int threads);
+  bool has_substitution_fork() const;  // whether the tree has the fork that 2 threads split at
 
  private:
   struct Impl;
