@@ -239,12 +239,13 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   std::vector<int> e_position(static_cast<std::size_t>(n), -1);
   const bool schur = s.linear_solver == NewtonLinearSolver::ActiveSchur;
   const int blas_threads = s.blas_threads > 0 && n >= s.blas_threads_from ? s.blas_threads : 0;
-  // When the solver manages the threads (blas_threads > 0), everything but the two BLAS-3 parts
-  // runs with one OpenBLAS thread: the dense LUs of size |A| (dgetrf) and the BLAS-2 calls of the
-  // substitutions gain nothing from a second thread, and each woke OpenBLAS's worker, which then
-  // spins in sched_yield (hertz-a level 7 with 2 threads: ~12 % of the process's CPU samples in
-  // the scheduler, docs/benchmarks.md).
-  const solve::ScopedBlasThreads serial_blas(s.blas_threads > 0 ? 1 : 0);
+  // When the solver sets the threads (blas_threads > 0 and n >= blas_threads_from), everything
+  // but the two BLAS-3 parts runs with one OpenBLAS thread: the dense LUs of size |A| (dgetrf) and
+  // the BLAS-2 calls of the substitutions woke OpenBLAS's worker, which then spins in sched_yield
+  // (hertz-a level 7 with 2 threads: ~12 % of the process's CPU samples in the scheduler). Below
+  // blas_threads_from the count is left alone: at level 5 one thread everywhere was slower than
+  // OpenBLAS's own count (1.11-1.23 s against 0.85-0.95 s, docs/benchmarks.md).
+  const solve::ScopedBlasThreads serial_blas(blas_threads > 0 ? 1 : 0);
   if (schur) {
     solve::SelectedInverseStatus status;
     {

@@ -106,10 +106,10 @@ struct NewtonSettings {
   int krylov_max_iterations = 100;
   double krylov_tolerance = 1e-13;
   // ActiveSchur: OpenBLAS threads for the BLAS-3 parts (the supernodal factorization of A_00, the
-  // selected-inverse blocks) when A_00 has at least blas_threads_from rows, one thread for the
-  // rest of the solve (and everywhere below blas_threads_from), and from 2 the full backward
-  // substitutions on two threads (SelectedInverse::set_substitution_threads); 0 leaves the
-  // BLAS's own count (OPENBLAS_NUM_THREADS) everywhere. The count is process-wide (solve/blas_threads.hpp):
+  // selected-inverse blocks) when A_00 has at least blas_threads_from rows, then one thread for
+  // the rest of the solve and, from 2, the full backward substitutions on two threads
+  // (SelectedInverse::set_substitution_threads); below blas_threads_from and with 0, the BLAS's
+  // own count (OPENBLAS_NUM_THREADS) everywhere. The count is process-wide (solve/blas_threads.hpp):
   // leave 0 when solves run in parallel threads. Measured: docs/benchmarks.md, "HF solver scaling".
   int blas_threads = 0;
   int blas_threads_from = 200000;  // level 5 (8.8e4 rows): 2 threads no faster (docs/benchmarks.md)
