@@ -99,8 +99,8 @@ struct NewtonSettings {
   // Chord corrections per Newton-phase iteration (systems; semismooth_newton.cpp): the full
   // Newton step's trial is corrected with the iterate's Jacobian (same active rows), each kept
   // only when it lowers the merit. 0: off. Measured (docs/benchmarks.md, "Chord corrections"):
-  // hertz-a mu 0.45 levels 4-6 9, 10, 10 -> 7, 8, 8 iterations (+2-3 systems, same CPU within
-  // the noise); mu 0.15 / 0.3 / ring-block 0-2 fewer per level, never more.
+  // hertz-a mu 0.45 levels 4-6 9, 10, 10 -> 7, 8, 8 iterations (+2-3 systems, ~5 % more CPU
+  // on level 5); mu 0.15 / 0.3 and ring-block 0 or 1 fewer per level, never more.
   int chord_steps = 2;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
