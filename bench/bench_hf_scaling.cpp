@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   bool keep_freed = true;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
-  int newton_passes = -1, switch_passes = -1;
+  int newton_passes = -1, switch_passes = -1, chord = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
     else if (a == "--safeguard") safeguard = std::stod(next());
     else if (a == "--newton-passes") newton_passes = std::stoi(next());
     else if (a == "--switch-passes") switch_passes = std::stoi(next());
+    else if (a == "--chord") chord = std::stoi(next());
     else if (a == "--linearization") linearization = next();
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
@@ -121,6 +122,7 @@ int main(int argc, char** argv) {
     if (safeguard >= 0.0) settings.newton.kacanov_safeguard = safeguard;
     if (newton_passes > 0) settings.newton.max_newton_passes = newton_passes;
     if (switch_passes > 0) settings.newton.switch_passes = switch_passes;
+    if (chord >= 0) settings.newton.chord_steps = chord;
     if (linearization == "fd") {
       settings.newton.linearization.method = contact::LinearizationMethod::FiniteDifference;
     } else if (linearization != "analytic") {
@@ -155,8 +157,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "  A_00: analysis %.4f s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
                    tm.analyze_s, tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
       for (const auto& it : sol.newton_history) {
-        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
-                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0,
+        std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d chord %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
+                     it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0, it.chord_steps,
                      it.linearize_s, it.factorize_s, it.block_s, it.krylov, it.search_s);
       }
       if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());

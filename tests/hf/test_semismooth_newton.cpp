@@ -148,11 +148,13 @@ TEST(SemismoothNewton, KacanovSafeguardEndsTheCrawlOfHertzALevelFiveAtTheLargest
   }
   r.push_back(n.kkt.max());
   EXPECT_GE(kacanov_steps, 1);
-  // Superlinear end: the last two ratios of the KKT residual shrink, the last below 1e-2.
+  // Superlinear end: the last ratio of the KKT residual below 1e-2, and one of the last two
+  // below 1e-4 (with the chord corrections the step before the last one is the fast one, e.g.
+  // 1.3e-6, and the last lands at round-off: 1.4e-3).
   ASSERT_GE(r.size(), 3u);
   const std::size_t m = r.size() - 1;
   EXPECT_LT(r[m] / r[m - 1], 1e-2);
-  EXPECT_LT(r[m] / r[m - 1], r[m - 1] / r[m - 2]);
+  EXPECT_LT(std::min(r[m] / r[m - 1], r[m - 1] / r[m - 2]), 1e-4);
   s.newton.kacanov_safeguard = 0.0;  // the previous globalization
   const hf::HFSolution old = solver.solve(s);
   ASSERT_TRUE(old.converged) << old.message;
@@ -166,6 +168,38 @@ TEST(SemismoothNewton, KacanovSafeguardEndsTheCrawlOfHertzALevelFiveAtTheLargest
   EXPECT_EQ(n.active_constraints, old.active_constraints);
   std::cout << "[ info     ] hertz-a level 5 mu 0.45: " << n.iterations << " iterations (" << kacanov_steps
             << " safeguard steps), without the safeguard " << old.iterations << " (" << damped << " damped)\n";
+}
+
+// hertz-a level 4 (26 744 DOFs) at mu 0.45, the smallest built-in mesh above 8 iterations
+// before: the Newton steps after the Kacanov phase (merit 0.17 -> 0.049 -> 2.2e-3 -> 8.3e-5)
+// left a smooth second-order residual and the solve took 9 iterations. The chord corrections
+// (the iterate's Jacobian applied again at the full step's trial, NewtonSettings::chord_steps)
+// end it in 7, every step a full one, at the tolerance and to the same answer.
+TEST(SemismoothNewton, ChordCorrectionsBringHertzALevelFourAtTheLargestMuToAtMostEightIterations) {
+  const hf::HFSolver solver(cases::make_problem("hertz-a", 0.45, 4, contact::Discretization::Collocation));
+  hf::HFSettings s = newton();
+  const hf::HFSolution n = solver.solve(s);
+  ASSERT_TRUE(n.converged) << n.message;
+  EXPECT_LE(n.kkt.max(), s.newton.tolerance);
+  EXPECT_LE(n.iterations, 8);
+  int chords = 0;
+  for (const auto& it : n.newton_history) {
+    EXPECT_EQ(it.step, 1.0) << "a damped step at KKT " << it.residual;
+    chords += it.chord_steps;
+  }
+  EXPECT_GE(chords, 1);
+  s.newton.chord_steps = 0;  // without the corrections
+  const hf::HFSolution old = solver.solve(s);
+  ASSERT_TRUE(old.converged) << old.message;
+  EXPECT_GE(old.iterations, 9);
+  for (const auto& it : old.newton_history) EXPECT_EQ(it.chord_steps, 0);
+  EXPECT_LT(relative(n.u, old.u), 1e-9);
+  EXPECT_LT(relative(n.lambda, old.lambda), 1e-8);
+  EXPECT_NEAR(n.contact_force, old.contact_force, 1e-9 * old.contact_force);
+  EXPECT_NEAR(n.energy, old.energy, 1e-9 * old.energy);
+  EXPECT_EQ(n.active_constraints, old.active_constraints);
+  std::cout << "[ info     ] hertz-a level 4 mu 0.45: " << n.iterations << " iterations (" << chords
+            << " chord corrections), without them " << old.iterations << "\n";
 }
 
 // The active-rows reduction on a once-factorized A_00 (default) is exact algebra: it takes the
@@ -326,6 +360,7 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
       {"kacanov_safeguard", [](hf::NewtonSettings& n) { n.kacanov_safeguard = -0.5; }},
       {"max_newton_passes", [](hf::NewtonSettings& n) { n.max_newton_passes = 0; }},
       {"switch_passes", [](hf::NewtonSettings& n) { n.switch_passes = 0; }},
+      {"chord_steps", [](hf::NewtonSettings& n) { n.chord_steps = -1; }},
       {"blas_threads", [](hf::NewtonSettings& n) { n.blas_threads = -1; }},
   };
   for (const auto& [name, spoil] : named) {

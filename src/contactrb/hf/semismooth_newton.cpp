@@ -164,6 +164,7 @@ void check_settings(const NewtonSettings& s) {
   require(std::isfinite(s.kacanov_safeguard) && s.kacanov_safeguard >= 0.0,
           "Newton kacanov_safeguard must be >= 0 (got " + std::to_string(s.kacanov_safeguard) + ")");
   require(s.switch_passes >= 1, "Newton switch_passes must be >= 1 (got " + std::to_string(s.switch_passes) + ")");
+  require(s.chord_steps >= 0, "Newton chord_steps must be >= 0 (got " + std::to_string(s.chord_steps) + ")");
   require(s.max_newton_passes >= 1,
           "Newton max_newton_passes must be >= 1 (got " + std::to_string(s.max_newton_passes) + ")");
   require(s.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + std::to_string(s.branch_passes_below) + ")");
@@ -366,7 +367,13 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) a_trip.emplace_back(a.row(), a.col(), a.value());
       }
     }
-    const Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
+    // The point the linear systems are written at: the iterate, or (chord correction) the full
+    // step's trial with the right-hand side terms of the iterate's Jacobian (below).
+    const Eigen::VectorXd* base_z = &z;
+    const Eigen::VectorXd* base_u0 = &st.u0;
+    const Eigen::VectorXd* base_d = &st.maps.d;
+    const Eigen::VectorXd* base_lambda = &st.lambda;
+    Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
 
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
@@ -387,11 +394,11 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
       step_source.complete = false;
       const Eigen::VectorXd x = inverse.solve_sparse(E, yE, &read_dofs);
       du.setZero();
-      for (int fi : read_dofs) du(fi) = z(fi) - x(fi) - st.u0(fi);
+      for (int fi : read_dofs) du(fi) = (*base_z)(fi) - x(fi) - (*base_u0)(fi);
     };
     auto complete_step = [&](Eigen::VectorXd& out, StepSource& source) {
       if (source.complete) return;
-      out = z - inverse.solve_sparse(source.E, source.yE) - st.u0;
+      out = *base_z - inverse.solve_sparse(source.E, source.yE) - *base_u0;
       source.complete = true;
     };
     std::string failure;  // set when a frozen system is singular: the step fails
@@ -458,7 +465,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
           if (!frozen) {
             for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) r_trip.emplace_back(a, e_position[static_cast<std::size_t>(dd.col())], -dd.value());
           }
-          rhs(e + a) = st.maps.d(r);
+          rhs(e + a) = (*base_d)(r);
         }
         Eigen::SparseMatrix<double> HE(e, e), KE(m, e), RE(m, e);
         HE.setFromTriplets(h_trip.begin(), h_trip.end());
@@ -466,7 +473,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         RE.setFromTriplets(r_trip.begin(), r_trip.end());
         for (int a = 0; a < e; ++a) {
           const int fi = E[static_cast<std::size_t>(a)];
-          rhs(a) = z(fi) - st.u0(fi);
+          rhs(a) = (*base_z)(fi) - (*base_u0)(fi);
         }
         for (int fi : E) e_position[static_cast<std::size_t>(fi)] = -1;
         if (frozen) {
@@ -548,7 +555,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
             // solution, so the tolerance applies to the correction, not to u (the reduced
             // unknowns are the new iterate, whose size is the load's).
             Eigen::VectorXd x0s = Eigen::VectorXd::Zero(e + m);
-            for (int a = 0; a < m; ++a) x0s(e + a) = st.lambda(active[static_cast<std::size_t>(a)]) / col_scale(e + a);
+            for (int a = 0; a < m; ++a) x0s(e + a) = (*base_lambda)(active[static_cast<std::size_t>(a)]) / col_scale(e + a);
             const Eigen::VectorXd r0s = row_scale.cwiseProduct(rhs) - apply(x0s);
             const solve::GmresResult kr = solve::gmres(apply, precondition, r0s, s.krylov_tolerance, s.krylov_max_iterations);
             it.krylov += kr.iterations;
@@ -604,7 +611,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         } else {
           for (RowSparse::InnerIterator dd(D0, r); dd; ++dd) trip.emplace_back(n + a, dd.col(), -dd.value());
         }
-        rhs(n + a) = st.maps.d(r);
+        rhs(n + a) = (*base_d)(r);
       }
       Eigen::SparseMatrix<double> J(n + m, n + m);
       J.setFromTriplets(trip.begin(), trip.end());
@@ -786,6 +793,114 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         have_full_trial = true;
       }
     }
+    // Chord corrections (Newton phase, when the step is a Newton step): the full step's trial
+    // (u_1, lambda_1) is corrected with the iterate's Jacobian J on the same active rows,
+    //   J [dv; lambda_2] = -F(u_1, lambda_1),
+    // i.e. the Newton system written at u_1 with K_0, D, H of the iterate:
+    //   [A_00 + H, K_A'; -D_A, 0] [dv; lambda_2] = [b - A_00 u_1 + (K_0 - K_0(u_1))' lambda_1; d_A(u_1)].
+    // On a smooth residual the error after the pair of solves is O(e^3) instead of O(e^2)
+    // (Shamanskii's method); on hertz-a at mu 0.45 the Newton steps from merit ~0.1 left a
+    // residual that is such a second-order term (docs/solvers.md, "Limits"). A correction is
+    // kept only when it lowers the merit of the full step; then the line search below starts
+    // from the corrected step (and backtracks along the plain Newton direction).
+    Eigen::VectorXd du_plain, lambda_plain;  // the Newton step, when a chord correction was kept
+    if (!kacanov_phase && !it.kacanov_step && s.chord_steps > 0) {
+      complete_step(du, step_source);
+      if (!have_full_trial) {
+        try {
+          full_trial = evaluate(st.u0 + du, lambda_next);
+          have_full_trial = finite(full_trial);
+        } catch (const Error&) {
+          have_full_trial = false;
+        }
+      }
+      for (int c = 0; c < s.chord_steps && have_full_trial && full_trial.kkt() > s.tolerance; ++c) {
+        // f = (K_0 - K_0(u_1))' lambda_1, on the few contact DOFs of both geometries.
+        const Eigen::VectorXd extra = (st.K0 - full_trial.K0).transpose() * full_trial.lambda;
+        std::vector<int> in;
+        std::vector<double> values;
+        for (int i = 0; i < n; ++i) {
+          if (extra(i) != 0.0) {
+            in.push_back(i);
+            values.push_back(extra(i));
+          }
+        }
+        // ActiveSchur: the systems read z_chord = A_00^-1 (b + f) on read_dofs and on H's DOFs
+        // (E lies in them); the whole step is formed below in one substitution.
+        Eigen::VectorXd z_chord;
+        if (schur) {
+          z_chord = z;
+          if (!in.empty()) {
+            std::vector<int> out = read_dofs;
+            for (const auto& t : h_free) {
+              out.push_back(t.row());
+              out.push_back(t.col());
+            }
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
+            z_chord += inverse.solve_sparse(in, Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())), &out);
+          }
+        } else {
+          top = *p.b - *p.A00 * full_trial.u0 + extra;
+        }
+        const Eigen::VectorXd du_keep = du, lambda_keep = lambda_next;
+        const StepSource source_keep = step_source;
+        base_z = &z_chord;
+        base_u0 = &full_trial.u0;
+        base_d = &full_trial.maps.d;
+        base_lambda = &full_trial.lambda;
+        const bool solved = solve_newton_system(is_active);
+        base_z = &z;
+        base_u0 = &st.u0;
+        base_d = &st.maps.d;
+        base_lambda = &st.lambda;
+        top = *p.b - *p.A00 * st.u0;
+        failure.clear();  // a singular system here only means: keep the step as it was
+        State chord_trial;
+        bool better = false;
+        if (solved) {
+          if (!step_source.complete) {
+            // u_1 + dv = z - A_00^-1 (P_E y_E - f): the step from u_0 in one substitution.
+            std::vector<std::pair<int, double>> rhs;
+            for (std::size_t a = 0; a < step_source.E.size(); ++a) rhs.emplace_back(step_source.E[a], step_source.yE(static_cast<Eigen::Index>(a)));
+            for (std::size_t a = 0; a < in.size(); ++a) rhs.emplace_back(in[a], -values[a]);
+            std::sort(rhs.begin(), rhs.end());
+            std::vector<int> idx;
+            std::vector<double> val;
+            for (const auto& [i, v] : rhs) {
+              if (!idx.empty() && idx.back() == i) {
+                val.back() += v;
+              } else {
+                idx.push_back(i);
+                val.push_back(v);
+              }
+            }
+            du = z - inverse.solve_sparse(idx, Eigen::Map<const Eigen::VectorXd>(val.data(), static_cast<Eigen::Index>(val.size()))) - st.u0;
+            step_source.complete = true;
+          } else {
+            du = full_trial.u0 + du - st.u0;  // SaddleLU: dv itself
+          }
+          try {
+            chord_trial = evaluate(st.u0 + du, lambda_next);
+            better = finite(chord_trial) && chord_trial.merit < full_trial.merit;
+          } catch (const Error&) {
+            better = false;
+          }
+        }
+        if (!better) {
+          du = du_keep;
+          lambda_next = lambda_keep;
+          step_source = source_keep;
+          break;
+        }
+        if (c == 0) {
+          du_plain = du_keep;
+          lambda_plain = lambda_keep;
+        }
+        full_trial = std::move(chord_trial);
+        ++it.chord_steps;
+      }
+    }
     it.factorize_s = seconds_since(t0);
     const Eigen::VectorXd dlambda = lambda_next - st.lambda;
 
@@ -809,7 +924,12 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     };
     std::vector<Trial> trials{{&du, &dlambda, 1.0, 1.0}};
     if (passes > 1) trials.push_back({&du_first, &dlambda_first, 1.0, s.min_step});
-    trials.push_back({&du, &dlambda, 0.5, s.min_step});
+    const Eigen::VectorXd dlambda_plain = it.chord_steps > 0 ? Eigen::VectorXd(lambda_plain - st.lambda) : Eigen::VectorXd();
+    if (it.chord_steps > 0) {
+      trials.push_back({&du_plain, &dlambda_plain, 0.5, s.min_step});
+    } else {
+      trials.push_back({&du, &dlambda, 0.5, s.min_step});
+    }
     for (const Trial& tr : trials) {
       if (tr.du == &du_first) complete_step(du_first, first_source);
       for (double t = tr.t_first; t >= tr.t_last && !accepted; t *= 0.5) {

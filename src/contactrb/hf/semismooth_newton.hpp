@@ -23,7 +23,8 @@
 // rows in force units, |I_r| min(lambda_r, c_r d_r)); optionally a bounded number of full steps
 // without a decrease (max_free_steps). In the Newton phase a full step that does not halve the
 // merit is compared with the exact frozen-geometry step, and the better one is tried first
-// (kacanov_safeguard).
+// (kacanov_safeguard). A Newton step's full trial is then corrected with the iterate's
+// Jacobian (chord_steps, kept while the merit falls).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
@@ -95,6 +96,12 @@ struct NewtonSettings {
   // The Kacanov phase ends after an iteration whose frozen passes settled in at most this many
   // systems (1: the active set was found at once).
   int switch_passes = 1;
+  // Chord corrections per Newton-phase iteration (systems; semismooth_newton.cpp): the full
+  // Newton step's trial is corrected with the iterate's Jacobian (same active rows), each kept
+  // only when it lowers the merit. 0: off. Measured (docs/benchmarks.md, "Chord corrections"):
+  // hertz-a mu 0.45 levels 4-6 9, 10, 10 -> 7, 8, 8 iterations (+2-3 systems, ~5 % more CPU
+  // on level 5); mu 0.15 / 0.3 and ring-block 0 or 1 fewer per level, never more.
+  int chord_steps = 2;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
@@ -134,6 +141,7 @@ struct NewtonIteration {
   int colours = 0;         // colours of the finite-difference linearization (0: analytic)
   int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
   bool kacanov_step = false;  // Newton phase: the safeguard took the exact frozen-geometry step
+  int chord_steps = 0;        // chord corrections kept (NewtonSettings::chord_steps)
   double linearize_s = 0.0, factorize_s = 0.0;
   double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
   double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
