@@ -4,14 +4,21 @@
 #     LEVEL: the wall clock of the solves as the command reports it ("solves X s": without the
 #     process start, mpirun's and the reference mesh) and of the whole command,
 #  2. `online --batch` on 1 and 2 threads (--jobs) over LINES random lines, in each --format,
-#  3. `sample --n N` (all hardware threads).
-# Each run is repeated REPEAT times and the fastest kept (the machine may be shared).
+#  3. `sample --n LINES` on 1 and 2 threads, and `sample --n N` (all hardware threads).
+# Each comparison runs its 1-worker (A) and 2-worker (B) commands interleaved, REPEAT rounds in
+# the order A B, B A, A B, ... so that a drift of the machine's speed (minutes to hours on a
+# shared host) lands on both sides instead of in the ratio. Every sample is printed; the
+# summary gives the fastest and the median of each side, their ratios, and the median of the
+# rounds' ratios A_i / B_i (each from two runs a few seconds apart: the drift-free figure).
 # MPIRUN_FLAGS (environment): extra options for mpirun.
 # SNAPSHOT_FLAGS (environment): extra options for `snapshots` (e.g. "--tol 1e-4"); a larger LEVEL
 # shows the speed-up where the fixed costs (process start, MPI_Init, mesh, file) matter less.
+# ONLY (environment): a regular expression; only the comparisons whose label matches are run
+# (e.g. ONLY='online|sample'; the labels: snapshots-threads, snapshots-mpi, online-json,
+# online-csv, online-npy, sample, sample-n).
 # CASE must have one parameter (the batch file is the first column of `sample --points`).
 #   bench/parallel.sh BUILD_DIR [CASE] [SET] [LEVEL] [LINES] [N] [REPEAT]
-#   e.g. bench/parallel.sh build hertz-b training 1 200000 1000000 3
+#   e.g. bench/parallel.sh build hertz-b training 3 200000 1000000 5
 set -euo pipefail
 build=${1:-build}
 case=${2:-hertz-b}
@@ -20,72 +27,89 @@ level=${4:-1}
 lines=${5:-200000}
 n=${6:-1000000}
 repeat=${7:-3}
+only=${ONLY:-.}
 cli=$(realpath "$build/apps/contactrb/contactrb")
 mpirun=$(command -v mpirun || true)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-# Fastest wall clock (s) of `repeat` runs of the command.
-best() {
-  local b="" t
-  for _ in $(seq "$repeat"); do
-    local s e
-    s=$(date +%s.%N)
-    "$@" >/dev/null 2>&1
-    e=$(date +%s.%N)
-    t=$(echo "$e - $s" | bc -l)
-    if [[ -z "$b" ]] || (( $(echo "$t < $b" | bc -l) )); then b=$t; fi
-  done
-  printf '%.3f' "$b"
+# One run of the command: its wall clock (s) in run_wall, the "solves X s" of its summary (if
+# any) in run_solves.
+run_once() {
+  local s e out
+  s=$(date +%s.%N)
+  out=$("$@" 2>/dev/null)
+  e=$(date +%s.%N)
+  run_wall=$(echo "$e - $s" | bc -l)
+  run_solves=$(echo "$out" | sed -n 's/.*solves \([0-9.]*\) s.*/\1/p')
+}
+# Statistics of whitespace-separated samples: "fastest median".
+stats() { tr ' ' '\n' <<<"$1" | grep . | sort -g | awk '{v[NR]=$1} END {m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.3f %.3f", v[1], m}'; }
+# Median of the ratios a_i / b_i of two sample lists.
+ratio_median() {
+  paste <(tr ' ' '\n' <<<"$1" | grep .) <(tr ' ' '\n' <<<"$2" | grep .) | awk '{print $1/$2}' | sort -g |
+    awk '{v[NR]=$1} END {m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.2f", m}'
 }
 ratio() { printf '%.2f' "$(echo "$1 / $2" | bc -l)"; }
+# One line per measure: label, samples, fastest, median, speed-ups.
+summary() {  # label, samples of A, samples of B
+  local a b
+  read -r a_best a_med <<<"$(stats "$2")"
+  read -r b_best b_med <<<"$(stats "$3")"
+  echo "  $1: 1 [$2] -> 2 [$3] s"
+  echo "    fastest ${a_best} -> ${b_best} s ($(ratio "$a_best" "$b_best")x), median ${a_med} -> ${b_med} s ($(ratio "$a_med" "$b_med")x), median of the rounds' ratios $(ratio_median "$2" "$3")x"
+}
+# compare LABEL DESCRIPTION FUNCTION_A FUNCTION_B: the interleaved rounds (the functions run the
+# commands); summaries of the whole command and, when the commands report them, of the solves.
+compare() {
+  [[ "$1" =~ $only ]] || return 0
+  local wa="" wb="" sa="" sb="" i
+  for i in $(seq "$repeat"); do
+    if (( i % 2 )); then
+      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "
+      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "
+    else
+      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "
+      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "
+    fi
+  done
+  echo "$2 (load average now $(cut -d' ' -f1-3 /proc/loadavg)):"
+  [[ -n "${sa// /}" ]] && summary "solves" "$sa" "$sb"
+  wa=$(printf '%.3f ' $wa); wb=$(printf '%.3f ' $wb)
+  summary "whole command" "$wa" "$wb"
+}
 
-echo "machine: $(nproc) hardware threads; load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $(nproc) hardware threads; load average before: $(cut -d' ' -f1-3 /proc/loadavg); $repeat rounds"
 cd "$work"
 "$cli" offline --case "$case" -q --out model.h5 >/dev/null
-# Fastest "solves" wall clock (s) and fastest total (s) of `repeat` runs of a snapshots command.
-snap() {
-  local bs="" bt=""
-  for _ in $(seq "$repeat"); do
-    local s e out t solves
-    s=$(date +%s.%N)
-    out=$("$@" 2>/dev/null)
-    e=$(date +%s.%N)
-    t=$(echo "$e - $s" | bc -l)
-    solves=$(echo "$out" | sed -n 's/.*solves \([0-9.]*\) s.*/\1/p')
-    if [[ -z "$bs" ]] || (( $(echo "$solves < $bs" | bc -l) )); then bs=$solves; fi
-    if [[ -z "$bt" ]] || (( $(echo "$t < $bt" | bc -l) )); then bt=$t; fi
-  done
-  printf '%s %.3f' "$bs" "$bt"
-}
-report() {  # label, then "solves total" of 1 and of 2
-  read -r s1 w1 <<<"$2"
-  read -r s2 w2 <<<"$3"
-  echo "$1: solves ${s1} s -> ${s2} s (speed-up $(ratio "$s1" "$s2")); whole command ${w1} s -> ${w2} s (speed-up $(ratio "$w1" "$w2"))"
-}
 read -r -a snapshot_flags <<<"${SNAPSHOT_FLAGS:-}"
+read -r -a mpirun_flags <<<"${MPIRUN_FLAGS:-}"
 snapshots=(snapshots --case "$case" --set "$set_name" --level "$level" "${snapshot_flags[@]}" -q --out s.h5)
-report "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 threads" "$(snap "$cli" "${snapshots[@]}")" \
-  "$(snap "$cli" "${snapshots[@]}" --jobs 2)"
+snap_j1() { "$cli" "${snapshots[@]}"; }
+snap_j2() { "$cli" "${snapshots[@]}" --jobs 2; }
+compare snapshots-threads "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 threads" snap_j1 snap_j2
 if [[ -n "$mpirun" ]]; then
   # MPIRUN_FLAGS: extra mpirun options, e.g. "--mca pml ob1" (MPI_Init without probing for
   # Omni-Path/libfabric networks: 0.03 s instead of 0.23 s on the development machine).
-  read -r -a mpirun_flags <<<"${MPIRUN_FLAGS:-}"
-  report "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 MPI ranks${MPIRUN_FLAGS:+ ($MPIRUN_FLAGS)}" \
-    "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 1 "$cli" "${snapshots[@]}")" \
-    "$(snap "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 2 "$cli" "${snapshots[@]}")"
+  snap_np1() { "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 1 "$cli" "${snapshots[@]}"; }
+  snap_np2() { "$mpirun" --oversubscribe "${mpirun_flags[@]}" -np 2 "$cli" "${snapshots[@]}"; }
+  compare snapshots-mpi "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 MPI ranks${MPIRUN_FLAGS:+ ($MPIRUN_FLAGS)}" snap_np1 snap_np2
 fi
 "$cli" sample --model model.h5 --n "$lines" --seed 1 --jobs 1 --no-plot --out p.csv --points points.csv >/dev/null
 cut -d, -f2 points.csv | tail -n +2 > batch.txt
 for format in json csv npy; do
-  b1=$(best "$cli" online --model model.h5 --batch batch.txt --format "$format" --jobs 1)
-  b2=$(best "$cli" online --model model.h5 --batch batch.txt --format "$format" --jobs 2)
-  echo "online --batch $case --format $format, $lines lines: 1 thread ${b1} s ($(printf '%.0f' "$(echo "$lines / $b1" | bc -l)")/s), 2 threads ${b2} s ($(printf '%.0f' "$(echo "$lines / $b2" | bc -l)")/s): speed-up $(ratio "$b1" "$b2")"
+  eval "online_${format}_1() { \"\$cli\" online --model model.h5 --batch batch.txt --format $format --jobs 1 >/dev/null; }"
+  eval "online_${format}_2() { \"\$cli\" online --model model.h5 --batch batch.txt --format $format --jobs 2 >/dev/null; }"
+  compare "online-$format" "online --batch $case --format $format, $lines lines, 1 -> 2 threads" "online_${format}_1" "online_${format}_2"
 done
-s1=$(best "$cli" sample --model model.h5 --n "$lines" --jobs 1 --no-plot --out q.csv)
-s2=$(best "$cli" sample --model model.h5 --n "$lines" --jobs 2 --no-plot --out q.csv)
-echo "sample $case, n = $lines: 1 thread ${s1} s, 2 threads ${s2} s: speed-up $(ratio "$s1" "$s2")"
-sn=$(best "$cli" sample --model model.h5 --n "$n" --out q.csv)
-echo "sample $case, n = $n, all threads, with the figure: ${sn} s"
+sample_1() { "$cli" sample --model model.h5 --n "$lines" --jobs 1 --no-plot --out q.csv >/dev/null; }
+sample_2() { "$cli" sample --model model.h5 --n "$lines" --jobs 2 --no-plot --out q.csv >/dev/null; }
+compare sample "sample $case --n $lines --no-plot, 1 -> 2 threads" sample_1 sample_2
+if [[ sample-n =~ $only ]]; then
+  t=""
+  for _ in $(seq "$repeat"); do run_once "$cli" sample --model model.h5 --n "$n" --out q.csv; t+="$run_wall "; done
+  read -r t_best t_med <<<"$(stats "$t")"
+  echo "sample $case, n = $n, all threads, with the figure: [$(printf '%.3f ' $t)] s, fastest ${t_best} s, median ${t_med} s"
+fi
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
