@@ -14,8 +14,12 @@
 # SNAPSHOT_FLAGS (environment): extra options for `snapshots` (e.g. "--tol 1e-4"); a larger LEVEL
 # shows the speed-up where the fixed costs (process start, MPI_Init, mesh, file) matter less.
 # ONLY (environment): a regular expression; only the comparisons whose label matches are run
-# (e.g. ONLY='online|sample'; the labels: snapshots-threads, snapshots-mpi, online-json,
-# online-csv, online-npy, sample, sample-n).
+# (e.g. ONLY='online|sample'; the labels: snapshots-threads, ceiling-snapshots, snapshots-mpi,
+# ceiling-online, online-json, online-csv, online-npy, sample, sample-n).
+# The "ceiling" comparisons run the same work as two independent 1-worker processes at once (the
+# two halves of the set or batch): what 2 workers can give on this machine at this moment with
+# nothing shared (memory bandwidth, caches, frequency and other load included); a 2-thread or
+# 2-rank speed-up is to be read against it.
 # CASE must have one parameter (the batch file is the first column of `sample --points`).
 #   bench/parallel.sh BUILD_DIR [CASE] [SET] [LEVEL] [LINES] [N] [REPEAT]
 #   e.g. bench/parallel.sh build hertz-b training 3 200000 1000000 5
@@ -35,14 +39,14 @@ trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 # One run of the command: its wall clock (s) in run_wall, the "solves X s" of its summary (if
-# any) in run_solves.
+# any; the longest when it ran several processes) in run_solves.
 run_once() {
   local s e out
   s=$(date +%s.%N)
   out=$("$@" 2>/dev/null)
   e=$(date +%s.%N)
   run_wall=$(echo "$e - $s" | bc -l)
-  run_solves=$(echo "$out" | sed -n 's/.*solves \([0-9.]*\) s.*/\1/p')
+  run_solves=$(echo "$out" | sed -n 's/.*solves \([0-9.]*\) s.*/\1/p' | sort -g | tail -n 1)
 }
 # Statistics of whitespace-separated samples: "fastest median".
 stats() { tr ' ' '\n' <<<"$1" | grep . | sort -g | awk '{v[NR]=$1} END {m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.3f %.3f", v[1], m}'; }
@@ -89,6 +93,10 @@ snapshots=(snapshots --case "$case" --set "$set_name" --level "$level" "${snapsh
 snap_j1() { "$cli" "${snapshots[@]}"; }
 snap_j2() { "$cli" "${snapshots[@]}" --jobs 2; }
 compare snapshots-threads "snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 -> 2 threads" snap_j1 snap_j2
+# The machine's own ceiling for the same work on its 2 cores: the two halves of the set as two
+# independent processes at once (`--part 1/2` and `--part 2/2`, as two array jobs), nothing shared.
+snap_halves() { "$cli" "${snapshots[@]/s.h5/s1.h5}" --part 1/2 & "$cli" "${snapshots[@]/s.h5/s2.h5}" --part 2/2; wait; }
+compare ceiling-snapshots "ceiling: snapshots $case $set_name level $level${SNAPSHOT_FLAGS:+ $SNAPSHOT_FLAGS}, 1 process -> its two halves (--part) as 2 processes at once" snap_j1 snap_halves
 if [[ -n "$mpirun" ]]; then
   # MPIRUN_FLAGS: extra mpirun options, e.g. "--mca pml ob1" (MPI_Init without probing for
   # Omni-Path/libfabric networks: 0.03 s instead of 0.23 s on the development machine).
@@ -98,6 +106,17 @@ if [[ -n "$mpirun" ]]; then
 fi
 "$cli" sample --model model.h5 --n "$lines" --seed 1 --jobs 1 --no-plot --out p.csv --points points.csv >/dev/null
 cut -d, -f2 points.csv | tail -n +2 > batch.txt
+# The ceiling for `online`: the two halves of the batch as two 1-thread processes at once.
+half=$(( (lines + 1) / 2 ))
+head -n "$half" batch.txt > batch1.txt
+tail -n +"$((half + 1))" batch.txt > batch2.txt
+online_halves() {
+  "$cli" online --model model.h5 --batch batch1.txt --format csv --jobs 1 >/dev/null &
+  "$cli" online --model model.h5 --batch batch2.txt --format csv --jobs 1 >/dev/null
+  wait
+}
+online_csv_whole() { "$cli" online --model model.h5 --batch batch.txt --format csv --jobs 1 >/dev/null; }
+compare ceiling-online "ceiling: online --batch $case --format csv, $lines lines, 1 process -> its two halves as 2 processes at once" online_csv_whole online_halves
 for format in json csv npy; do
   eval "online_${format}_1() { \"\$cli\" online --model model.h5 --batch batch.txt --format $format --jobs 1 >/dev/null; }"
   eval "online_${format}_2() { \"\$cli\" online --model model.h5 --batch batch.txt --format $format --jobs 2 >/dev/null; }"
