@@ -38,50 +38,69 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
+# CPU time (s) used on the whole machine so far (/proc/stat: user, nice, system, irq, softirq,
+# steal) and by this shell's finished children (`own_cpu` sets `own`: bash `times` run in this
+# shell, as a subshell, $(...) or a pipeline, has no children of its own).
+clk=$(getconf CLK_TCK)
+machine_cpu() { awk -v c="$clk" '/^cpu / {printf "%.3f", ($2 + $3 + $4 + $7 + $8 + $9) / c}' /proc/stat; }
+own_cpu() { times >"$work/times"; own=$(tail -n 1 "$work/times" | awk '{n = 0; for (i = 1; i <= 2; ++i) {split($i, p, "m"); n += 60 * p[1] + substr(p[2], 1, length(p[2]) - 1)} printf "%.3f", n}'); }
 # One run of the command: its wall clock (s) in run_wall, the "solves X s" of its summary (if
-# any; the longest when it ran several processes) in run_solves.
+# any; the longest when it ran several processes) in run_solves, and in run_other the cores
+# used meanwhile by other processes (the machine's CPU time less the command's, over the wall
+# clock): a run that shared the machine shows it, whatever the load average says.
 run_once() {
-  local s e out
+  local s e out m0 m1 o0 o1
+  m0=$(machine_cpu); own_cpu; o0=$own
   s=$(date +%s.%N)
   out=$("$@" 2>/dev/null)
   e=$(date +%s.%N)
+  m1=$(machine_cpu); own_cpu; o1=$own
   run_wall=$(echo "$e - $s" | bc -l)
   run_solves=$(echo "$out" | sed -n 's/.*solves \([0-9.]*\) s.*/\1/p' | sort -g | tail -n 1)
+  run_other=$(echo "o = ($m1 - $m0 - ($o1 - $o0)) / $run_wall; if (o < 0) o = 0; o" | bc -l)
 }
 # Statistics of whitespace-separated samples: "fastest median".
 stats() { tr ' ' '\n' <<<"$1" | grep . | sort -g | awk '{v[NR]=$1} END {m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.3f %.3f", v[1], m}'; }
-# Median of the ratios a_i / b_i of two sample lists.
+# Median of the ratios a_i / b_i of two sample lists (of the rounds whose flag in the optional
+# third list is 1; "-" when none).
 ratio_median() {
-  paste <(tr ' ' '\n' <<<"$1" | grep .) <(tr ' ' '\n' <<<"$2" | grep .) | awk '{print $1/$2}' | sort -g |
-    awk '{v[NR]=$1} END {m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.2f", m}'
+  paste <(tr ' ' '\n' <<<"$1" | grep .) <(tr ' ' '\n' <<<"$2" | grep .) <(tr ' ' '\n' <<<"${3:-}" | grep . || yes 1 | head -n 1000) |
+    awk 'NF >= 2 && ($3 == "" || $3 == 1) {print $1/$2}' | sort -g |
+    awk '{v[NR]=$1} END {if (NR == 0) {printf "-"; exit} m = NR % 2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2; printf "%.2f", m}'
 }
 ratio() { printf '%.2f' "$(echo "$1 / $2" | bc -l)"; }
-# One line per measure: label, samples, fastest, median, speed-ups.
-summary() {  # label, samples of A, samples of B
-  local a b
+# Two lines per measure: the samples, then the fastest, the medians and the speed-ups.
+summary() {  # label, samples of A, samples of B, quiet flags of the rounds
+  local a_best a_med b_best b_med
   read -r a_best a_med <<<"$(stats "$2")"
   read -r b_best b_med <<<"$(stats "$3")"
   echo "  $1: 1 [$2] -> 2 [$3] s"
-  echo "    fastest ${a_best} -> ${b_best} s ($(ratio "$a_best" "$b_best")x), median ${a_med} -> ${b_med} s ($(ratio "$a_med" "$b_med")x), median of the rounds' ratios $(ratio_median "$2" "$3")x"
+  echo "    fastest ${a_best} -> ${b_best} s ($(ratio "$a_best" "$b_best")x), median ${a_med} -> ${b_med} s ($(ratio "$a_med" "$b_med")x), median of the rounds' ratios $(ratio_median "$2" "$3")x, of the quiet rounds' $(ratio_median "$2" "$3" "$4")x"
 }
+# A round is quiet when other processes used less than QUIET cores (default 0.1) during each of
+# its two runs.
+quiet=${QUIET:-0.1}
 # compare LABEL DESCRIPTION FUNCTION_A FUNCTION_B: the interleaved rounds (the functions run the
 # commands); summaries of the whole command and, when the commands report them, of the solves.
 compare() {
   [[ "$1" =~ $only ]] || return 0
-  local wa="" wb="" sa="" sb="" i
+  local wa="" wb="" sa="" sb="" oa="" ob="" q="" i qa qb
   for i in $(seq "$repeat"); do
     if (( i % 2 )); then
-      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "
-      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "
+      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "; qa=$run_other
+      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "; qb=$run_other
     else
-      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "
-      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "
+      run_once "$4"; wb+="$run_wall "; sb+="$run_solves "; qb=$run_other
+      run_once "$3"; wa+="$run_wall "; sa+="$run_solves "; qa=$run_other
     fi
+    oa+="$(printf '%.2f' "$qa") "; ob+="$(printf '%.2f' "$qb") "
+    q+="$(echo "$qa < $quiet && $qb < $quiet" | bc -l) "
   done
   echo "$2 (load average now $(cut -d' ' -f1-3 /proc/loadavg)):"
-  [[ -n "${sa// /}" ]] && summary "solves" "$sa" "$sb"
+  echo "  cores used by other processes during the runs: 1 [$oa] 2 [$ob]; quiet rounds (< $quiet): $(tr ' ' '\n' <<<"$q" | grep -c 1) of $repeat"
+  [[ -n "${sa// /}" ]] && summary "solves" "$sa" "$sb" "$q"
   wa=$(printf '%.3f ' $wa); wb=$(printf '%.3f ' $wb)
-  summary "whole command" "$wa" "$wb"
+  summary "whole command" "$wa" "$wb" "$q"
 }
 
 echo "machine: $(nproc) hardware threads; load average before: $(cut -d' ' -f1-3 /proc/loadavg); $repeat rounds"
