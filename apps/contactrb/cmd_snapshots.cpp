@@ -134,8 +134,9 @@ EarlyStart start_early(const SnapshotsOptions& opt, int rank) {
   return e;
 }
 
-// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init (docs/cluster.md: MPI libraries whose
-// MPI_Init installs memory hooks, e.g. UCX's, race with a thread that allocates meanwhile).
+// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init nor MPI_Finalize (docs/cluster.md: MPI
+// libraries whose MPI_Init installs memory hooks, e.g. UCX's, race with a thread that allocates
+// meanwhile).
 bool overlap_mpi_init() {
   const char* v = std::getenv("CONTACTRB_MPI_INIT_OVERLAP");
   return v == nullptr || std::string_view(v) != "0";
@@ -148,7 +149,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   EarlyStart early;
   if (overlap) early = start_early(opt, mpirun_rank());
   // (A throw here or below waits for the thread of `early`: std::async's future.)
-  const std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
+  std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
   const std::shared_ptr<const Setup> setup =
       overlap ? early.setup.get() : std::make_shared<const Setup>(make_setup(opt, world != nullptr));
   const rb::SnapshotRequest& request = setup->request;
@@ -161,9 +162,20 @@ int run_snapshots(const SnapshotsOptions& opt) {
   if (!gathered) return 0;  // an MPI rank other than 0: its results are in rank 0's file
   const io::SnapshotSet set = std::move(*gathered);
   const auto t2 = Clock::now();
-  {
+  const auto write = [&] {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // as every output set
     io::write_snapshot_file(set, opt.out);
+  };
+  const int ranks = world ? world->size() : 0;
+  if (world && overlap) {
+    // MPI is done with: the file is written on a thread while the main thread (the only one
+    // that calls MPI) finalizes, so MPI_Finalize's handshake with the other ranks, which wait
+    // in it from the end of their work, is off the critical path (docs/cluster.md).
+    std::future<void> written = std::async(std::launch::async, write);
+    world.reset();
+    written.get();
+  } else {
+    write();
   }
   const auto t3 = Clock::now();
   const double solves_wall = seconds(t1, t2);
@@ -173,7 +185,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
             << " constraints, "
-            << (world ? std::to_string(world->size()) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));
+            << (ranks > 0 ? std::to_string(ranks) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));
   std::cout << "solves: " << s.solves << "\n"
             << "failures: " << s.failures << "\n";
   if (s.failures < s.solves) {

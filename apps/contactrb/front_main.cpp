@@ -1,10 +1,10 @@
 // contactrb: the command-line entry point (docs/user-guide.md). It links the online library
-// only (Eigen, HDF5: contactrb::online), so that `contactrb online --model m.h5 --mu X` costs a
-// few milliseconds of process start instead of loading gmsh, OpenCASCADE, FLTK and the sparse
-// solvers (docs/online-performance.md, "Process time"). Every other command, `online --out`
-// (the HF mesh of the case), --help, --version and any usage error are handed to the full
-// executable contactrb-full (main.cpp) by execv with the same arguments, so that their output
-// and exit codes are those of one program.
+// only (Eigen, HDF5: contactrb::online), so that `contactrb online --model m.h5 --mu X` (and
+// `contactrb sample`) costs a few milliseconds of process start instead of loading gmsh,
+// OpenCASCADE, FLTK and the sparse solvers (docs/online-performance.md, "Process time"). Every
+// other command, `online --out` (the HF mesh of the case), either under mpirun, --help,
+// --version and any usage error are handed to the full executable contactrb-full (main.cpp) by
+// execv with the same arguments, so that their output and exit codes are those of one program.
 #include <unistd.h>
 
 #include <cerrno>
@@ -29,15 +29,20 @@
 
 namespace {
 
-// Whether this process answers the command itself: `online`, and none of the arguments that
-// need more than the online library or whose output the full program gives (help, version).
+// Whether this process answers the command itself: `online` or `sample`, and none of the
+// arguments that need more than the online library or whose output the full program gives
+// (help, version).
 bool answers_itself(int argc, char** argv) {
-  if (argc < 2 || std::string_view(argv[1]) != "online") return false;
+  if (argc < 2) return false;
+  const std::string_view command(argv[1]);
+  if (command != "online" && command != "sample") return false;
   // Under mpirun the full program answers (this one is built without MPI, to start fast).
   if (contactrb::app::mpirun_processes() > 1) return false;
   for (int i = 2; i < argc; ++i) {
     const std::string_view a(argv[i]);
-    if (a == "--out" || a.starts_with("--out=") || a == "-h" || a == "--help" || a == "--version") return false;
+    if (a == "-h" || a == "--help" || a == "--version") return false;
+    // online --out: the reconstructed fields on the HF mesh (sample's --out is its CSV).
+    if (command == "online" && (a == "--out" || a.starts_with("--out="))) return false;
   }
   return true;
 }
@@ -68,6 +73,6 @@ int main(int argc, char** argv) {
   if (!answers_itself(argc, argv)) run_full(argv);
   using namespace contactrb::app;
   return run_cli(
-      argc, argv, [](CLI::App& app) { return std::vector<Command>{add_online_command(app, nullptr)}; },
+      argc, argv, [](CLI::App& app) { return std::vector<Command>{add_online_command(app, nullptr), add_sample_command(app)}; },
       [argv] { run_full(argv); });
 }

@@ -234,13 +234,42 @@ TEST_F(OnlineOnly, CompactFormatsAreForBatchOnly) {
   EXPECT_TRUE(r.out.empty());
 }
 
-// The front hands everything but a plain `online` to contactrb-full: help, version, usage errors
-// and other commands print and exit as contactrb-full does (argv[0] aside, both named the same).
+// The light front answers `sample` itself (no contactrb-full start): the same files as
+// contactrb-full's, bit for bit, on one and two threads.
+TEST_F(OnlineOnly, FrontSamplesAsTheFullExecutable) {
+  const auto text = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  const std::string m = quote(model_);
+  for (const std::string jobs : {"1", "2"}) {
+    SCOPED_TRACE(jobs);
+    const std::string args = "sample --model " + m + " --n 700 --seed 5 --gaps --no-plot --jobs " + jobs + " --out ";
+    const std::string a = dir_->file("front" + jobs + ".csv"), b = dir_->file("full" + jobs + ".csv");
+    const Result front = run(CONTACTRB_CLI, args + quote(a) + " --points " + quote(dir_->file("front_points.csv")));
+    const Result full = run(CONTACTRB_FULL_CLI, args + quote(b) + " --points " + quote(dir_->file("full_points.csv")));
+    ASSERT_EQ(front.exit_code, 0) << front.out;
+    ASSERT_EQ(full.exit_code, 0) << full.out;
+    EXPECT_EQ(text(a), text(b));
+    EXPECT_EQ(text(dir_->file("front" + jobs + "_histograms.csv")), text(dir_->file("full" + jobs + "_histograms.csv")));
+    EXPECT_EQ(text(dir_->file("front_points.csv")), text(dir_->file("full_points.csv")));
+    EXPECT_EQ(lines_of(text(a)).size(), 1u + 5u + 2u);  // header, 5 outputs, max_gap and min_gap
+  }
+}
+
+// The front hands everything but a plain `online` or `sample` to contactrb-full: help, version,
+// usage errors and other commands print and exit as contactrb-full does (argv[0] aside, both
+// named the same); the errors of its own `online` and `sample` are contactrb-full's too.
 TEST_F(OnlineOnly, FrontAndFullExecutableAgree) {
   const std::string m = quote(model_);
   for (const std::string& args : std::vector<std::string>{"--help", "--version", "online --help", "online --model " + m + " --mu 0.3 --bogus",
                                  "online --model " + m, "online --model " + m + " --mu 0.3 --format xml",
-                                 "online --model " + m + " --mu 7", "cases", "nonsense"}) {
+                                 "online --model " + m + " --mu 7", "cases", "nonsense", "sample --help",
+                                 "sample --model " + m + " --n 3 --bogus --out " + quote(dir_->file("b.csv")),
+                                 "sample --model " + m + " --n 0 --out " + quote(dir_->file("z.csv")),
+                                 "sample --model " + quote(dir_->file("none.h5")) + " --n 3 --out " + quote(dir_->file("n.csv"))}) {
     SCOPED_TRACE(args);
     const std::string err_front = dir_->file("front.err"), err_full = dir_->file("full.err");
     const Result front = run(CONTACTRB_CLI, args, err_front), full = run(CONTACTRB_FULL_CLI, args, err_full);
