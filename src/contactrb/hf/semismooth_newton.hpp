@@ -100,8 +100,10 @@ struct NewtonSettings {
   // Newton step's trial is corrected with the iterate's Jacobian (same active rows), each kept
   // only when it lowers the merit. 0: off. Measured (docs/benchmarks.md, "Chord corrections"):
   // hertz-a mu 0.45 levels 4-6 9, 10, 10 -> 7, 8, 8 iterations (+2-3 systems, ~5 % more CPU
-  // on level 5); mu 0.15 / 0.3 and ring-block 0 or 1 fewer per level, never more.
-  int chord_steps = 2;
+  // on level 5); mu 0.15 / 0.3 and ring-block 0 or 1 fewer per level, never more. Off by
+  // default: fewer linearizations but more systems, and measured slower where time matters
+  // (hertz-a mu 0.3 level 5 +4 %, level 7 +8 %; mu 0.45 level 5 +12 %; stop 23, interleaved).
+  int chord_steps = 0;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
