@@ -9,13 +9,19 @@
 //                     block from 200 000 free DOFs, one elsewhere; default: the hardware threads;
 //                     0: OPENBLAS_NUM_THREADS everywhere)]
 //                    [--ordering auto|cholmod|node-metis] [--keep-freed 1 (0: glibc's default malloc thresholds)]
+//                    [--sequence K [--sequence-step 2]] (grid sequencing: K coarse solves on levels
+//                     L - K*step, ..., L - step, each from the previous one, the fine one from the last;
+//                     cases/level_sequence.hpp)
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
 // (median over --repeat runs of setup + solve), iterations, status, contact force, energy,
 // KKT residual, active rows, peak RSS (MB), CPU time per repeat of setup + solve (user + system
 // of the process, s; on a loaded machine the wall times above are not the cost), CPU time of the
-// mesh generation (not in the other columns).
+// mesh generation (not in the other columns); with --sequence: the coarse stages as
+// level:iterations joined by '+' (a '!' after a stage that did not converge; '-' without), and
+// their wall time per repeat (coarse meshes, setups, solves, transfers; in total_s, not in setup_s
+// or solve_s).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -29,6 +35,7 @@
 #include <vector>
 
 #include "contactrb/cases/builtin_problems.hpp"
+#include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 
 using namespace contactrb;
@@ -43,6 +50,7 @@ int main(int argc, char** argv) {
   bool keep_freed = true;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
+  int sequence = 0, sequence_step = 2;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -54,7 +62,7 @@ int main(int argc, char** argv) {
     };
     if (a == "--header") {
       std::printf("case,level,dofs,slave_nodes,solver,constraint,mu,setup_s,solve_s,total_s,iterations,status,"
-                  "force,energy,kkt,active,peak_rss_mb,cpu_s,mesh_cpu_s\n");
+                  "force,energy,kkt,active,peak_rss_mb,cpu_s,mesh_cpu_s,sequence,coarse_s\n");
       return 0;
     }
     if (a == "--case") case_name = next();
@@ -79,6 +87,8 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--keep-freed") keep_freed = std::stoi(next()) != 0;
     else if (a == "--ordering") ordering = next();
+    else if (a == "--sequence") sequence = std::stoi(next());
+    else if (a == "--sequence-step") sequence_step = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
     else if (a == "--tolerance") tolerance = std::stod(next());
@@ -139,15 +149,30 @@ int main(int argc, char** argv) {
     }
     settings.kacanov.alpha = alpha;
     settings.kacanov.tolerance = tolerance;
-    std::vector<double> setup, solve, total;
+    const std::vector<int> coarse_levels = cases::sequence_levels(level, sequence, sequence_step);
+    std::vector<double> setup, solve, total, coarse;
     hf::HFSolution sol;
+    cases::SequenceStart start;
     for (int r = 0; r < std::max(1, repeat); ++r) {
       const hf::HFSolver s(problem);
-      sol = s.solve(settings);
+      start = cases::sequence_start(cases::builtin_case_spec(case_name), cases::Mu::Constant(1, mu), coarse_levels, d,
+                                    settings, s);
+      sol = s.solve(settings, start.guess);
       setup.push_back(s.setup_time_s());
-      total.push_back(sol.time_s);
+      total.push_back(sol.time_s + start.time_s);
       solve.push_back(sol.time_s - s.setup_time_s());
+      coarse.push_back(start.time_s);
     }
+    std::string stages;
+    for (const cases::SequenceStage& st : start.stages) {
+      stages += (stages.empty() ? "" : "+") + std::to_string(st.level) + ":" + std::to_string(st.iterations) +
+                (st.converged ? "" : "!");
+      if (verbose) {
+        std::fprintf(stderr, "  coarse level %d: %d DOFs, %d iterations%s, mesh %.4f s, setup + solve %.4f s, transfer %.4f s\n",
+                     st.level, st.dofs, st.iterations, st.converged ? "" : " (not converged)", st.mesh_s, st.solve_s, st.transfer_s);
+      }
+    }
+    if (stages.empty()) stages = "-";
     auto median = [](std::vector<double> v) {
       std::sort(v.begin(), v.end());
       return v[v.size() / 2];
@@ -166,11 +191,12 @@ int main(int argc, char** argv) {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     const double cpu_s = (cpu(usage) - cpu(after_mesh)) / std::max(1, repeat);
-    std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f,%.4f,%.2f\n", case_name.c_str(), level,
+    std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f,%.4f,%.2f,%s,%.4f\n", case_name.c_str(), level,
                 problem.mesh.num_dofs(), problem.mesh.boundaries.at(mesh::kSlaveBoundary).size() + 1, solver.c_str(),
                 contact::to_string(problem.discretization), mu, median(setup), median(solve), median(total),
                 sol.iterations, solve::to_string(sol.status), sol.contact_force, sol.energy, sol.kkt.max(),
-                sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0, cpu_s, mesh_cpu_s);
+                sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0, cpu_s, mesh_cpu_s,
+                stages.c_str(), median(coarse));
     return sol.converged ? 0 : 3;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_hf_scaling: %s\n", e.what());

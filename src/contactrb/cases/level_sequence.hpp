@@ -1,0 +1,53 @@
+#pragma once
+// Grid sequencing (nested iteration) on the built-in refinement levels (docs/solvers.md, "Grid
+// sequencing"): the same case at the same mu is solved on coarser levels first, each from the
+// previous one's solution transferred (hf/level_transfer.hpp), and the last one's transferred
+// solution is the initial guess of the fine solve. The answer is the fine solve's, to its own
+// tolerance: the coarse solves only choose where it starts.
+#include <optional>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/hf/hf_solver.hpp"
+
+namespace contactrb::cases {
+
+// The coarse levels of a sequence towards `level`: level - count * step, ..., level - step,
+// without the negative ones (count 0: none). Throws contactrb::Error for count < 0 or step < 1.
+std::vector<int> sequence_levels(int level, int count, int step = 2);
+
+struct SequenceStage {
+  int level = 0;
+  int dofs = 0;
+  int iterations = 0;
+  bool converged = false;
+  double mesh_s = 0.0;      // wall time of the stage's mesh generation and problem
+  double solve_s = 0.0;     // HFSolution::time_s (setup + iterations)
+  double transfer_s = 0.0;  // transfer of its solution to the next level
+};
+
+struct SequenceStart {
+  hf::HFInitialGuess guess;  // for the fine solver (empty: no coarse stage converged)
+  std::vector<SequenceStage> stages;
+  double time_s = 0.0;  // all of the stages, wall
+};
+
+// The coarse stages on `levels` (ascending, each below the fine solver's level) of the built-in
+// or TOML case `spec` at mu, the HF settings `settings` on each, and the initial guess for
+// `fine` (a solver of the same case at mu on the finer level). A stage that does not converge
+// ends the chain: the guess is the last converged stage's (or none), and the stage says so.
+SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vector<int>& levels,
+                             std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
+                             const hf::HFSolver& fine);
+
+struct SequencedSolution {
+  hf::HFSolution solution;  // the fine solve (time_s: its own setup and iterations)
+  SequenceStart start;
+  double time_s = 0.0;  // start.time_s + the fine problem's generation + solution.time_s
+};
+
+// sequence_start then the fine solve on `level` (built here).
+SequencedSolution solve_sequenced(const CaseSpec& spec, const Mu& mu, int level, const std::vector<int>& levels,
+                                  std::optional<contact::Discretization> constraint, const hf::HFSettings& settings);
+
+}  // namespace contactrb::cases
