@@ -19,6 +19,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
 #include "contactrb/hf/hf_solver.hpp"
@@ -41,13 +42,14 @@ struct SolveOptions {
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   int level = 0;
+  int sequence = 0;  // grid sequencing: coarse levels level - 2k, ..., level - 2 (cases/level_sequence.hpp)
   std::string solver = "kacanov";  // hf::HFMethod (docs/solvers.md)
   int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
   std::string out_dir;
 };
 
 nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver, const hf::HFSolution& s,
-                             const hf::HFSettings& settings) {
+                             const hf::HFSettings& settings, const cases::SequenceStart& start) {
   nlohmann::json j;
   j["case"] = opt.case_name;
   if (!opt.case_file.empty()) j["case_file"] = opt.case_file;
@@ -78,6 +80,18 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
               {"dual", s.kkt.dual},
               {"complementarity", s.kkt.complementarity}};
   j["gap_violation"] = s.gap_violation;
+  // Grid sequencing: the coarse solves that chose the starting point (their iterations are not in
+  // "iterations", their time not in "time_s").
+  nlohmann::json stages = nlohmann::json::array();
+  for (const cases::SequenceStage& st : start.stages) {
+    stages.push_back({{"level", st.level},
+                      {"n_dofs", st.dofs},
+                      {"iterations", st.iterations},
+                      {"converged", st.converged},
+                      {"time_s", st.mesh_s + st.solve_s + st.transfer_s}});
+  }
+  j["sequence"] = stages;
+  j["sequence_time_s"] = start.time_s;
   j["time_s"] = s.time_s;
   j["setup_time_s"] = solver.setup_time_s();
   j["n_dofs"] = solver.problem().mesh.num_dofs();
@@ -111,6 +125,7 @@ int run_solve(SolveOptions opt) {
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
+  require(opt.sequence >= 0, "--sequence must be >= 0 (got " + std::to_string(opt.sequence) + ")");
   const std::string json_path = opt.out_dir + "/solution.json";
   const std::string csv_path = opt.out_dir + "/multipliers.csv";
   const std::string vtu_path = opt.out_dir + "/solution.vtu";
@@ -126,13 +141,15 @@ int run_solve(SolveOptions opt) {
 
   const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
   const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint));
-  const hf::HFSolution s = solver.solve(settings);
+  const cases::SequenceStart start =
+      cases::sequence_start(spec, opt.mu, cases::sequence_levels(opt.level, opt.sequence), constraint, settings, solver);
+  const hf::HFSolution s = solver.solve(settings, start.guess);
   const mesh::Mesh& m = solver.problem().mesh;
 
   // The five files of one run are written under a lock on DIR: two runs to the same --out
   // leave the files of one of them, never a mix (the writes are atomic one by one).
   const OutputLock lock(opt.out_dir);
-  io::write_json(solution_json(opt, solver, s, settings), json_path);
+  io::write_json(solution_json(opt, solver, s, settings, start), json_path);
 
   if (s.rows.K.rows() != s.lambda.size() || s.lambda.size() == 0) {
     // No fields of this run: the files of an earlier run would sit beside its solution.json.
@@ -163,7 +180,16 @@ int run_solve(SolveOptions opt) {
     std::cout << "wrote " << json_path << " (converged = false)\n";
     return 3;
   }
-  std::cout << "converged in " << s.iterations << " Kacanov iterations (" << s.time_s * 1e3 << " ms)\n"
+  if (!start.stages.empty()) {
+    std::cout << "grid sequencing:";
+    for (const cases::SequenceStage& st : start.stages) {
+      std::cout << " level " << st.level << " " << st.iterations << " iterations" << (st.converged ? "" : " (not converged)")
+                << ";";
+    }
+    std::cout << " " << start.time_s * 1e3 << " ms\n";
+  }
+  std::cout << "converged in " << s.iterations << " " << (s.method == hf::HFMethod::Newton ? "Newton" : "Kacanov")
+            << " iterations (" << s.time_s * 1e3 << " ms)\n"
             << "energy " << s.energy << ", contact force " << s.contact_force << ", active constraints "
             << s.active_constraints << ", max KKT residual " << s.kkt.max() << "\n"
             << "wrote " << json_path << "\nwrote " << csv_path << "\nwrote " << vtu_path << "\nwrote "
@@ -195,6 +221,10 @@ Command add_solve_command(CLI::App& app) {
   sub->add_option("--newton-max-iterations", opt->newton_max_iterations, "Semi-smooth Newton iteration limit")
       ->capture_default_str();
   sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")
+      ->capture_default_str();
+  sub->add_option("--sequence", opt->sequence,
+                  "Grid sequencing: solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 "
+                  "skipped) and start from the last one's solution (docs/solvers.md)")
       ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();
   return {sub, [opt] { return run_solve(*opt); }};

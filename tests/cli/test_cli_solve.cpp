@@ -112,6 +112,36 @@ TEST(CliSolve, NewtonNonConvergenceExitsThreeWithTheResiduals) {
   EXPECT_EQ(j["newton_residuals"].size(), 2u);
 }
 
+// Grid sequencing (docs/solvers.md): --sequence 1 on level 3 solves level 1 first and starts
+// from it; the answer is the cold solve's, in fewer fine Newton iterations, and the coarse solve
+// is reported in the JSON (not in "iterations").
+TEST(CliSolve, GridSequencingGivesTheColdAnswerInFewerNewtonIterations) {
+  contactrb::test::TempDir dir("solve_sequence");
+  const std::string cold_dir = (dir.path() / "cold").string(), seq_dir = (dir.path() / "seq").string();
+  const std::string base = "solve --case hertz-a --mu 0.45 --level 3 --solver newton ";
+  const CliResult cold = run_cli(base + "--out " + shell_quote(cold_dir));
+  const CliResult seq = run_cli(base + "--sequence 1 --out " + shell_quote(seq_dir));
+  ASSERT_EQ(cold.exit_code, 0) << cold.out << cold.err;
+  ASSERT_EQ(seq.exit_code, 0) << seq.out << seq.err;
+  const nlohmann::json c = read_json(fs::path(cold_dir) / "solution.json");
+  const nlohmann::json s = read_json(fs::path(seq_dir) / "solution.json");
+  EXPECT_TRUE(c["sequence"].empty());
+  ASSERT_EQ(s["sequence"].size(), 1u);
+  EXPECT_EQ(s["sequence"][0]["level"].get<int>(), 1);
+  EXPECT_TRUE(s["sequence"][0]["converged"].get<bool>());
+  EXPECT_GT(s["sequence"][0]["iterations"].get<int>(), 0);
+  EXPECT_LT(s["iterations"].get<int>(), c["iterations"].get<int>());
+  EXPECT_EQ(s["n_dofs"], c["n_dofs"]);
+  EXPECT_NEAR(s["contact_force"].get<double>(), c["contact_force"].get<double>(), 1e-8 * c["contact_force"].get<double>());
+  EXPECT_NEAR(s["energy"].get<double>(), c["energy"].get<double>(), 1e-8 * c["energy"].get<double>());
+  EXPECT_EQ(s["active_constraints"], c["active_constraints"]);
+  for (const char* k : {"stationarity", "primal", "dual", "complementarity"}) EXPECT_LE(s["kkt"][k].get<double>(), 1e-10) << k;
+  EXPECT_NE(seq.out.find("grid sequencing: level 1"), std::string::npos) << seq.out;
+  const CliResult bad = run_cli(base + "--sequence -1 --out " + shell_quote(seq_dir));
+  EXPECT_EQ(bad.exit_code, 1) << bad.out << bad.err;
+  EXPECT_NE(bad.err.find("--sequence must be >= 0"), std::string::npos) << bad.err;
+}
+
 // Issue [A] item 5.1, the command of the report: at alpha = 1e-4 it exited 0 with converged =
 // true after one iteration (force 1.398 instead of 1.4726). The stopping test now reads the
 // unrelaxed step: 500 iterations at alpha = 1e-4 do not reach eps_KA, and that is a status.
