@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
@@ -137,9 +138,29 @@ TEST(CliSolve, GridSequencingGivesTheColdAnswerInFewerNewtonIterations) {
   EXPECT_EQ(s["active_constraints"], c["active_constraints"]);
   for (const char* k : {"stationarity", "primal", "dual", "complementarity"}) EXPECT_LE(s["kkt"][k].get<double>(), 1e-10) << k;
   EXPECT_NE(seq.out.find("grid sequencing: level 1"), std::string::npos) << seq.out;
-  const CliResult bad = run_cli(base + "--sequence -1 --out " + shell_quote(seq_dir));
+  const CliResult bad = run_cli(base + "--sequence -2 --out " + shell_quote(seq_dir));
   EXPECT_EQ(bad.exit_code, 1) << bad.out << bad.err;
   EXPECT_NE(bad.err.find("--sequence must be >= 0"), std::string::npos) << bad.err;
+}
+
+// The automatic default (-1): two coarse stages with Newton from level 5 on, none below or with
+// Kacanov.
+TEST(CliSolve, GridSequencingIsAutomaticWithNewtonFromLevelFive) {
+  contactrb::test::TempDir dir("solve_sequence_auto");
+  auto stages = [&](const std::string& args) {
+    const std::string out = (dir.path() / "run").string();
+    const CliResult r = run_cli("solve --case hertz-a --mu 0.3 " + args + " --out " + shell_quote(out));
+    EXPECT_EQ(r.exit_code, 0) << args << r.out << r.err;
+    std::vector<int> levels;
+    const nlohmann::json j = read_json(fs::path(out) / "solution.json");
+    for (const auto& st : j["sequence"]) levels.push_back(st["level"].get<int>());
+    return levels;
+  };
+  EXPECT_EQ(stages("--level 5 --solver newton"), (std::vector<int>{1, 3}));
+  EXPECT_TRUE(stages("--level 5 --solver newton --sequence 0").empty());
+  EXPECT_TRUE(stages("--level 4 --solver newton").empty());
+  EXPECT_TRUE(stages("--level 2").empty());  // Kacanov
+  EXPECT_EQ(stages("--level 2 --sequence 1"), (std::vector<int>{0}));  // Kacanov, asked for
 }
 
 // Issue [A] item 5.1, the command of the report: at alpha = 1e-4 it exited 0 with converged =
