@@ -32,11 +32,13 @@ namespace contactrb::app {
 namespace {
 
 // Measured (docs/solvers.md, "Grid sequencing"; docs/benchmarks.md): with Newton, two coarse
-// stages (levels L - 4, L - 2) cut the time of hertz-a at mu 0.3 / 0.45 from level 4 on and are
-// within the noise at mu 0.15 from level 5 on (slower at level 4). Kacanov: never automatic (its
-// answer depends on the start to its tolerance eps_KA, docs/solvers.md "Warm start").
+// stages (levels L - 4, L - 2) cut the time of hertz-a at mu 0.3 / 0.45 from level 4 on (level 4:
+// -29 % / -45 %) and are within the noise at mu 0.15 from level 5 on (level 4: +20 %, 0.03 s);
+// from level 4 on the fine solve takes <= 4 Newton iterations where a cold one takes up to 10.
+// Kacanov: never automatic (its answer depends on the start to its tolerance eps_KA,
+// docs/solvers.md "Warm start").
 constexpr int kAutoSequence = 2;
-constexpr int kAutoSequenceFromLevel = 5;
+constexpr int kAutoSequenceFromLevel = 4;
 
 struct SolveOptions {
   std::string case_name;
@@ -236,7 +238,7 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sequence", opt->sequence,
                   "Grid sequencing: solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 "
-                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 5, "
+                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4, "
                   "0 otherwise (docs/solvers.md)")
       ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();

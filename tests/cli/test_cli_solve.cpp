@@ -143,9 +143,9 @@ TEST(CliSolve, GridSequencingGivesTheColdAnswerInFewerNewtonIterations) {
   EXPECT_NE(bad.err.find("--sequence must be >= 0"), std::string::npos) << bad.err;
 }
 
-// The automatic default (-1): two coarse stages with Newton from level 5 on, none below or with
+// The automatic default (-1): two coarse stages with Newton from level 4 on, none below or with
 // Kacanov.
-TEST(CliSolve, GridSequencingIsAutomaticWithNewtonFromLevelFive) {
+TEST(CliSolve, GridSequencingIsAutomaticWithNewtonFromLevelFour) {
   contactrb::test::TempDir dir("solve_sequence_auto");
   auto stages = [&](const std::string& args) {
     const std::string out = (dir.path() / "run").string();
@@ -156,9 +156,9 @@ TEST(CliSolve, GridSequencingIsAutomaticWithNewtonFromLevelFive) {
     for (const auto& st : j["sequence"]) levels.push_back(st["level"].get<int>());
     return levels;
   };
-  EXPECT_EQ(stages("--level 5 --solver newton"), (std::vector<int>{1, 3}));
-  EXPECT_TRUE(stages("--level 5 --solver newton --sequence 0").empty());
-  EXPECT_TRUE(stages("--level 4 --solver newton").empty());
+  EXPECT_EQ(stages("--level 4 --solver newton"), (std::vector<int>{0, 2}));
+  EXPECT_TRUE(stages("--level 4 --solver newton --sequence 0").empty());
+  EXPECT_TRUE(stages("--level 3 --solver newton").empty());
   EXPECT_TRUE(stages("--level 2").empty());  // Kacanov
   EXPECT_EQ(stages("--level 2 --sequence 1"), (std::vector<int>{0}));  // Kacanov, asked for
 }
