@@ -249,10 +249,22 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   const solve::ScopedBlasThreads serial_blas(blas_threads > 0 ? 1 : 0);
   if (schur) {
     solve::SelectedInverseStatus status;
+    double ahead_seconds = 0.0;
     {
       const solve::ScopedBlasThreads threads(blas_threads);
       res.timings.blas_threads = solve::blas_threads();
-      status = inverse.compute(*p.A00, s.ordering);
+      const auto t_wait = Clock::now();
+      const solve::FactorAnalysis* ahead = p.a00_analysis ? p.a00_analysis() : nullptr;
+      res.timings.analysis_wait_s = seconds_since(t_wait);
+      const solve::FactorOrdering ordering =
+          s.ordering == solve::FactorOrdering::Auto ? solve::auto_ordering(n) : s.ordering;
+      if (ahead != nullptr && ahead->requested() == ordering) {
+        status = inverse.compute(*p.A00, *ahead);  // falls back to its own analysis if the pattern differs
+        res.timings.analysis_ahead = inverse.used_analysis();
+        ahead_seconds = ahead->seconds();
+      } else {
+        status = inverse.compute(*p.A00, s.ordering);
+      }
     }
     if (status != solve::SelectedInverseStatus::Success) {
       res.message = std::string("semi-smooth Newton: the stiffness A_00 (") + std::to_string(n) +
@@ -263,7 +275,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     }
     // Two threads for the full substitutions too (the BLAS is single-threaded there).
     if (blas_threads >= 2) inverse.set_substitution_threads(2);
-    res.timings.analyze_s = inverse.analyze_seconds();
+    res.timings.analyze_s = res.timings.analysis_ahead ? ahead_seconds : inverse.analyze_seconds();
     res.timings.numeric_s = inverse.factorize_seconds();
     res.timings.factor_nonzeros = inverse.factor_nonzeros();
     const auto t_rhs = Clock::now();

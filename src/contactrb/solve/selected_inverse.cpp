@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <chrono>
+#include <mutex>
 #include <cmath>
 #include <string>
 #include <thread>
@@ -267,10 +268,7 @@ namespace {
 // METIS orders a graph with half the vertices and a quarter of the edges; the permutation of A
 // takes each run's indices together. A: both triangles stored, compressed, sorted. Returns an
 // empty vector when CHOLMOD's METIS fails (the caller falls back to CHOLMOD's default).
-std::vector<int> supervariable_metis(const Eigen::SparseMatrix<double>& A, cholmod_common& common) {
-  const int n = static_cast<int>(A.rows());
-  const int* p = A.outerIndexPtr();
-  const int* i = A.innerIndexPtr();
+std::vector<int> supervariable_metis(int n, const int* p, const int* i, cholmod_common& common) {
   std::vector<int> group_of(static_cast<std::size_t>(n));
   std::vector<int> group_start{0};
   for (int j = 1; j < n; ++j) {
@@ -286,7 +284,7 @@ std::vector<int> supervariable_metis(const Eigen::SparseMatrix<double>& A, cholm
   }
   // Pattern of the compressed graph (both triangles, diagonal dropped: METIS ignores it).
   std::vector<int> cp{0}, ci;
-  ci.reserve(static_cast<std::size_t>(A.nonZeros()) / 4 + static_cast<std::size_t>(n));
+  ci.reserve(static_cast<std::size_t>(p[n]) / 4 + static_cast<std::size_t>(n));
   for (int g = 0; g < ng; ++g) {
     const int j = group_start[static_cast<std::size_t>(g)];
     int last = -1;
@@ -344,22 +342,26 @@ SelectedInverse& SelectedInverse::operator=(SelectedInverse&&) noexcept = defaul
 
 namespace {
 
-// CHOLMOD's read-only view of a compressed Eigen matrix (both triangles stored, the lower read).
-cholmod_sparse view_of(const Eigen::SparseMatrix<double>& A) {
+// CHOLMOD's read-only view of a compressed matrix (both triangles stored, the lower read);
+// x == nullptr: the pattern alone.
+cholmod_sparse view_of(int n, const int* p, const int* i, const double* x) {
   cholmod_sparse view{};
-  view.nrow = view.ncol = static_cast<std::size_t>(A.rows());
-  view.nzmax = static_cast<std::size_t>(A.nonZeros());
+  view.nrow = view.ncol = static_cast<std::size_t>(n);
+  view.nzmax = static_cast<std::size_t>(p[n]);
   // CHOLMOD reads its input only (cholmod_analyze, cholmod_factorize take it as const data).
-  view.p = const_cast<int*>(A.outerIndexPtr());
-  view.i = const_cast<int*>(A.innerIndexPtr());
-  view.x = const_cast<double*>(A.valuePtr());
+  view.p = const_cast<int*>(p);
+  view.i = const_cast<int*>(i);
+  view.x = const_cast<double*>(x);
   view.stype = -1;  // symmetric, lower triangle read
   view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
+  view.xtype = x != nullptr ? CHOLMOD_REAL : CHOLMOD_PATTERN;
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
   return view;
+}
+cholmod_sparse view_of(const Eigen::SparseMatrix<double>& A) {
+  return view_of(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
 }
 
 // The settings of the numeric factorization, the same on every path.
@@ -370,12 +372,20 @@ void set_factor_options(cholmod_common& common) {
 
 // Ordering + symbolic analysis (the pattern of A only). `ordering` resolved (not Auto); `used`:
 // the ordering taken (NodeMetis falls back to CHOLMOD's default when METIS fails).
-cholmod_factor* analyze_pattern(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering, cholmod_common& common,
+cholmod_factor* analyze_pattern(int n, const int* p, const int* i, FactorOrdering ordering, cholmod_common& common,
                                 FactorOrdering& used) {
-  cholmod_sparse view = view_of(A);
+  cholmod_sparse view = view_of(n, p, i, nullptr);
   set_factor_options(common);
+  // METIS keeps state shared by the threads of the process (its random-number generator): two
+  // orderings at once on two threads gave different permutations from one run to the next
+  // (tests/hf/test_semismooth_newton.cpp, analysis beside the assembly against a solve's own), so
+  // the calls that may run METIS take turns.
+  static std::mutex metis_mutex;
   std::vector<int> given;
-  if (ordering == FactorOrdering::NodeMetis) given = supervariable_metis(A, common);
+  if (ordering == FactorOrdering::NodeMetis) {
+    const std::lock_guard<std::mutex> lock(metis_mutex);
+    given = supervariable_metis(n, p, i, common);
+  }
   if (!given.empty()) {
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_GIVEN;
@@ -386,6 +396,7 @@ cholmod_factor* analyze_pattern(const Eigen::SparseMatrix<double>& A, FactorOrde
   common.nmethods = 0;  // CHOLMOD's default: AMD, METIS when AMD fills badly
   common.method[0].ordering = CHOLMOD_GIVEN;
   used = FactorOrdering::Cholmod;
+  const std::lock_guard<std::mutex> lock(metis_mutex);  // METIS when AMD fills badly
   return cholmod_analyze(&view, &common);
 }
 
@@ -410,15 +421,29 @@ FactorAnalysis::FactorAnalysis(FactorAnalysis&&) noexcept = default;
 FactorAnalysis& FactorAnalysis::operator=(FactorAnalysis&&) noexcept = default;
 
 FactorAnalysis FactorAnalysis::analyze(const Eigen::SparseMatrix<double>& pattern, FactorOrdering ordering) {
+  if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed()) {
+    FactorAnalysis a;
+    a.impl_->requested = ordering == FactorOrdering::Auto ? auto_ordering(static_cast<int>(pattern.rows())) : ordering;
+    return a;
+  }
+  return analyze(static_cast<int>(pattern.rows()),
+                 std::vector<int>(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.cols() + 1),
+                 std::vector<int>(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros()), ordering);
+}
+
+FactorAnalysis FactorAnalysis::analyze(int n, std::vector<int> outer, std::vector<int> inner, FactorOrdering ordering) {
   const auto t0 = std::chrono::steady_clock::now();
   FactorAnalysis a;
   Impl& m = *a.impl_;
-  m.requested = ordering == FactorOrdering::Auto ? auto_ordering(static_cast<int>(pattern.rows())) : ordering;
-  if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed()) return a;
-  m.L = analyze_pattern(pattern, m.requested, m.common, m.used);
+  m.requested = ordering == FactorOrdering::Auto ? auto_ordering(n) : ordering;
+  if (n <= 0 || outer.size() != static_cast<std::size_t>(n) + 1 || outer[0] != 0 ||
+      static_cast<std::size_t>(outer.back()) != inner.size()) {
+    return a;
+  }
+  m.L = analyze_pattern(n, outer.data(), inner.data(), m.requested, m.common, m.used);
   if (m.L == nullptr) return a;
-  m.outer.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.cols() + 1);
-  m.inner.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
+  m.outer = std::move(outer);
+  m.inner = std::move(inner);
   m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return a;
 }
@@ -476,7 +501,8 @@ SelectedInverseStatus SelectedInverse::compute_impl(const Eigen::SparseMatrix<do
     m.used_analysis = m.L != nullptr;
   } else {
     if (ordering == FactorOrdering::Auto) ordering = auto_ordering(static_cast<int>(A.rows()));
-    m.L = analyze_pattern(A, ordering, m.common, m.ordering_used);
+    m.L = analyze_pattern(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), ordering, m.common,
+                          m.ordering_used);
   }
   m.analyze_s = std::chrono::duration<double>(Clock::now() - t0).count();
   if (m.L == nullptr) return m.status;

@@ -53,6 +53,10 @@ class FactorAnalysis {
   // pattern: square, compressed, both triangles stored (as compute() takes A); its values are
   // ignored. valid() is false when the analysis failed (empty, not square, out of memory).
   static FactorAnalysis analyze(const Eigen::SparseMatrix<double>& pattern, FactorOrdering ordering = FactorOrdering::Auto);
+  // The same from a compressed-column pattern alone (outer: n + 1 entries, inner: rows ascending
+  // in each column), kept for matches().
+  static FactorAnalysis analyze(int n, std::vector<int> outer, std::vector<int> inner,
+                                FactorOrdering ordering = FactorOrdering::Auto);
   bool valid() const;
   FactorOrdering requested() const;  // the ordering asked for (Auto resolved by the size)
   bool matches(const Eigen::SparseMatrix<double>& A) const;  // A compressed with exactly this pattern
