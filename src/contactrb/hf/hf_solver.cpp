@@ -134,16 +134,18 @@ HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl
   const mesh::Mesh& mesh = m.problem.mesh;
   m.dofs = fem::DofMap(mesh, m.problem.dirichlet);
   require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
+  // The nodal pattern of A (fem::stiffness), shared with the analysis thread below.
+  std::shared_ptr<const fem::NodalSparsity> pattern;
   if (options.newton_analysis) {
-    // The pattern of A_00 is the mesh's nodal pattern (fem::stiffness) restricted to the free
-    // DOFs (DofMap::restrict_matrix): known before any value, so its ordering and symbolic
-    // analysis (hertz-a level 7: 4 s, the assembly and the rest of this constructor: 2.3 s) run
-    // beside the assembly. The solve checks that A_00 has exactly this pattern before using it.
+    // The pattern of A_00 is the mesh's nodal pattern restricted to the free DOFs
+    // (DofMap::restrict_matrix): known before any value, so its ordering and symbolic analysis
+    // (hertz-a level 7: 4 s; the assembly and the rest of this constructor: 2.3 s) run beside
+    // the assembly. The solve checks that A_00 has exactly this pattern before using it.
+    pattern = std::make_shared<const fem::NodalSparsity>(mesh, fem::triangles_of_body(mesh, -1));
     const solve::FactorOrdering ordering = options.ordering;
-    m.analysis_future = std::async(std::launch::async, [&mesh, &dofs = m.dofs, ordering] {
-      const fem::NodalSparsity pattern(mesh, fem::triangles_of_body(mesh, -1));
+    m.analysis_future = std::async(std::launch::async, [pattern, &dofs = m.dofs, ordering] {
       std::vector<int> outer, inner;
-      pattern.restricted_pattern(dofs.free_dofs(), outer, inner);
+      pattern->restricted_pattern(dofs.free_dofs(), outer, inner);
       return solve::FactorAnalysis::analyze(dofs.num_free(), std::move(outer), std::move(inner), ordering);
     });
   }
@@ -160,7 +162,7 @@ HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl
                                 " slave nodes, none projects inside the master polyline): check the "
                                 "'slave' and 'master' groups");
   }
-  m.A = fem::stiffness(mesh, m.problem.materials);
+  m.A = pattern ? fem::stiffness(mesh, m.problem.materials, *pattern) : fem::stiffness(mesh, m.problem.materials);
   m.f = Eigen::VectorXd::Zero(mesh.num_dofs());
   for (std::size_t body = 0; body < m.problem.body_loads.size(); ++body) {
     m.f += fem::body_load(mesh, static_cast<int>(body), m.problem.body_loads[body]);

@@ -385,7 +385,10 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     const Eigen::VectorXd* base_u0 = &st.u0;
     const Eigen::VectorXd* base_d = &st.maps.d;
     const Eigen::VectorXd* base_lambda = &st.lambda;
-    Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
+    // SaddleLU's right-hand side b - A_00 u_0 (ActiveSchur reads z instead: not formed, one
+    // product with A_00 per iteration saved).
+    Eigen::VectorXd top;
+    if (!schur) top = *p.b - *p.A00 * st.u0;
 
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
@@ -866,7 +869,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         base_u0 = &st.u0;
         base_d = &st.maps.d;
         base_lambda = &st.lambda;
-        top = *p.b - *p.A00 * st.u0;
+        if (!schur) top = *p.b - *p.A00 * st.u0;
         failure.clear();  // a singular system here only means: keep the step as it was
         State chord_trial;
         bool better = false;
