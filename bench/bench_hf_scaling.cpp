@@ -9,6 +9,8 @@
 //                     block from 200 000 free DOFs, one elsewhere; default: the hardware threads;
 //                     0: OPENBLAS_NUM_THREADS everywhere)]
 //                    [--ordering auto|cholmod|node-metis] [--keep-freed 1 (0: glibc's default malloc thresholds)]
+//                    [--ahead 1 (Newton: A_00's ordering and symbolic analysis beside the assembly,
+//                     hf::HFSetupOptions; 0: in the solve, after it)]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   std::string linearization = "analytic";
   bool verbose = false;
   bool keep_freed = true;
+  bool ahead = true;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
   for (int i = 1; i < argc; ++i) {
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--keep-freed") keep_freed = std::stoi(next()) != 0;
+    else if (a == "--ahead") ahead = std::stoi(next()) != 0;
     else if (a == "--ordering") ordering = next();
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--alpha") alpha = std::stod(next());
@@ -142,7 +146,9 @@ int main(int argc, char** argv) {
     std::vector<double> setup, solve, total;
     hf::HFSolution sol;
     for (int r = 0; r < std::max(1, repeat); ++r) {
-      const hf::HFSolver s(problem, hf::setup_options_for(settings));
+      hf::HFSetupOptions prepare = hf::setup_options_for(settings);
+      prepare.newton_analysis = prepare.newton_analysis && ahead;
+      const hf::HFSolver s(problem, prepare);
       sol = s.solve(settings);
       setup.push_back(s.setup_time_s());
       total.push_back(sol.time_s);

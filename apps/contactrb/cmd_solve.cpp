@@ -125,7 +125,8 @@ int run_solve(SolveOptions opt) {
   ensure_output_directory(opt.out_dir);
 
   const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
-  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint));
+  // Newton: the analysis of A_00 beside the assembly (hf::HFSetupOptions; the same answer bitwise).
+  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint), hf::setup_options_for(settings));
   const hf::HFSolution s = solver.solve(settings);
   const mesh::Mesh& m = solver.problem().mesh;
 
