@@ -12,6 +12,8 @@
 //                    [--sequence K [--sequence-step 2]] (grid sequencing: K coarse solves on levels
 //                     L - K*step, ..., L - step, each from the previous one, the fine one from the last;
 //                     cases/level_sequence.hpp)
+//                    [--ahead 1 (Newton: A_00's ordering and symbolic analysis beside the assembly,
+//                     hf::HFSetupOptions; 0: in the solve, after it)]
 //
 // Columns: case, level, DOFs, slave nodes, solver, constraint, mu, setup_s (assembly, lifting;
 // Kacanov: plus the factorization and the condensed block S), solve_s (iterations), total_s
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
   std::string linearization = "analytic";
   bool verbose = false;
   bool keep_freed = true;
+  bool ahead = true;
   double mu = 0.3, alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
   int sequence = 0, sequence_step = 2;
@@ -86,6 +89,7 @@ int main(int argc, char** argv) {
     else if (a == "--krylov") krylov = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--keep-freed") keep_freed = std::stoi(next()) != 0;
+    else if (a == "--ahead") ahead = std::stoi(next()) != 0;
     else if (a == "--ordering") ordering = next();
     else if (a == "--sequence") sequence = std::stoi(next());
     else if (a == "--sequence-step") sequence_step = std::stoi(next());
@@ -154,7 +158,9 @@ int main(int argc, char** argv) {
     hf::HFSolution sol;
     cases::SequenceStart start;
     for (int r = 0; r < std::max(1, repeat); ++r) {
-      const hf::HFSolver s(problem);
+      hf::HFSetupOptions prepare = hf::setup_options_for(settings);
+      prepare.newton_analysis = prepare.newton_analysis && ahead;
+      const hf::HFSolver s(problem, prepare);
       start = cases::sequence_start(cases::builtin_case_spec(case_name), cases::Mu::Constant(1, mu), coarse_levels, d,
                                     settings, s);
       sol = s.solve(settings, start.guess);
@@ -179,8 +185,9 @@ int main(int argc, char** argv) {
     };
     if (verbose) {
       const hf::NewtonTimings& tm = sol.newton_timings;
-      std::fprintf(stderr, "  A_00: analysis %.4f s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
-                   tm.analyze_s, tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
+      std::fprintf(stderr, "  A_00: analysis %.4f s%s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
+                   tm.analyze_s, tm.analysis_ahead ? (" (beside the assembly; waited " + std::to_string(tm.analysis_wait_s) + " s)").c_str() : "",
+                   tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
       for (const auto& it : sol.newton_history) {
         std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d chord %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
                      it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0, it.chord_steps,

@@ -154,7 +154,9 @@ int run_solve(SolveOptions opt) {
   ensure_output_directory(opt.out_dir);
 
   const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
-  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint));
+  // Newton: the analysis of A_00 beside the assembly (hf::HFSetupOptions; the same answer bitwise),
+  // and beside the coarse stages of the grid sequencing.
+  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint), hf::setup_options_for(settings));
   const cases::SequenceStart start =
       cases::sequence_start(spec, opt.mu, cases::sequence_levels(opt.level, opt.sequence), constraint, settings, solver);
   const hf::HFSolution s = solver.solve(settings, start.guess);

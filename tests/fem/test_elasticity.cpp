@@ -174,3 +174,27 @@ TEST(InnerProducts, MassLaplacianH1AndBoundaryMass) {
   EXPECT_NEAR(id.dot(G * id), (2.5 * 2.5 * 2.5 - 1.5 * 1.5 * 1.5) / 3.0 + 1.44, 1e-13);  // int x^2 + y^2
   EXPECT_THROW(boundary_mass(m, "nowhere"), Error);
 }
+
+// The stiffness on a pattern built beforehand (shared with hf::HFSolver's analysis thread) is the
+// stiffness, bitwise; NodalSparsity::restricted_pattern is the pattern DofMap::restrict_matrix
+// stores (one DOF of a node prescribed, both, none).
+TEST(Stiffness, SharedPatternAndRestrictedPatternAreTheAssembledOnes) {
+  const mesh::Mesh m = fem_test::two_bodies(5, 4, 3, 6);
+  const NodalSparsity pattern(m, triangles_of_body(m, -1));
+  const SparseMatrix K = stiffness(m, kMaterials), Kp = stiffness(m, kMaterials, pattern);
+  ASSERT_EQ(K.nonZeros(), Kp.nonZeros());
+  EXPECT_TRUE(std::equal(K.outerIndexPtr(), K.outerIndexPtr() + K.cols() + 1, Kp.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros(), Kp.innerIndexPtr()));
+  EXPECT_TRUE(std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), Kp.valuePtr()));
+  const DofMap dofs(m, {{"left", 0.0, std::nullopt}, {"b_bottom", 0.0, 0.0}});
+  const SparseMatrix K00 = dofs.restrict_matrix(K);
+  std::vector<int> outer, inner;
+  pattern.restricted_pattern(dofs.free_dofs(), outer, inner);
+  ASSERT_EQ(outer.size(), static_cast<std::size_t>(K00.cols()) + 1);
+  ASSERT_EQ(inner.size(), static_cast<std::size_t>(K00.nonZeros()));
+  EXPECT_TRUE(std::equal(outer.begin(), outer.end(), K00.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(inner.begin(), inner.end(), K00.innerIndexPtr()));
+  EXPECT_THROW(pattern.restricted_pattern({0, 0}, outer, inner), Error);
+  const mesh::Mesh other = fem_test::two_bodies(4, 4, 3, 6);
+  EXPECT_THROW(stiffness(other, kMaterials, pattern), Error);
+}

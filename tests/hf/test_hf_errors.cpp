@@ -32,6 +32,15 @@ TEST(HFErrors, SlaveNeverFacingTheMaster) {
   // Move the slave block far to the right: no slave node projects inside the master.
   mesh::map_body(p.mesh, mesh::kSlaveBody, Eigen::Matrix2d::Identity(), Eigen::Vector2d(5.0, 0.0));
   EXPECT_NE(message_of(p).find("faces the master"), std::string::npos) << message_of(p);
+  // The same error once the analysis thread of a Newton solve has started (it is joined).
+  hf::HFSettings newton;
+  newton.method = hf::HFMethod::Newton;
+  try {
+    const hf::HFSolver solver(p, hf::setup_options_for(newton));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("faces the master"), std::string::npos) << e.what();
+  }
 }
 
 TEST(HFErrors, BadSettingsAndData) {

@@ -275,6 +275,46 @@ TEST(SemismoothNewton, OrderingAndBlasThreadsGiveTheSameSolution) {
   }
 }
 
+// The ordering and symbolic analysis of A_00 made on a second thread during the constructor's
+// assembly (HFSetupOptions::newton_analysis) give the same factor, hence bitwise the same
+// iterates, as the analysis in the solve, for both orderings; a solve asking for another
+// ordering than the prepared one analyses A_00 itself; the prepared analysis serves every solve.
+TEST(SemismoothNewton, AnalysisBesideTheAssemblyGivesBitwiseTheSameSolution) {
+  for (const solve::FactorOrdering ordering : {solve::FactorOrdering::Cholmod, solve::FactorOrdering::NodeMetis}) {
+    hf::HFSettings s = newton(1e-12);
+    s.newton.ordering = ordering;
+    const hf::HFSetupOptions options = hf::setup_options_for(s);
+    ASSERT_TRUE(options.newton_analysis);
+    // `serial` analyses A_00 in its solve while `ahead`'s analysis runs on its thread: the two
+    // orderings at once (METIS's shared state: solve/selected_inverse.cpp).
+    const hf::HFSolver serial(cases::make_problem("hertz-a", 0.3, 2));
+    const hf::HFSolver ahead(cases::make_problem("hertz-a", 0.3, 2), options);
+    const hf::HFSolution a = serial.solve(s), b = ahead.solve(s);
+    ASSERT_TRUE(a.converged) << a.message;
+    ASSERT_TRUE(b.converged) << b.message;
+    EXPECT_FALSE(a.newton_timings.analysis_ahead);
+    EXPECT_TRUE(b.newton_timings.analysis_ahead) << solve::to_string(ordering);
+    EXPECT_GT(b.newton_timings.analyze_s, 0.0);
+    EXPECT_EQ(a.newton_timings.factor_nonzeros, b.newton_timings.factor_nonzeros);
+    ASSERT_EQ(a.iterations, b.iterations);
+    EXPECT_TRUE((a.u.array() == b.u.array()).all()) << solve::to_string(ordering);
+    EXPECT_TRUE((a.lambda.array() == b.lambda.array()).all()) << solve::to_string(ordering);
+    EXPECT_EQ(a.energy, b.energy);
+    // Again (the analysis is kept), and with the other ordering (not the prepared one).
+    const hf::HFSolution again = ahead.solve(s);
+    EXPECT_TRUE(again.newton_timings.analysis_ahead);
+    EXPECT_TRUE((again.u.array() == a.u.array()).all());
+    hf::HFSettings other = s;
+    other.newton.ordering = ordering == solve::FactorOrdering::Cholmod ? solve::FactorOrdering::NodeMetis
+                                                                      : solve::FactorOrdering::Cholmod;
+    const hf::HFSolution c = ahead.solve(other), d = serial.solve(other);
+    EXPECT_FALSE(c.newton_timings.analysis_ahead);
+    EXPECT_TRUE((c.u.array() == d.u.array()).all());
+  }
+  // Kacanov prepares nothing.
+  EXPECT_FALSE(hf::setup_options_for(hf::HFSettings{}).newton_analysis);
+}
+
 // Newton's local rate: the last steps shrink the KKT residual superlinearly
 // (r_{k+1} / r_k -> 0); a linear method at Kacanov's rate would keep the ratio near its
 // contraction factor (0.1-0.7 here).

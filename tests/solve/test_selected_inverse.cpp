@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <vector>
 
@@ -264,4 +265,47 @@ TEST(SelectedInverse, TwoThreadSubstitutionIsBitwiseTheSerialOne) {
     for (std::size_t a = 0; a < in.size(); ++a) b(in[a]) = b_in(static_cast<Eigen::Index>(a));
     EXPECT_LT((dense * x2 - b).norm(), 1e-12 * b.norm()) << solve::to_string(ordering);
   }
+}
+
+// A FactorAnalysis of the pattern alone (zero values), made on another thread, gives the same
+// factor as compute(A, ordering): bitwise the same solves and blocks, for both orderings; a
+// matrix with another pattern falls back to its own analysis (still the right inverse).
+TEST(SelectedInverse, AnalysisOfThePatternOnAnotherThreadGivesTheSameFactorBitwise) {
+  const Eigen::SparseMatrix<double> A = vector_grid_matrix(30, {1, 62, 63, 500, 1201});
+  Eigen::SparseMatrix<double> pattern = A;
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + pattern.nonZeros(), 0.0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  const std::vector<int> idx{0, 7, 99, 400, 1000, static_cast<int>(A.rows()) - 1};
+  for (const solve::FactorOrdering ordering : {solve::FactorOrdering::Cholmod, solve::FactorOrdering::NodeMetis}) {
+    auto future = std::async(std::launch::async, [&] { return solve::FactorAnalysis::analyze(pattern, ordering); });
+    const solve::FactorAnalysis analysis = future.get();
+    ASSERT_TRUE(analysis.valid());
+    EXPECT_TRUE(analysis.matches(A));
+    EXPECT_EQ(analysis.requested(), ordering);
+    solve::SelectedInverse serial, given;
+    ASSERT_EQ(serial.compute(A, ordering), solve::SelectedInverseStatus::Success);
+    ASSERT_EQ(given.compute(A, analysis), solve::SelectedInverseStatus::Success);
+    EXPECT_TRUE(given.used_analysis());
+    EXPECT_FALSE(serial.used_analysis());
+    EXPECT_EQ(given.ordering(), ordering);
+    EXPECT_EQ(given.factor_nonzeros(), serial.factor_nonzeros());
+    const Eigen::VectorXd x1 = serial.solve(b), x2 = given.solve(b);
+    EXPECT_TRUE((x1.array() == x2.array()).all()) << solve::to_string(ordering);
+    const Eigen::MatrixXd g1 = serial.block(idx), g2 = given.block(idx);
+    EXPECT_TRUE((g1.array() == g2.array()).all()) << solve::to_string(ordering);
+    // The analysis serves a second compute (it is copied, not consumed).
+    solve::SelectedInverse again;
+    ASSERT_EQ(again.compute(A, analysis), solve::SelectedInverseStatus::Success);
+    EXPECT_TRUE(again.used_analysis());
+    EXPECT_TRUE((again.solve(b).array() == x1.array()).all());
+    // Another pattern: not matched, analysed on its own, the right solution.
+    const Eigen::SparseMatrix<double> other = vector_grid_matrix(30, {1, 62, 63, 500});
+    EXPECT_FALSE(analysis.matches(other));
+    solve::SelectedInverse fallback;
+    ASSERT_EQ(fallback.compute(other, analysis), solve::SelectedInverseStatus::Success);
+    EXPECT_FALSE(fallback.used_analysis());
+    const Eigen::VectorXd bo = Eigen::VectorXd::Ones(other.rows());
+    EXPECT_LT((other * fallback.solve(bo) - bo).norm(), 1e-12 * bo.norm());
+  }
+  EXPECT_FALSE(solve::FactorAnalysis::analyze(Eigen::SparseMatrix<double>(3, 4)).valid());
 }

@@ -1,6 +1,7 @@
 #include "contactrb/fem/elasticity.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "contactrb/common/error.hpp"
@@ -83,7 +84,10 @@ SparseMatrix stiffness_body(const mesh::Mesh& mesh, int body, const Material& ma
   return K;
 }
 
-SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& materials) {
+namespace {
+
+// stiffness(): the pattern made on first use (nullptr given) or the caller's.
+SparseMatrix stiffness_on(const mesh::Mesh& mesh, const std::vector<Material>& materials, const NodalSparsity* given) {
   check_materials(mesh, materials, "stiffness");
   // Bodies are disjoint (mesh.hpp), so every matrix entry belongs to the body of its column
   // node: one pattern and one pass serve all bodies.
@@ -103,7 +107,11 @@ SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& mate
     return K;
   }
   const std::vector<int> triangles = triangles_of_body(mesh, -1);
-  const NodalSparsity pattern(mesh, triangles);
+  std::optional<NodalSparsity> own;
+  if (given == nullptr) own.emplace(mesh, triangles);
+  const NodalSparsity& pattern = given != nullptr ? *given : *own;
+  require(pattern.num_dofs() == mesh.num_dofs(), "stiffness: the pattern has " + std::to_string(pattern.num_dofs()) +
+                                                     " DOFs, the mesh " + std::to_string(mesh.num_dofs()));
   std::vector<double> symmetric_gradient;
   SparseMatrix K = assemble_lame_parts(mesh, pattern, triangles, symmetric_gradient);
   const double* sym = symmetric_gradient.data();
@@ -118,6 +126,16 @@ SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& mate
     }
   }
   return K;
+}
+
+}  // namespace
+
+SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& materials) {
+  return stiffness_on(mesh, materials, nullptr);
+}
+
+SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& materials, const NodalSparsity& pattern) {
+  return stiffness_on(mesh, materials, &pattern);
 }
 
 SparseMatrix divergence_part(const mesh::Mesh& mesh, int body) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/fem/sparsity.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
 namespace contactrb::fem {
@@ -27,6 +28,9 @@ void check_material(const Material& material);
 SparseMatrix stiffness_body(const mesh::Mesh& mesh, int body, const Material& material);
 // Sum over bodies with materials[body].
 SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& materials);
+// The same on a pattern built beforehand: NodalSparsity(mesh, triangles_of_body(mesh, -1)) (the
+// caller shares it, e.g. hf::HFSolver with the ordering of A_00 on another thread).
+SparseMatrix stiffness(const mesh::Mesh& mesh, const std::vector<Material>& materials, const NodalSparsity& pattern);
 // The two Lame parts of one body's stiffness: a = lambda_L * S_div + 2 mu_L * S_sym with
 // S_div(v, w) = int div v div w and S_sym(v, w) = int eps(v) : eps(w).
 SparseMatrix divergence_part(const mesh::Mesh& mesh, int body);

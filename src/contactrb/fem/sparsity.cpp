@@ -106,6 +106,37 @@ Eigen::SparseMatrix<double> NodalSparsity::zero_matrix() const {
   return A;
 }
 
+void NodalSparsity::restricted_pattern(const std::vector<int>& kept, std::vector<int>& outer,
+                                       std::vector<int>& inner) const {
+  std::vector<int> position(static_cast<std::size_t>(num_dofs()), -1);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const int dof = kept[k];
+    require(dof >= 0 && dof < num_dofs() && position[static_cast<std::size_t>(dof)] < 0,
+            "NodalSparsity::restricted_pattern: DOF " + std::to_string(dof) + " out of range or repeated");
+    position[static_cast<std::size_t>(dof)] = static_cast<int>(k);
+  }
+  // Column of DOF 2 j + c: rows 2 i, 2 i + 1 for the neighbours i of node j, ascending (zero_matrix).
+  auto for_rows = [&](int dof, auto&& visit) {
+    const std::size_t node = static_cast<std::size_t>(dof / 2);
+    for (int q = start_[node]; q < start_[node + 1]; ++q) {
+      const int i = neighbours_[static_cast<std::size_t>(q)];
+      for (int c = 0; c < 2; ++c) {
+        const int row = position[static_cast<std::size_t>(2 * i + c)];
+        if (row >= 0) visit(row);
+      }
+    }
+  };
+  outer.assign(kept.size() + 1, 0);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    int count = 0;
+    for_rows(kept[k], [&](int) { ++count; });
+    outer[k + 1] = outer[k] + count;
+  }
+  inner.resize(static_cast<std::size_t>(outer.back()));
+  std::size_t pos = 0;
+  for (int dof : kept) for_rows(dof, [&](int row) { inner[pos++] = row; });
+}
+
 std::vector<int> triangles_of_body(const mesh::Mesh& mesh, int body) {
   require(mesh.body.size() == mesh.triangles.size(),
           "triangles_of_body: " + std::to_string(mesh.body.size()) + " body ids for " +

@@ -32,6 +32,11 @@ class NodalSparsity {
   Eigen::SparseMatrix<double> zero_matrix() const;
   // The compressed matrix with this pattern and the given values (size num_nonzeros()).
   Eigen::SparseMatrix<double> matrix(const std::vector<double>& values) const;
+  // The pattern restricted to the DOFs `kept` (global indices, each once), compressed by columns
+  // (outer: kept.size() + 1 entries; inner: rows as positions in `kept`): what
+  // DofMap::restrict_matrix(zero_matrix()) stores for kept = free_dofs(), without the values (the
+  // pattern of A_00, analysed while the values are assembled: hf::HFSolver).
+  void restricted_pattern(const std::vector<int>& kept, std::vector<int>& outer, std::vector<int>& inner) const;
 
  private:
   int num_nodes_ = 0;

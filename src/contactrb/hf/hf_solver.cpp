@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <mutex>
 #include <sstream>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/fem/sparsity.hpp"
 #include "contactrb/fem/traction.hpp"
 #include "contactrb/hf/contact_condensation.hpp"
 
@@ -94,9 +96,37 @@ struct HFSolver::Impl {
   void finish(HFSolution& sol, Clock::time_point t0) const;
   HFSolution solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
                           const Eigen::VectorXd& lambda_start, Clock::time_point t0) const;
+
+  // HFSetupOptions::newton_analysis: the analysis of A_00's pattern, on its thread (the future),
+  // then kept for every solve. Declared last: destroyed first, so that an unfinished analysis is
+  // waited for before the mesh and the DOF map it reads go.
+  mutable std::mutex analysis_mutex;
+  mutable std::shared_ptr<const solve::FactorAnalysis> analysis;
+  mutable std::future<solve::FactorAnalysis> analysis_future;
+  // The analysis (waits for it the first time), nullptr when none was started or it failed (the
+  // solve then analyses A_00 itself).
+  const solve::FactorAnalysis* prepared_analysis() const {
+    const std::lock_guard<std::mutex> lock(analysis_mutex);
+    if (analysis_future.valid()) {
+      try {
+        analysis = std::make_shared<const solve::FactorAnalysis>(analysis_future.get());
+      } catch (const std::exception&) {
+        analysis.reset();  // e.g. out of memory on the analysis thread: analysed in the solve instead
+      }
+    }
+    return analysis && analysis->valid() ? analysis.get() : nullptr;
+  }
 };
 
-HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
+HFSetupOptions setup_options_for(const HFSettings& settings) {
+  HFSetupOptions o;
+  o.newton_analysis = settings.method == HFMethod::Newton &&
+                      settings.newton.linear_solver == NewtonLinearSolver::ActiveSchur;
+  o.ordering = settings.newton.ordering;
+  return o;
+}
+
+HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl_(std::make_unique<Impl>()) {
   const auto t0 = Clock::now();
   check_problem(problem);
   Impl& m = *impl_;
@@ -104,6 +134,21 @@ HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
   const mesh::Mesh& mesh = m.problem.mesh;
   m.dofs = fem::DofMap(mesh, m.problem.dirichlet);
   require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
+  // The nodal pattern of A (fem::stiffness), shared with the analysis thread below.
+  std::shared_ptr<const fem::NodalSparsity> pattern;
+  if (options.newton_analysis) {
+    // The pattern of A_00 is the mesh's nodal pattern restricted to the free DOFs
+    // (DofMap::restrict_matrix): known before any value, so its ordering and symbolic analysis
+    // (hertz-a level 7: 4 s; the assembly and the rest of this constructor: 2.3 s) run beside
+    // the assembly. The solve checks that A_00 has exactly this pattern before using it.
+    pattern = std::make_shared<const fem::NodalSparsity>(mesh, fem::triangles_of_body(mesh, -1));
+    const solve::FactorOrdering ordering = options.ordering;
+    m.analysis_future = std::async(std::launch::async, [pattern, &dofs = m.dofs, ordering] {
+      std::vector<int> outer, inner;
+      pattern->restricted_pattern(dofs.free_dofs(), outer, inner);
+      return solve::FactorAnalysis::analyze(dofs.num_free(), std::move(outer), std::move(inner), ordering);
+    });
+  }
   m.pair = contact::make_contact_pair(mesh);
   m.quadrature = contact::make_quadrature(mesh, m.pair, m.problem.discretization);
   {
@@ -117,7 +162,7 @@ HFSolver::HFSolver(ContactProblem problem) : impl_(std::make_unique<Impl>()) {
                                 " slave nodes, none projects inside the master polyline): check the "
                                 "'slave' and 'master' groups");
   }
-  m.A = fem::stiffness(mesh, m.problem.materials);
+  m.A = pattern ? fem::stiffness(mesh, m.problem.materials, *pattern) : fem::stiffness(mesh, m.problem.materials);
   m.f = Eigen::VectorXd::Zero(mesh.num_dofs());
   for (std::size_t body = 0; body < m.problem.body_loads.size(); ++body) {
     m.f += fem::body_load(mesh, static_cast<int>(body), m.problem.body_loads[body]);
@@ -319,6 +364,7 @@ HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Ei
   np.dofs = &dofs;
   np.A00 = &A00_matrix;
   np.b = &b;
+  np.a00_analysis = [this] { return prepared_analysis(); };
   const NewtonResult nr = semismooth_newton(np, u0_start, lambda_start, settings);
   HFSolution sol;
   sol.method = HFMethod::Newton;

@@ -23,6 +23,7 @@
 #include "contactrb/hf/semismooth_newton.hpp"
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::hf {
 
@@ -79,11 +80,24 @@ struct HFSolution {
   double time_s = 0.0;         // setup + iterations
 };
 
+// What the constructor prepares for the solves to come. newton_analysis: the fill-reducing
+// ordering and symbolic analysis of A_00 for the Newton solver (ActiveSchur) run on a second
+// thread while the constructor assembles, from the mesh's pattern alone (solve::FactorAnalysis);
+// a Newton solve with that ordering then starts at the numeric factorization, with the same
+// factor bitwise (tests/hf/test_hf_solver.cpp). hertz-a: docs/benchmarks.md, "Analysis beside
+// the assembly".
+struct HFSetupOptions {
+  bool newton_analysis = false;
+  solve::FactorOrdering ordering = solve::FactorOrdering::Auto;  // NewtonSettings::ordering
+};
+// newton_analysis for a Newton ActiveSchur method, with its ordering; off for Kacanov.
+HFSetupOptions setup_options_for(const HFSettings& settings);
+
 class HFSolver {
  public:
   // Assembles A, f, the lift, the contact pair and quadrature; factorizes A_00.
   // Throws contactrb::Error for an invalid problem or a singular stiffness.
-  explicit HFSolver(ContactProblem problem);
+  explicit HFSolver(ContactProblem problem, const HFSetupOptions& options = {});
   ~HFSolver();
   HFSolver(HFSolver&&) noexcept;
   HFSolver& operator=(HFSolver&&) noexcept;

@@ -249,10 +249,22 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   const solve::ScopedBlasThreads serial_blas(blas_threads > 0 ? 1 : 0);
   if (schur) {
     solve::SelectedInverseStatus status;
+    double ahead_seconds = 0.0;
     {
       const solve::ScopedBlasThreads threads(blas_threads);
       res.timings.blas_threads = solve::blas_threads();
-      status = inverse.compute(*p.A00, s.ordering);
+      const auto t_wait = Clock::now();
+      const solve::FactorAnalysis* ahead = p.a00_analysis ? p.a00_analysis() : nullptr;
+      res.timings.analysis_wait_s = seconds_since(t_wait);
+      const solve::FactorOrdering ordering =
+          s.ordering == solve::FactorOrdering::Auto ? solve::auto_ordering(n) : s.ordering;
+      if (ahead != nullptr && ahead->requested() == ordering) {
+        status = inverse.compute(*p.A00, *ahead);  // falls back to its own analysis if the pattern differs
+        res.timings.analysis_ahead = inverse.used_analysis();
+        ahead_seconds = ahead->seconds();
+      } else {
+        status = inverse.compute(*p.A00, s.ordering);
+      }
     }
     if (status != solve::SelectedInverseStatus::Success) {
       res.message = std::string("semi-smooth Newton: the stiffness A_00 (") + std::to_string(n) +
@@ -263,7 +275,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     }
     // Two threads for the full substitutions too (the BLAS is single-threaded there).
     if (blas_threads >= 2) inverse.set_substitution_threads(2);
-    res.timings.analyze_s = inverse.analyze_seconds();
+    res.timings.analyze_s = res.timings.analysis_ahead ? ahead_seconds : inverse.analyze_seconds();
     res.timings.numeric_s = inverse.factorize_seconds();
     res.timings.factor_nonzeros = inverse.factor_nonzeros();
     const auto t_rhs = Clock::now();
@@ -373,7 +385,10 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
     const Eigen::VectorXd* base_u0 = &st.u0;
     const Eigen::VectorXd* base_d = &st.maps.d;
     const Eigen::VectorXd* base_lambda = &st.lambda;
-    Eigen::VectorXd top = *p.b - *p.A00 * st.u0;
+    // SaddleLU's right-hand side b - A_00 u_0 (ActiveSchur reads z instead: not formed, one
+    // product with A_00 per iteration saved).
+    Eigen::VectorXd top;
+    if (!schur) top = *p.b - *p.A00 * st.u0;
 
     Eigen::VectorXd du = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd lambda_next = st.lambda;
@@ -854,7 +869,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
         base_u0 = &st.u0;
         base_d = &st.maps.d;
         base_lambda = &st.lambda;
-        top = *p.b - *p.A00 * st.u0;
+        if (!schur) top = *p.b - *p.A00 * st.u0;
         failure.clear();  // a singular system here only means: keep the step as it was
         State chord_trial;
         bool better = false;

@@ -27,6 +27,7 @@
 // Jacobian (chord_steps, kept while the merit falls).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -158,12 +159,20 @@ struct NewtonProblem {
   const fem::DofMap* dofs = nullptr;
   const Eigen::SparseMatrix<double>* A00 = nullptr;  // free x free
   const Eigen::VectorXd* b = nullptr;                // f_0 - (A u_D)_0
+  // ActiveSchur: the ordering and symbolic analysis of A_00 made ahead (hf::HFSolver, on another
+  // thread; the call may wait for it), or nullptr / empty: analysed in the solve. Used when its
+  // ordering is NewtonSettings::ordering's and A_00 has its pattern (else ignored).
+  std::function<const solve::FactorAnalysis*()> a00_analysis;
 };
 
 // Wall seconds of the once-per-solve work (ActiveSchur): CHOLMOD's ordering + symbolic analysis
 // of A_00, its numeric factorization, z = A_00^-1 b; and the initial evaluation.
+// analysis_ahead: the analysis came from NewtonProblem::a00_analysis (analyze_s is then its own
+// wall time on its thread, beside the assembly, and analysis_wait_s the solve's wait for it).
 struct NewtonTimings {
   double analyze_s = 0.0, numeric_s = 0.0, rhs_s = 0.0, initial_s = 0.0;
+  bool analysis_ahead = false;
+  double analysis_wait_s = 0.0;
   long factor_nonzeros = 0;  // nnz(L)
   int blas_threads = 1;      // BLAS threads of the factorization
 };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <chrono>
+#include <mutex>
 #include <cmath>
 #include <string>
 #include <thread>
@@ -54,6 +55,7 @@ struct SelectedInverse::Impl {
   int n = 0;
   double analyze_s = 0.0, factorize_s = 0.0;
   FactorOrdering ordering_used = FactorOrdering::Cholmod;
+  bool used_analysis = false;
   std::vector<int> inverse_perm;            // original index -> position in P A P'
   std::vector<int> row_pos;                 // n, -1 between uses (block(): row -> dense row)
   std::unordered_map<int, int> column_of;   // original index -> position in `columns` / G
@@ -266,10 +268,7 @@ namespace {
 // METIS orders a graph with half the vertices and a quarter of the edges; the permutation of A
 // takes each run's indices together. A: both triangles stored, compressed, sorted. Returns an
 // empty vector when CHOLMOD's METIS fails (the caller falls back to CHOLMOD's default).
-std::vector<int> supervariable_metis(const Eigen::SparseMatrix<double>& A, cholmod_common& common) {
-  const int n = static_cast<int>(A.rows());
-  const int* p = A.outerIndexPtr();
-  const int* i = A.innerIndexPtr();
+std::vector<int> supervariable_metis(int n, const int* p, const int* i, cholmod_common& common) {
   std::vector<int> group_of(static_cast<std::size_t>(n));
   std::vector<int> group_start{0};
   for (int j = 1; j < n; ++j) {
@@ -285,7 +284,7 @@ std::vector<int> supervariable_metis(const Eigen::SparseMatrix<double>& A, cholm
   }
   // Pattern of the compressed graph (both triangles, diagonal dropped: METIS ignores it).
   std::vector<int> cp{0}, ci;
-  ci.reserve(static_cast<std::size_t>(A.nonZeros()) / 4 + static_cast<std::size_t>(n));
+  ci.reserve(static_cast<std::size_t>(p[n]) / 4 + static_cast<std::size_t>(n));
   for (int g = 0; g < ng; ++g) {
     const int j = group_start[static_cast<std::size_t>(g)];
     int last = -1;
@@ -341,11 +340,144 @@ SelectedInverse::~SelectedInverse() = default;
 SelectedInverse::SelectedInverse(SelectedInverse&&) noexcept = default;
 SelectedInverse& SelectedInverse::operator=(SelectedInverse&&) noexcept = default;
 
-SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>& A_in, FactorOrdering ordering) {
+namespace {
+
+// CHOLMOD's read-only view of a compressed matrix (both triangles stored, the lower read);
+// x == nullptr: the pattern alone.
+cholmod_sparse view_of(int n, const int* p, const int* i, const double* x) {
+  cholmod_sparse view{};
+  view.nrow = view.ncol = static_cast<std::size_t>(n);
+  view.nzmax = static_cast<std::size_t>(p[n]);
+  // CHOLMOD reads its input only (cholmod_analyze, cholmod_factorize take it as const data).
+  view.p = const_cast<int*>(p);
+  view.i = const_cast<int*>(i);
+  view.x = const_cast<double*>(x);
+  view.stype = -1;  // symmetric, lower triangle read
+  view.itype = CHOLMOD_INT;
+  view.xtype = x != nullptr ? CHOLMOD_REAL : CHOLMOD_PATTERN;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  return view;
+}
+cholmod_sparse view_of(const Eigen::SparseMatrix<double>& A) {
+  return view_of(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
+}
+
+// The settings of the numeric factorization, the same on every path.
+void set_factor_options(cholmod_common& common) {
+  common.supernodal = CHOLMOD_SUPERNODAL;  // BLAS-3 numeric factorization
+  common.final_asis = 1;
+}
+
+// Ordering + symbolic analysis (the pattern of A only). `ordering` resolved (not Auto); `used`:
+// the ordering taken (NodeMetis falls back to CHOLMOD's default when METIS fails).
+cholmod_factor* analyze_pattern(int n, const int* p, const int* i, FactorOrdering ordering, cholmod_common& common,
+                                FactorOrdering& used) {
+  cholmod_sparse view = view_of(n, p, i, nullptr);
+  set_factor_options(common);
+  // METIS keeps state shared by the threads of the process (its random-number generator): two
+  // orderings at once on two threads gave different permutations from one run to the next
+  // (tests/hf/test_semismooth_newton.cpp, analysis beside the assembly against a solve's own), so
+  // the calls that may run METIS take turns.
+  static std::mutex metis_mutex;
+  std::vector<int> given;
+  if (ordering == FactorOrdering::NodeMetis) {
+    const std::lock_guard<std::mutex> lock(metis_mutex);
+    given = supervariable_metis(n, p, i, common);
+  }
+  if (!given.empty()) {
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_GIVEN;
+    common.postorder = 1;
+    used = FactorOrdering::NodeMetis;
+    return cholmod_analyze_p(&view, given.data(), nullptr, 0, &common);
+  }
+  common.nmethods = 0;  // CHOLMOD's default: AMD, METIS when AMD fills badly
+  common.method[0].ordering = CHOLMOD_GIVEN;
+  used = FactorOrdering::Cholmod;
+  const std::lock_guard<std::mutex> lock(metis_mutex);  // METIS when AMD fills badly
+  return cholmod_analyze(&view, &common);
+}
+
+}  // namespace
+
+struct FactorAnalysis::Impl {
+  cholmod_common common{};
+  cholmod_factor* L = nullptr;  // symbolic
+  FactorOrdering requested = FactorOrdering::Cholmod, used = FactorOrdering::Cholmod;
+  std::vector<int> outer, inner;  // the pattern analysed, for matches()
+  double seconds = 0.0;
+  Impl() { cholmod_start(&common); }
+  ~Impl() {
+    if (L != nullptr) cholmod_free_factor(&L, &common);
+    cholmod_finish(&common);
+  }
+};
+
+FactorAnalysis::FactorAnalysis() : impl_(std::make_unique<Impl>()) {}
+FactorAnalysis::~FactorAnalysis() = default;
+FactorAnalysis::FactorAnalysis(FactorAnalysis&&) noexcept = default;
+FactorAnalysis& FactorAnalysis::operator=(FactorAnalysis&&) noexcept = default;
+
+FactorAnalysis FactorAnalysis::analyze(const Eigen::SparseMatrix<double>& pattern, FactorOrdering ordering) {
+  if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed()) {
+    FactorAnalysis a;
+    a.impl_->requested = ordering == FactorOrdering::Auto ? auto_ordering(static_cast<int>(pattern.rows())) : ordering;
+    return a;
+  }
+  return analyze(static_cast<int>(pattern.rows()),
+                 std::vector<int>(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.cols() + 1),
+                 std::vector<int>(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros()), ordering);
+}
+
+FactorAnalysis FactorAnalysis::analyze(int n, std::vector<int> outer, std::vector<int> inner, FactorOrdering ordering) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FactorAnalysis a;
+  Impl& m = *a.impl_;
+  m.requested = ordering == FactorOrdering::Auto ? auto_ordering(n) : ordering;
+  if (n <= 0 || outer.size() != static_cast<std::size_t>(n) + 1 || outer[0] != 0 ||
+      static_cast<std::size_t>(outer.back()) != inner.size()) {
+    return a;
+  }
+  m.L = analyze_pattern(n, outer.data(), inner.data(), m.requested, m.common, m.used);
+  if (m.L == nullptr) return a;
+  m.outer = std::move(outer);
+  m.inner = std::move(inner);
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return a;
+}
+
+bool FactorAnalysis::valid() const { return impl_ && impl_->L != nullptr; }
+FactorOrdering FactorAnalysis::requested() const { return impl_ ? impl_->requested : FactorOrdering::Auto; }
+double FactorAnalysis::seconds() const { return impl_ ? impl_->seconds : 0.0; }
+bool FactorAnalysis::matches(const Eigen::SparseMatrix<double>& A) const {
+  if (!valid() || !A.isCompressed() || A.rows() != A.cols()) return false;
+  const Impl& m = *impl_;
+  if (static_cast<std::size_t>(A.cols()) + 1 != m.outer.size() || static_cast<std::size_t>(A.nonZeros()) != m.inner.size()) {
+    return false;
+  }
+  return std::equal(m.outer.begin(), m.outer.end(), A.outerIndexPtr()) &&
+         std::equal(m.inner.begin(), m.inner.end(), A.innerIndexPtr());
+}
+
+SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering) {
+  return compute_impl(A, ordering, nullptr);
+}
+
+SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>& A, const FactorAnalysis& analysis) {
+  return compute_impl(A, analysis.requested(), analysis.matches(A) ? &analysis : nullptr);
+}
+
+bool SelectedInverse::used_analysis() const { return impl_->used_analysis; }
+
+SelectedInverseStatus SelectedInverse::compute_impl(const Eigen::SparseMatrix<double>& A_in, FactorOrdering ordering,
+                                                    const FactorAnalysis* analysis) {
   Impl& m = *impl_;
   m.release();
   m.n = 0;
   m.analyze_s = m.factorize_s = 0.0;
+  m.used_analysis = false;
   m.status = SelectedInverseStatus::InvalidInput;
   if (A_in.rows() != A_in.cols() || A_in.rows() == 0) return m.status;
   // A compressed A_in is read in place (a copy is ~250 MB of fresh memory at 1.2e6 DOFs).
@@ -358,37 +490,19 @@ SelectedInverseStatus SelectedInverse::compute(const Eigen::SparseMatrix<double>
   for (Eigen::Index k = 0; k < A.nonZeros(); ++k) {
     if (!std::isfinite(A.valuePtr()[k])) return m.status;
   }
-  cholmod_sparse view{};
-  view.nrow = view.ncol = static_cast<std::size_t>(A.rows());
-  view.nzmax = static_cast<std::size_t>(A.nonZeros());
-  // CHOLMOD reads its input only (cholmod_analyze, cholmod_factorize take it as const data).
-  view.p = const_cast<int*>(A.outerIndexPtr());
-  view.i = const_cast<int*>(A.innerIndexPtr());
-  view.x = const_cast<double*>(A.valuePtr());
-  view.stype = -1;  // symmetric, lower triangle read
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
-  m.common.supernodal = CHOLMOD_SUPERNODAL;  // BLAS-3 numeric factorization
-  m.common.final_asis = 1;
+  cholmod_sparse view = view_of(A);
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
-  if (ordering == FactorOrdering::Auto) ordering = auto_ordering(static_cast<int>(A.rows()));
-  std::vector<int> given;
-  if (ordering == FactorOrdering::NodeMetis) given = supervariable_metis(A, m.common);
-  if (!given.empty()) {
-    m.common.nmethods = 1;
-    m.common.method[0].ordering = CHOLMOD_GIVEN;
-    m.common.postorder = 1;
-    m.L = cholmod_analyze_p(&view, given.data(), nullptr, 0, &m.common);
-    m.ordering_used = FactorOrdering::NodeMetis;
+  if (analysis != nullptr) {
+    // The symbolic factor, copied (the analysis stays usable for other computes).
+    set_factor_options(m.common);
+    m.L = cholmod_copy_factor(analysis->impl_->L, &m.common);
+    m.ordering_used = analysis->impl_->used;
+    m.used_analysis = m.L != nullptr;
   } else {
-    m.common.nmethods = 0;  // CHOLMOD's default: AMD, METIS when AMD fills badly
-    m.common.method[0].ordering = CHOLMOD_GIVEN;
-    m.L = cholmod_analyze(&view, &m.common);
-    m.ordering_used = FactorOrdering::Cholmod;
+    if (ordering == FactorOrdering::Auto) ordering = auto_ordering(static_cast<int>(A.rows()));
+    m.L = analyze_pattern(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), ordering, m.common,
+                          m.ordering_used);
   }
   m.analyze_s = std::chrono::duration<double>(Clock::now() - t0).count();
   if (m.L == nullptr) return m.status;

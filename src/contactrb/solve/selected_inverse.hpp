@@ -37,6 +37,37 @@ FactorOrdering auto_ordering(int rows);
 enum class SelectedInverseStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(SelectedInverseStatus status);
 
+// The ordering and symbolic analysis of SelectedInverse::compute, from the sparsity pattern alone
+// (the values are never read): it can run on another thread while the values are assembled
+// (hf::HFSolver, docs/solvers.md "Semi-smooth Newton"), and compute(A, analysis) then starts at
+// the numeric factorization. CHOLMOD's analysis reads the pattern only, so a matrix with this
+// pattern gets the same permutation and supernodes, hence the same factor, bitwise, as
+// compute(A, ordering) (tests/solve/test_selected_inverse.cpp).
+class FactorAnalysis {
+ public:
+  FactorAnalysis();
+  ~FactorAnalysis();
+  FactorAnalysis(FactorAnalysis&&) noexcept;
+  FactorAnalysis& operator=(FactorAnalysis&&) noexcept;
+
+  // pattern: square, compressed, both triangles stored (as compute() takes A); its values are
+  // ignored. valid() is false when the analysis failed (empty, not square, out of memory).
+  static FactorAnalysis analyze(const Eigen::SparseMatrix<double>& pattern, FactorOrdering ordering = FactorOrdering::Auto);
+  // The same from a compressed-column pattern alone (outer: n + 1 entries, inner: rows ascending
+  // in each column), kept for matches().
+  static FactorAnalysis analyze(int n, std::vector<int> outer, std::vector<int> inner,
+                                FactorOrdering ordering = FactorOrdering::Auto);
+  bool valid() const;
+  FactorOrdering requested() const;  // the ordering asked for (Auto resolved by the size)
+  bool matches(const Eigen::SparseMatrix<double>& A) const;  // A compressed with exactly this pattern
+  double seconds() const;  // wall seconds of analyze()
+
+ private:
+  friend class SelectedInverse;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 class SelectedInverse {
  public:
   SelectedInverse();
@@ -49,6 +80,11 @@ class SelectedInverse {
   // with both triangles stored (only the lower one is read). InvalidInput: not square, empty,
   // a non-finite entry or a CHOLMOD failure (out of memory). Drops the cached columns.
   SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering = FactorOrdering::Auto);
+  // The same with the ordering and symbolic analysis taken from `analysis` (copied: it can serve
+  // several computes, also at once) when it is valid and matches(A); otherwise as
+  // compute(A, analysis.requested()). analyze_seconds() is then 0 (the copy's time).
+  SelectedInverseStatus compute(const Eigen::SparseMatrix<double>& A, const FactorAnalysis& analysis);
+  bool used_analysis() const;  // whether the last compute() took a given analysis
   SelectedInverseStatus status() const;
   int rows() const;
   long factor_nonzeros() const;  // nnz(L)
@@ -77,6 +113,7 @@ class SelectedInverse {
   bool has_substitution_fork() const;  // whether the tree has the fork that 2 threads split at
 
  private:
+  SelectedInverseStatus compute_impl(const Eigen::SparseMatrix<double>& A, FactorOrdering ordering, const FactorAnalysis* analysis);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
