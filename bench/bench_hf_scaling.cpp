@@ -171,8 +171,12 @@ int main(int argc, char** argv) {
     }
     std::string stages;
     for (const cases::SequenceStage& st : start.stages) {
-      stages += (stages.empty() ? "" : "+") + std::to_string(st.level) + ":" + std::to_string(st.iterations) +
-                (st.converged ? "" : "!");
+      // Appended piece by piece: GCC 12's -Wrestrict misfires on `const char* + std::string&&` here.
+      if (!stages.empty()) stages += '+';
+      stages += std::to_string(st.level);
+      stages += ':';
+      stages += std::to_string(st.iterations);
+      if (!st.converged) stages += '!';
       if (verbose) {
         std::fprintf(stderr, "  coarse level %d: %d DOFs, %d iterations%s, mesh %.4f s, setup + solve %.4f s, transfer %.4f s\n",
                      st.level, st.dofs, st.iterations, st.converged ? "" : " (not converged)", st.mesh_s, st.solve_s, st.transfer_s);
