@@ -30,12 +30,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <malloc.h>
 
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "contactrb/common/keep_freed_memory.hpp"
 #include "contactrb/cases/builtin_problems.hpp"
 #include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/hf/hf_solver.hpp"
@@ -101,16 +101,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (keep_freed) {
-    // glibc returns freed blocks above 32 MB (mmap) and a free heap top above the trim threshold
-    // to the OS, and every later use of such memory page-faults again (costly in this VM). Kept
-    // in the process, the 1 GB factor of A_00 at 1.2e6 DOFs (allocated inside CHOLMOD) reuses the
-    // memory freed by the mesh generation and the assembly: hertz-a level 7, 0.97M -> 0.65M page
-    // faults, numeric factorization 9.8 -> 5.8 s (docs/benchmarks.md, "Page faults"). Process-wide,
-    // so here and in contactrb-full's main only, never in the library.
-    mallopt(M_MMAP_THRESHOLD, 1 << 30);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  }
+  if (keep_freed) contactrb::keep_freed_memory();  // docs/benchmarks.md, "Page faults"
   try {
     std::optional<contact::Discretization> d;
     if (!constraint.empty()) d = contact::discretization_from_string(constraint);

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <cmath>
 #include <string>
+#include <exception>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -655,12 +656,25 @@ Eigen::VectorXd SelectedInverse::solve_sparse(const std::vector<int>& in, const 
     // arithmetic is the serial one (same inputs, same calls), so x is bitwise the same.
     const int nsuper = static_cast<int>(m.L->nsuper);
     for (int s = nsuper - 1; s >= m.split_top; --s) backward_one(s, below);
+    // An exception on either thread (bad_alloc of a buffer) reaches the caller after the join,
+    // never std::terminate.
+    std::exception_ptr upper_error;
     std::thread upper_range([&] {
-      std::vector<double> buffer;
-      for (int s = m.split_top - 1; s >= m.split_cut; --s) backward_one(s, buffer);
+      try {
+        std::vector<double> buffer;
+        for (int s = m.split_top - 1; s >= m.split_cut; --s) backward_one(s, buffer);
+      } catch (...) {
+        upper_error = std::current_exception();
+      }
     });
-    for (int s = m.split_cut - 1; s >= 0; --s) backward_one(s, below);
+    try {
+      for (int s = m.split_cut - 1; s >= 0; --s) backward_one(s, below);
+    } catch (...) {
+      upper_range.join();
+      throw;
+    }
     upper_range.join();
+    if (upper_error) std::rethrow_exception(upper_error);
   } else {
     for (auto it = backward.rbegin(); it != backward.rend(); ++it) backward_one(*it, below);
   }
