@@ -33,7 +33,7 @@ namespace {
 
 // Measured (docs/solvers.md, "Grid sequencing"; docs/benchmarks.md, quiet machine): with Newton,
 // two coarse stages (levels L - 4, L - 2) cut hertz-a's time from level 5 on (level 5: -14 % at
-// mu 0.3, -25 % at mu 0.45; level 7: -13 to -27 %) and break even on level 4 over the mu range
+// mu 0.3, -25 % at mu 0.45; level 7: -15 to -30 %) and break even on level 4 over the mu range
 // (+17 % / +6 % / -13 % at mu 0.15 / 0.3 / 0.45, 0.01-0.03 s), where they take the fine solve from
 // 5 / 8 / 9 Newton iterations to 3 / 4 / 4 (every coarse stage <= 7). Kacanov: never automatic (its
 // answer depends on the start to its tolerance eps_KA, docs/solvers.md "Warm start").
