@@ -83,15 +83,4 @@ SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vect
   return start;
 }
 
-SequencedSolution solve_sequenced(const CaseSpec& spec, const Mu& mu, int level, const std::vector<int>& levels,
-                                  std::optional<contact::Discretization> constraint, const hf::HFSettings& settings) {
-  const auto t0 = Clock::now();
-  const hf::HFSolver fine(make_problem(spec, mu, level, constraint));
-  SequencedSolution out;
-  out.start = sequence_start(spec, mu, levels, constraint, settings, fine);
-  out.solution = fine.solve(settings, out.start.guess);
-  out.time_s = seconds_since(t0);
-  return out;
-}
-
 }  // namespace contactrb::cases

@@ -40,14 +40,4 @@ SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vect
                              std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
                              const hf::HFSolver& fine);
 
-struct SequencedSolution {
-  hf::HFSolution solution;  // the fine solve (time_s: its own setup and iterations)
-  SequenceStart start;
-  double time_s = 0.0;  // start.time_s + the fine problem's generation + solution.time_s
-};
-
-// sequence_start then the fine solve on `level` (built here).
-SequencedSolution solve_sequenced(const CaseSpec& spec, const Mu& mu, int level, const std::vector<int>& levels,
-                                  std::optional<contact::Discretization> constraint, const hf::HFSettings& settings);
-
 }  // namespace contactrb::cases
