@@ -1,5 +1,5 @@
 // The factorization of the Newton solver's A_00 alone (solve/selected_inverse.hpp) on hertz-a
-// level L, for the orderings given (docs/benchmarks.md, "HF solver scaling"): wall seconds of the
+// level L, for the orderings given (docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering"): wall seconds of the
 // analysis (ordering + symbolic) and numeric factorization, wall and CPU seconds of compute(), of
 // the inverse block on every free slave DOF (the first Newton iteration's block is a subset) and
 // of one full solve; nnz(L); a residual. BLAS threads: OPENBLAS_NUM_THREADS.

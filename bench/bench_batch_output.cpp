@@ -1,5 +1,5 @@
-// Per-line cost of the `online --batch` output beyond the solve (issue [D] item 5: <= 2 us per
-// line with a compact format; docs/online-performance.md, "Batch output"). One answered line of
+// Per-line cost of the `online --batch` output beyond the solve (docs/performance.md, "Batch and
+// sampling"). One answered line of
 // realistic sizes (N reduced DOFs, R multipliers) is written again and again to /dev/null:
 //   BM_Json  the JSON line as cmd_online.cpp builds it (nlohmann::json object with u_hat,
 //            lambda_hat and the estimate's parts, dumped, newline; no flush: the flush per line

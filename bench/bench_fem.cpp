@@ -1,6 +1,6 @@
 // FEM assembly and sparse Cholesky factorization against the number of DOFs, on the
 // structured unit square mesh::rectangle (n x n cells, 2 (n + 1)^2 DOFs), bottom edge clamped.
-// Figures: docs/benchmarks.md, "FEM assembly and factorization".
+// Figures: docs/performance.md, "FEM assembly and factorization".
 #include <benchmark/benchmark.h>
 
 #include "contactrb/fem/cholesky.hpp"

@@ -1,4 +1,4 @@
-// High-fidelity contact solver figures (docs/benchmarks.md, "HF contact solver"):
+// High-fidelity contact solver figures (Kacanov on the paper's Hertz meshes; docs/validation.md, "Hertz"):
 //  - BM_HertzB: wall time and Kacanov iterations of hertz-b at the paper's Table 1-2
 //    parameter values, for mesh levels 1 (about 1604 DOFs) and 2 (about 3364), both
 //    constraint discretizations, alpha = 0.3 (paper) and alpha = 1.

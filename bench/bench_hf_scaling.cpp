@@ -1,5 +1,5 @@
-// HF solver scaling (issue [C], docs/benchmarks.md "HF solver scaling"): one configuration per
-// run, one CSV line on stdout (run scripts/bench_hf_scaling.sh for the sweep). A plain program,
+// HF solver scaling (docs/performance.md, "HF solve by level"): one configuration per
+// run, one CSV line on stdout (run bench/hf_scaling.sh for the sweep). A plain program,
 // not Google Benchmark: the peak memory of a configuration is the peak RSS of its own process.
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (keep_freed) contactrb::keep_freed_memory();  // docs/benchmarks.md, "Page faults"
+  if (keep_freed) contactrb::keep_freed_memory();  // docs/performance.md, "Kept freed memory"
   try {
     std::optional<contact::Discretization> d;
     if (!constraint.empty()) d = contact::discretization_from_string(constraint);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The HF scaling sweep of docs/benchmarks.md ("HF solver scaling"): hertz-a at mu = 0.3, whole-mesh
+# The HF scaling sweep of docs/performance.md ("HF solve by level"): hertz-a at mu = 0.3, whole-mesh
 # refinement levels, both solvers (Kacanov with the paper's alpha = 0.3, eps_KA = 1e-3; Newton with
 # its default tolerance 1e-10), one process per configuration (peak RSS per configuration).
 #   bench/hf_scaling.sh BUILD_DIR [MAX_NEWTON_LEVEL] [MAX_KACANOV_LEVEL] > scaling.csv
@@ -7,8 +7,8 @@ set -uo pipefail
 # One BLAS thread: the dense reduced systems are small, and the CPU-time column then measures
 # the work (the development machine is shared; OpenBLAS threads spin while waiting). Newton's
 # factorization of A_00 and its selected-inverse blocks (BLAS 3) still use the hardware threads
-# from 200 000 free DOFs on: bench_hf_scaling's --threads default (docs/benchmarks.md, "Ordering
-# and threads"; pass --threads 1 through THREADS=1 for a single-thread sweep).
+# from 200 000 free DOFs on: bench_hf_scaling's --threads default (docs/performance.md, "BLAS
+# threads"; pass --threads 1 through THREADS=1 for a single-thread sweep).
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 threads=()
 [ -n "${THREADS:-}" ] && threads=(--threads "$THREADS")

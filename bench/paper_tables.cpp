@@ -1,8 +1,8 @@
 // Counterparts of the paper's Tables 3-5, of the dual-cone histories of Figs. 9, 11 and 19
 // and of the EIM convergence of Figs. 12 and 20, computed from HF snapshots of the built-in
 // cases on their training sets (paper settings: alpha = 0.3, eps_KA = 1e-3), and the time of
-// each offline step at the paper's tolerances. Prints markdown tables (docs/benchmarks.md,
-// "Paper tables").
+// each offline step at the paper's tolerances. Prints markdown tables (docs/validation.md,
+// "Paper tables"; docs/performance.md, "Offline").
 //   build/bench/paper_tables            (about a minute on 2 cores)
 #include <chrono>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Process time of a command: the median wall clock and CPU time (user + system) over n runs.
 
-A bench figure (docs/online-performance.md, "Process time"), never a timed test:
+A bench figure (docs/performance.md, "Online query"), never a timed test:
     bench/process_time.py [-n 20] -- contactrb online --model m.h5 --mu 0.3
 The CPU time is the better figure on a loaded machine (the wall clock includes waiting for a
 core); os.times() counts it in clock ticks (10 ms on Linux), so the median over many runs.

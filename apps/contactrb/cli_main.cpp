@@ -20,7 +20,7 @@
 namespace {
 
 // CLI11 reads an empty value ('') of a numeric option as 0, and strtod reads '1e-400' as 0:
-// `--eps-pod ''` silently became eps_pod = 0 (issue [R] row 6). Every numeric option of every
+// `--eps-pod ''` would silently become eps_pod = 0. Every numeric option of every
 // subcommand refuses both as a usage error. (--mu and --values are read as text and parsed
 // by parse_mu_option, which gives `contactrb: error:` messages.)
 std::string empty_or_underflow(std::string& text) {

@@ -31,7 +31,7 @@ namespace contactrb::app {
 
 namespace {
 
-// Measured (docs/solvers.md, "Grid sequencing"; docs/benchmarks.md, quiet machine): with Newton,
+// Measured (docs/performance.md, "Why the defaults are what they are", "Grid sequencing from level 4"): with Newton,
 // two coarse stages (levels L - 4, L - 2) cut hertz-a's time from level 5 on (level 5: -14 % at
 // mu 0.3, -25 % at mu 0.45; level 7: -15 to -30 %) and break even on level 4 over the mu range
 // (+17 % / +6 % / -13 % at mu 0.15 / 0.3 / 0.45, 0.01-0.03 s), where they take the fine solve from

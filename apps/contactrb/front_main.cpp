@@ -1,7 +1,7 @@
 // contactrb: the command-line entry point (docs/user-guide.md). It links the online library
 // only (Eigen, HDF5: contactrb::online), so that `contactrb online --model m.h5 --mu X` (and
 // `contactrb sample`) costs a few milliseconds of process start instead of loading gmsh,
-// OpenCASCADE, FLTK and the sparse solvers (docs/online-performance.md, "Process time"). Every
+// OpenCASCADE, FLTK and the sparse solvers (docs/performance.md, "Online query"). Every
 // other command, `online --out` (the HF mesh of the case), either under mpirun, --help,
 // --version and any usage error are handed to the full executable contactrb-full (main.cpp) by
 // execv with the same arguments, so that their output and exit codes are those of one program.

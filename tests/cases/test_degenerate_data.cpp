@@ -1,4 +1,4 @@
-// Physically degenerate and overflowing case data (issue [R] item 2): check_case_spec refuses
+// Physically degenerate and overflowing case data: check_case_spec refuses
 // them with a message naming the datum, exactly at the documented limits (docs/cases.md), and
 // parameter sets must be strictly increasing.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// p parameters (issue [B], docs/cases.md "Parameters"): a frozen parameter gives the
+// p parameters (docs/cases.md "Parameters"): a frozen parameter gives the
 // one-parameter case, the affine decomposition of the young-modulus, traction and body-force
 // kinds equals the direct assembly at random points, the traction patch test, and one clear
 // error per bad input.

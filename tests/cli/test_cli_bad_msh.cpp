@@ -1,4 +1,4 @@
-// `contactrb mesh --msh FILE`: every bad input of issue 2 item 3 ends in one clear line on
+// `contactrb mesh --msh FILE`: every bad input (docs/meshes.md, "Importing a Gmsh .msh file") ends in one clear line on
 // stderr naming the file and the problem, exit code 1, and no output files.
 // Fixtures: tests/data/msh/ (shared with tests/mesh/test_msh_io.cpp).
 #include <gtest/gtest.h>

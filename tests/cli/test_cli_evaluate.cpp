@@ -1,4 +1,4 @@
-// contactrb evaluate and online --out (issue 6, items 2-4) on a tiny hertz-a model: the
+// contactrb evaluate and online --out (docs/offline-online.md, "Reconstruction and error indicators") on a tiny hertz-a model: the
 // evaluation CSV (header, one line per value), JSON summary and multiplier profiles; --set as a
 // named set or a file; a bad set name; online --out writes a VTU with as many points as the HF
 // mesh of `contactrb solve`, contact.vtu and one multipliers.csv line per constraint row; --out

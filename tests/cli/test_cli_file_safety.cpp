@@ -1,5 +1,5 @@
-// Issue [R], rows 8-14: no lost file, no unbounded read, no mixed output set, no raw control
-// character on the terminal. Each test is the reproducer of one row of the issue's table.
+// File safety: no lost file, no unbounded read, no mixed output set, no raw control
+// character on the terminal. Each test reproduces one way of losing or mixing a file.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-// Issue [R] items 1 and 2 through the command line: damaged snapshot files, a file of one kind
+// Damaged and degenerate inputs through the command line: damaged snapshot files, a file of one kind
 // given for the other, physically degenerate or overflowing case data (the fixtures in
 // tests/data/numerics/ are the issue's reproducers), empty and underflowing parameter values,
 // and repeated training values. Each ends in exit code 1 and one line `contactrb: error: ...`.
@@ -172,7 +172,7 @@ TEST_F(CliIntegrity, EmptyAndUnderflowingNumericOptionsAreUsageErrors) {
                      "--n: the value is empty");
   expect_usage_error(run_cli("snapshots --case hertz-a --values 0.2 --jobs ''" + out), "--jobs: the value is empty");
   EXPECT_FALSE(fs::exists(dir_->file("u.h5")));
-  // Ordinary values still pass (a negative size is refused like any other: issue [R] row 14).
+  // Ordinary values still pass (a negative size is refused like any other).
   const CliResult ok = run_cli("online --model " + shell_quote(model_) + " --mu 0.3 --tol 1e-4");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }

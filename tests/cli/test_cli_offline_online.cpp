@@ -99,8 +99,8 @@ TEST_F(CliOfflineOnline, OfflineWritesTheModelTheReportAndASummary) {
 
 // --eps-du-relative: CPG stops at the first R whose largest relative error (each mu's (58)
 // divided by its |lambda(mu)|) is within eps_DU; the absolute history is not what stops it.
-// Issue [A] items 5.2 and 5.4 at the command line: an eps_DU that no cone reaches is said so
-// (the NMF, exhausted, printed its last rank's error), and
+// At the command line: an eps_DU that no cone reaches is said so (an exhausted NMF reports
+// the error of the rank it keeps), and
 // an EIM tolerance above every value (M^k = 0 or M^g = 0) is refused before a model is written.
 TEST_F(CliOfflineOnline, UnreachedDualToleranceAndEmptyEIMAreReported) {
   contactrb::test::TempDir own("offline_unreached");  // its own offline.json

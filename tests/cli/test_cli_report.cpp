@@ -354,9 +354,9 @@ TEST(CliReportErrors, PlotScriptRejectsAMissingInput) {
   EXPECT_NE(out.find("sizes.csv"), std::string::npos) << out;
 }
 
-// Issue [A] item 5.6: `report --case-file` used eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 for a user
-// case (M^g = 1, e_displ 5% on this hertz-a copy; M^g = 0 on others) and said nothing. It now
-// uses `contactrb offline`'s defaults (relative), and a model whose verification e_displ
+// `report --case-file` uses `contactrb offline`'s defaults for a user case (the paper's
+// eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 give M^g = 1 and e_displ 5% on this hertz-a copy; M^g = 0
+// on others) (relative), and a model whose verification e_displ
 // exceeds 1e-2 is warned about on stderr and in report.md: exactly those models, no other.
 TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
   contactrb::test::TempDir dir("report_case_file");

@@ -98,7 +98,7 @@ TEST(CliSolve, NonConvergenceExitsThreeAndStillWritesTheJson) {
   EXPECT_EQ(j["iterations"].get<int>(), 3);
 }
 
-// Issue [C]: the semi-smooth Newton solver's non-convergence is exit 3 too, with the
+// The semi-smooth Newton solver's non-convergence is exit 3 too, with the
 // iterations and the KKT residuals in the message.
 TEST(CliSolve, NewtonNonConvergenceExitsThreeWithTheResiduals) {
   contactrb::test::TempDir dir("solve_newton_noconv");
@@ -163,9 +163,9 @@ TEST(CliSolve, GridSequencingIsAutomaticWithNewtonFromLevelFour) {
   EXPECT_EQ(stages("--level 2 --sequence 1"), (std::vector<int>{0}));  // Kacanov, asked for
 }
 
-// Issue [A] item 5.1, the command of the report: at alpha = 1e-4 it exited 0 with converged =
-// true after one iteration (force 1.398 instead of 1.4726). The stopping test now reads the
-// unrelaxed step: 500 iterations at alpha = 1e-4 do not reach eps_KA, and that is a status.
+// The command of the report at alpha = 1e-4: (63) on the relaxed increment would stop after one
+// iteration with force 1.398 instead of 1.4726. The stopping test reads the unrelaxed step
+// (docs/theory.md, "Kacanov (12)"): 500 iterations at alpha = 1e-4 do not reach eps_KA, and that is a status.
 TEST(CliSolve, TinyRelaxationIsNotConvergedAfterOneIteration) {
   contactrb::test::TempDir dir("solve_tiny_alpha");
   const CliResult r =

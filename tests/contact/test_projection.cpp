@@ -402,10 +402,9 @@ TEST(Projection, RejectsBadDisplacements) {
   EXPECT_THROW(project_slave_nodes(m, pair, w), Error);
 }
 
-// Issue [R] row 3: finite displacements whose squared distances overflow (1e155) left the
-// search at its initial segment -1, which was then used as an index into the master chain (a
-// heap-buffer-overflow read under ASan, garbage rows in Release). One clear error now, with
-// both searches.
+// Finite displacements whose squared distances overflow (1e155) leave the search at its
+// initial segment -1, which must never index the master chain: one clear error, with both
+// searches.
 TEST(Projection, OverflowingDistancesAreAnErrorNotAnIndexOfMinusOne) {
   const Mesh m = flat_blocks(0.0, 1.0, 0.25, 7, 0.0, 1.0, 5);
   const ContactPair pair = make_contact_pair(m);

@@ -1,5 +1,5 @@
 #pragma once
-// Deterministic mutations of valid inputs (issue [R], item 6): every case is a pure function of
+// Deterministic mutations of valid inputs (docs/testing.md): every case is a pure function of
 // (seed, target, case index), so a failing case is reproduced by its seed and index alone
 // (docs/testing.md). Text inputs get token-aware mutations (a number replaced by an extreme
 // one, a line duplicated or dropped) on top of the byte-level ones binary inputs get.

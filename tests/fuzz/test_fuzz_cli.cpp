@@ -1,4 +1,4 @@
-// The CLI fuzz suite (issue [R], item 6; docs/testing.md): mutated .msh, TOML, snapshot and
+// The CLI fuzz suite (docs/testing.md): mutated .msh, TOML, snapshot and
 // model HDF5 files and batch lines, each run through the contactrb executable. Every case
 // must end with exit code 0, or 1 or 3 with exactly one "contactrb: error:" line on stderr;
 // never a signal, never the time limit, never a sanitizer report, never an internal error.
@@ -227,9 +227,9 @@ TEST_F(FuzzCli, CaseFiles) {
   run_target(t);
 }
 
-// Snapshot files: `offline --snapshots`. Before the snapshot reader validated every index
-// (issue [R] row 1), cases 89 and 107 of the default seed ended in SIGSEGV in the offline
-// builder's free_selection (free_dofs out of range).
+// Snapshot files: `offline --snapshots`. The snapshot reader validates every index: without
+// that, cases 89 and 107 of the default seed end in SIGSEGV in the offline builder's
+// free_selection (free_dofs out of range).
 TEST_F(FuzzCli, SnapshotFiles) {
   Target t;
   t.name = "snapshot";

@@ -148,10 +148,10 @@ TEST(Hertz, PaperSettingsConvergeWithSmallKkt) {
   EXPECT_LT(s.gap_violation, 1e-2 * 0.1);
 }
 
-// Issue [A] item 5.1: at alpha = 1e-4 the relaxed increment of the first step passed (63) and
-// the solver answered "converged" after one iteration with the contact force 5% off
-// (1.398 against 1.4726) and a penetration of 1.4e-2. The stopping test now reads the unrelaxed
-// step: such an iteration is not converged within its cap, and the paper's alpha = 0.3 lands on
+// At alpha = 1e-4 the relaxed increment of the first step passes (63) as printed, which would
+// answer "converged" after one iteration with the contact force 5% off (1.398 against 1.4726)
+// and a penetration of 1.4e-2. The stopping test reads the unrelaxed step (docs/theory.md,
+// "Kacanov (12)"): such an iteration is not converged within its cap, and the paper's alpha = 0.3 lands on
 // the undamped (alpha = 1) solution within the tolerance's reach.
 TEST(Hertz, StoppingTestDoesNotDependOnTheRelaxation) {
   const hf::HFSolver solver(hertz_a(0.3, 51));

@@ -76,11 +76,10 @@ TEST(HFErrors, NonConvergenceIsAStatusWithIterationsAndIncrements) {
   EXPECT_NE(sol.message.find("increments"), std::string::npos) << sol.message;
 }
 
-// Issue [R] rows 3 and 5, at the library level (check_case_spec refuses such data before a case
+// Overflowing data at the library level (check_case_spec refuses such data before a case
 // gets here; a ContactProblem built directly does not go through it). A Dirichlet value of 1e155
-// made the squared distances of the projection overflow, and the search indexed segment -1 (a
-// heap-buffer-overflow read); at 1e154 the solve "converged" with an infinite energy. Either a
-// clear error or a flagged status now, never "converged".
+// makes the squared distances of the projection overflow (no segment found); at 1e154 the energy
+// is infinite. Either a clear error or a flagged status, never "converged".
 TEST(HFErrors, OverflowingDataEndInAnErrorOrANonFiniteStatus) {
   for (const double uy : {-1e154, -1e155, -1e200}) {
     SCOPED_TRACE(uy);

@@ -12,8 +12,8 @@ done
 rm -rf "$2"
 # Up to eight retries, each on another server number after a pause, when the virtual X server
 # was not reachable ("bad X server connection": seen in loaded parallel runs; one retry was not
-# always enough with ten compilers running, and in stop 23 all of three retries failed in a
-# fresh-clone suite beside an ASan suite). It is not the server's start: with one Xvfb kept
+# always enough with ten compilers running, and three retries all failed once in a suite run
+# beside an ASan suite). It is not the server's start: with one Xvfb kept
 # running, pvpython alone failed to open it in 1 of 4 starts at load 3 and 0 of 6 at load 2.7.
 # Any other failure is reported at once.
 log=$(mktemp)

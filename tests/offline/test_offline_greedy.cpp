@@ -1,4 +1,4 @@
-// Weak greedy on the error estimate (issue [B] item 4, offline/offline_greedy.hpp): on hertz-a level 0
+// Weak greedy on the error estimate (offline/offline_greedy.hpp): on hertz-a level 0
 // with 61 equispaced training values the max relative estimate falls (trend asserted, a few
 // non-monotone steps allowed), the greedy stops at its tolerance with fewer HF solves than
 // training values, the estimate at each chosen point is not below the true error measured there

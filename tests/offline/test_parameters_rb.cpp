@@ -1,4 +1,4 @@
-// Reduced models of several parameters (issue [B]): hertz-3p with R2 and E2 frozen (domains of
+// Reduced models of several parameters (docs/cases.md): hertz-3p with R2 and E2 frozen (domains of
 // one point) over hertz-a's training values is hertz-a, reduced: the same online answers to the
 // solver tolerance. And the model file keeps every parameter.
 #include <gtest/gtest.h>

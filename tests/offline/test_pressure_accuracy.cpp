@@ -1,4 +1,4 @@
-// Contact-pressure accuracy of the reduced model (issue [A], items 1-2) on the three paper cases
+// Contact-pressure accuracy of the reduced model (docs/validation.md, "Pressure and supremizers") on the three paper cases
 // at the default OfflineSettings, their training sets and verification sets (HF settings of the
 // snapshots: the paper's alpha = 0.3, eps_KA = 1e-3).
 //

@@ -59,8 +59,8 @@ TEST(Study, DefaultTolerancesFollowThePaper) {
   EXPECT_DOUBLE_EQ(other.eps_du, rb::StudyTolerances{}.eps_du);
 }
 
-// Issue [A] item 5.6: a user case got eps_EIM^k = 1e-2, eps_EIM^g = 1e-3 (M^g = 0, e_displ
-// 31-121%) instead of `contactrb offline`'s defaults.
+// A user case gets `contactrb offline`'s defaults, not the paper's eps_EIM^k = 1e-2,
+// eps_EIM^g = 1e-3 (M^g = 0, e_displ 31-121%).
 TEST(Study, UserCasesGetTheOfflineDefaults) {
   const rb::StudyTolerances t = rb::default_study_tolerances("my-case");
   const rb::OfflineSettings offline;

@@ -155,8 +155,8 @@ TEST(DualCone, InvalidInputThrows) {
   EXPECT_THROW(a.extend(3), contactrb::Error);
 }
 
-// Issue [A] item 5.3: the angle-greedy stopped on its linear error ("tolerance reached") while
-// the cone it hands to the online stage was far from eps_DU. Here the linear error vanishes after
+// The angle-greedy must stop on its true cone error, not its linear error, which can say
+// "tolerance reached" while the cone it hands to the online stage is far from eps_DU. Here the linear error vanishes after
 // two picks ({(1,1), (1,0)} span R^2), but (0,1) is at distance sin(45 deg) = 0.7071 from
 // span+{(1,1), (1,0)} (its projection is on the ray of (1,1)).
 TEST(AngleGreedy, StopsOnTheTrueConeErrorNotTheLinearOne) {
@@ -211,8 +211,8 @@ TEST(AngleGreedy, ToleranceReachedMeansTheConeErrorReachedIt) {
   }
 }
 
-// Issue [A] item 5.5: in relative mode every relative error of the empty cone is 1 and the
-// first pick was index 0 (the smallest snapshot here); (56) picks argmax |lambda|.
+// In relative mode every relative error of the empty cone is 1, so argmax would pick index 0
+// (the smallest snapshot here); (56) picks argmax |lambda|.
 TEST(CPG, RelativeModeStartsAtTheLargestSnapshot) {
   const MatrixXd S = rb_fixtures::hertz_like_snapshots();
   const VectorXd w = rb_fixtures::collocation_weights();

@@ -88,9 +88,8 @@ TEST(NMF, InvalidInputThrows) {
   EXPECT_THROW(nmf(MatrixXd::Ones(3, 3), 1, s), contactrb::Error);
 }
 
-// Issue [A] item 5.4: each rank is a separate factorization, and a larger rank may give a worse
-// cone (hertz-a: R = 8 reached 0.0087, R = 15 only 0.070); an exhausted NMF returned the last
-// one. It must keep the best: the smallest cone error over the ranks tried (smallest R on ties),
+// Each rank is a separate factorization, and a larger rank may give a worse cone (hertz-a:
+// R = 8 reaches 0.0087, R = 15 only 0.070). An exhausted NMF must keep the best: the smallest cone error over the ranks tried (smallest R on ties),
 // recomputed here independently from the generators returned.
 TEST(NMF, ExhaustedKeepsTheBestRankNotTheLast) {
   const MatrixXd T = rb_fixtures::hertz_like_snapshots(31, 12);

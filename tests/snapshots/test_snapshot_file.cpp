@@ -236,7 +236,7 @@ TEST(SnapshotFile, MissingDatasetIsRejected) {
   expect_error_naming(dir.file("m.h5"), "missing dataset 'lambda'");
 }
 
-// ---------------------------------------------------------------------------- issue [R] item 1
+// ---------------------------------------------------------------------------- damaged files
 
 namespace {
 
@@ -484,9 +484,8 @@ TEST(SnapshotFile, AReducedModelFileIsNamedAsSuch) {
   EXPECT_FALSE(contactrb::io::is_snapshot_file(dir.file("nothing.h5")));
 }
 
-// Issue [R] row 2: 72 of 80 random byte flips of a snapshot file were accepted and 14 changed
-// the online answer. Now every flip is either refused with a message naming the file or lands
-// in bytes that carry no data (HDF5 padding, free space): the data read back are then
+// Random byte flips of a snapshot file: every flip is either refused with a message naming the
+// file or lands in bytes that carry no data (HDF5 padding, free space): the data read back are then
 // bitwise the written ones. Seeded, so a failure reproduces.
 TEST(SnapshotFile, EveryByteFlipIsRefusedOrHarmless) {
 #if defined(__SANITIZE_ADDRESS__)

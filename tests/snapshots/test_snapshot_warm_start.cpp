@@ -1,4 +1,4 @@
-// Warm-started snapshot runs (SnapshotRunOptions::warm_start, issue [C]): the same answers as
+// Warm-started snapshot runs (SnapshotRunOptions::warm_start, docs/solvers.md "Warm start"): the same answers as
 // cold starts to the solver tolerance, fewer iterations in total, and data independent of the
 // number of threads (the schedule does not depend on it). hertz-a level 0, 9 values of mu.
 #include <gtest/gtest.h>

@@ -131,9 +131,9 @@ TEST(Kacanov, LostContactNeedsAlphaOne) {
   EXPECT_EQ(undamped.iterations, 2);
 }
 
-// Issue [R] item 2: a NaN increment fails every comparison, and max(du = 0, NaN) is 0, so a step
-// whose multipliers were NaN passed the stopping test as "converged". Non-finite steps now end
-// with their own status, on the first such step.
+// A NaN increment fails every comparison, and max(du = 0, NaN) is 0, so a step whose
+// multipliers are NaN would pass the stopping test as "converged". Non-finite steps end with
+// their own status, on the first such step.
 TEST(Kacanov, NonFiniteStepIsAStatusNeverConverged) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();

@@ -1,5 +1,5 @@
 #pragma once
-// One named parameter set of a TOML case file, in p dimensions (issue [B]).
+// One named parameter set of a TOML case file, in p dimensions (docs/cases.md).
 //
 // ---- User documentation (for docs/cases.md) -------------------------------------------
 //

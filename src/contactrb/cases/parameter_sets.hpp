@@ -1,5 +1,5 @@
 #pragma once
-// Parameter sets in p dimensions (issue [B]): the box P = [min_1, max_1] x ... x [min_p, max_p],
+// Parameter sets in p dimensions (docs/cases.md): the box P = [min_1, max_1] x ... x [min_p, max_p],
 // tensor grids, seeded Latin hypercube and uniform random sets, CSV files of points, and the
 // scaled distance that picks the nearest training point for the online initial guess.
 //

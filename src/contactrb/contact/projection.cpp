@@ -216,8 +216,8 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
     const Vec2 x = position(mesh, w, node);
     const SegmentHit h = use_tree ? tree->nearest(x, stack) : search_all_pairs(m, x);
     // No segment at a finite distance: the coordinates are finite but their squared distances
-    // overflow (from about 1e154 on). The search then keeps its initial segment -1, which was
-    // used as an index (issue [R] row 3).
+    // overflow (from about 1e154 on). The search then keeps its initial segment -1, which must
+    // never be used as an index.
     if (h.segment < 0 || !std::isfinite(h.d2)) {
       std::ostringstream os;
       os << "project_slave_nodes: the distance from slave node " << node

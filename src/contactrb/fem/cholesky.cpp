@@ -22,7 +22,7 @@ using EigenLLT = Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<i
 using CholmodLLT = Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower>;
 #endif
 
-// Chosen by bench/bench_fem.cpp (docs/benchmarks.md): Eigen's simplicial LL' is fastest up
+// Chosen by bench/bench_fem.cpp (docs/performance.md, "Sparse Cholesky backend"): Eigen's simplicial LL' is fastest up
 // to about 1e4 DOFs; CHOLMOD's supernodal LL' (METIS ordering, BLAS-3 on OpenBLAS) is about
 // 3 times faster at 1e5 DOFs.
 constexpr CholeskyBackend kDefaultBackend = CholeskyBackend::Automatic;

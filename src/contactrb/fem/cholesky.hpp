@@ -1,7 +1,7 @@
 #pragma once
 // Sparse Cholesky factorization computed once and reused for many right-hand sides
 // (A(mu) is factorized once per mu; each Kacanov iteration only back-solves).
-// The backend is chosen by measurement (docs/benchmarks.md).
+// The backend is chosen by measurement (docs/performance.md, "Why the defaults are what they are", "Sparse Cholesky backend").
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -11,14 +11,14 @@ namespace contactrb::fem {
 enum class FactorStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(FactorStatus status);
 
-// EigenSimplicial: Eigen::SimplicialLLT with AMD ordering; the default, measured faster up
-// to about 1e5 DOFs on the reference machine (docs/fem.md, docs/benchmarks.md).
+// EigenSimplicial: Eigen::SimplicialLLT with AMD ordering; faster below about 2e4 DOFs
+// (docs/performance.md, "FEM assembly and factorization").
 // Cholmod: CHOLMOD supernodal LL' (SuiteSparse, through Eigen's CholmodSupport, default
 // CHOLMOD ordering strategy: AMD, then METIS when AMD fills badly); faster at 1e6 DOFs, and
 // much faster with an optimized BLAS.
 // Automatic: EigenSimplicial below kCholmodMinRows rows, Cholmod from there on
-// (docs/benchmarks.md: with an optimized BLAS, CHOLMOD's supernodal factorization wins
-// from about 2e4 DOFs; Eigen's simplicial one wins below).
+// (with an optimized BLAS, CHOLMOD's supernodal factorization wins from about 2e4 DOFs;
+// Eigen's simplicial one wins below: docs/performance.md, "Why the defaults are what they are", "Sparse Cholesky backend").
 enum class CholeskyBackend { Automatic, Cholmod, EigenSimplicial };
 inline constexpr int kCholmodMinRows = 20000;
 const char* to_string(CholeskyBackend backend);

@@ -84,8 +84,8 @@ struct HFSolution {
 // ordering and symbolic analysis of A_00 for the Newton solver (ActiveSchur) run on a second
 // thread while the constructor assembles, from the mesh's pattern alone (solve::FactorAnalysis);
 // a Newton solve with that ordering then starts at the numeric factorization, with the same
-// factor bitwise (tests/hf/test_hf_solver.cpp). hertz-a: docs/benchmarks.md, "Analysis beside
-// the assembly".
+// factor bitwise (tests/hf/test_hf_solver.cpp). Why: docs/performance.md, "Why the defaults are what they are",
+// "Analysis beside the assembly".
 struct HFSetupOptions {
   bool newton_analysis = false;
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;  // NewtonSettings::ordering

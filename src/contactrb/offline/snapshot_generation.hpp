@@ -64,7 +64,7 @@ enum class ProgressMode {
 
 struct SnapshotRunOptions {
   int jobs = 1;  // worker threads (>= 1; more than the number of values is capped)
-  // Warm start (issue [C]): each solve starts from the converged solution (u, lambda) of the
+  // Warm start (docs/solvers.md, "Warm start"): each solve starts from the converged solution (u, lambda) of the
   // nearest point (scaled coordinates, cases::scaled_distance) among those solved before it in
   // a FIXED schedule, independent of `jobs`, so the stored data stay bitwise independent of the
   // thread count: the points are ordered farthest-first (start at the first point, then the

@@ -16,7 +16,7 @@
 // (contact::integrate_lac_rows with a row list), then the magic entries are picked
 // (docs/offline-online.md).
 //
-// Cost per query (docs/online-performance.md): A_hat(mu) and its Cholesky factor once; per
+// Cost per query (docs/performance.md, "Online query"): A_hat(mu) and its Cholesky factor once; per
 // step the magic points, D' (N x R) assembled and solved against A, Q = D A^-1 D', the QP warm
 // started from the previous step's passive set; no allocation of size N or R per step.
 #include <Eigen/Cholesky>
@@ -58,9 +58,9 @@ enum class OnlineIteration {
   // halves the damping, down to the model's alpha). Stopping test (63) on the fixed-point
   // residual: |G(u^k) - u^k| <= eps_KA |u^k| and |lambda_bar^k - lambda_bar^{k-1}| <= eps_KA
   // |lambda_bar^{k-1}|, i.e. (63) on the unrelaxed step as in the Relaxed iteration
-  // (solve/kacanov.hpp), so both stop at the same distance from the fixed point. Measured
-  // (bench_online, docs/online-performance.md): 4-8 steps instead of 18-30 for the relaxed
-  // iteration at alpha = 0.3 when the relaxed test still read the relaxed increment (more now).
+  // (solve/kacanov.hpp), so both stop at the same distance from the fixed point. Measured:
+  // 4-8 steps against 18-42 for the relaxed iteration at alpha = 0.3 (docs/performance.md, "Why the defaults are what they are",
+  // "Online: accelerated iteration").
   Accelerated,
 };
 

@@ -2,7 +2,7 @@
 // The thread count of the BLAS (OpenBLAS, the libblas.so.3 alternative of scripts/install-deps.sh)
 // for a scope: the semi-smooth Newton solver raises it for its BLAS-3 parts on large problems (the
 // supernodal factorization of A_00 and the selected-inverse block, solve/selected_inverse.hpp;
-// docs/solvers.md, "Threads"). OpenBLAS's count is process-wide: never change it while other
+// docs/performance.md, "BLAS threads"). OpenBLAS's count is process-wide: never change it while other
 // threads of the process call the BLAS (snapshot generation with --jobs > 1 leaves it alone).
 namespace contactrb::solve {
 

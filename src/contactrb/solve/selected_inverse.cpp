@@ -65,7 +65,8 @@ struct SelectedInverse::Impl {
   // (>= columns.size()): new columns are written in place, and the storage grows by a quarter
   // beyond what is asked, so that a Newton iteration adding a few columns neither copies G nor
   // touches fresh memory (at 1.2e6 DOFs G is ~3 500^2 doubles, ~100 MB: a new one per call was
-  // freed to the OS and page-faulted again by the next, docs/benchmarks.md).
+  // freed to the OS and page-faulted again by the next: docs/performance.md, "Why the defaults are what they are",
+  // "Newton: storage reused across systems").
   std::vector<double> G;
   int g_capacity = 0;
   double& g(int i, int j) { return G[static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * static_cast<std::size_t>(g_capacity)]; }
@@ -169,8 +170,8 @@ struct SelectedInverse::Impl {
   // children before parents: in supernode s, B_s (its columns x the batch columns J_s whose
   // chain passes through s) gets B_s = L_ss^-1 B_s (dtrsm), then L_below,s B_s (dgemm) is
   // subtracted from the ancestors' blocks. Dense BLAS per supernode instead of one scalar sparse
-  // substitution per column (the first version, simplicial L: 4 of the 15 CPU seconds of a
-  // hertz-a level 6 solve, docs/benchmarks.md "HF solver scaling").
+  // substitution per column along the paths of a simplicial L (4 of the 15 CPU seconds of a
+  // hertz-a level 6 solve; 0.9 s with the supernodal sweep).
   std::vector<SparseColumn> forward_batch(const std::vector<int>& q) {
     const int* super = static_cast<const int*>(L->super);
     const int* pi = static_cast<const int*>(L->pi);

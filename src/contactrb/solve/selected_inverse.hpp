@@ -1,6 +1,6 @@
 #pragma once
 // A sparse SPD matrix factorized once (CHOLMOD, supernodal), with three uses by the semi-smooth
-// Newton solver (hf/semismooth_newton.hpp, docs/solvers.md "Linear algebra of a Newton step"):
+// Newton solver (hf/semismooth_newton.hpp, docs/solvers.md "Newton linear algebra"):
 //  - solve(b) = A^-1 b;
 //  - solve_sparse(in, b_in, out): A^-1 b for a b supported on a few indices, on a few indices
 //    (or all): only the elimination-tree chains of `in` (forward) and of `out` (backward) are
@@ -25,7 +25,7 @@ namespace contactrb::solve {
 // better of the two). NodeMetis: METIS nested dissection of the supervariable graph (runs of
 // consecutive indices with the same column pattern: the 2 DOFs of a node), one vertex per run.
 // Auto: auto_ordering(rows), NodeMetis from kNodeMetisFrom rows on, Cholmod below. Measured on
-// hertz-a (docs/benchmarks.md, "HF solver scaling"): level 7 (1.2e6 rows) CHOLMOD's default
+// hertz-a (docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering"): level 7 (1.2e6 rows) CHOLMOD's default
 // runs AMD and METIS (analysis 13.8 s wall, loaded machine) for the nnz(L) that NodeMetis gets in
 // 4.5 s; on levels 4-6 (2.7e4-3.1e5 rows) AMD alone, and NodeMetis's dearer analysis costs what
 // its smaller factor saves (CPU of the whole solve within the machine's noise).

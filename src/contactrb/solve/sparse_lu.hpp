@@ -1,8 +1,8 @@
 #pragma once
 // Sparse LU factorization of a general square matrix, for the semi-smooth Newton systems
 // (nonsymmetric saddle points [A + H, K_A'; -D_A, 0], docs/solvers.md). Like Eigen's
-// solvers: compute() returns a status, solve() requires Success. The backend is chosen by
-// measurement (docs/benchmarks.md, "Semi-smooth Newton").
+// solvers: compute() returns a status, solve() requires Success. Backends: UMFPACK (default)
+// and Eigen's SparseLU (docs/solvers.md, "Newton linear algebra").
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
