@@ -151,7 +151,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   } else {
     throw Error("--dual must be 'cpg', 'angle' or 'nmf', got '" + opt.dual + "'");
   }
-  // Every value given is checked: -1 used to pass as "no fixed size" while -3 was refused.
+  // Every value given is checked: -1 must not pass as "no fixed size" where -3 is refused.
   require(!opt.n || *opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n.value_or(0)) + ")");
   require(!opt.r || *opt.r >= 1, "--r must be >= 1 (got " + std::to_string(opt.r.value_or(0)) + ")");
   require(opt.eps_pod >= 0.0, "--eps-pod must be >= 0");

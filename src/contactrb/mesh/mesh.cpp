@@ -87,8 +87,8 @@ void validate(const Mesh& mesh) {
   require(mesh.body.size() == mesh.triangles.size(),
           "mesh has " + std::to_string(mesh.triangles.size()) + " triangles but " +
               std::to_string(mesh.body.size()) + " body ids");
-  // Messages are built only on failure (an eager require() formatted ~4 strings per triangle:
-  // on the 700-node hertz-a mesh that was 9% of a semi-smooth Newton solve, setup included).
+  // Messages are built only on failure (an eager require() formats ~4 strings per triangle:
+  // 9% of a semi-smooth Newton solve on the 700-node hertz-a mesh, setup included).
   std::vector<char> used(static_cast<std::size_t>(n), 0);
   std::vector<std::pair<int, int>> tri_edges;  // sorted below; binary search per boundary edge
   tri_edges.reserve(3 * mesh.triangles.size());

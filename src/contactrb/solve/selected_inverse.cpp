@@ -720,8 +720,8 @@ Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>&
     // near the root every column has entries, further down only a few. So U_new (ascending)
     // is cut into chunks of kChunk rows, and each chunk contributes a dense BLAS product over
     // the columns present in it only: Xc' Xc[:, new], Xc = X[chunk, J_c]. One dense product
-    // over all of U_new (the first version) cost |U_new| x total x new; on hertz-a level 6
-    // (1 400 columns, paths of ~3 000 rows) that was 7 of the 15 CPU seconds of a solve.
+    // over all of U_new costs |U_new| x total x new; on hertz-a level 6 (1 400 columns, paths
+    // of ~3 000 rows) that is 7 of the 15 CPU seconds of a solve.
     const int old = total - static_cast<int>(fresh.size());
     std::vector<int> union_rows;
     for (int j = old; j < total; ++j) {
@@ -754,7 +754,7 @@ Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>&
     // Per column, a cursor on its entries (ascending rows, so ascending positions on U_new);
     // next_position(j) skips the rows outside U_new and gives the position of the next entry
     // (u at the end). Read in place: a copy of every column's entries on U_new (16 bytes per
-    // entry, the first version) was ~300 MB of fresh memory in the first call at 1.2e6 DOFs.
+    // entry) would be ~300 MB of fresh memory in the first call at 1.2e6 DOFs.
     std::vector<std::size_t> cursor(static_cast<std::size_t>(total), 0);
     auto next_position = [&](int j) {
       const SparseColumn& col = m.columns[static_cast<std::size_t>(j)];

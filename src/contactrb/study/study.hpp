@@ -25,7 +25,7 @@ namespace contactrb::rb {
 // The offline tolerances of a study (absolute, as OfflineSettings) and the tolerance lists of
 // the Table 3/5-style rows (R reaching eps_DU) and of the Table 4-style row (N against eps_POD).
 // The defaults are `contactrb offline`'s (OfflineSettings): a user case gets the same models
-// from `report` as from `offline` (the earlier eps_EIM 1e-2 / 1e-3 gave M^g = 0 on user cases).
+// from `report` as from `offline` (the paper's eps_EIM 1e-2 / 1e-3 give M^g = 0 on user cases).
 struct StudyTolerances {
   double eps_pod = OfflineSettings{}.eps_pod;
   double eps_du = OfflineSettings{}.eps_du;
