@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The parallel speed-ups of docs/cluster.md ("Measured speed-ups"): wall clock of
+# The parallel speed-ups of docs/parallel.md ("Measured speed-ups"): wall clock of
 #  1. `snapshots` over a set on 1 and 2 MPI ranks (and 1 and 2 threads, --jobs), at mesh level
 #     LEVEL: the wall clock of the solves as the command reports it ("solves X s": without the
 #     process start, mpirun's and the reference mesh) and of the whole command,

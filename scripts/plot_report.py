@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of a `contactrb report` directory (docs/user-guide.md, "report").
+"""Figures of a `contactrb report` directory (docs/cli.md, "`contactrb report`").
 
 Usage: /usr/bin/python3 scripts/plot_report.py DIR
 

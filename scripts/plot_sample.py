@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figure of `contactrb sample` (docs/cluster.md, "Sampling").
+"""Figure of `contactrb sample` (docs/parallel.md, "Sampling").
 
 Usage: /usr/bin/python3 scripts/plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG
 

@@ -1,5 +1,5 @@
 #pragma once
-// `online --batch --jobs J` (docs/cluster.md): batch lines answered on J threads, one online
+// `online --batch --jobs J` (docs/parallel.md): batch lines answered on J threads, one online
 // solver each, and printed in input order. The lines are read in chunks (J x 64 lines, times
 // the number of MPI ranks): a chunk's answers are printed, and flushed, once the whole chunk is
 // answered, so answers still stream through a pipe. With J = 1 and no MPI every line is

@@ -68,7 +68,7 @@ int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI:
   try {
     for (const auto& command : commands) {
       if (!command.subcommand->parsed()) continue;
-      // Under mpirun only the commands that split their work (docs/cluster.md): any other would
+      // Under mpirun only the commands that split their work (docs/parallel.md): any other would
       // run whole in every process, each writing the same files.
       const std::string name = command.subcommand->get_name();
       const bool greedy = name == "offline" && command.subcommand->count("--greedy") > 0;

@@ -1,5 +1,5 @@
 #pragma once
-// The contactrb command line (docs/user-guide.md), shared by the two executables:
+// The contactrb command line (docs/cli.md), shared by the two executables:
 // `contactrb` (front_main.cpp: answers `online` itself with the online library only, hands every
 // other command to the full executable) and `contactrb-full` (main.cpp: every command).
 // Exit codes: 0 success, 1 an error the user can fix (one line on stderr), CLI11's own

@@ -1,5 +1,5 @@
 // `contactrb demo`: the whole method on the paper's test case (b) (hertz-b, parametrized lower
-// radius) in one command (docs/user-guide.md, "demo"): HF snapshots on the training set, the
+// radius) in one command (docs/cli.md, "`contactrb demo`"): HF snapshots on the training set, the
 // offline stage with CPG, the online stage on the verification set against the HF solver, and
 // a table like the paper's (N, R, M^k, M^g, errors, HF time, online time, speed-up).
 // Writes DIR/model.h5 (io/reduced_model_file.hpp) and DIR/evaluation.csv (study/evaluation.hpp).
@@ -34,7 +34,7 @@ struct DemoOptions {
   bool quiet = false;
 };
 
-// Offline tolerances of the demo (absolute; docs/user-guide.md, "demo"): the errors come
+// Offline tolerances of the demo (absolute; docs/cli.md, "`contactrb demo`"): the errors come
 // down to the level of the Kacanov tolerance of the HF snapshots (eps_KA = 1e-3).
 rb::OfflineSettings demo_settings() {
   rb::OfflineSettings s;

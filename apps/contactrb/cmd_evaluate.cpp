@@ -1,6 +1,6 @@
 // `contactrb evaluate`: errors and speed-ups of a reduced model against the HF solver over a
-// parameter set (paper Section 6.2.3, (64)-(66); study/evaluation.hpp; docs/user-guide.md,
-// "evaluate"). Writes DIR/evaluation.csv (one line per mu), DIR/evaluation.json (summary, sizes,
+// parameter set (paper Section 6.2.3, (64)-(66); study/evaluation.hpp; docs/cli.md,
+// "`contactrb evaluate`"). Writes DIR/evaluation.csv (one line per mu), DIR/evaluation.json (summary, sizes,
 // model, set) and DIR/multipliers_mu<value>.csv for the --multipliers values, and prints a
 // table in which every speed-up has the errors of the same solve beside it.
 // Exit codes: 0 every solve converged; 1 a user error; 3 some HF or online solve did not

@@ -1,5 +1,5 @@
 // `contactrb merge`: the parts written by `snapshots --part k/K` joined into the one snapshot
-// file of the whole set (docs/cluster.md). The parts are checked (each file's checksum by the
+// file of the whole set (docs/parallel.md). The parts are checked (each file's checksum by the
 // reader; one run; each part once; none missing) before anything is written. Failed solves
 // recorded in the parts are reported as `snapshots` reports them (exit 3 unless
 // --allow-failures).

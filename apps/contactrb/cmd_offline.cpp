@@ -1,4 +1,4 @@
-// `contactrb offline`: the offline stage from a snapshot file (docs/user-guide.md, "offline"):
+// `contactrb offline`: the offline stage from a snapshot file (docs/cli.md, "`contactrb offline`"):
 // POD, compression, dual cone, EIM of kappa and gamma, the reduced arrays. Writes the reduced
 // model (HDF5, io/reduced_model_file.hpp) and, in the same directory, offline.json (the
 // histories of each step and their times). With --case/--case-file instead of --snapshots,

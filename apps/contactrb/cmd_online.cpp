@@ -1,5 +1,5 @@
 // `contactrb online`: reduced solves (paper Algorithm 1) from a model file written by
-// `contactrb offline` (docs/user-guide.md, "online"). One --mu: one JSON object on stdout.
+// `contactrb offline` (docs/cli.md, "`contactrb online`"). One --mu: one JSON object on stdout.
 // --batch FILE (or - for stdin): one mu per line, one JSON line per input line, in order; a bad
 // line (not a number, outside the domain) is answered by {"line": k, "error": "..."} and the
 // others are still answered; --format csv|npy gives one compact row per line instead

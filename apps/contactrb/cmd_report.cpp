@@ -1,5 +1,5 @@
 // `contactrb report`: the paper's Section 6 study of one case in one command
-// (docs/user-guide.md, "report"): training snapshots, offline stages with CPG, angle-greedy,
+// (docs/cli.md, "`contactrb report`"): training snapshots, offline stages with CPG, angle-greedy,
 // NMF and truncated NMF, evaluation on the training and verification sets (study/study.hpp);
 // writes the CSV data and study.json, plots the figures with scripts/plot_report.py and
 // writes report.md (tables and links to the figures).
@@ -172,7 +172,7 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--verification-values", opt->verification_values,
                   "Explicit verification values (comma-separated)")
       ->delimiter(',');
-  sub->add_option("--eps-pod", opt->eps_pod, "POD tolerance (default: the case's, docs/user-guide.md)");
+  sub->add_option("--eps-pod", opt->eps_pod, "POD tolerance (default: the case's, docs/cli.md)");
   sub->add_option("--eps-du", opt->eps_du, "Dual cone tolerance eps_DU (default: the case's)");
   sub->add_option("--eps-eim-k", opt->eps_eim_k, "EIM tolerance of kappa (default: the case's)");
   sub->add_option("--eps-eim-g", opt->eps_eim_g, "EIM tolerance of gamma (default: the case's)");

@@ -1,4 +1,4 @@
-// `contactrb sample`: uncertainty quantification with a reduced model (docs/cluster.md,
+// `contactrb sample`: uncertainty quantification with a reduced model (docs/parallel.md,
 // "Sampling"). Draws --n parameter points from --dist (rb/sampling.hpp: point i depends on
 // --seed and i only), answers them with online solves on --jobs threads (rb/online_many.hpp)
 // and, under mpirun, over the ranks (equal blocks, gathered on rank 0), then writes the

@@ -1,5 +1,5 @@
 // `contactrb snapshots`: high-fidelity solves of a case over a parameter set, in parallel,
-// stored in one HDF5 file (docs/user-guide.md, "snapshots"). Failed solves are recorded in
+// stored in one HDF5 file (docs/cli.md, "`contactrb snapshots`"). Failed solves are recorded in
 // the file; the command then exits with code 3 unless --allow-failures.
 #include <unistd.h>
 
@@ -134,7 +134,7 @@ EarlyStart start_early(const SnapshotsOptions& opt, int rank) {
   return e;
 }
 
-// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init nor MPI_Finalize (docs/cluster.md: MPI
+// CONTACTRB_MPI_INIT_OVERLAP=0: no work during MPI_Init nor MPI_Finalize (docs/parallel.md: MPI
 // libraries whose MPI_Init installs memory hooks, e.g. UCX's, race with a thread that allocates
 // meanwhile).
 bool overlap_mpi_init() {
@@ -170,7 +170,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   if (world && overlap) {
     // MPI is done with: the file is written on a thread while the main thread (the only one
     // that calls MPI) finalizes, so MPI_Finalize's handshake with the other ranks, which wait
-    // in it from the end of their work, is off the critical path (docs/cluster.md).
+    // in it from the end of their work, is off the critical path (docs/parallel.md).
     std::future<void> written = std::async(std::launch::async, write);
     world.reset();
     written.get();

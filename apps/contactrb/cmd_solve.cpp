@@ -2,7 +2,7 @@
 // case file (--case-file) at one parameter value. Writes DIR/solution.json,
 // DIR/multipliers.csv, DIR/solution.vtu (Omega(mu) with displacement, contact pressure and
 // stresses), DIR/solution_deformed.vtu (the deformed configuration) and DIR/contact.vtu (the
-// slave boundary with pressure and gap) (docs/user-guide.md; study/solution_fields.hpp). A solve
+// slave boundary with pressure and gap) (docs/file-formats.md, "Command outputs"; study/solution_fields.hpp). A solve
 // that does not converge still writes solution.json (converged = false) and exits with code 3.
 #include <Eigen/Core>
 #include <filesystem>

@@ -73,7 +73,7 @@ void ensure_output_directory(const std::string& dir);
 // work starts); throws contactrb::Error naming --out otherwise.
 void check_output_file(const std::string& path);
 
-// Output safety before any work starts (docs/user-guide.md, "Output files"): throws
+// Output safety before any work starts (docs/file-formats.md, "Output files"): throws
 // contactrb::Error naming both roles when an output is the same file as an input (it would be
 // destroyed) or as another output of the command (one would overwrite the other), and when an
 // output path is a symbolic link, device, FIFO or directory. Paths that do not exist yet are

@@ -1,4 +1,4 @@
-// contactrb: the command-line entry point (docs/user-guide.md). It links the online library
+// contactrb: the command-line entry point (docs/cli.md, "Two executables"). It links the online library
 // only (Eigen, HDF5: contactrb::online), so that `contactrb online --model m.h5 --mu X` (and
 // `contactrb sample`) costs a few milliseconds of process start instead of loading gmsh,
 // OpenCASCADE, FLTK and the sparse solvers (docs/performance.md, "Online query"). Every

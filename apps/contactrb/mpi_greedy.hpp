@@ -1,6 +1,6 @@
 #pragma once
 // `mpirun -np K contactrb offline --greedy ...`: the MPI side of rb::GreedyDistribution
-// (docs/cluster.md). Every rank runs the greedy and builds the same models; each sweeps the
+// (docs/parallel.md). Every rank runs the greedy and builds the same models; each sweeps the
 // estimate over its equal block of the training set (rank_block), MPI_Allgatherv gives every
 // rank all the estimates in point order, so every rank picks the serial run's points; a step's
 // HF solves are shared out (point k of the step on rank k mod K: rank 0 alone with --greedy-batch

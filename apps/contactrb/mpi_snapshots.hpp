@@ -1,6 +1,6 @@
 #pragma once
 // `mpirun -np K contactrb snapshots ...`: the solves of rb::generate_snapshots distributed over
-// the ranks (docs/cluster.md). Rank 0 hands out the indices one at a time to whichever rank
+// the ranks (docs/parallel.md). Rank 0 hands out the indices one at a time to whichever rank
 // asks (solve times vary with mu), solves values itself on a second thread, gathers the results
 // and reports the progress; ranks 1..K-1 solve what they are given. The solves are those of the
 // serial run in its schedule (warm-start waves included), so the set equals the serial one bit

@@ -1,5 +1,5 @@
 #pragma once
-// The MPI world of a run started by mpirun (docs/cluster.md). contactrb uses MPI only when it
+// The MPI world of a run started by mpirun (docs/parallel.md). contactrb uses MPI only when it
 // was built with it (CONTACTRB_HAVE_MPI) and started by mpirun/mpiexec; a plain start runs as
 // before, without initializing MPI. Only the main thread calls MPI (MPI_THREAD_FUNNELED).
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// Waiting for MPI without spinning (docs/cluster.md): OpenMPI's blocking calls spin, which
+// Waiting for MPI without spinning (docs/parallel.md): OpenMPI's blocking calls spin, which
 // takes a core from the solves running next to the waiter (rank 0's own solver thread, the other
 // ranks of the machine). A waiter polls instead (MPI_Iprobe, MPI_Test) and sleeps between polls:
 // first briefly, then each sleep twice the last up to a cap, so that a short wait adds little

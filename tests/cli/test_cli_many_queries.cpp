@@ -1,4 +1,4 @@
-// Many queries (docs/cluster.md): `online --batch --jobs J` prints the serial output, line for
+// Many queries (docs/parallel.md): `online --batch --jobs J` prints the serial output, line for
 // line (all but time_s); `contactrb sample` gives the same files whatever the number of threads
 // (and MPI ranks), its statistics are those of its --points file, its answers those of
 // `online`, and its points follow the distribution asked for. One hertz-b model for the suite.

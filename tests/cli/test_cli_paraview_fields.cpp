@@ -1,4 +1,4 @@
-// The ParaView fields of `contactrb solve` (docs/user-guide.md, "VTU") against the exact
+// The ParaView fields of `contactrb solve` (docs/file-formats.md, "VTU files (ParaView)") against the exact
 // solution of the contact patch test (examples/two-block-patch: uniaxial stress, uniform
 // pressure p = E / (1 - nu^2) * mu / 2, recovered to round-off by LAC), read back with an
 // independent reader (meshio, support/meshio_reader.hpp).

@@ -1,4 +1,4 @@
-# The installed package, used as a user would (docs/user-guide.md, "Using contactrb as a library"):
+# The installed package, used as a user would (docs/cpp-api.md, "Using contactrb from CMake"):
 # install the build to a fresh prefix, configure and build tests/install/consumer against it with
 # find_package(contactrb), and check that its online energy is the CLI's.
 #   cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DCLI=... -DGENERATOR=...

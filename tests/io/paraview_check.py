@@ -1,4 +1,4 @@
-"""ParaView reads and renders what contactrb writes (docs/user-guide.md, "VTU").
+"""ParaView reads and renders what contactrb writes (docs/file-formats.md, "VTU files (ParaView)").
 
 Run by ctest through run_paraview_check.sh (pvpython under xvfb-run):
 

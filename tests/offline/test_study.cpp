@@ -45,7 +45,7 @@ TEST(Study, DefaultTolerancesFollowThePaper) {
   const rb::StudyTolerances b = rb::default_study_tolerances("hertz-b");  // Fig. 13
   EXPECT_DOUBLE_EQ(b.eps_pod, 1e-5);
   EXPECT_DOUBLE_EQ(b.eps_du, 1e-4);
-  // Tighter than the paper's 1e-2 / 1e-3, which keep M^g = 1 (docs/user-guide.md, "report").
+  // Tighter than the paper's 1e-2 / 1e-3, which keep M^g = 1 (docs/cli.md, "`contactrb report`").
   EXPECT_DOUBLE_EQ(b.eps_eim_k, 1e-4);
   EXPECT_DOUBLE_EQ(b.eps_eim_g, 1e-5);
   EXPECT_EQ(b.table_eps_pod, (std::vector<double>{1e-2, 1e-3, 1e-4, 1e-5, 4e-6}));  // Table 4
@@ -68,7 +68,7 @@ TEST(Study, UserCasesGetTheOfflineDefaults) {
   EXPECT_DOUBLE_EQ(t.eps_du, offline.eps_du);
   EXPECT_DOUBLE_EQ(t.eps_eim_k, offline.eps_eim_k);
   EXPECT_DOUBLE_EQ(t.eps_eim_g, offline.eps_eim_g);
-  EXPECT_DOUBLE_EQ(t.eps_eim_k, 1e-5);  // the documented `offline` default (docs/user-guide.md)
+  EXPECT_DOUBLE_EQ(t.eps_eim_k, 1e-5);  // the documented `offline` default (docs/cli.md, "`contactrb offline`")
   EXPECT_DOUBLE_EQ(t.eps_eim_g, 1e-5);
   EXPECT_TRUE(t.relative);  // as `offline`'s defaults
   EXPECT_FALSE(rb::default_study_tolerances("hertz-b").relative);  // the paper's, absolute

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The figure rules of scripts/plot_report.py (docs/user-guide.md, "report"), checked on the
+"""The figure rules of scripts/plot_report.py (docs/cli.md, "`contactrb report`"), checked on the
 matplotlib figures themselves: every axis labelled, sizes with integer ticks, zeros on a log axis
 counted in the panel instead of vanishing, a panel without data saying so, 300-dpi PNG and PDF.
 

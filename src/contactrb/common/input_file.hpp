@@ -2,7 +2,7 @@
 // Checks made before any reader opens an input file: the path names a regular file (a
 // directory, a device such as /dev/zero, a FIFO or a socket could be read without end) whose
 // size is below a limit, so that no reader allocates or loops without bound. The limits can
-// be raised through environment variables (docs/user-guide.md, "Input files").
+// be raised through environment variables (docs/file-formats.md, "Input files").
 #include <cstdint>
 #include <string>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Writing outputs without ever losing a file (docs/user-guide.md, "Output files"):
+// Writing outputs without ever losing a file (docs/file-formats.md, "Output files"):
 // - an output replaces only a regular file: a symbolic link, a device (/dev/null, /dev/full),
 //   a FIFO or a directory at the output path is refused, never followed or replaced;
 // - the content goes to a new temporary file next to the target (created exclusively, so an

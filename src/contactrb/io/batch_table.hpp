@@ -1,6 +1,6 @@
 #pragma once
-// The compact outputs of `contactrb online --batch --format csv|npy` (docs/user-guide.md,
-// "online"): one row per batch line, the numbers of the JSON line and nothing else.
+// The compact outputs of `contactrb online --batch --format csv|npy` (docs/file-formats.md,
+// "Batch input and output"): one row per batch line, the numbers of the JSON line and nothing else.
 //   columns: line, mu_1 .. mu_p, status, iterations, energy, contact_force, estimate
 // CSV: a header line (the parameter names as mu columns), then one line per row; every double
 // with the shortest text that reads back as the same double (std::to_chars), so the numbers

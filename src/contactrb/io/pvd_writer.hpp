@@ -1,7 +1,7 @@
 #pragma once
 // ParaView data collection (.pvd): an XML list of datasets, each with a time step, that
 // ParaView opens as one time series (the "Time" toolbar steps through it). Used for the
-// solutions of `contactrb online --batch ... --out DIR` (docs/user-guide.md, "VTU").
+// solutions of `contactrb online --batch ... --out DIR` (docs/file-formats.md, "Batch input and output").
 #include <string>
 #include <vector>
 

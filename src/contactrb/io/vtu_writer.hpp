@@ -3,7 +3,7 @@
 // segments (a contact boundary), with point, cell and field data. Binary: every array is a
 // block of VTK's "appended raw" data (little-endian, each block preceded by its byte count as
 // UInt64), so a file is exact (no decimal round trip) and about a third of the ASCII size;
-// the XML header stays readable text (docs/user-guide.md, "VTU"). 2D points are written as
+// the XML header stays readable text (docs/file-formats.md, "VTU files (ParaView)"). 2D points are written as
 // 3D with z = 0, 2D vectors as 3-component vectors with z = 0. The cell data of a triangle
 // mesh always holds "body" (Int32, mesh.hpp body ids).
 //

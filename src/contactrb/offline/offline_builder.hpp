@@ -21,13 +21,13 @@ enum class InnerProduct { Energy, H1 };
 const char* to_string(InnerProduct p);  // "energy" | "h1"
 
 // Every tolerance is relative by default, so that a case gives the same sizes whatever its
-// units (docs/user-guide.md, "offline"); *_relative = false makes one absolute.
+// units (docs/cli.md, "`contactrb offline`"); *_relative = false makes one absolute.
 struct OfflineSettings {
   // POD (T2): eps_POD on the singular values: relative, keep sigma_i / sigma_1 > eps_pod;
   // absolute, keep sigma_i > eps_pod (in the units of the M-norm of u_0). A fixed N (>= 1)
   // when pod_modes >= 0 (capped at the numerical rank).
   // 3e-5 relative keeps the N of the former default (1e-3 absolute, sigma_1 = 33 and 35) on
-  // hertz-a and hertz-b (docs/user-guide.md, "offline").
+  // hertz-a and hertz-b (docs/cli.md, "`contactrb offline`").
   double eps_pod = 3e-5;
   bool eps_pod_relative = true;
   int pod_modes = -1;

@@ -1,5 +1,5 @@
 #pragma once
-// Snapshot sets computed in parts, for array jobs without MPI (docs/cluster.md):
+// Snapshot sets computed in parts, for array jobs without MPI (docs/parallel.md):
 // `contactrb snapshots --part k/K` solves part k of K of the parameter values and writes an
 // ordinary snapshot file of them; `contactrb merge` checks the K parts and writes the one file
 // the serial run writes (the same bytes but the timings).

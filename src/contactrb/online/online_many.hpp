@@ -1,5 +1,5 @@
 #pragma once
-// Many-query online solves on threads (docs/cluster.md): `online --batch --jobs J`,
+// Many-query online solves on threads (docs/parallel.md, "Many queries"): `online --batch --jobs J`,
 // `contactrb sample`. Each thread has its own OnlineSolver (it holds per-query workspaces),
 // built from the same model and sizes; the indices are handed out in chunks from one shared
 // counter, and every answer goes to the slot of its index, so the output order is the input

@@ -1,6 +1,6 @@
 #pragma once
 // Sampling the parameter domain for uncertainty quantification (`contactrb sample`,
-// docs/cluster.md): random points drawn from a distribution over the model's domain, and the
+// docs/parallel.md): random points drawn from a distribution over the model's domain, and the
 // statistics and histograms of scalar outputs of their online answers.
 //
 // Point i of a sample is a function of (seed, i) alone (a counter-based generator: splitmix64

@@ -1,5 +1,5 @@
 #pragma once
-// Solutions as files for ParaView (docs/user-guide.md, "VTU"): the fields of a displacement u
+// Solutions as files for ParaView (docs/file-formats.md, "VTU files (ParaView)"): the fields of a displacement u
 // and multipliers lambda on Omega(mu), written by `contactrb solve` (the HF solution) and
 // `contactrb online --out` (the reconstructed reduced solution). For the online case the
 // reference mesh is the one stored in the model file (or, for a reconstruction without one, is

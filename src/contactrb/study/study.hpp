@@ -40,7 +40,7 @@ struct StudyTolerances {
 };
 
 // The tolerances used for a built-in case (the paper's where they make sense with our scalings;
-// docs/user-guide.md, "report", lists them and why). Any other case name gets the defaults
+// docs/cli.md, "`contactrb report`", lists them and why). Any other case name gets the defaults
 // of StudyTolerances (those of `contactrb offline`); so does a case file whatever its name
 // (`contactrb report --case-file` does not call this).
 StudyTolerances default_study_tolerances(const std::string& case_name);
