@@ -79,7 +79,7 @@ class CliFileSafety : public ::testing::Test {
 std::unique_ptr<contactrb::test::TempDir> CliFileSafety::dir_;
 std::string CliFileSafety::snapshots_, CliFileSafety::model_;
 
-// Row 8: a batch line with the byte 0xFF ended the run with "internal error: invalid UTF-8"
+// A batch line with the byte 0xFF ended the run with "internal error: invalid UTF-8"
 // and the lines after it were never answered.
 TEST_F(CliFileSafety, BatchLineWithInvalidBytesIsAnsweredAndTheRestGoOn) {
   const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(data("batch/bad_bytes.txt")));
@@ -100,7 +100,7 @@ TEST_F(CliFileSafety, BatchLineWithInvalidBytesIsAnsweredAndTheRestGoOn) {
   EXPECT_TRUE(answers[3].contains("energy")) << lines[3];
 }
 
-// Row 12 (batch from a pipe): /dev/zero has no newline; the line is bounded (never buffered
+// Batch from a pipe: /dev/zero has no newline; the line is bounded (never buffered
 // whole), answered by one error line, and the next line is still answered.
 TEST_F(CliFileSafety, EndlessBatchLineFromStdinIsBounded) {
   const std::string input = dir_->file("zeros_then_value.txt");
@@ -124,7 +124,7 @@ TEST_F(CliFileSafety, BatchFileMustBeARegularFile) {
                     {"batch file", "is a directory"});
 }
 
-// Row 12: /dev/zero as a mesh was read without end; a file above the input limit is refused
+// /dev/zero as a mesh was read without end; a file above the input limit is refused
 // before it is read, naming the variable that raises the limit.
 TEST(CliInputBounds, MeshMustBeARegularFileBelowTheLimit) {
   const contactrb::test::TempDir dir("input_bounds");
@@ -150,7 +150,7 @@ TEST(CliInputBounds, MeshMustBeARegularFileBelowTheLimit) {
   expect_user_error_words(run_cli("solve --case-file /dev/zero --mu 0.02" + out), {"case file '/dev/zero'", "not a regular file"});
 }
 
-// Row 9: an output equal to an input destroyed the input.
+// An output equal to an input destroyed the input.
 TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
   const contactrb::test::TempDir dir("out_is_input");
   const fs::path s = dir.path() / "s.h5";
@@ -190,7 +190,7 @@ TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
   EXPECT_EQ(read_bytes(msh), read_bytes(data("msh/two_squares.msh")));
 }
 
-// Row 10: the model named like its sibling offline.json or snapshots.h5 was overwritten by it,
+// The model named like its sibling offline.json or snapshots.h5 was overwritten by it,
 // and "wrote" was printed for both.
 TEST(CliOutputSafety, ModelNamedLikeItsSiblingIsRefused) {
   const contactrb::test::TempDir dir("sibling");
@@ -202,7 +202,7 @@ TEST(CliOutputSafety, ModelNamedLikeItsSiblingIsRefused) {
   }
 }
 
-// Row 11: a symbolic link, FIFO or device at the output path was replaced by a regular file
+// A symbolic link, FIFO or device at the output path was replaced by a regular file
 // (as root, /dev/null itself; offline.json then went to /dev).
 TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
   const contactrb::test::TempDir dir("special_out");
@@ -242,7 +242,7 @@ TEST(CliOutputSafety, LinksDevicesAndFifosAreNeverReplaced) {
   EXPECT_EQ(read_bytes(target), "keep me");
 }
 
-// Row 13: two solve runs to the same --out at once left solution.vtu of one beside the json
+// Two solve runs to the same --out at once left solution.vtu of one beside the json
 // and csv of the other (1 in 10). Each file set must be that of one run.
 TEST(CliOutputSafety, ConcurrentRunsToOneDirectoryNeverMix) {
   const contactrb::test::TempDir dir("concurrent");
@@ -275,7 +275,7 @@ TEST(CliOutputSafety, ConcurrentRunsToOneDirectoryNeverMix) {
   }
 }
 
-// Row 14: temporary files of a killed run stayed forever; the next run to the same target
+// Temporary files of a killed run stayed forever; the next run to the same target
 // removes those of dead processes and leaves those of live ones.
 TEST(CliOutputSafety, StaleTemporaryFilesOfDeadRunsAreRemoved) {
   const contactrb::test::TempDir dir("stale");
@@ -292,7 +292,7 @@ TEST(CliOutputSafety, StaleTemporaryFilesOfDeadRunsAreRemoved) {
   EXPECT_TRUE(fs::exists(live));
 }
 
-// Row 14: control characters of the input were echoed raw (an escape sequence cleared the
+// Control characters of the input were echoed raw (an escape sequence cleared the
 // terminal).
 TEST(CliMessages, ControlCharactersAreEscaped) {
   const contactrb::test::TempDir dir("control");
@@ -302,14 +302,14 @@ TEST(CliMessages, ControlCharactersAreEscaped) {
   EXPECT_EQ(r.err.find('\x07'), std::string::npos);
 }
 
-// Row 14: the out-of-domain message rounded mu to the bound ("0.45 is outside [0.15, 0.45]").
+// The out-of-domain message rounded mu to the bound ("0.45 is outside [0.15, 0.45]").
 TEST(CliMessages, OutOfDomainValueIsPrintedExactly) {
   const contactrb::test::TempDir dir("domain");
   expect_user_error_words(run_cli("solve --case hertz-a --mu 0.4500000001 --out " + shell_quote(dir.file("o"))),
                     {"mu = 0.4500000001", "outside the domain [0.15, 0.45]"});
 }
 
-// Row 14: `mesh` wrote a mesh whose slave group is empty, which `solve` then refused.
+// `mesh` wrote a mesh whose slave group is empty, which `solve` then refused.
 TEST(CliMessages, MeshWithAnEmptySlaveGroupIsRefused) {
   const contactrb::test::TempDir dir("empty_slave");
   const CliResult r = run_cli("mesh --msh " + shell_quote(data("msh/empty_slave.msh")) + " --out " + shell_quote(dir.file("m")));
@@ -317,7 +317,7 @@ TEST(CliMessages, MeshWithAnEmptySlaveGroupIsRefused) {
   EXPECT_FALSE(fs::exists(dir.path() / "m" / "mesh.msh"));
 }
 
-// Row 14: `--n -1` was taken as "the maximum" while `--mg -3` was refused: every negative size
+// `--n -1` was taken as "the maximum" while `--mg -3` was refused: every negative size
 // given is refused, leaving the flag out asks for the maximum.
 TEST_F(CliFileSafety, NegativeSizesAreRefusedAlike) {
   const std::string m = "online --model " + shell_quote(model_) + " --mu 0.3";

@@ -73,7 +73,7 @@ std::string with_free_dof(const contactrb::test::TempDir& dir, const std::string
 
 }  // namespace
 
-// Row 1: free_dofs out of range, negative or duplicated made `offline --snapshots` die of
+// Free_dofs out of range, negative or duplicated made `offline --snapshots` die of
 // SIGSEGV or "double free or corruption" (Eigen setFromTriplets with unchecked indices).
 TEST_F(CliIntegrity, DamagedFreeDofsGiveOneErrorAndNoModel) {
   struct Edit {
@@ -91,7 +91,7 @@ TEST_F(CliIntegrity, DamagedFreeDofsGiveOneErrorAndNoModel) {
   }
 }
 
-// Row 14 (and item 1): each file kind says what it is when given for the other.
+// Each file kind says what it is when given for the other.
 TEST_F(CliIntegrity, AFileOfTheOtherKindIsNamed) {
   expect_one_line_user_error(run_cli("online --model " + shell_quote(snapshots_) + " --mu 0.3"),
                     "'" + snapshots_ + "': a contactrb snapshot file, not a reduced model");
@@ -99,7 +99,7 @@ TEST_F(CliIntegrity, AFileOfTheOtherKindIsNamed) {
                     "'" + model_ + "' is a contactrb reduced model file, not a snapshot file");
 }
 
-// Row 6: CLI11 turned an empty value into 0, and strtod turns 1e-400 into 0: both solved at
+// CLI11 turned an empty value into 0, and strtod turns 1e-400 into 0: both solved at
 // mu = 0 (outside hertz-a's domain here, but inside a domain that contains 0 they would be
 // silent wrong answers).
 TEST_F(CliIntegrity, EmptyAndUnderflowingParameterValuesAreRefused) {
@@ -117,7 +117,7 @@ TEST_F(CliIntegrity, EmptyAndUnderflowingParameterValuesAreRefused) {
   EXPECT_FALSE(fs::exists(dir_->file("solve")));
 }
 
-// Row 7: a zero step or a repeated value was accepted, and the model answered a contact force
+// A zero step or a repeated value was accepted, and the model answered a contact force
 // of 65.4 where the HF solve gives 1.47, with converged = true.
 TEST_F(CliIntegrity, RepeatedTrainingValuesAreRefused) {
   const std::string h5 = " --out " + shell_quote(dir_->file("r.h5"));
@@ -156,7 +156,7 @@ TEST_F(CliIntegrity, DegenerateOrOverflowingCaseDataAreRefused) {
   EXPECT_FALSE(fs::exists(dir_->file("d")));
 }
 
-// Row 6 beyond --mu: every numeric option read '' as 0 (`--eps-pod ''` built a model at
+// Beyond --mu, every numeric option read '' as 0 (`--eps-pod ''` built a model at
 // eps_pod = 0) and '1e-400' as 0. Both are usage errors now (CLI11's validation code, 105).
 TEST_F(CliIntegrity, EmptyAndUnderflowingNumericOptionsAreUsageErrors) {
   const auto expect_usage_error = [](const CliResult& r, const std::string& words) {

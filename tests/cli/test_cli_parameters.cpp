@@ -1,4 +1,4 @@
-// p parameters on the command line (docs/user-guide.md): --mu as positional values
+// p parameters on the command line (docs/concepts.md, "Parameter points"): --mu as positional values
 // or name=value pairs, batch lines with p values or JSON objects, and one clear error for each
 // mistake (unknown name, missing value, wrong count).
 #include <gtest/gtest.h>

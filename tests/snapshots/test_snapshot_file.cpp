@@ -291,7 +291,7 @@ void put_double_attribute(const std::string& path, const char* object, const cha
 
 }  // namespace
 
-// The row 1: free_dofs out of range, negative or repeated made `offline` crash in
+// Free_dofs out of range, negative or repeated made `offline` crash in
 // Eigen's setFromTriplets. Every such edit is now caught by the checksum, naming the file.
 TEST(SnapshotFile, EditedIndicesAreCaughtByTheChecksum) {
   TempDir dir("edited_indices");
