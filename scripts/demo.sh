@@ -9,9 +9,12 @@ source scripts/install-deps.sh
 
 build_dir=${CONTACTRB_BUILD_DIR:-build}
 contactrb_install_deps
-# Same build/ configuration as scripts/test.sh; only the executable is built here.
+# Same build/ configuration as scripts/test.sh; the executables and, when pybind11 and the
+# Python headers are there, the Python module (PYTHONPATH=build/python: docs/python.md).
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
-cmake --build "$build_dir" -j "$(contactrb_jobs)" --target contactrb
+targets=(contactrb)
+if cmake --build "$build_dir" --target help | grep -q '^\.\.\. contactrb_python$'; then targets+=(contactrb_python); fi
+cmake --build "$build_dir" -j "$(contactrb_jobs)" --target "${targets[@]}"
 
 "$build_dir/apps/contactrb/contactrb" --version
 # The main job: hertz-b end to end (training snapshots, offline with CPG, evaluation of the

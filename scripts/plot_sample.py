@@ -1,10 +1,15 @@
 #!/usr/bin/python3
 """Figure of `contactrb sample` (docs/parallel.md, "Sampling").
 
-Usage: /usr/bin/python3 scripts/plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG
+Usage: /usr/bin/python3 scripts/plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG [INPUT]
 
 One panel per output (contact force, peak pressure, max gap, min gap, energy, estimate,
-iterations): its histogram, with the mean and the 5 % and 95 % quantiles marked.
+iterations): its histogram, with the mean and the 5 % and 95 % quantiles marked, the
+quantity and its unit on the x axis. INPUT (the parameter distribution and the number of
+points, as `contactrb sample` describes them) is the figure's title.
+
+Units: contactrb has none of its own; every output is in the units of the case's data (the
+Young's moduli E, the lengths of the mesh), per unit thickness in plane strain.
 
 Exit status: 0 on success, 1 with one line "plot_sample: error: ..." on stderr for a missing
 or malformed input, 2 when matplotlib or numpy cannot be imported.
@@ -40,9 +45,21 @@ def read_rows(path, columns):
     return rows
 
 
+# The x-axis label of each output of `contactrb sample` (docs/cli.md, "sample").
+AXIS_LABELS = {
+    "contact_force": "contact force [E x length] (per unit thickness)",
+    "peak_pressure": "peak contact pressure [E]",
+    "max_gap": "largest normal gap [length]",
+    "min_gap": "smallest normal gap [length]",
+    "energy": "energy 1/2 u'Au - f'u [E x length^2] (per unit thickness)",
+    "estimate": "error estimate of |u - u_rb|_A [sqrt(E) x length]",
+    "iterations": "online iterations [count]",
+}
+
+
 def main(argv):
-    if len(argv) != 4:
-        fail("usage: plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG")
+    if len(argv) not in (4, 5):
+        fail("usage: plot_sample.py STATS_CSV HISTOGRAMS_CSV OUT_PNG [INPUT]")
     stats = read_rows(argv[1], ["output", "count", "mean", "q05", "q95"])
     hist = read_rows(argv[2], ["output", "lo", "hi", "count"])
     if not stats:
@@ -66,12 +83,15 @@ def main(argv):
                 if math.isfinite(value) and int(s["count"]) > 0:
                     ax.axvline(value, color="#c44e52", linestyle=style, linewidth=1, label=key)
             ax.set_title("%s (%s values)" % (name.replace("_", " "), s["count"]))
-            ax.set_ylabel("count")
+            ax.set_xlabel(AXIS_LABELS.get(name, name.replace("_", " ")))
+            ax.set_ylabel("number of points")
             ax.legend(fontsize=7)
     except ValueError as exc:
         fail("malformed number in the CSV files: %s" % exc)
     for ax in list(axes.flat)[len(stats):]:
         ax.axis("off")
+    if len(argv) == 5:
+        fig.suptitle(argv[4], fontsize=10)
     fig.tight_layout()
     try:
         fig.savefig(argv[3], dpi=100)

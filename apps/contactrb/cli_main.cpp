@@ -13,6 +13,7 @@
 #include "cli_main.hpp"
 #include "commands.hpp"
 #include "mpi_world.hpp"
+#include "usage_check.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/common/version.hpp"
@@ -55,6 +56,7 @@ int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI:
   const std::vector<Command> commands = add_commands(app);
   refuse_empty_numbers(app, CLI::Validator(empty_or_underflow, "", "number"));
   try {
+    check_names(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (on_parse_error) on_parse_error();

@@ -38,6 +38,24 @@ namespace contactrb::app {
 
 namespace {
 
+// The figure's title: the distribution of each parameter, as sampled (sampling.hpp), and n.
+std::string input_description(const std::vector<cases::ParameterSpec>& parameters, const rb::SampleDistribution& dist,
+                              std::size_t n, std::uint64_t seed) {
+  std::ostringstream os;
+  os << std::setprecision(6) << n << " points (seed " << seed << "): ";
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    const cases::ParameterSpec& p = parameters[k];
+    os << (k == 0 ? "" : ", ") << p.name;
+    if (dist.kind == rb::SampleDistribution::Kind::Uniform) {
+      os << " uniform on [" << p.min << ", " << p.max << "]";
+    } else {
+      os << " normal (mean " << dist.mean[k] << ", sd " << dist.sd[k] << ") truncated to [" << p.min << ", " << p.max
+         << "]";
+    }
+  }
+  return os.str();
+}
+
 constexpr int kExitNotConverged = 3;  // as `contactrb online`
 
 struct SampleOptions {
@@ -233,7 +251,7 @@ int run_sample(const SampleOptions& opt) {
     hist.write(hist_path);
     if (!opt.points.empty()) write_points(opt.points, model, dist, opt.seed, out, with_peak, opt.gaps);
     if (!script.empty()) {
-      run_python_script(script, {opt.out, hist_path, png_path},
+      run_python_script(script, {opt.out, hist_path, png_path, input_description(model.parameters, dist, n, opt.seed)},
                         "the statistics are in " + opt.out + " and " + hist_path + " (or use --no-plot)");
     }
   }

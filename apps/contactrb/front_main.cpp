@@ -62,9 +62,11 @@ std::filesystem::path full_executable() {
 [[noreturn]] void run_full(char** argv) {
   const std::filesystem::path full = full_executable();
   ::execv(full.c_str(), argv);  // argv[0] unchanged: the usage lines name the program as typed
-  std::cerr << "contactrb: internal error: cannot run " << full.string() << ": " << std::strerror(errno)
-            << " (contactrb-full is installed with contactrb)\n";
-  std::exit(2);
+  // A deployment error, not a bug: exit code 1 like any error the user can fix.
+  std::cerr << "contactrb: error: cannot run " << full.string() << ": " << std::strerror(errno)
+            << " (every command but online and sample runs contactrb-full, installed with contactrb in "
+            << CONTACTRB_FULL_FROM_BIN << "/ next to bin/: reinstall contactrb)\n";
+  std::exit(1);
 }
 
 }  // namespace

@@ -33,7 +33,8 @@ double parse_number(const std::string& raw, const std::string& what) {
   errno = 0;
   char* end = nullptr;
   const double mu = std::strtod(text.c_str(), &end);
-  require(end != text.c_str() && *end == '\0', what + "'" + text + "' is not a number");
+  // The whole text: strtod stops at an embedded NUL byte, which would accept "0.3\0junk".
+  require(end != text.c_str() && end == text.c_str() + text.size(), what + "'" + text + "' is not a number");
   require(!std::isnan(mu), what + "'" + text + "' is not a number (NaN)");
   require(!std::isinf(mu), what + "'" + text + "' is not finite");
   // strtod signals both ends of the range with ERANGE: an overflow (already refused as

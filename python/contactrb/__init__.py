@@ -17,7 +17,19 @@ Every contactrb error is raised as contactrb.Error (a RuntimeError) with the mes
 command line prints; non-convergence is a status (converged, status), never an exception.
 """
 
-from ._contactrb import (  # noqa: F401
+try:
+    from . import _contactrb  # noqa: F401
+except ImportError as _missing:
+    import os as _os
+
+    raise ImportError(
+        "contactrb: the compiled part of the module (_contactrb) is not in "
+        + _os.path.dirname(_os.path.abspath(__file__))
+        + ": build it with `cmake --build build --target contactrb_python` "
+        "(./scripts/demo.sh and ./scripts/test.sh build it too; docs/python.md)"
+    ) from _missing
+
+from ._contactrb import (  # noqa: F401,E402
     STATUS,
     Case,
     Error,

@@ -100,6 +100,26 @@ TEST_F(CliFileSafety, BatchLineWithInvalidBytesIsAnsweredAndTheRestGoOn) {
   EXPECT_TRUE(answers[3].contains("energy")) << lines[3];
 }
 
+// strtod stops at a NUL byte: "0.3<NUL>junk" must not be read as 0.3, and a line holding a NUL
+// is quoted with \x00, not cut there.
+TEST_F(CliFileSafety, BatchLineWithANulByteIsABadLineQuotedWholly) {
+  const std::string input = dir_->file("nul_lines.txt");
+  const std::string nul(1, '\0');
+  write_bytes(input, "0.3" + nul + "junk\n" + nul + "\n0.3\n");
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(input));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("2 of 3 batch lines"), std::string::npos) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  const json first = json::parse(lines[0]);
+  ASSERT_TRUE(first.contains("error")) << lines[0];
+  EXPECT_NE(first.at("error").get<std::string>().find("0.3\\x00junk' is not a number"), std::string::npos) << lines[0];
+  const json second = json::parse(lines[1]);
+  ASSERT_TRUE(second.contains("error")) << lines[1];
+  EXPECT_NE(second.at("error").get<std::string>().find("'\\x00' is not a number"), std::string::npos) << lines[1];
+  EXPECT_TRUE(json::parse(lines[2]).contains("energy")) << lines[2];
+}
+
 // Batch from a pipe: /dev/zero has no newline; the line is bounded (never buffered
 // whole), answered by one error line, and the next line is still answered.
 TEST_F(CliFileSafety, EndlessBatchLineFromStdinIsBounded) {

@@ -81,3 +81,19 @@ def test_hf_non_convergence_is_a_status_not_an_exception():
     assert not r.converged
     assert r.status == "max_iterations"
     assert r.message
+
+
+def test_an_unbuilt_extension_is_an_import_error_that_says_how_to_build_it(tmp_path):
+    # The package as configure leaves it before the build: __init__.py without _contactrb.
+    package = tmp_path / "contactrb"
+    package.mkdir()
+    package.joinpath("__init__.py").write_text(open(contactrb.__file__).read())
+    code = "import contactrb"
+    import subprocess
+    import sys
+
+    r = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env={"PYTHONPATH": str(tmp_path)},
+                       capture_output=True, text=True)
+    assert r.returncode != 0
+    assert "ImportError: contactrb: the compiled part of the module (_contactrb) is not in" in r.stderr
+    assert "cmake --build build --target contactrb_python" in r.stderr
