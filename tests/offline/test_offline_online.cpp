@@ -503,6 +503,31 @@ TEST(OfflineBuilder, RefusesAModelWithoutEIMFunctions) {
 // kappa interpolation (M^k = 0, as an older build wrote) fails at the first step; u_hat and
 // lambda_hat are zero, energy and force those of u_hat = 0. Run twice on each iteration so that
 // a reused heap block would show up.
+// With supremizers, N below N_max cuts them (they are the last basis vectors). R > N then leaves
+// the reduced pressure undetermined (Q = D A_hat^-1 D' has rank <= N < R): a non-converged
+// status naming the sizes, never "converged"; the same R with the full N is an answer.
+TEST(OnlineSolver, ATruncationThatLeavesThePressureUndeterminedIsNotConverged) {
+  const SnapshotSet& set = snapshots("hertz-a");
+  const OfflineResult off = truncated_model(set, "hertz-a");
+  const auto& m = off.model;
+  ASSERT_GT(m.N_supremizers, 0);
+  ASSERT_GE(m.R_max, 2);
+  const double mu = set.snapshots[1].mu(0);
+  OnlineSolver cut(m, OnlineSizes{1, m.R_max, -1, -1});
+  const contactrb::rb::OnlineSolution s = cut.solve(mu);
+  EXPECT_EQ(s.status, contactrb::solve::KacanovStatus::StepFailed);
+  EXPECT_FALSE(s.converged());
+  EXPECT_NE(s.message.find("the reduced pressure is not determined at N = 1, R = " + std::to_string(m.R_max)),
+            std::string::npos)
+      << s.message;
+  EXPECT_FALSE(s.estimate.available);
+  OnlineSolver full(m, OnlineSizes{-1, m.R_max, -1, -1});
+  EXPECT_TRUE(full.solve(mu).converged());
+  // R <= N with supremizers cut: determined (the pair keeps a positive inf-sup constant).
+  OnlineSolver fewer(m, OnlineSizes{m.N_max - 1, 1, -1, -1});
+  EXPECT_TRUE(fewer.solve(mu).converged());
+}
+
 TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   const SnapshotSet& set = snapshots("hertz-a");
   OfflineResult off = truncated_model(set, "hertz-a");

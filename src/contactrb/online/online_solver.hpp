@@ -155,6 +155,11 @@ class OnlineSolver {
   // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
   // training point in coordinates scaled to [0, 1] per parameter.
   Eigen::VectorXd interpolated_guess(const cases::Mu& mu) const;
+  // The relative inf-sup constant of the last step's reduced pair, sqrt(lambda_min(Q) /
+  // lambda_max(Q)) with Q = D A_hat^-1 D' (R x R): 0 when some pressure generator is invisible to
+  // V_N (R > N, or the supremizer that sees it cut by the N truncation).
+  double relative_inf_sup() const;
+  std::string undetermined_message(double beta) const;
 
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
@@ -179,6 +184,10 @@ class OnlineSolver {
   Eigen::MatrixXd XiQ_gamma_;            // R x Mg
   Eigen::MatrixXd Xi_;                   // R_kept x R
   double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
+  // N below the model's N_max cuts supremizers (they are the last basis vectors): the pair
+  // (V_N, span Xi_R) may then lose its inf-sup stability, and lambda_hat its uniqueness.
+  bool check_inf_sup_ = false;
+  int N_max_ = 0, N_supremizers_ = 0;
   std::vector<int> kept_rows_;
   std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
   std::vector<int> lac_rows_, lac_positions_;           // LAC: the magic rows, their slave chain positions
