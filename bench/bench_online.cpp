@@ -1,4 +1,4 @@
-// Online query time (issue 6 bench target: median < 100 us per query on hertz-b).
+// Online query time (target: median < 100 us per query on hertz-b).
 // Per case (hertz-a, hertz-b, ring-block): HF snapshots on the training and verification sets
 // (HF settings: the paper's alpha = 0.3, eps_KA = 1e-3), a reduced model at the paper's
 // tolerances (eps_POD 1e-5, eps_DU 1e-4, eps_EIM^k 1e-2, eps_EIM^g 1e-3, CPG; "/paper") and

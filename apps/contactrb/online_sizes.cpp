@@ -10,8 +10,8 @@
 namespace contactrb::app {
 
 rb::OnlineSizes checked_size_flags(const SizeFlags& f) {
-  // -1 used to slip through as "the maximum" while -3 was refused: every negative value given
-  // is refused; leaving the flag out is the way to ask for the maximum.
+  // Every negative value given is refused (-1 is not "the maximum"); leaving the flag out is
+  // the way to ask for the maximum.
   const auto size = [](const char* flag, const std::optional<int>& v, int min) {
     if (!v) return -1;
     require(*v >= min, std::string(flag) + " must be >= " + std::to_string(min) + " (got " + std::to_string(*v) +

@@ -1,4 +1,4 @@
-// A posteriori error estimate (issue [A], item 3; error_estimate.hpp, docs/offline-online.md):
+// A posteriori error estimate (error_estimate.hpp, docs/offline-online.md):
 //  - the residual dual norm, violation and complementarity of the offline/online split equal the
 //    same quantities computed here on the HF DOFs (residual assembled from the affine terms, the
 //    EIM bases recomputed from the snapshots, X^-1 applied by a sparse Cholesky solve), for

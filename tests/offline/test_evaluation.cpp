@@ -1,4 +1,4 @@
-// Evaluation of a reduced model against the HF solver (issue 6, items 2-4; paper (64)-(66)):
+// Evaluation of a reduced model against the HF solver (paper (64)-(66)):
 // an untruncated hertz-a model reproduces the HF solutions at its training values to solver
 // tolerance; a truncated model has larger errors, and its e_ener and e_displ agree with values
 // computed here from independently assembled A(mu), f(mu), the H1 product and the training

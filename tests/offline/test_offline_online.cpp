@@ -1,4 +1,4 @@
-// Offline builder and online solver (issue 6, item 1): with nothing truncated the online
+// Offline builder and online solver: with nothing truncated the online
 // solution at a training mu reproduces the HF snapshot; leading sub-blocks equal a model built
 // at those sizes; truncation errors fall as the sizes grow; the model holds no HF-size array.
 #include <gtest/gtest.h>
@@ -476,8 +476,8 @@ TEST(OnlineSolver, RejectsSizesAboveTheMaximaAndMuOutsideTheDomain) {
   EXPECT_THROW(OnlineSolver{broken}, contactrb::Error);
 }
 
-// Issue [A] item 5.2: huge EIM tolerances gave M^k = M^g = 0, the model was written, and
-// `contactrb online` printed lambda_hat and contact_force made of uninitialized memory.
+// Huge EIM tolerances give M^k = M^g = 0: such a model is refused, not written (online it
+// would answer lambda_hat and contact_force from uninitialized memory).
 TEST(OfflineBuilder, RefusesAModelWithoutEIMFunctions) {
   const SnapshotSet& set = snapshots("hertz-a");
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
@@ -535,10 +535,10 @@ TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   }
 }
 
-// Issue [R] item 2: a result whose energy or force is not finite is never "converged". The
-// lift energy 1/2 u_D' A u_D enters only the energy, so a model whose lift_AA overflowed (inf)
-// solves exactly as before and converges: before the check it was reported as converged with
-// energy inf (JSON null). A right-hand side scaled by 1e300 makes u_hat itself overflow the
+// A result whose energy or force is not finite is never "converged". The lift energy
+// 1/2 u_D' A u_D enters only the energy, so a model whose lift_AA overflowed (inf) solves and
+// converges otherwise: only this check keeps energy inf (JSON null) from passing as converged.
+// A right-hand side scaled by 1e300 makes u_hat itself overflow the
 // geometry: a failure status too.
 TEST(OnlineSolver, NonFiniteResultsAreFlaggedNeverConverged) {
   const SnapshotSet& set = snapshots("hertz-a");
@@ -587,9 +587,9 @@ TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
 }
 
 // The builder is a library entry point: a set that did not come through read_snapshot_file is
-// checked before any index is used (issue [R] row 1: an out-of-range free DOF crashed in
-// setFromTriplets), and a repeated training value is refused (row 7: a set of one repeated
-// value gave a model that answered a contact force 45 times the HF one, "converged").
+// checked before any index is used (an out-of-range free DOF would crash setFromTriplets), and a
+// repeated training value is refused (a set of one repeated value gives a model that answers a
+// contact force 45 times the HF one, "converged").
 TEST(OfflineBuilder, RefusesBadIndicesAndRepeatedTrainingValues) {
   const SnapshotSet good = snapshots("hertz-a");
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");

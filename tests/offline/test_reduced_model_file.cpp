@@ -225,7 +225,7 @@ void set_complete(const std::string& path, const std::string& object, int value)
   contactrb::seal_file(path);  // a crafted file: the reader's checks behind the seal
 }
 
-// Issue [R] row 14: `complete = 0` was accepted (only its presence was checked).
+// `complete` must be 1: 0 (or any other value) is an unfinished write, not only a missing mark.
 TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
   contactrb::test::TempDir dir("reduced_model_complete");
   const std::string path = dir.file("model.h5");
@@ -245,7 +245,7 @@ TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
   }
 }
 
-// Issue [R] row 14: a snapshot file given as a model said "missing dataset 'format'".
+// A snapshot file given as a model is named as such (not "missing dataset 'format'").
 TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
   contactrb::test::TempDir dir("reduced_model_snapshots");
   const std::string path = dir.file("snapshots.h5");

@@ -1,4 +1,4 @@
-// The online library alone (issue [D] items 1 and 5, docs/rb.md "Layout"): this executable links
+// The online library alone (docs/rb.md, "Layout"): this executable links
 // contactrb::online and GoogleTest only (tests/CMakeLists.txt; check_link_closure.sh checks
 // what it loads). A model made by the suite's CLI (snapshots and offline, contactrb-full) is
 // read and answered here, and the answer must be the full executable's bit for bit; the light

@@ -1,6 +1,6 @@
 #pragma once
-// Weak greedy sampling of a training set on the a posteriori error estimate (issue [B] item 4;
-// docs/offline-online.md, "Greedy sampling"). pyMOR's weak_greedy protocol (STYLE.md): each
+// Weak greedy sampling of a training set on the a posteriori error estimate
+// (docs/offline-online.md, "Greedy sampling"). pyMOR's weak_greedy protocol (STYLE.md): each
 // step *evaluates* the estimate of the current reduced model over the whole training set
 // (online solves only) and *extends* the snapshot set by one HF solve where the relative
 // estimate is largest. The reduced model of a step is rb::build_reduced_model on the snapshots
