@@ -44,6 +44,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {

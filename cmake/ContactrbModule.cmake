@@ -100,10 +100,24 @@ function(contactrb_check_link_closure target)
   endforeach()
 endfunction()
 
-# contactrb_test(<module> DEPS <targets...>): one GoogleTest executable test_<module>
-# from tests/<module>/*.cpp, registered with CTest (labels: the module name).
+# contactrb_label_slow(<test list> <label>): the tests of a gtest_discover_tests TEST_LIST get the
+# labels <label> and `slow`. gtest_discover_tests passes one label only (it splits a list value),
+# so both are set by a CTest include file read after the discovered tests (TEST_INCLUDE_FILES
+# are read in order).
+function(contactrb_label_slow test_list label)
+  set(include_file "${CMAKE_CURRENT_BINARY_DIR}/${test_list}_labels.cmake")
+  file(WRITE "${include_file}" "foreach(t IN LISTS ${test_list})\n"
+                               "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${label};slow\")\n"
+                               "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${include_file}")
+endfunction()
+
+# contactrb_test(<module> DEPS <targets...> [SLOW <patterns...>]): one GoogleTest executable
+# test_<module> from tests/<module>/*.cpp, registered with CTest (labels: the module name). The
+# tests matched by a SLOW pattern (--gtest_filter syntax: Suite.Test, Suite.*) get the label
+# `slow` too (tests/CMakeLists.txt).
 function(contactrb_test module)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;SLOW" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${module}/*.cpp")
   if(NOT sources)
     return()
@@ -114,5 +128,13 @@ function(contactrb_test module)
   target_compile_definitions(test_${module} PRIVATE
     CONTACTRB_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     CONTACTRB_CLI="$<TARGET_FILE:contactrb>")
-  gtest_discover_tests(test_${module} PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
+  if(ARG_SLOW)
+    list(JOIN ARG_SLOW ":" slow)
+    gtest_discover_tests(test_${module} TEST_FILTER "-${slow}" PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
+    gtest_discover_tests(test_${module} TEST_FILTER "${slow}" TEST_LIST test_${module}_slow
+                         PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
+    contactrb_label_slow(test_${module}_slow ${module})
+  else()
+    gtest_discover_tests(test_${module} PROPERTIES LABELS ${module} DISCOVERY_TIMEOUT 60)
+  endif()
 endfunction()

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "mpi_world.hpp"
 
 namespace contactrb::app {

@@ -33,7 +33,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/offline/snapshot_parts.hpp"
 

@@ -37,7 +37,7 @@
 #include "contactrb/io/pvd_writer.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/io/batch_table.hpp"
 
 namespace contactrb::app {

@@ -13,7 +13,7 @@
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/study/solution_fields.hpp"
 
 namespace contactrb::app {

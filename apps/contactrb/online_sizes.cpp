@@ -5,7 +5,7 @@
 #include "commands.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::app {
 

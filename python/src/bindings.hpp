@@ -33,7 +33,7 @@
 #include "contactrb/online/online_many.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/study/solution_fields.hpp"
 

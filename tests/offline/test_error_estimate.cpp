@@ -29,6 +29,7 @@
 #include "contactrb/offline/error_estimate.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {

@@ -20,6 +20,7 @@
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/model_check.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {

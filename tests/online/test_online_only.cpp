@@ -22,7 +22,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 // Two visitors with one interface, so that a file's layout is written once (a template
-// `visit(V&, ...)`) and read back by the same code: FieldWriter writes each field, FieldReader
-// reads it into the same reference. Both add every field to a FieldChecksum under its path
+// `visit(V&, ...)`) and read back by the same code: FieldWriter writes each field (from a const
+// reference too, so a layout templated on the record's constness writes without a copy),
+// FieldReader reads it into the same reference. Both add every field to a FieldChecksum under its path
 // ("/meta/case_name", "/primal/A_hat"), kind and shape; the descriptive attributes
 // (description, shape_meaning, units) are not fields. Layout rules: hdf5_fields.hpp.
 // Internal to io/: include only from io/*.cpp.
@@ -41,48 +42,48 @@ class FieldWriter {
   Handle group(const Loc& parent, const std::string& name, const std::string& description) {
     return create_group(parent.id, name, description);
   }
-  void str(const Loc& loc, const std::string& name, std::string& s) {
+  void str(const Loc& loc, const std::string& name, const std::string& s) {
     write_string_attribute(loc.id, name, s);
     sum_.add(loc.field(name), field_kind::kString, {s.size()}, s.data(), s.size());
   }
-  void num(const Loc& loc, const std::string& name, double& v) {
+  void num(const Loc& loc, const std::string& name, const double& v) {
     write_number_attribute(loc.id, name, v, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
     sum_.add(loc.field(name), field_kind::kDouble, {1}, &v, sizeof v);
   }
-  void integer(const Loc& loc, const std::string& name, int& v) {
+  void integer(const Loc& loc, const std::string& name, const int& v) {
     write_number_attribute(loc.id, name, v, H5T_STD_I32LE, H5T_NATIVE_INT);
     sum_.add(loc.field(name), field_kind::kInt, {1}, &v, sizeof v);
   }
-  void flag(const Loc& loc, const std::string& name, bool& b) {
+  void flag(const Loc& loc, const std::string& name, const bool& b) {
     int i = b ? 1 : 0;
     integer(loc, name, i);
   }
   // rank 1 (cols == 0) or rows x cols (cols > 0, data.size() a multiple of cols), C order.
-  void ints(const Loc& loc, const std::string& name, std::vector<int>& v, const Description& d, hsize_t cols = 0) {
+  void ints(const Loc& loc, const std::string& name, const std::vector<int>& v, const Description& d, hsize_t cols = 0) {
     if (cols > 0 && v.size() % cols != 0) throw Failure{"'" + loc.field(name) + "' is not a table of " + std::to_string(cols) + " columns"};
     const hsize_t dims[2] = {cols > 0 ? v.size() / cols : v.size(), cols};
     write_dataset(loc.id, name, v.data(), cols > 0 ? 2 : 1, dims, H5T_STD_I32LE, H5T_NATIVE_INT, d);
     add_ints(loc.field(name), dims, cols > 0 ? 2 : 1, v);
   }
-  void vec(const Loc& loc, const std::string& name, Eigen::VectorXd& v, const Description& d) {
+  void vec(const Loc& loc, const std::string& name, const Eigen::VectorXd& v, const Description& d) {
     const hsize_t dims[1] = {static_cast<hsize_t>(v.size())};
     write_dataset(loc.id, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), field_kind::kDouble, {dims[0]}, v.data(), bytes(v.size()));
   }
-  void dvec(const Loc& loc, const std::string& name, std::vector<double>& v, const Description& d) {
+  void dvec(const Loc& loc, const std::string& name, const std::vector<double>& v, const Description& d) {
     const hsize_t dims[1] = {v.size()};
     write_dataset(loc.id, name, v.data(), 1, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), field_kind::kDouble, {dims[0]}, v.data(), bytes(static_cast<Eigen::Index>(v.size())));
   }
   // rows x cols, as documented (C order: the HDF5 shape is the matrix's shape).
-  void mat(const Loc& loc, const std::string& name, Eigen::MatrixXd& m, const Description& d) {
+  void mat(const Loc& loc, const std::string& name, const Eigen::MatrixXd& m, const Description& d) {
     const RowMajor r = m;
     const hsize_t dims[2] = {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())};
     write_dataset(loc.id, name, r.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), field_kind::kDouble, {dims[0], dims[1]}, r.data(), bytes(r.size()));
   }
   // K matrices of one size as a K x rows x cols array (an empty list: 0 x 0 x 0).
-  void stack(const Loc& loc, const std::string& name, std::vector<Eigen::MatrixXd>& list, const Description& d) {
+  void stack(const Loc& loc, const std::string& name, const std::vector<Eigen::MatrixXd>& list, const Description& d) {
     const Eigen::Index rows = list.empty() ? 0 : list.front().rows(), cols = list.empty() ? 0 : list.front().cols();
     std::vector<double> data;
     data.reserve(list.size() * static_cast<std::size_t>(rows * cols));
@@ -97,7 +98,7 @@ class FieldWriter {
              data.size() * sizeof(double));
   }
   // K vectors of one size as a K x n array (row k is vector k).
-  void rows(const Loc& loc, const std::string& name, std::vector<Eigen::VectorXd>& list, const Description& d) {
+  void rows(const Loc& loc, const std::string& name, const std::vector<Eigen::VectorXd>& list, const Description& d) {
     const Eigen::Index n = list.empty() ? 0 : list.front().size();
     std::vector<double> data;
     data.reserve(list.size() * static_cast<std::size_t>(n));
@@ -108,6 +109,15 @@ class FieldWriter {
     const hsize_t dims[2] = {list.size(), static_cast<hsize_t>(n)};
     write_dataset(loc.id, name, data.data(), 2, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d);
     sum_.add(loc.field(name), field_kind::kDouble, {dims[0], dims[1]}, data.data(), data.size() * sizeof(double));
+  }
+
+  // A dataset a record may lack (an array a failed solve did not produce): written when not
+  // empty. `required` is the reader's (FieldReader::optional).
+  void optional(const Loc& loc, const std::string& name, const Eigen::VectorXd& v, const Description& d, bool) {
+    if (v.size() > 0) vec(loc, name, v, d);
+  }
+  void optional(const Loc& loc, const std::string& name, const Eigen::MatrixXd& m, const Description& d, bool) {
+    if (m.size() > 0) mat(loc, name, m, d);
   }
 
  private:
@@ -209,7 +219,26 @@ class FieldReader {
     }
   }
 
+  // Read when `required` or present; an absent one is left empty.
+  void optional(const Loc& loc, const std::string& name, Eigen::VectorXd& v, const Description& d, bool required) {
+    if (required || exists(loc, name)) {
+      vec(loc, name, v, d);
+    } else {
+      v.resize(0);
+    }
+  }
+  void optional(const Loc& loc, const std::string& name, Eigen::MatrixXd& m, const Description& d, bool required) {
+    if (required || exists(loc, name)) {
+      mat(loc, name, m, d);
+    } else {
+      m.resize(0, 0);
+    }
+  }
+
  private:
+  static bool exists(const Loc& loc, const std::string& name) {
+    return H5Lexists(loc.id, name.c_str(), H5P_DEFAULT) > 0;  // one link: our names are single components
+  }
   static void read(hid_t set, hid_t mem_type, void* data, std::size_t count, const std::string& name) {
     if (count > 0) {
       check(H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),

@@ -21,8 +21,9 @@ inline std::string list_entry_name(std::size_t i) {
   return buffer;
 }
 
-template <typename V>
-void visit_mesh(V& v, const Loc& root, mesh::Mesh& m) {
+// M: mesh::Mesh, or const mesh::Mesh for the writer.
+template <typename V, typename M>
+void visit_mesh(V& v, const Loc& root, M& m) {
   Handle g = v.group(root, "mesh",
                      "the reference mesh (reference configuration, the file's refinement level): P1 triangles of "
                      "two bodies; DOF 2 i + c is component c (0: x, 1: y) of node i");

@@ -8,9 +8,9 @@
 // `format_version`, `checksum` (FNV-1a over every field, io/field_checksum.hpp) and `complete`
 // (written last). Writing goes to a temporary file renamed over the target.
 //
-// Layering: io serializes the rb record (STYLE.md 3: online objects are serialized by io/);
-// only the plain struct is used, no rb function (rb links io, not the other way round). The
-// semantic check of the loaded arrays is rb::check_model, which OnlineSolver runs.
+// Layering: io serializes the records of model/ (STYLE.md 3: online objects are serialized by
+// io/), which sit below both io/ and online/. The semantic check of the loaded arrays is
+// rb::check_model (online/model_check.hpp), which OnlineSolver runs.
 // Not stored: the parameter's named sets (ParameterSpec::sets; not needed online).
 //
 // Optional group /reconstruction (rb::ReducedReconstruction: the HF-size basis, lift and dual
@@ -20,8 +20,8 @@
 // model holds nothing of HF size); files without them (the model-only overload) stay valid.
 #include <string>
 
-#include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reconstruction.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::io {
 

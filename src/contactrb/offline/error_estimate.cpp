@@ -123,7 +123,7 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
     return out;
   };
 
-  // The residual terms (layout: error_estimate_data.hpp), on the free DOFs. The Mk R contact
+  // The residual terms (layout: model/error_estimate_data.hpp), on the free DOFs. The Mk R contact
   // columns -E_c' Q_i' Xi_r all lie in the n_c columns of E_c' (the contact DOFs): they are kept
   // as E_c' times the small n_c x (Mk R) matrix C, so the QR below factors n_free x (d0 + n_c),
   // not n_free x d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted QR).

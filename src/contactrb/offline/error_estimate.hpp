@@ -16,9 +16,9 @@
 
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "contactrb/online/error_estimate_data.hpp"
+#include "contactrb/model/error_estimate_data.hpp"
 #include "contactrb/online/error_estimator.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::cases {
 struct AffineTerms;

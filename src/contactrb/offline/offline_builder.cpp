@@ -24,6 +24,7 @@
 #include "contactrb/offline/error_estimate.hpp"
 #include "contactrb/offline/nmf.hpp"
 #include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/model_check.hpp"
 #include "contactrb/offline/pod.hpp"
 
 namespace contactrb::rb {

@@ -12,8 +12,8 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/dual_cone.hpp"
-#include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reconstruction.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::rb {
 

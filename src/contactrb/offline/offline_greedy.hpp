@@ -21,7 +21,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace contactrb::rb {

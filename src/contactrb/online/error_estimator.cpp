@@ -91,7 +91,7 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
   const Eigen::VectorXd tl = cases::evaluate(thetas_.lift, mu);
   const Index Jf = tf.size(), Ja = ta.size(), JD = tl.size();
-  // Coefficients of the residual terms (error_estimate_data.hpp).
+  // Coefficients of the residual terms (model/error_estimate_data.hpp).
   Index k = 0;
   for (Index j = 0; j < Jf; ++j) y_(k++) = tf(j);
   for (Index j = 0; j < Ja; ++j) {

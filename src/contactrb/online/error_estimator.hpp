@@ -8,10 +8,24 @@
 #include <vector>
 
 #include "contactrb/cases/theta.hpp"
-#include "contactrb/online/error_estimate_data.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/error_estimate_data.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::rb {
+
+// One online answer's estimate (OnlineSolution::estimate). The energy norm is |v|_A(mu) =
+// sqrt(v' A(mu) v) on the free DOFs. What is bounded and what is estimated: docs/offline-online.md.
+struct ErrorEstimate {
+  bool available = false;        // false: the model holds no estimate data, or the solve failed
+  double residual = 0.0;         // ||r(mu)||_{X'}: dual norm of the primal residual
+  double coercivity = 0.0;       // alpha(mu) <= inf_v |v|_A(mu)^2 / |v|_X^2 (min-theta bound)
+  double violation = 0.0;        // ||(K u - gamma)^+||_{Lambda'} on the kept rows (EIM K, gamma)
+  double complementarity = 0.0;  // (Xi lambda_hat)' (gamma - K u), EIM K, gamma
+  double multiplier_norm = 0.0;  // ||Xi lambda_hat||_Lambda, Lambda = L2(Gamma^c)
+  double eim_residual = 0.0;     // eim_residual(Mk) ||Xi lambda_hat||_Lambda (estimated EIM part of the residual)
+  double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
+  double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
+};
 
 // Throws contactrb::Error naming the first array of model.estimate whose shape disagrees with the
 // model (an empty estimate is accepted: available() is then false).

@@ -20,7 +20,7 @@
 
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/segment_hit.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::rb {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::rb {
 

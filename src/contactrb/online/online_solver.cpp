@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
+#include "contactrb/online/model_check.hpp"
 
 namespace contactrb::rb {
 

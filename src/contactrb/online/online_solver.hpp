@@ -30,7 +30,7 @@
 #include "contactrb/mesh/mesh.hpp"
 #include "contactrb/online/error_estimator.hpp"
 #include "contactrb/online/online_magic.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
 

@@ -22,6 +22,8 @@
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/offline/cone_projection.hpp"
+#include "contactrb/online/model_check.hpp"
+#include "contactrb/online/reconstruction.hpp"
 
 namespace contactrb::rb {
 

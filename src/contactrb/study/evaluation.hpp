@@ -13,8 +13,8 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reconstruction.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace contactrb::rb {

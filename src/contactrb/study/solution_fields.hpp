@@ -13,8 +13,8 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/mesh/mesh.hpp"
-#include "contactrb/online/reconstruction.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reconstruction.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::rb {
 

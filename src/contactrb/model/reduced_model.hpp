@@ -8,6 +8,9 @@
 // (R_kept, contact-surface rows) or per contact-surface DOF (n_c). The HF-size data needed to
 // reconstruct u and lambda on the HF mesh live apart, in ReducedReconstruction (offline side).
 //
+// model/ holds these records only (header-only, below io/, which serializes them, and online/,
+// which solves with them); their checks are online/model_check.hpp.
+//
 // Conventions (docs/offline-online.md):
 //   u = u_D(mu) + Theta u_hat,  u_D(mu) = sum_k theta^lift_k(mu) lift_k,
 //   lambda = Xi lambda_hat on the kept constraints (Remark 7), 0 on the dropped ones.
@@ -18,7 +21,7 @@
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/contact/contact_pair.hpp"
-#include "contactrb/online/error_estimate_data.hpp"
+#include "contactrb/model/error_estimate_data.hpp"
 
 namespace contactrb::rb {
 
@@ -128,11 +131,20 @@ struct ReducedModel {
   int num_parameters() const { return static_cast<int>(parameters.size()); }
 };
 
-// Throws contactrb::Error naming the first inconsistent array (sizes against the maxima, the
-// affine term counts, the contact surface). Used after building and after reading a file.
-void check_model(const ReducedModel& model);
-
 // Number of doubles held by the model's arrays (a size figure for the docs and tests).
-long long model_doubles(const ReducedModel& model);
+inline long long model_doubles(const ReducedModel& m) {
+  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() +
+                m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
+                m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
+                2 * static_cast<long long>(m.surface.reference_nodes.size());
+  for (const auto& a : m.A_hat) n += a.size();
+  for (const auto& f : m.f_hat) n += f.size();
+  for (const auto& f : m.A_lift_hat) n += f.size();
+  for (const auto& c : m.C_kappa) n += c.size();
+  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
+       m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
+  for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
+  return n;
+}
 
 }  // namespace contactrb::rb

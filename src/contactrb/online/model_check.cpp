@@ -1,4 +1,4 @@
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/online/model_check.hpp"
 
 #include <cmath>
 #include <string>
@@ -88,20 +88,6 @@ void check_model(const ReducedModel& m) {
   expect_shape(m.Theta_c, n_c, m.N_max, "Theta_c");
   expect_shape(m.lift_c, n_c, static_cast<Eigen::Index>(JD), "lift_c");
   check_estimate_data(m);
-}
-
-long long model_doubles(const ReducedModel& m) {
-  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
-                m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
-                2 * static_cast<long long>(m.surface.reference_nodes.size());
-  for (const auto& a : m.A_hat) n += a.size();
-  for (const auto& f : m.f_hat) n += f.size();
-  for (const auto& f : m.A_lift_hat) n += f.size();
-  for (const auto& c : m.C_kappa) n += c.size();
-  n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
-       m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
-  for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
-  return n;
 }
 
 }  // namespace contactrb::rb

@@ -2,8 +2,7 @@
 // The reduced-size arrays of the a posteriori error estimate (docs/offline-online.md, "Error
 // estimate"), stored in the ReducedModel (field `estimate`) and in the model file; built by
 // build_estimate_data (offline/error_estimate.hpp), evaluated online by ErrorEstimator
-// (online/error_estimator.hpp). Kept in a
-// header of its own so that reduced_model.hpp does not see the estimator.
+// (online/error_estimator.hpp).
 //
 // Column layout of residual_T (the affine terms of the primal residual, (49) and the contact
 // term, in this order; d_max = J^f + J^a J^D + J^a N_max + Mk_max R_max columns):
@@ -42,20 +41,6 @@ struct EstimateData {
   // delta s_p = (gamma_p - I_M' gamma_p) - (K_p - I_M K_p) u_0,c(mu_p).
   Eigen::VectorXd eim_residual;  // Mk_max + 1
   Eigen::MatrixXd eim_slack;     // (Mk_max + 1) x (Mg_max + 1)
-};
-
-// One online answer's estimate (OnlineSolution::estimate). The energy norm is |v|_A(mu) =
-// sqrt(v' A(mu) v) on the free DOFs. What is bounded and what is estimated: docs/offline-online.md.
-struct ErrorEstimate {
-  bool available = false;        // false: the model holds no estimate data, or the solve failed
-  double residual = 0.0;         // ||r(mu)||_{X'}: dual norm of the primal residual
-  double coercivity = 0.0;       // alpha(mu) <= inf_v |v|_A(mu)^2 / |v|_X^2 (min-theta bound)
-  double violation = 0.0;        // ||(K u - gamma)^+||_{Lambda'} on the kept rows (EIM K, gamma)
-  double complementarity = 0.0;  // (Xi lambda_hat)' (gamma - K u), EIM K, gamma
-  double multiplier_norm = 0.0;  // ||Xi lambda_hat||_Lambda, Lambda = L2(Gamma^c)
-  double eim_residual = 0.0;     // eim_residual(Mk) ||Xi lambda_hat||_Lambda (estimated EIM part of the residual)
-  double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
-  double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
 };
 
 }  // namespace contactrb::rb
