@@ -570,8 +570,8 @@ void check_settings(const OfflineSettings& s) {
   require(s.eim_k_size >= -1 && s.eim_g_size >= -1, "offline: EIM sizes must be >= -1");
 }
 
-// The offline stage, paper Section 5: (T2) POD, (T3) dual cone, (T1) EIM of kappa and gamma,
-// then the reduced arrays (49), (54)-(55) of Algorithm 1.
+// The offline stage, paper Section 5 (docs/theory.md, "POD, dual cones, EIM"): (T2) POD,
+// (T3) dual cone, (T1) EIM of kappa and gamma, then the arrays (49), (54)-(55) of Algorithm 1.
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings) {
   const auto t_total = Clock::now();
@@ -583,12 +583,12 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   OfflineResult out;
   OfflineReport& rep = out.report;
   const ReferenceTerms ref = assemble_reference_terms(set, spec, settings.inner_product, rep);
-  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);
-  const DualSnapshots dual_snapshots = compression_step(set, settings, rep);
-  const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);
+  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
+  const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
+  const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
   const Eigen::MatrixXd Theta = primal_basis_step(set, ref, primal.pod, dual_snapshots, dual, settings, rep);
-  const EIMResult eim_k = eim_kappa_step(set, dual_snapshots.kept, settings, rep);
-  const EIMResult eim_g = eim_gamma_step(set, ref, dual_snapshots.kept, settings, rep);
+  const EIMResult eim_k = eim_kappa_step(set, dual_snapshots.kept, settings, rep);  // (T1)
+  const EIMResult eim_g = eim_gamma_step(set, ref, dual_snapshots.kept, settings, rep);  // (T1)
 
   const auto t0 = Clock::now();
   ReducedModel& m = out.model;
@@ -599,9 +599,9 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.Mk_max = rep.Mk;
   m.Mg_max = rep.Mg;
   m.singular_values = primal.pod.singular_values;
-  project_affine_terms(ref, Theta, set.free_dofs, m);
+  project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
   m.surface = contact_surface(set, ref.mesh);
-  contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);
+  contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g);
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);
