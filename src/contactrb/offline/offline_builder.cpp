@@ -188,7 +188,7 @@ void check_snapshot_sizes(const io::SnapshotSet& set) {
   }
 }
 
-// --- Step 1: the affine terms (49) on the reference mesh and the inner product M of the POD.
+// --- The affine terms (49) on the reference mesh and the inner product M of the POD.
 struct ReferenceTerms {
   mesh::Mesh mesh;
   cases::AffineTerms terms;
@@ -231,7 +231,7 @@ ReferenceTerms assemble_reference_terms(const io::SnapshotSet& set, const cases:
   return ref;
 }
 
-// --- Step 2 (T2): POD of the primal snapshots u_0 in the M-norm.
+// --- (T2) POD of the primal snapshots u_0 in the M-norm.
 struct PrimalSnapshots {
   Eigen::MatrixXd U0;  // n_free x P
   PODResult pod;
@@ -260,7 +260,7 @@ PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<d
   return out;
 }
 
-// --- Step 3 (Remark 7): the dual snapshots on the constraints active on the training set.
+// --- Remark 7: the dual snapshots on the constraints active on the training set.
 struct DualSnapshots {
   std::vector<int> kept;      // kept constraint rows
   Eigen::MatrixXd Lambda;     // R_kept x P, >= 0
@@ -293,7 +293,7 @@ DualSnapshots compression_step(const io::SnapshotSet& set, const OfflineSettings
   return out;
 }
 
-// --- Step 4 (T3): the dual cone W_R^+ (Algorithm 2 for CPG) on the kept rows.
+// --- (T3) The dual cone W_R^+ (Algorithm 2 for CPG) on the kept rows.
 DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const OfflineSettings& settings,
                               OfflineReport& report) {
   const auto t0 = Clock::now();
@@ -318,7 +318,7 @@ DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const Offline
   return dual;
 }
 
-// --- Step 5: the primal basis Theta, the POD modes enriched with one supremizer per dual generator.
+// --- The primal basis Theta, the POD modes enriched with one supremizer per dual generator.
 Eigen::MatrixXd primal_basis_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const PODResult& pod_result,
                                   const DualSnapshots& dual_snapshots, const DualConeResult& dual,
                                   const OfflineSettings& settings, OfflineReport& report) {
@@ -333,7 +333,7 @@ Eigen::MatrixXd primal_basis_step(const io::SnapshotSet& set, const ReferenceTer
   return Theta;
 }
 
-// --- Step 6 (T1): EIM of kappa, K(u(mu)) on the kept rows and the contact DOFs, flattened.
+// --- (T1) EIM of kappa, K(u(mu)) on the kept rows and the contact DOFs, flattened.
 EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kept, const OfflineSettings& settings,
                          OfflineReport& report) {
   const auto t0 = Clock::now();
@@ -359,7 +359,7 @@ EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kep
   return eim_k;
 }
 
-// --- Step 7 (T1): EIM of gamma = g - K u_D(mu) on the kept rows.
+// --- (T1) EIM of gamma = g - K u_D(mu) on the kept rows.
 EIMResult eim_gamma_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const std::vector<int>& kept,
                          const OfflineSettings& settings, OfflineReport& report) {
   const auto t0 = Clock::now();
@@ -391,7 +391,7 @@ EIMResult eim_gamma_step(const io::SnapshotSet& set, const ReferenceTerms& ref, 
   return eim_g;
 }
 
-// --- Step 8: the reduced arrays. The provenance and the settings the model was built with.
+// --- The reduced arrays. The provenance and the settings the model was built with.
 void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, const OfflineSettings& settings,
                        const cases::AffineThetas& thetas, ReducedModel& m) {
   m.case_name = set.case_name;
@@ -503,7 +503,7 @@ void contact_arrays(const io::SnapshotSet& set, const ReferenceTerms& ref, const
   m.eim_gamma_errors = eim_g.errors;
 }
 
-// --- Step 9: the a posteriori error estimate's offline data (error_estimate.hpp).
+// --- The a posteriori error estimate's offline data (error_estimate.hpp).
 EstimateData estimate_data_step(const io::SnapshotSet& set, const cases::CaseSpec& spec, const ReferenceTerms& ref,
                                 const Eigen::MatrixXd& Theta, const ReducedModel& m,
                                 const DualSnapshots& dual_snapshots, const EIMResult& eim_k, const EIMResult& eim_g) {

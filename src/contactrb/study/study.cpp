@@ -690,9 +690,11 @@ std::vector<std::string> study_warnings(const StudyResult& r) {
   return out;
 }
 
-std::string study_markdown(const StudyResult& r, const std::vector<std::string>& figures) {
-  std::ostringstream md;
-  const StudyModel& cpg = r.model("cpg");
+namespace {
+
+// report.md's sections, in order.
+
+void markdown_header(std::ostringstream& md, const StudyResult& r, const StudyModel& cpg) {
   md << "# contactrb report: " << r.case_name << "\n\n"
      << "Case `" << r.case_name << "` (parameter: " << r.parameter_name << "), mesh level " << r.level << ", "
      << r.constraint << " constraints, " << r.num_dofs << " DOFs, " << r.R_hf << " constraint rows (" << r.R_kept
@@ -707,12 +709,9 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
      << ". The NMF takes the smallest R whose cone error reaches eps_DU a posteriori; the truncated NMF takes "
         "R = R_CPG = "
      << cpg.R << ".\n\n";
-  if (const std::vector<std::string> warnings = study_warnings(r); !warnings.empty()) {
-    md << "## Warnings\n\n";
-    for (const std::string& w : warnings) md << "- **Warning**: " << w << ".\n";
-    md << "\n";
-  }
+}
 
+void markdown_sizes(std::ostringstream& md, const StudyResult& r) {
   md << "## Sizes per method\n\n"
      << "| method | N | R | M^k | M^g | dual cone error (training) | dual status | offline time (s) |\n"
      << "| --- | ---: | ---: | ---: | ---: | ---: | --- | ---: |\n";
@@ -720,7 +719,9 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
     md << "| " << m.label << " | " << m.N << " | " << m.R << " | " << m.Mk << " | " << m.Mg << " | "
        << fmt(m.dual_error) << " | " << m.report.dual_status << " | " << fmt(m.report.total_s, "%.3f") << " |\n";
   }
+}
 
+void markdown_errors(std::ostringstream& md, const StudyResult& r) {
   md << "\n## Errors, times and speed-ups: training set (paper Figs. 10, 13-16, 21)\n\n"
      << "e_ener (64) absolute, e_displ (65) relative H1, e_inter (66); e_press the relative L2(Gamma^c) "
         "contact-pressure error, e_force the relative error of the total contact force; errors over the values "
@@ -730,7 +731,9 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
     md << "\n## Errors, times and speed-ups: verification set (paper Fig. 22)\n\n";
     error_table(md, r, true);
   }
+}
 
+void markdown_times(std::ostringstream& md, const StudyResult& r) {
   md << "\n## Offline step times (s)\n\n"
      << "| method | assembly | POD | dual cone | EIM kappa | EIM gamma | reduced arrays | total |\n"
      << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
@@ -743,7 +746,9 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
   md << "\nHF training snapshots: " << fmt(r.training_snapshots_s, "%.3f") << " s (" << r.jobs
      << " job(s)). Dual cone histories to R = " << r.dual.R_max << ": CPG " << fmt(r.dual.cpg_s, "%.4f")
      << " s, angle-greedy " << fmt(r.dual.angle_s, "%.4f") << " s, NMF " << fmt(r.dual.nmf_s, "%.3f") << " s.\n";
+}
 
+void markdown_paper_tables(std::ostringstream& md, const StudyResult& r, const StudyModel& cpg) {
   md << "\n## Paper tables\n\n"
      << "Dual cone size R reaching eps_DU on the training set (Tables 3 and 5; the true cone-projection error; "
         "\"> R\": not reached within the history, which ends at R):\n\n| eps_DU |";
@@ -764,22 +769,41 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
   md << "\n| N |";
   for (double e : r.tolerances.table_eps_pod) md << " " << pod_size(r.singular_values, e) << " |";
   md << "\n";
+}
 
-  if (!r.comparisons.empty()) {
-    // Table 1/2-style (iterations) with the forces: the paper's Figs. 7, 8 in numbers.
-    md << "\n## LAC against collocation (HF, paper Figs. 7, 8, Tables 1, 2)\n\n"
-       << "| mu | rows LAC | rows col. | iterations LAC | iterations col. | force LAC | force col. | "
-          "relative difference | energy LAC | energy col. |\n"
-       << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-    for (const ConstraintComparison& c : r.comparisons) {
-      const double f = c.collocation.contact_force;
-      md << "| " << fmt(c.mu) << " | " << c.lac.abscissa.size() << " | " << c.collocation.abscissa.size() << " | "
-         << c.lac.iterations << (c.lac.converged ? "" : " (" + c.lac.status + ")") << " | " << c.collocation.iterations
-         << (c.collocation.converged ? "" : " (" + c.collocation.status + ")") << " | " << fmt(c.lac.contact_force)
-         << " | " << fmt(f) << " | " << fmt(f != 0.0 ? std::abs(c.lac.contact_force - f) / std::abs(f) : 0.0)
-         << " | " << fmt(c.lac.energy) << " | " << fmt(c.collocation.energy) << " |\n";
-    }
+void markdown_comparisons(std::ostringstream& md, const StudyResult& r) {
+  if (r.comparisons.empty()) return;
+  // Table 1/2-style (iterations) with the forces: the paper's Figs. 7, 8 in numbers.
+  md << "\n## LAC against collocation (HF, paper Figs. 7, 8, Tables 1, 2)\n\n"
+     << "| mu | rows LAC | rows col. | iterations LAC | iterations col. | force LAC | force col. | "
+        "relative difference | energy LAC | energy col. |\n"
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (const ConstraintComparison& c : r.comparisons) {
+    const double f = c.collocation.contact_force;
+    md << "| " << fmt(c.mu) << " | " << c.lac.abscissa.size() << " | " << c.collocation.abscissa.size() << " | "
+       << c.lac.iterations << (c.lac.converged ? "" : " (" + c.lac.status + ")") << " | " << c.collocation.iterations
+       << (c.collocation.converged ? "" : " (" + c.collocation.status + ")") << " | " << fmt(c.lac.contact_force)
+       << " | " << fmt(f) << " | " << fmt(f != 0.0 ? std::abs(c.lac.contact_force - f) / std::abs(f) : 0.0)
+       << " | " << fmt(c.lac.energy) << " | " << fmt(c.collocation.energy) << " |\n";
   }
+}
+
+}  // namespace
+
+std::string study_markdown(const StudyResult& r, const std::vector<std::string>& figures) {
+  std::ostringstream md;
+  const StudyModel& cpg = r.model("cpg");
+  markdown_header(md, r, cpg);
+  if (const std::vector<std::string> warnings = study_warnings(r); !warnings.empty()) {
+    md << "## Warnings\n\n";
+    for (const std::string& w : warnings) md << "- **Warning**: " << w << ".\n";
+    md << "\n";
+  }
+  markdown_sizes(md, r);
+  markdown_errors(md, r);
+  markdown_times(md, r);
+  markdown_paper_tables(md, r, cpg);
+  markdown_comparisons(md, r);
   if (!figures.empty()) {
     md << "\n## Figures\n\n";
     for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
