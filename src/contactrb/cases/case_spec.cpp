@@ -174,123 +174,168 @@ CaseSpec ring_block() {
 
 }  // namespace
 
-void check_case_spec(const CaseSpec& c) {
-  const std::string where = c.origin.empty() ? "case '" + c.name + "'" : "case '" + c.name + "' from " + c.origin;
-  auto fail = [&](const std::string& what) { throw Error(what + " (" + where + ")"); };
-  if (c.name.empty()) fail("the case has no name");
-  const bool gen = !c.mesh.generator.empty();
-  const bool msh = !c.mesh.msh_file.empty();
-  if (gen == msh) fail("the mesh needs exactly one of a generator or a .msh file");
-  if (gen && c.mesh.generator != "hertz" && c.mesh.generator != "ring-block") {
-    fail("unknown mesh generator '" + c.mesh.generator + "' (expected hertz or ring-block)");
+namespace {
+
+[[noreturn]] void fail_case(const std::string& what, const std::string& where) {
+  throw Error(what + " (" + where + ")");
+}
+
+void check_mesh_spec(const MeshSpec& m, const std::string& where) {
+  const bool gen = !m.generator.empty();
+  const bool msh = !m.msh_file.empty();
+  if (gen == msh) fail_case("the mesh needs exactly one of a generator or a .msh file", where);
+  if (gen && m.generator != "hertz" && m.generator != "ring-block") {
+    fail_case("unknown mesh generator '" + m.generator + "' (expected hertz or ring-block)", where);
   }
-  for (const std::string& g : c.mesh.body_groups) {
-    if (g.empty()) fail("empty body group name");
+  for (const std::string& g : m.body_groups) {
+    if (g.empty()) fail_case("empty body group name", where);
   }
-  if (c.mesh.body_groups[0] == c.mesh.body_groups[1]) fail("the two bodies have the same group '" + c.mesh.body_groups[0] + "'");
-  if (c.mesh.slave_group.empty() || c.mesh.master_group.empty()) fail("empty contact group name");
-  if (c.mesh.slave_group == c.mesh.master_group) fail("slave and master are the same group '" + c.mesh.slave_group + "'");
-  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
-    const BodySpec& b = c.bodies[i];
-    const std::string body = "body " + std::to_string(i + 1);
-    if (!(std::isfinite(b.E) && b.E > 0.0)) fail(body + ": Young's modulus E must be > 0 (got " + std::to_string(b.E) + ")");
-    if (!(std::isfinite(b.nu) && b.nu > -1.0 && b.nu < 0.5)) {
-      fail(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + std::to_string(b.nu) + ")");
-    }
-    if (b.nu > 0.5 - kIncompressibleMargin) {
-      fail(body + ": Poisson's ratio nu = " + shortest(b.nu) +
-           " is within 1e-6 of 0.5: a nearly incompressible material, for which the plane-strain Lame "
-           "coefficient lambda_L blows up and P1 elements lock (use nu <= 0.499999)");
-    }
-    if (b.E > kMaxDataMagnitude) {
-      fail(body + ": Young's modulus E = " + shortest(b.E) + " is above 1e50 (products with it would overflow "
-                  "double precision: change the units)");
-    }
-    if (!b.load.allFinite()) fail(body + ": body load is not finite");
-    if (b.load.cwiseAbs().maxCoeff() > kMaxDataMagnitude) {
-      fail(body + ": body load of magnitude " + shortest(b.load.cwiseAbs().maxCoeff()) +
-           " is above 1e50 (products with it would overflow double precision: change the units)");
-    }
+  if (m.body_groups[0] == m.body_groups[1]) fail_case("the two bodies have the same group '" + m.body_groups[0] + "'", where);
+  if (m.slave_group.empty() || m.master_group.empty()) fail_case("empty contact group name", where);
+  if (m.slave_group == m.master_group) fail_case("slave and master are the same group '" + m.slave_group + "'", where);
+}
+
+void check_body(const BodySpec& b, const std::string& body, const std::string& where) {
+  if (!(std::isfinite(b.E) && b.E > 0.0)) {
+    fail_case(body + ": Young's modulus E must be > 0 (got " + std::to_string(b.E) + ")", where);
   }
-  {
-    const double ratio = std::max(c.bodies[0].E, c.bodies[1].E) / std::min(c.bodies[0].E, c.bodies[1].E);
-    if (ratio > kMaxStiffnessRatio) {
-      fail("the Young's moduli of the two bodies (" + shortest(c.bodies[0].E) + ", " + shortest(c.bodies[1].E) +
-           ") differ by a factor " + shortest(ratio) +
-           " above 1e12: the stiffness matrix is too ill-conditioned for double precision");
-    }
+  if (!(std::isfinite(b.nu) && b.nu > -1.0 && b.nu < 0.5)) {
+    fail_case(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + std::to_string(b.nu) + ")", where);
   }
-  check_parameter_list(c.parameters, where);
+  if (b.nu > 0.5 - kIncompressibleMargin) {
+    fail_case(body + ": Poisson's ratio nu = " + shortest(b.nu) +
+                  " is within 1e-6 of 0.5: a nearly incompressible material, for which the plane-strain Lame "
+                  "coefficient lambda_L blows up and P1 elements lock (use nu <= 0.499999)",
+              where);
+  }
+  if (b.E > kMaxDataMagnitude) {
+    fail_case(body + ": Young's modulus E = " + shortest(b.E) + " is above 1e50 (products with it would overflow "
+                     "double precision: change the units)",
+              where);
+  }
+  if (!b.load.allFinite()) fail_case(body + ": body load is not finite", where);
+  if (b.load.cwiseAbs().maxCoeff() > kMaxDataMagnitude) {
+    fail_case(body + ": body load of magnitude " + shortest(b.load.cwiseAbs().maxCoeff()) +
+                  " is above 1e50 (products with it would overflow double precision: change the units)",
+              where);
+  }
+}
+
+void check_bodies(const CaseSpec& c, const std::string& where) {
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) check_body(c.bodies[i], "body " + std::to_string(i + 1), where);
+  const double ratio = std::max(c.bodies[0].E, c.bodies[1].E) / std::min(c.bodies[0].E, c.bodies[1].E);
+  if (ratio > kMaxStiffnessRatio) {
+    fail_case("the Young's moduli of the two bodies (" + shortest(c.bodies[0].E) + ", " + shortest(c.bodies[1].E) +
+                  ") differ by a factor " + shortest(ratio) +
+                  " above 1e12: the stiffness matrix is too ill-conditioned for double precision",
+              where);
+  }
+}
+
+// One Dirichlet value a + b mu; marks the parameter it depends on as used.
+void check_dirichlet_value(const CaseSpec& c, const std::string& group, const AffineValue& v, std::vector<bool>& used,
+                           const std::string& where) {
   const int p = c.num_parameters();
-  std::vector<bool> used(static_cast<std::size_t>(p), false);
+  if (!(std::isfinite(v.a) && std::isfinite(v.b))) fail_case("Dirichlet data on '" + group + "' is not finite", where);
+  double largest = std::abs(v.a);
+  if (v.b != 0.0) {
+    if (v.parameter < 0 || v.parameter >= p) {
+      fail_case("Dirichlet data on '" + group + "' depends on parameter " + std::to_string(v.parameter) +
+                    ", but the case has " + std::to_string(p),
+                where);
+    }
+    const ParameterSpec& k = c.parameters[static_cast<std::size_t>(v.parameter)];
+    used[static_cast<std::size_t>(v.parameter)] = true;
+    // a + b mu is affine: its largest magnitude over the domain is at an end.
+    largest = std::max(std::abs(v.a + v.b * k.min), std::abs(v.a + v.b * k.max));
+  }
+  if (!(largest <= kMaxDataMagnitude)) {
+    fail_case("Dirichlet data on '" + group + "' reaches magnitude " + shortest(largest) +
+                  " on the parameter domain, above 1e50 (energies and distances would overflow double precision: "
+                  "change the units)",
+              where);
+  }
+}
+
+void check_dirichlet(const CaseSpec& c, std::vector<bool>& used, const std::string& where) {
   for (const DirichletSpec& d : c.dirichlet) {
-    if (d.group.empty()) fail("a Dirichlet condition has no group");
-    if (!d.ux && !d.uy) fail("Dirichlet condition on '" + d.group + "' prescribes no component");
+    if (d.group.empty()) fail_case("a Dirichlet condition has no group", where);
+    if (!d.ux && !d.uy) fail_case("Dirichlet condition on '" + d.group + "' prescribes no component", where);
     for (const auto& v : {d.ux, d.uy}) {
-      if (v && !(std::isfinite(v->a) && std::isfinite(v->b))) fail("Dirichlet data on '" + d.group + "' is not finite");
-      if (!v) continue;
-      double largest = std::abs(v->a);
-      if (v->b != 0.0) {
-        if (v->parameter < 0 || v->parameter >= p) {
-          fail("Dirichlet data on '" + d.group + "' depends on parameter " + std::to_string(v->parameter) +
-               ", but the case has " + std::to_string(p));
-        }
-        const ParameterSpec& k = c.parameters[static_cast<std::size_t>(v->parameter)];
-        used[static_cast<std::size_t>(v->parameter)] = true;
-        // a + b mu is affine: its largest magnitude over the domain is at an end.
-        largest = std::max(std::abs(v->a + v->b * k.min), std::abs(v->a + v->b * k.max));
-      }
-      if (!(largest <= kMaxDataMagnitude)) {
-        fail("Dirichlet data on '" + d.group + "' reaches magnitude " + shortest(largest) +
-             " on the parameter domain, above 1e50 (energies and distances would overflow double precision: "
-             "change the units)");
-      }
+      if (v) check_dirichlet_value(c, d.group, *v, used, where);
     }
   }
-  for (const TractionSpec& t : c.tractions) {
-    if (t.group.empty()) fail("a traction has no group");
-    const std::string on = "traction on '" + t.group + "'";
-    const double size = t.is_pressure ? std::abs(t.pressure) : t.vector.cwiseAbs().maxCoeff();
-    if (!std::isfinite(size)) fail(on + ": the load is not finite");
-    if (!(size <= kMaxDataMagnitude)) fail(on + ": load above 1e50 (change the units)");
-    if (t.body < -1 || t.body > 1) fail(on + ": body must be slave or master");
-    if (t.parameter >= p || t.parameter < -1) fail(on + ": parameter index out of range");
-    if (t.parameter >= 0) {
-      const ParameterSpec& k = c.parameters[static_cast<std::size_t>(t.parameter)];
-      if (k.kind != ParameterKind::Traction) {
-        fail(on + " is scaled by parameter '" + k.name + "' of kind " + to_string(k.kind) +
-             " (a traction load needs a traction parameter)");
-      }
-      used[static_cast<std::size_t>(t.parameter)] = true;
+}
+
+// One traction; marks the parameter that scales it as used.
+void check_traction(const CaseSpec& c, const TractionSpec& t, std::vector<bool>& used, const std::string& where) {
+  if (t.group.empty()) fail_case("a traction has no group", where);
+  const std::string on = "traction on '" + t.group + "'";
+  const double size = t.is_pressure ? std::abs(t.pressure) : t.vector.cwiseAbs().maxCoeff();
+  if (!std::isfinite(size)) fail_case(on + ": the load is not finite", where);
+  if (!(size <= kMaxDataMagnitude)) fail_case(on + ": load above 1e50 (change the units)", where);
+  if (t.body < -1 || t.body > 1) fail_case(on + ": body must be slave or master", where);
+  if (t.parameter >= c.num_parameters() || t.parameter < -1) fail_case(on + ": parameter index out of range", where);
+  if (t.parameter >= 0) {
+    const ParameterSpec& k = c.parameters[static_cast<std::size_t>(t.parameter)];
+    if (k.kind != ParameterKind::Traction) {
+      fail_case(on + " is scaled by parameter '" + k.name + "' of kind " + to_string(k.kind) +
+                    " (a traction load needs a traction parameter)",
+                where);
     }
-    if (t.body == -1) {
-      for (const ParameterSpec& k : c.parameters) {
-        if (k.kind == ParameterKind::BodyScaling) {
-          fail(on + ": give its body (slave or master): the case has a body-scaling parameter, and the load of a "
-                    "scaled body's boundary scales with it");
-        }
-      }
+    used[static_cast<std::size_t>(t.parameter)] = true;
+  }
+  if (t.body != -1) return;
+  for (const ParameterSpec& k : c.parameters) {
+    if (k.kind == ParameterKind::BodyScaling) {
+      fail_case(on + ": give its body (slave or master): the case has a body-scaling parameter, and the load of a "
+                     "scaled body's boundary scales with it",
+                where);
     }
   }
-  for (int k = 0; k < p; ++k) {
+}
+
+// Every dirichlet-scale and traction parameter scales some data; a body-force one, a load.
+void check_parameters_used(const CaseSpec& c, const std::vector<bool>& used, const std::string& where) {
+  for (int k = 0; k < c.num_parameters(); ++k) {
     const ParameterSpec& q = c.parameters[static_cast<std::size_t>(k)];
     if (q.kind == ParameterKind::DirichletScale && !used[static_cast<std::size_t>(k)]) {
-      fail("parameter '" + q.name + "' of kind 'dirichlet-scale' but no Dirichlet value depends on it (give one as "
-           "{a, b}: a + b mu)");
+      fail_case("parameter '" + q.name + "' of kind 'dirichlet-scale' but no Dirichlet value depends on it (give one "
+                "as {a, b}: a + b mu)",
+                where);
     }
     if (q.kind == ParameterKind::Traction && !used[static_cast<std::size_t>(k)]) {
-      fail("parameter '" + q.name + "' of kind 'traction' but no [[traction]] names it");
+      fail_case("parameter '" + q.name + "' of kind 'traction' but no [[traction]] names it", where);
     }
     if (q.kind == ParameterKind::BodyForce && c.bodies[static_cast<std::size_t>(q.body)].load.isZero(0.0)) {
-      fail("parameter '" + q.name + "' of kind 'body-force' on a body without load (give the body a load vector)");
+      fail_case("parameter '" + q.name + "' of kind 'body-force' on a body without load (give the body a load vector)",
+                where);
     }
   }
+}
+
+void check_sets(const CaseSpec& c, const std::string& where) {
   std::set<std::string> set_names;
   for (const ParameterSet& s : c.sets) {
-    if (s.name.empty()) fail("a parameter set has no name");
-    if (!set_names.insert(s.name).second) fail("parameter set '" + s.name + "' is defined twice");
+    if (s.name.empty()) fail_case("a parameter set has no name", where);
+    if (!set_names.insert(s.name).second) fail_case("parameter set '" + s.name + "' is defined twice", where);
     check_points(c.parameters, s.points, "parameter set '" + s.name + "' (" + where + ")");
   }
+}
+
+}  // namespace
+
+void check_case_spec(const CaseSpec& c) {
+  const std::string where = c.origin.empty() ? "case '" + c.name + "'" : "case '" + c.name + "' from " + c.origin;
+  if (c.name.empty()) fail_case("the case has no name", where);
+  check_mesh_spec(c.mesh, where);
+  check_bodies(c, where);
+  check_parameter_list(c.parameters, where);
+  std::vector<bool> used(static_cast<std::size_t>(c.num_parameters()), false);  // parameters that scale some data
+  check_dirichlet(c, used, where);
+  for (const TractionSpec& t : c.tractions) check_traction(c, t, used, where);
+  check_parameters_used(c, used, where);
+  check_sets(c, where);
 }
 
 bool has_affine_dirichlet(const CaseSpec& spec) { return !dirichlet_parameters(spec).empty(); }

@@ -18,6 +18,164 @@ void sort_unique(std::vector<int>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
+// The sparsity of H = d(K' lambda)/du: DOF i gets the columns of every loaded row r
+// (lambda_r != 0) whose inputs hold i.
+struct HessianPattern {
+  std::vector<int> dof;                   // H row index -> DOF
+  std::vector<std::vector<int>> columns;  // H row index -> columns
+};
+
+HessianPattern hessian_pattern(const std::vector<std::vector<int>>& inputs, const Eigen::VectorXd& lambda, int N) {
+  HessianPattern hp;
+  std::vector<int> h_row_of(static_cast<std::size_t>(N), -1);
+  for (Eigen::Index r = 0; r < lambda.size(); ++r) {
+    if (lambda(r) == 0.0) continue;
+    const auto& in = inputs[static_cast<std::size_t>(r)];
+    for (int i : in) {
+      int& hr = h_row_of[static_cast<std::size_t>(i)];
+      if (hr < 0) {
+        hr = static_cast<int>(hp.dof.size());
+        hp.dof.push_back(i);
+        hp.columns.emplace_back();
+      }
+      auto& cols = hp.columns[static_cast<std::size_t>(hr)];
+      cols.insert(cols.end(), in.begin(), in.end());
+    }
+  }
+  for (auto& cols : hp.columns) sort_unique(cols);
+  return hp;
+}
+
+// Greedy colouring: columns sharing an output row (a row of D or of H) get different colours,
+// so that one pair of map evaluations per colour gives all their derivatives.
+struct ColumnColouring {
+  std::vector<int> columns;  // the DOFs some row depends on, increasing
+  std::vector<int> compact;  // DOF -> index in columns (-1: none)
+  std::vector<int> colour;   // per column
+  int colours = 0;
+  bool has(int j, int k) const {
+    return colour[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])] == k;
+  }
+};
+
+ColumnColouring colour_columns(const std::vector<std::vector<int>>& inputs, const HessianPattern& hp, int N) {
+  const int R = static_cast<int>(inputs.size());
+  ColumnColouring cc;
+  for (const auto& in : inputs) cc.columns.insert(cc.columns.end(), in.begin(), in.end());
+  sort_unique(cc.columns);
+  cc.compact.assign(static_cast<std::size_t>(N), -1);
+  for (std::size_t c = 0; c < cc.columns.size(); ++c) cc.compact[static_cast<std::size_t>(cc.columns[c])] = static_cast<int>(c);
+  std::vector<std::vector<int>> column_outputs(cc.columns.size());  // output rows: r, or R + H row
+  for (int r = 0; r < R; ++r) {
+    for (int j : inputs[static_cast<std::size_t>(r)]) column_outputs[static_cast<std::size_t>(cc.compact[static_cast<std::size_t>(j)])].push_back(r);
+  }
+  for (std::size_t hr = 0; hr < hp.columns.size(); ++hr) {
+    for (int j : hp.columns[hr]) {
+      column_outputs[static_cast<std::size_t>(cc.compact[static_cast<std::size_t>(j)])].push_back(R + static_cast<int>(hr));
+    }
+  }
+  std::vector<std::vector<int>> output_colours(static_cast<std::size_t>(R) + hp.columns.size());
+  cc.colour.assign(cc.columns.size(), -1);
+  std::vector<char> forbidden;
+  for (std::size_t c = 0; c < cc.columns.size(); ++c) {
+    forbidden.assign(static_cast<std::size_t>(cc.colours) + 1, 0);
+    for (int o : column_outputs[c]) {
+      for (int k : output_colours[static_cast<std::size_t>(o)]) forbidden[static_cast<std::size_t>(k)] = 1;
+    }
+    int k = 0;
+    while (forbidden[static_cast<std::size_t>(k)]) ++k;
+    cc.colour[c] = k;
+    cc.colours = std::max(cc.colours, k + 1);
+    for (int o : column_outputs[c]) output_colours[static_cast<std::size_t>(o)].push_back(k);
+  }
+  return cc;
+}
+
+// The difference step: relative to the mean reference slave edge length.
+double difference_step(const mesh::Mesh& mesh, const ContactPair& pair, double relative_step) {
+  double edges = 0.0;
+  for (std::size_t p = 0; p + 1 < pair.slave.size(); ++p) {
+    edges += (mesh.nodes[static_cast<std::size_t>(pair.slave[p + 1])] - mesh.nodes[static_cast<std::size_t>(pair.slave[p])]).norm();
+  }
+  const double h = relative_step * edges / static_cast<double>(std::max<std::size_t>(1, pair.slave.size() - 1));
+  require(h > 0.0, "linearize_contact: the slave boundary has zero length");
+  return h;
+}
+
+// The columns of colour k of `v` set to u + shift, or back to u.
+void shift_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, double shift, Eigen::VectorXd& v) {
+  for (std::size_t c = 0; c < cc.columns.size(); ++c) {
+    if (cc.colour[c] == k) v(cc.columns[c]) = u(cc.columns[c]) + shift;
+  }
+}
+void restore_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, Eigen::VectorXd& v) {
+  for (std::size_t c = 0; c < cc.columns.size(); ++c) {
+    if (cc.colour[c] == k) v(cc.columns[c]) = u(cc.columns[c]);
+  }
+}
+
+// D = dd/du and H = d(K' lambda)/du by central differences, one pair of map evaluations per colour.
+void central_differences(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                         const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
+                         const std::vector<std::vector<int>>& inputs, const HessianPattern& hp,
+                         const ColumnColouring& cc, double h, const LinearizationOptions& options,
+                         ContactLinearization& lin) {
+  const int N = mesh.num_dofs();
+  const int R = static_cast<int>(inputs.size());
+  std::vector<Eigen::Triplet<double>> d_trip, h_trip;
+  Eigen::VectorXd up = u, um = u;
+  for (int k = 0; k < cc.colours; ++k) {
+    shift_colour(cc, k, u, h, up);
+    shift_colour(cc, k, u, -h, um);
+    const ContactMaps plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
+    const ContactMaps minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
+    lin.evaluations += 2;
+    restore_colour(cc, k, u, up);
+    restore_colour(cc, k, u, um);
+    const Eigen::VectorXd dd = (plus.d - minus.d) / (2.0 * h);
+    for (int r = 0; r < R; ++r) {
+      for (int j : inputs[static_cast<std::size_t>(r)]) {
+        if (cc.has(j, k) && dd(r) != 0.0) d_trip.emplace_back(r, j, dd(r));
+      }
+    }
+    if (hp.columns.empty()) continue;
+    const Eigen::VectorXd df =
+        (plus.rows.K.transpose() * lambda - minus.rows.K.transpose() * lambda) / (2.0 * h);
+    for (std::size_t hr = 0; hr < hp.columns.size(); ++hr) {
+      const int i = hp.dof[hr];
+      if (df(i) == 0.0) continue;
+      for (int j : hp.columns[hr]) {
+        if (cc.has(j, k)) h_trip.emplace_back(i, j, df(i));
+      }
+    }
+  }
+  lin.D.resize(R, N);
+  lin.D.setFromTriplets(d_trip.begin(), d_trip.end());
+  lin.H.resize(N, N);
+  lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
+}
+
+void check_linearization_input(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                               const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
+                               const std::vector<char>& movable, const ContactMaps& maps_at_u,
+                               const LinearizationOptions& options) {
+  const int N = mesh.num_dofs();
+  const int R = static_cast<int>(quadrature.W.rows());
+  require(u.size() == N, "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
+                             std::to_string(N) + " DOFs");
+  require(lambda.size() == R, "linearize_contact: lambda has " + std::to_string(lambda.size()) + " entries for " +
+                                  std::to_string(R) + " constraint rows");
+  require(static_cast<int>(movable.size()) == N, "linearize_contact: movable mask has " +
+                                                     std::to_string(movable.size()) + " entries for " +
+                                                     std::to_string(N) + " DOFs");
+  require(maps_at_u.d.size() == R && static_cast<int>(maps_at_u.pointwise.projection.size()) ==
+                                         static_cast<int>(pair.slave.size()),
+          "linearize_contact: the maps at u have " + std::to_string(maps_at_u.d.size()) + " rows and " +
+              std::to_string(maps_at_u.pointwise.projection.size()) + " projections for " + std::to_string(R) +
+              " constraint rows and " + std::to_string(pair.slave.size()) + " slave nodes");
+  require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
+}
+
 }  // namespace
 
 ContactMaps evaluate_contact_maps(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
@@ -43,22 +201,7 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options) {
-  const int N = mesh.num_dofs();
-  const int R = static_cast<int>(quadrature.W.rows());
-  require(u.size() == N, "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
-                             std::to_string(N) + " DOFs");
-  require(lambda.size() == R, "linearize_contact: lambda has " + std::to_string(lambda.size()) + " entries for " +
-                                  std::to_string(R) + " constraint rows");
-  require(static_cast<int>(movable.size()) == N, "linearize_contact: movable mask has " +
-                                                     std::to_string(movable.size()) + " entries for " +
-                                                     std::to_string(N) + " DOFs");
-  require(maps_at_u.d.size() == R && static_cast<int>(maps_at_u.pointwise.projection.size()) ==
-                                         static_cast<int>(pair.slave.size()),
-          "linearize_contact: the maps at u have " + std::to_string(maps_at_u.d.size()) + " rows and " +
-              std::to_string(maps_at_u.pointwise.projection.size()) + " projections for " + std::to_string(R) +
-              " constraint rows and " + std::to_string(pair.slave.size()) + " slave nodes");
-  require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
-
+  check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
   ContactLinearization lin;
   lin.maps = std::move(maps_at_u);
   if (options.method == LinearizationMethod::Analytic) {
@@ -66,104 +209,11 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
     return lin;
   }
   const std::vector<std::vector<int>> inputs = detail::row_inputs(pair, quadrature, lin.maps.pointwise, movable);
-
-  // Rows of H: DOF i gets the columns of every loaded row r (lambda_r != 0) whose inputs hold i.
-  std::vector<int> h_row_of(static_cast<std::size_t>(N), -1);
-  std::vector<int> h_dof;                   // H row index -> DOF
-  std::vector<std::vector<int>> h_columns;  // H row index -> columns
-  for (int r = 0; r < R; ++r) {
-    if (lambda(r) == 0.0) continue;
-    const auto& in = inputs[static_cast<std::size_t>(r)];
-    for (int i : in) {
-      int& hr = h_row_of[static_cast<std::size_t>(i)];
-      if (hr < 0) {
-        hr = static_cast<int>(h_dof.size());
-        h_dof.push_back(i);
-        h_columns.emplace_back();
-      }
-      auto& cols = h_columns[static_cast<std::size_t>(hr)];
-      cols.insert(cols.end(), in.begin(), in.end());
-    }
-  }
-  for (auto& cols : h_columns) sort_unique(cols);
-
-  // Greedy colouring: columns sharing an output row (a row of D or of H) get different colours.
-  std::vector<int> columns;
-  for (const auto& in : inputs) columns.insert(columns.end(), in.begin(), in.end());
-  sort_unique(columns);
-  std::vector<int> compact(static_cast<std::size_t>(N), -1);
-  for (std::size_t c = 0; c < columns.size(); ++c) compact[static_cast<std::size_t>(columns[c])] = static_cast<int>(c);
-  std::vector<std::vector<int>> column_outputs(columns.size());  // output rows: r, or R + H row
-  for (int r = 0; r < R; ++r) {
-    for (int j : inputs[static_cast<std::size_t>(r)]) column_outputs[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])].push_back(r);
-  }
-  for (std::size_t hr = 0; hr < h_columns.size(); ++hr) {
-    for (int j : h_columns[hr]) {
-      column_outputs[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])].push_back(R + static_cast<int>(hr));
-    }
-  }
-  std::vector<std::vector<int>> output_colours(static_cast<std::size_t>(R) + h_columns.size());
-  std::vector<int> colour(columns.size(), -1);
-  std::vector<char> forbidden;
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    forbidden.assign(static_cast<std::size_t>(lin.colours) + 1, 0);
-    for (int o : column_outputs[c]) {
-      for (int k : output_colours[static_cast<std::size_t>(o)]) forbidden[static_cast<std::size_t>(k)] = 1;
-    }
-    int k = 0;
-    while (forbidden[static_cast<std::size_t>(k)]) ++k;
-    colour[c] = k;
-    lin.colours = std::max(lin.colours, k + 1);
-    for (int o : column_outputs[c]) output_colours[static_cast<std::size_t>(o)].push_back(k);
-  }
-
-  // Step: relative to the mean reference slave edge length.
-  double edges = 0.0;
-  for (std::size_t p = 0; p + 1 < pair.slave.size(); ++p) {
-    edges += (mesh.nodes[static_cast<std::size_t>(pair.slave[p + 1])] - mesh.nodes[static_cast<std::size_t>(pair.slave[p])]).norm();
-  }
-  const double h = options.relative_step * edges / static_cast<double>(std::max<std::size_t>(1, pair.slave.size() - 1));
-  require(h > 0.0, "linearize_contact: the slave boundary has zero length");
-
-  std::vector<Eigen::Triplet<double>> d_trip, h_trip;
-  Eigen::VectorXd up = u, um = u;
-  for (int k = 0; k < lin.colours; ++k) {
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (colour[c] != k) continue;
-      up(columns[c]) = u(columns[c]) + h;
-      um(columns[c]) = u(columns[c]) - h;
-    }
-    const ContactMaps plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
-    const ContactMaps minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
-    lin.evaluations += 2;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (colour[c] != k) continue;
-      up(columns[c]) = u(columns[c]);
-      um(columns[c]) = u(columns[c]);
-    }
-    const Eigen::VectorXd dd = (plus.d - minus.d) / (2.0 * h);
-    for (int r = 0; r < R; ++r) {
-      for (int j : inputs[static_cast<std::size_t>(r)]) {
-        if (colour[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])] == k && dd(r) != 0.0) {
-          d_trip.emplace_back(r, j, dd(r));
-        }
-      }
-    }
-    if (h_columns.empty()) continue;
-    const Eigen::VectorXd df =
-        (plus.rows.K.transpose() * lambda - minus.rows.K.transpose() * lambda) / (2.0 * h);
-    for (std::size_t hr = 0; hr < h_columns.size(); ++hr) {
-      const int i = h_dof[hr];
-      if (df(i) == 0.0) continue;
-      for (int j : h_columns[hr]) {
-        if (colour[static_cast<std::size_t>(compact[static_cast<std::size_t>(j)])] == k) h_trip.emplace_back(i, j, df(i));
-      }
-    }
-  }
-  lin.D.resize(R, N);
-  lin.D.setFromTriplets(d_trip.begin(), d_trip.end());
-  lin.H.resize(N, N);
-  lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
+  const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());
+  const ColumnColouring cc = colour_columns(inputs, hp, mesh.num_dofs());
+  lin.colours = cc.colours;
+  const double h = difference_step(mesh, pair, options.relative_step);
+  central_differences(mesh, pair, quadrature, u, lambda, inputs, hp, cc, h, options, lin);
   return lin;
 }
 

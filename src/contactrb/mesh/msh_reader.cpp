@@ -300,32 +300,17 @@ double triangle_area(const std::array<Eigen::Vector2d, 3>& p, double& longest2) 
   return 0.5 * ((p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[2].x() - p[0].x()) * (p[1].y() - p[0].y()));
 }
 
-}  // namespace
+// The physical groups of an element's entity (none: an empty list).
+const std::vector<int>& element_physicals(const MshContent& c, const Element& e) {
+  static const std::vector<int> none;
+  auto it = c.entity_physicals.find({e.entity_dim, e.entity_tag});
+  return it == c.entity_physicals.end() ? none : it->second;
+}
 
-Mesh read_msh(const std::string& path, const MshGroups& groups) {
-  require(groups.body_groups.size() == 1 || groups.body_groups.size() == 2,
-          "read_msh: body_groups must name 1 or 2 physical groups (got " +
-              std::to_string(groups.body_groups.size()) + ")");
-  const MshContent c = parse(path);
-  const std::string where = "mesh file '" + path + "': ";
-
-  std::vector<int> body_tag;
-  for (std::size_t b = 0; b < groups.body_groups.size(); ++b) {
-    body_tag.push_back(find_group(c, path, 2, groups.body_groups[b], b == 0 ? "the slave body" : "the master body"));
-  }
-  for (const std::string& name : groups.required_boundaries) find_group(c, path, 1, name, "a required boundary");
-
-  auto physicals = [&](const Element& e) -> const std::vector<int>& {
-    static const std::vector<int> none;
-    auto it = c.entity_physicals.find({e.entity_dim, e.entity_tag});
-    return it == c.entity_physicals.end() ? none : it->second;
-  };
-
-  Mesh mesh;
-  std::unordered_map<long long, int> index;       // node tag -> mesh node
-  std::unordered_map<long long, int> node_owner;  // node tag -> body
-  std::vector<long long> triangle_tags;
-  // Node indices follow the order of the $Nodes section: keep the triangles' nodes first.
+// The mesh nodes: the nodes of the triangles, in the order of the $Nodes section, on one plane
+// z = const. Returns node tag -> mesh node.
+std::unordered_map<long long, int> read_nodes(const MshContent& c, const std::string& where, Mesh& mesh) {
+  std::unordered_map<long long, int> index;
   std::set<long long> used;
   for (const Element& e : c.elements) {
     if (e.type != kTriangle3) continue;
@@ -355,26 +340,41 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
                   " (a 2D mesh is required)");
     }
   }
+  return index;
+}
 
-  for (const Element& e : c.elements) {
-    if (e.type != kTriangle3) continue;
-    int body = -1;
-    for (int p : physicals(e)) {
-      for (std::size_t b = 0; b < body_tag.size(); ++b) {
-        if (e.entity_dim == 2 && p == body_tag[b]) {
-          if (body != -1 && body != static_cast<int>(b)) {
-            throw Error(where + "triangle " + std::to_string(e.tag) + " belongs to both body groups");
-          }
-          body = static_cast<int>(b);
+// The body of a triangle: the one body group among its physicals (throws for none or both).
+int triangle_body(const MshContent& c, const Element& e, const std::vector<int>& body_tag, const MshGroups& groups,
+                  const std::string& where) {
+  int body = -1;
+  for (int p : element_physicals(c, e)) {
+    for (std::size_t b = 0; b < body_tag.size(); ++b) {
+      if (e.entity_dim == 2 && p == body_tag[b]) {
+        if (body != -1 && body != static_cast<int>(b)) {
+          throw Error(where + "triangle " + std::to_string(e.tag) + " belongs to both body groups");
         }
+        body = static_cast<int>(b);
       }
     }
-    if (body == -1) {
-      std::string names;
-      for (const std::string& n : groups.body_groups) names += (names.empty() ? "'" : " or '") + n + "'";
-      throw Error(where + "triangle " + std::to_string(e.tag) + " (surface " + std::to_string(e.entity_tag) +
-                  ") is in no body group " + names);
-    }
+  }
+  if (body == -1) {
+    std::string names;
+    for (const std::string& n : groups.body_groups) names += (names.empty() ? "'" : " or '") + n + "'";
+    throw Error(where + "triangle " + std::to_string(e.tag) + " (surface " + std::to_string(e.entity_tag) +
+                ") is in no body group " + names);
+  }
+  return body;
+}
+
+// The triangles and their bodies (disjoint: no node shared). Returns their element tags.
+std::vector<long long> read_triangles(const MshContent& c, const std::vector<int>& body_tag, const MshGroups& groups,
+                                      const std::unordered_map<long long, int>& index, const std::string& where,
+                                      Mesh& mesh) {
+  std::unordered_map<long long, int> node_owner;  // node tag -> body
+  std::vector<long long> triangle_tags;
+  for (const Element& e : c.elements) {
+    if (e.type != kTriangle3) continue;
+    const int body = triangle_body(c, e, body_tag, groups, where);
     std::array<int, 3> tri{};
     for (std::size_t k = 0; k < 3; ++k) {
       tri[k] = index.at(e.nodes[k]);
@@ -388,12 +388,17 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
     triangle_tags.push_back(e.tag);
   }
   if (mesh.triangles.empty()) throw Error(where + "contains no triangles");
+  return triangle_tags;
+}
 
-  // Zero-area triangles, then orientation per body (all clockwise: flip; mixed: error).
-  std::vector<int> clockwise(body_tag.size(), 0);
-  std::vector<int> counter(body_tag.size(), 0);
-  std::vector<long long> first_clockwise(body_tag.size(), -1);
-  std::vector<long long> first_counter(body_tag.size(), -1);
+// Zero-area triangles, then orientation per body (all clockwise: flip; mixed: error).
+void orient_triangles(const std::vector<long long>& triangle_tags, const MshGroups& groups, const std::string& where,
+                      Mesh& mesh) {
+  const std::size_t bodies = groups.body_groups.size();
+  std::vector<int> clockwise(bodies, 0);
+  std::vector<int> counter(bodies, 0);
+  std::vector<long long> first_clockwise(bodies, -1);
+  std::vector<long long> first_counter(bodies, -1);
   for (int t = 0; t < mesh.num_triangles(); ++t) {
     const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
     std::array<Eigen::Vector2d, 3> p;
@@ -411,7 +416,7 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
       if (counter[b]++ == 0) first_counter[b] = tag;
     }
   }
-  for (std::size_t b = 0; b < body_tag.size(); ++b) {
+  for (std::size_t b = 0; b < bodies; ++b) {
     if (clockwise[b] > 0 && counter[b] > 0) {
       const bool minority_cw = clockwise[b] <= counter[b];
       throw Error(where + "body '" + groups.body_groups[b] + "' has inverted triangles: " +
@@ -427,8 +432,11 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
       }
     }
   }
+}
 
-  // Boundary groups: every named 1D physical group; edges oriented with the body on the left.
+// Boundary groups: every named 1D physical group; edges oriented with the body on the left.
+void read_boundaries(const MshContent& c, const std::unordered_map<long long, int>& index, const std::string& where,
+                     Mesh& mesh) {
   std::map<std::pair<int, int>, int> directed;  // counter-clockwise triangle edge -> count
   for (const auto& tri : mesh.triangles) {
     for (std::size_t k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
@@ -438,7 +446,7 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
   }
   for (const Element& e : c.elements) {
     if (e.type != kLine2) continue;
-    for (int p : physicals(e)) {
+    for (int p : element_physicals(c, e)) {
       auto name = c.physical_names.find({1, p});
       if (e.entity_dim != 1 || name == c.physical_names.end()) continue;
       const std::string edge_name = "boundary group '" + name->second + "' line " + std::to_string(e.tag) +
@@ -455,6 +463,27 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
       mesh.boundaries[name->second].push_back(forward ? Edge{a, b} : Edge{b, a});
     }
   }
+}
+
+}  // namespace
+
+Mesh read_msh(const std::string& path, const MshGroups& groups) {
+  require(groups.body_groups.size() == 1 || groups.body_groups.size() == 2,
+          "read_msh: body_groups must name 1 or 2 physical groups (got " +
+              std::to_string(groups.body_groups.size()) + ")");
+  const MshContent c = parse(path);
+  const std::string where = "mesh file '" + path + "': ";
+  std::vector<int> body_tag;
+  for (std::size_t b = 0; b < groups.body_groups.size(); ++b) {
+    body_tag.push_back(find_group(c, path, 2, groups.body_groups[b], b == 0 ? "the slave body" : "the master body"));
+  }
+  for (const std::string& name : groups.required_boundaries) find_group(c, path, 1, name, "a required boundary");
+
+  Mesh mesh;
+  const std::unordered_map<long long, int> index = read_nodes(c, where, mesh);
+  const std::vector<long long> triangle_tags = read_triangles(c, body_tag, groups, index, where, mesh);
+  orient_triangles(triangle_tags, groups, where, mesh);
+  read_boundaries(c, index, where, mesh);
   try {
     validate(mesh);
   } catch (const Error& e) {

@@ -129,30 +129,12 @@ int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<do
 // then exact up to it).
 constexpr double kGapRoundoff = 1e-12;
 
-}  // namespace
+// --- Input checks: a library entry point, so the set may not come from read_snapshot_file, and
+// every index used by the steps below (free_selection, restrict_to, the contact surface) is used
+// unchecked.
 
-const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
-
-void check_settings(const OfflineSettings& s) {
-  require(std::isfinite(s.eps_pod) && s.eps_pod >= 0.0, "offline: eps_pod must be >= 0, got " + std::to_string(s.eps_pod));
-  require(s.pod_modes >= -1 && s.pod_modes != 0, "offline: pod_modes must be -1 (by eps_pod) or >= 1, got " +
-                                                    std::to_string(s.pod_modes));
-  require(std::isfinite(s.eps_du) && s.eps_du >= 0.0, "offline: eps_du must be >= 0, got " + std::to_string(s.eps_du));
-  require(s.dual_size >= -1 && s.dual_size != 0, "offline: dual_size must be -1 or >= 1, got " +
-                                                    std::to_string(s.dual_size));
-  require(std::isfinite(s.eps_eim_k) && s.eps_eim_k >= 0.0, "offline: eps_eim_k must be >= 0");
-  require(std::isfinite(s.eps_eim_g) && s.eps_eim_g >= 0.0, "offline: eps_eim_g must be >= 0");
-  require(s.eim_k_size >= -1 && s.eim_g_size >= -1, "offline: EIM sizes must be >= -1");
-}
-
-OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
-                                  const OfflineSettings& settings) {
-  const auto t_total = Clock::now();
-  check_settings(settings);
-  const int P = static_cast<int>(set.snapshots.size());
-  require(P >= 1, "offline: the snapshot set is empty");
-  // A library entry point: the set may not come from read_snapshot_file, and every index below
-  // (free_selection, restrict_to, the contact surface) is used unchecked.
+void check_set_matches_case(const io::SnapshotSet& set, const cases::CaseSpec& spec) {
+  require(!set.snapshots.empty(), "offline: the snapshot set is empty");
   try {
     io::check_snapshot_set(set);
   } catch (const Error& e) {
@@ -170,26 +152,30 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
     require(s.converged, "offline: the snapshot at mu = " + cases::mu_values_text(s.mu) + " did not converge (" + s.status +
                              ": " + s.message + "); drop it or recompute it");
   }
-  {
-    // A repeated training value adds no information but one more identical column: with a zero
-    // step the whole set is one value, and the model answered elsewhere with converged = true
-    // and a contact force 45 times the HF one (issue [R] row 7).
-    std::vector<std::pair<std::vector<double>, int>> mus;
-    for (int p = 0; p < P; ++p) {
-      const cases::Mu& mu = set.snapshots[sz(p)].mu;
-      mus.emplace_back(std::vector<double>(mu.data(), mu.data() + mu.size()), p);
-    }
-    std::sort(mus.begin(), mus.end());
-    for (std::size_t i = 1; i < mus.size(); ++i) {
-      if (mus[i].first == mus[i - 1].first) {
-        // shortest round-trip digits: the value exactly as stored
-        const std::string text = cases::mu_values_text(set.snapshots[sz(mus[i].second)].mu);
-        throw Error("offline: the training value mu = " + text + " appears twice (snapshots " +
-                    std::to_string(mus[i - 1].second) + " and " + std::to_string(mus[i].second) +
-                    "): the training values must be distinct");
-      }
+}
+
+// A repeated training value adds no information but one more identical column: with a zero step
+// the whole set is one value, and the model answered elsewhere with converged = true and a
+// contact force 45 times the HF one.
+void check_distinct_training_values(const io::SnapshotSet& set) {
+  std::vector<std::pair<std::vector<double>, int>> mus;
+  for (std::size_t p = 0; p < set.snapshots.size(); ++p) {
+    const cases::Mu& mu = set.snapshots[p].mu;
+    mus.emplace_back(std::vector<double>(mu.data(), mu.data() + mu.size()), static_cast<int>(p));
+  }
+  std::sort(mus.begin(), mus.end());
+  for (std::size_t i = 1; i < mus.size(); ++i) {
+    if (mus[i].first == mus[i - 1].first) {
+      // shortest round-trip digits: the value exactly as stored
+      const std::string text = cases::mu_values_text(set.snapshots[sz(mus[i].second)].mu);
+      throw Error("offline: the training value mu = " + text + " appears twice (snapshots " +
+                  std::to_string(mus[i - 1].second) + " and " + std::to_string(mus[i].second) +
+                  "): the training values must be distinct");
     }
   }
+}
+
+void check_snapshot_sizes(const io::SnapshotSet& set) {
   const int n_free = static_cast<int>(set.free_dofs.size());
   const int n_c = static_cast<int>(set.contact_dofs.size());
   const int R_hf = static_cast<int>(set.snapshots.front().lambda.size());
@@ -201,57 +187,91 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
                 std::to_string(s.lambda.size()) + "/" + std::to_string(R_hf) + ", K " + std::to_string(s.K.rows()) +
                 " x " + std::to_string(s.K.cols()) + ")");
   }
+}
 
-  OfflineResult out;
-  ReducedModel& m = out.model;
-  OfflineReport& rep = out.report;
-  ReducedReconstruction& rec = out.reconstruction;
+// --- The affine terms (49) on the reference mesh and the inner product M of the POD.
+struct ReferenceTerms {
+  mesh::Mesh mesh;
+  cases::AffineTerms terms;
+  cases::AffineThetas thetas;
+  Eigen::SparseMatrix<double> free_selection;  // P: P' A P = A_00
+  Eigen::SparseMatrix<double> inner;           // M on the free DOFs
+  Eigen::MatrixXd lift_c;                      // u_D terms on the contact DOFs, one column per term
+  std::vector<int> global_to_free;             // -1 on a Dirichlet DOF
+};
 
-  // --- Assembly of the affine terms on the reference mesh (offline only).
-  auto t0 = Clock::now();
+ReferenceTerms assemble_reference_terms(const io::SnapshotSet& set, const cases::CaseSpec& spec, InnerProduct product,
+                                        OfflineReport& report) {
+  const auto t0 = Clock::now();
+  ReferenceTerms ref;
   // The set's own mesh when it records one (no .msh file needed), else the case's.
-  const mesh::Mesh reference = set.mesh.nodes.empty() ? cases::reference_mesh(spec, set.level) : set.mesh;
-  require(reference.num_dofs() == set.num_dofs, "offline: the case's reference mesh has " +
-                                                    std::to_string(reference.num_dofs()) + " DOFs, the snapshots " +
-                                                    std::to_string(set.num_dofs));
-  const cases::AffineTerms terms = cases::assemble_affine_terms(spec, reference);
-  const cases::AffineThetas thetas = cases::theta_functions(spec);
-  require(terms.A.size() == thetas.a.size() && terms.f.size() == thetas.f.size() &&
-              terms.lift.size() == thetas.lift.size(),
+  ref.mesh = set.mesh.nodes.empty() ? cases::reference_mesh(spec, set.level) : set.mesh;
+  require(ref.mesh.num_dofs() == set.num_dofs, "offline: the case's reference mesh has " +
+                                                   std::to_string(ref.mesh.num_dofs()) + " DOFs, the snapshots " +
+                                                   std::to_string(set.num_dofs));
+  ref.terms = cases::assemble_affine_terms(spec, ref.mesh);
+  ref.thetas = cases::theta_functions(spec);
+  require(ref.terms.A.size() == ref.thetas.a.size() && ref.terms.f.size() == ref.thetas.f.size() &&
+              ref.terms.lift.size() == ref.thetas.lift.size(),
           "offline: affine terms and theta functions disagree in number");
-  const Eigen::SparseMatrix<double> Psel = free_selection(set.num_dofs, set.free_dofs);
-  Eigen::SparseMatrix<double> inner;
-  if (settings.inner_product == InnerProduct::Energy) {
-    const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(thetas.a, cases::reference_mu(spec.parameters)));
-    inner = Psel.transpose() * A_ref * Psel;
+  ref.free_selection = free_selection(set.num_dofs, set.free_dofs);
+  const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
+  if (product == InnerProduct::Energy) {
+    const fem::SparseMatrix A_ref =
+        cases::combine(ref.terms.A, cases::evaluate(ref.thetas.a, cases::reference_mu(spec.parameters)));
+    ref.inner = Psel.transpose() * A_ref * Psel;
   } else {
-    inner = Psel.transpose() * fem::h1_product(reference) * Psel;
+    ref.inner = Psel.transpose() * fem::h1_product(ref.mesh) * Psel;
   }
-  rep.assembly_s = seconds_since(t0);
+  const int JD = static_cast<int>(ref.terms.lift.size());
+  ref.lift_c.resize(ix(set.contact_dofs.size()), JD);
+  for (int k = 0; k < JD; ++k) ref.lift_c.col(k) = restrict_to(ref.terms.lift[sz(k)], set.contact_dofs);
+  ref.global_to_free.assign(sz(set.num_dofs), -1);
+  for (std::size_t i = 0; i < set.free_dofs.size(); ++i) ref.global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
+  report.assembly_s = seconds_since(t0);
+  return ref;
+}
 
-  // --- (T2) POD of u_0.
-  Eigen::MatrixXd U0(n_free, P);
-  for (int p = 0; p < P; ++p) U0.col(p) = set.snapshots[sz(p)].u0;
+// --- (T2) POD of the primal snapshots u_0 in the M-norm.
+struct PrimalSnapshots {
+  Eigen::MatrixXd U0;  // n_free x P
+  PODResult pod;
+};
+
+PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<double>& inner,
+                         const OfflineSettings& settings, OfflineReport& report) {
+  PrimalSnapshots out;
+  const int P = static_cast<int>(set.snapshots.size());
+  out.U0.resize(ix(set.free_dofs.size()), P);
+  for (int p = 0; p < P; ++p) out.U0.col(p) = set.snapshots[sz(p)].u0;
   PODSettings pod_settings;
   pod_settings.tolerance = settings.eps_pod;
   pod_settings.relative = settings.eps_pod_relative;
   pod_settings.max_modes = settings.pod_modes;
-  const PODResult pod_result = pod(U0, inner, pod_settings);
-  require(pod_result.N >= 1, "offline: POD kept no mode (eps_pod = " + std::to_string(settings.eps_pod) +
-                                 (settings.eps_pod_relative ? " relative" : " absolute") +
-                                 " above every singular value, largest " +
-                                 std::to_string(pod_result.singular_values.size() ? pod_result.singular_values(0) : 0.0) +
-                                 ")");
-  Eigen::MatrixXd Theta = pod_result.basis;
-  rep.singular_values = pod_result.singular_values;
-  rep.N_pod = pod_result.N;
-  rep.pod_threshold = pod_result.threshold;
-  rep.pod_s = pod_result.seconds;
-  std::vector<int> global_to_free(sz(set.num_dofs), -1);
-  for (std::size_t i = 0; i < set.free_dofs.size(); ++i) global_to_free[sz(set.free_dofs[i])] = static_cast<int>(i);
+  out.pod = pod(out.U0, inner, pod_settings);
+  const PODResult& r = out.pod;
+  require(r.N >= 1, "offline: POD kept no mode (eps_pod = " + std::to_string(settings.eps_pod) +
+                        (settings.eps_pod_relative ? " relative" : " absolute") +
+                        " above every singular value, largest " +
+                        std::to_string(r.singular_values.size() ? r.singular_values(0) : 0.0) + ")");
+  report.singular_values = r.singular_values;
+  report.N_pod = r.N;
+  report.pod_threshold = r.threshold;
+  report.pod_s = r.seconds;
+  return out;
+}
 
-  // --- Compression (Remark 7) and (T3) the dual cone on the kept rows.
-  t0 = Clock::now();
+// --- Remark 7: the dual snapshots on the constraints active on the training set.
+struct DualSnapshots {
+  std::vector<int> kept;      // kept constraint rows
+  Eigen::MatrixXd Lambda;     // R_kept x P, >= 0
+  Eigen::VectorXd weights;    // |I_r| on the kept rows
+};
+
+DualSnapshots compression_step(const io::SnapshotSet& set, const OfflineSettings& settings, OfflineReport& report) {
+  const auto t0 = Clock::now();
+  const int P = static_cast<int>(set.snapshots.size());
+  const int R_hf = static_cast<int>(set.snapshots.front().lambda.size());
   Eigen::MatrixXd Lambda(R_hf, P);
   Eigen::VectorXd weights = Eigen::VectorXd::Zero(R_hf);
   for (int p = 0; p < P; ++p) {
@@ -263,99 +283,118 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   cs.enabled = settings.compression;
   const Compression comp = compress_constraints(Lambda, cs);
   require(!comp.kept.empty(), "offline: no constraint is active on the training set: no dual basis to build");
-  const std::vector<int>& kept = comp.kept;
-  const int R_kept = static_cast<int>(kept.size());
-  const Eigen::MatrixXd Lambda_k = restrict_rows(Lambda, kept);
+  DualSnapshots out;
+  out.kept = comp.kept;
+  // The snapshot multipliers are >= 0 up to the QP's round-off: clip tiny negatives.
+  out.Lambda = restrict_rows(Lambda, out.kept).cwiseMax(0.0);
+  out.weights = restrict_rows(weights, out.kept);
+  report.R_hf = R_hf;
+  report.R_kept = static_cast<int>(out.kept.size());
+  report.dual_s = seconds_since(t0);  // the report times the compression with the dual cone
+  return out;
+}
+
+// --- (T3) The dual cone W_R^+ (Algorithm 2 for CPG) on the kept rows.
+DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const OfflineSettings& settings,
+                              OfflineReport& report) {
+  const auto t0 = Clock::now();
   DualConeSettings ds;
   ds.greedy.tolerance = settings.eps_du;
   ds.greedy.relative = settings.eps_du_relative;
   ds.greedy.max_size = settings.dual_size;
-  ds.weights = restrict_rows(weights, kept);
-  // The snapshot multipliers are >= 0 up to the QP's round-off: clip tiny negatives.
-  const Eigen::MatrixXd Lambda_pos = Lambda_k.cwiseMax(0.0);
+  ds.weights = dual_snapshots.weights;
   DualConeResult dual;
   switch (settings.dual_method) {
-    case DualConeMethod::CPG: dual = build_cpg(Lambda_pos, ds); break;
-    case DualConeMethod::AngleGreedy: dual = build_angle_greedy(Lambda_pos, ds); break;
-    case DualConeMethod::NMF: dual = build_nmf_cone(Lambda_pos, ds); break;
+    case DualConeMethod::CPG: dual = build_cpg(dual_snapshots.Lambda, ds); break;
+    case DualConeMethod::AngleGreedy: dual = build_angle_greedy(dual_snapshots.Lambda, ds); break;
+    case DualConeMethod::NMF: dual = build_nmf_cone(dual_snapshots.Lambda, ds); break;
   }
-  const Eigen::MatrixXd& Xi = dual.generators;
-  const int R = static_cast<int>(Xi.cols());
-  require(R >= 1, "offline: the dual cone is empty");
-  rep.R_hf = R_hf;
-  rep.R_kept = R_kept;
-  rep.R = R;
-  rep.dual_errors = dual.errors;
-  rep.dual_relative_errors = dual.relative_errors;
-  rep.dual_status = to_string(dual.status);
-  rep.dual_condition_number = generator_condition_number(Xi, ds.weights);
-  rep.dual_s = seconds_since(t0);
+  require(dual.generators.cols() >= 1, "offline: the dual cone is empty");
+  report.R = static_cast<int>(dual.generators.cols());
+  report.dual_errors = dual.errors;
+  report.dual_relative_errors = dual.relative_errors;
+  report.dual_status = to_string(dual.status);
+  report.dual_condition_number = generator_condition_number(dual.generators, ds.weights);
+  report.dual_s += seconds_since(t0);
+  return dual;
+}
 
+// --- The primal basis Theta, the POD modes enriched with one supremizer per dual generator.
+Eigen::MatrixXd primal_basis_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const PODResult& pod_result,
+                                  const DualSnapshots& dual_snapshots, const DualConeResult& dual,
+                                  const OfflineSettings& settings, OfflineReport& report) {
+  Eigen::MatrixXd Theta = pod_result.basis;
   if (settings.supremizers) {
-    t0 = Clock::now();
-    rep.N_supremizers = enrich_with_supremizers(Theta, inner, set, kept, dual, Lambda_pos, ds.weights, global_to_free);
-    rep.supremizer_s = seconds_since(t0);
+    const auto t0 = Clock::now();
+    report.N_supremizers = enrich_with_supremizers(Theta, ref.inner, set, dual_snapshots.kept, dual,
+                                                   dual_snapshots.Lambda, dual_snapshots.weights, ref.global_to_free);
+    report.supremizer_s = seconds_since(t0);
   }
-  const int N = static_cast<int>(Theta.cols());
-  rep.N = N;
+  report.N = static_cast<int>(Theta.cols());
+  return Theta;
+}
 
-  // Lift on the contact DOFs, per term.
-  const int JD = static_cast<int>(terms.lift.size());
-  Eigen::MatrixXd lift_c(n_c, JD);
-  for (int k = 0; k < JD; ++k) lift_c.col(k) = restrict_to(terms.lift[sz(k)], set.contact_dofs);
-
-  // --- (T1) EIM of kappa: K(u(mu)) on the kept rows and the contact DOFs, flattened.
-  t0 = Clock::now();
+// --- (T1) EIM of kappa, K(u(mu)) on the kept rows and the contact DOFs, flattened.
+EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kept, const OfflineSettings& settings,
+                         OfflineReport& report) {
+  const auto t0 = Clock::now();
   std::vector<Eigen::MatrixXd> Ks;
-  Ks.reserve(sz(P));
+  Ks.reserve(set.snapshots.size());
   for (const io::Snapshot& s : set.snapshots) Ks.push_back(restrict_rows(s.K, kept));
   EIMSettings ek;
   ek.tolerance = settings.eps_eim_k;
   ek.relative = settings.eps_eim_k_relative;
   ek.max_size = settings.eim_k_size;
-  const EIMResult eim_k = eim(flatten_columns(Ks), ek);
-  Ks.clear();
+  EIMResult eim_k = eim(flatten_columns(Ks), ek);
   // M^k = 0 makes D^kappa (54) zero: every online solve would fail (the primal space would not
   // see the contact). Refuse the model rather than write it.
   require(eim_k.size() >= 1, "offline: the EIM of the contact map kappa kept no function (M^k = 0: eps_eim_k = " +
                                  std::to_string(settings.eps_eim_k) + " is above max |kappa| = " +
                                  std::to_string(eim_k.errors.empty() ? 0.0 : eim_k.errors.front()) +
                                  " on the training set, or eim_k_size = 0); lower eps_eim_k");
-  rep.Mk = eim_k.size();
-  rep.eim_kappa_errors = eim_k.errors;
-  rep.eim_kappa_status = eim_status(eim_k);
-  rep.eim_kappa_threshold = eim_k.threshold;
-  rep.eim_kappa_s = seconds_since(t0);
+  report.Mk = eim_k.size();
+  report.eim_kappa_errors = eim_k.errors;
+  report.eim_kappa_status = eim_status(eim_k);
+  report.eim_kappa_threshold = eim_k.threshold;
+  report.eim_kappa_s = seconds_since(t0);
+  return eim_k;
+}
 
-  // --- (T1) EIM of gamma = g - K u_D(mu) on the kept rows.
-  t0 = Clock::now();
-  Eigen::MatrixXd G(R_kept, P);
+// --- (T1) EIM of gamma = g - K u_D(mu) on the kept rows.
+EIMResult eim_gamma_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const std::vector<int>& kept,
+                         const OfflineSettings& settings, OfflineReport& report) {
+  const auto t0 = Clock::now();
+  const int P = static_cast<int>(set.snapshots.size());
+  Eigen::MatrixXd G(ix(kept.size()), P);
   for (int p = 0; p < P; ++p) {
     const io::Snapshot& s = set.snapshots[sz(p)];
-    G.col(p) = restrict_rows(Eigen::VectorXd(s.g - s.K * lift_at(lift_c, thetas, s.mu)), kept);
+    G.col(p) = restrict_rows(Eigen::VectorXd(s.g - s.K * lift_at(ref.lift_c, ref.thetas, s.mu)), kept);
   }
   EIMSettings eg;
   eg.tolerance = settings.eps_eim_g;
   eg.relative = settings.eps_eim_g_relative;
   eg.max_size = settings.eim_g_size;
-  const EIMResult eim_g = eim(G, eg);
+  EIMResult eim_g = eim(G, eg);
   // M^g = 0 replaces gamma by 0: accepted only when gamma vanishes on the whole training set up
   // to the round-off of the geometry (e.g. a flat patch test, initially touching, 2e-33).
   const double gamma_max = eim_g.errors.empty() ? 0.0 : eim_g.errors.front();
   double extent = 0.0;  // largest reference coordinate
-  for (const auto& x : reference.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  for (const auto& x : ref.mesh.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
   require(eim_g.size() >= 1 || gamma_max <= kGapRoundoff * extent,
           "offline: the EIM of the gap gamma kept no function (M^g = 0: eps_eim_g = " +
               std::to_string(settings.eps_eim_g) + " is above max |gamma| = " + std::to_string(gamma_max) +
               " on the training set, or eim_g_size = 0), so the reduced gap would be 0; lower eps_eim_g");
-  rep.Mg = eim_g.size();
-  rep.eim_gamma_errors = eim_g.errors;
-  rep.eim_gamma_status = eim_status(eim_g);
-  rep.eim_gamma_threshold = eim_g.threshold;
-  rep.eim_gamma_s = seconds_since(t0);
+  report.Mg = eim_g.size();
+  report.eim_gamma_errors = eim_g.errors;
+  report.eim_gamma_status = eim_status(eim_g);
+  report.eim_gamma_threshold = eim_g.threshold;
+  report.eim_gamma_s = seconds_since(t0);
+  return eim_g;
+}
 
-  // --- Reduced arrays.
-  t0 = Clock::now();
+// --- The reduced arrays. The provenance and the settings the model was built with.
+void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, const OfflineSettings& settings,
+                       const cases::AffineThetas& thetas, ReducedModel& m) {
   m.case_name = set.case_name;
   m.case_kind = set.case_kind;
   m.case_spec = set.case_spec;
@@ -376,40 +415,38 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.kacanov_alpha = set.kacanov_alpha;
   m.kacanov_tolerance = set.kacanov_tolerance;
   m.kacanov_max_iterations = set.kacanov_max_iterations;
-  m.N_max = N;
-  m.N_supremizers = rep.N_supremizers;
-  m.R_max = R;
-  m.Mk_max = eim_k.size();
-  m.Mg_max = eim_g.size();
-  m.singular_values = pod_result.singular_values;
-  // Theta is M-orthonormal: the projection coefficients are Theta' M u_0 (the initial guess where
-  // the reduced solve below does not converge).
-  m.training_u_hat = Theta.transpose() * (inner * U0);
-  m.training_lambda_hat = Eigen::MatrixXd::Zero(R, P);
-  m.training_mu.resize(spec.num_parameters(), P);
-  for (int p = 0; p < P; ++p) m.training_mu.col(p) = set.snapshots[sz(p)].mu;
+}
 
-  // (49)
+// (49): A_hat_j = Theta' A_j,00 Theta and f_hat_j = Theta' f_j on the free DOFs, and the lift
+// terms u_D(mu) enters through (A_j u_D,k, f_j . u_D,k, u_D,l . A_j u_D,k).
+void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Theta, const std::vector<int>& free_dofs,
+                          ReducedModel& m) {
+  const cases::AffineTerms& terms = ref.terms;
+  const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
   const int Ja = static_cast<int>(terms.A.size());
   const int Jf = static_cast<int>(terms.f.size());
+  const int JD = static_cast<int>(terms.lift.size());
   for (int j = 0; j < Ja; ++j) {
     const Eigen::SparseMatrix<double> A00 = Psel.transpose() * terms.A[sz(j)] * Psel;
     Eigen::MatrixXd Ah = Theta.transpose() * (A00 * Theta);
     m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
   }
-  for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], set.free_dofs));
+  for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], free_dofs));
   for (int j = 0; j < Ja; ++j) {
     for (int k = 0; k < JD; ++k) {
       const Eigen::VectorXd Al = terms.A[sz(j)] * terms.lift[sz(k)];
-      m.A_lift_hat.push_back(Theta.transpose() * restrict_to(Al, set.free_dofs));
+      m.A_lift_hat.push_back(Theta.transpose() * restrict_to(Al, free_dofs));
       for (int l = 0; l < JD; ++l) m.lift_AA.push_back(terms.lift[sz(l)].dot(Al));
     }
   }
   for (int j = 0; j < Jf; ++j) {
     for (int k = 0; k < JD; ++k) m.lift_f.push_back(terms.f[sz(j)].dot(terms.lift[sz(k)]));
   }
+}
 
-  // Contact surface: chain nodes in ascending global index; check the DOF convention.
+// The contact surface: its nodes chained in ascending global index, their two DOFs in that order
+// in set.contact_dofs (checked).
+ContactSurface contact_surface(const io::SnapshotSet& set, const mesh::Mesh& reference) {
   std::vector<int> nodes = set.slave;
   nodes.insert(nodes.end(), set.master.begin(), set.master.end());
   std::sort(nodes.begin(), nodes.end());
@@ -423,7 +460,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
             "offline: contact_dofs are not the two components of the ascending contact nodes");
     local[nodes[i]] = static_cast<int>(i);
   }
-  ContactSurface& surf = m.surface;
+  ContactSurface surf;
   std::map<int, int> slave_set;
   for (int s : set.slave) slave_set[s] = 1;
   for (int node : nodes) {
@@ -433,60 +470,146 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   for (int s : set.slave) surf.slave.push_back(local[s]);
   for (int s : set.master) surf.master.push_back(local[s]);
   surf.discretization = contact::discretization_from_string(set.constraint);
-  surf.num_constraints = R_hf;
+  surf.num_constraints = static_cast<int>(set.snapshots.front().lambda.size());
+  return surf;
+}
 
-  m.Theta_c = Eigen::MatrixXd::Zero(n_c, N);
+// The contact arrays: Theta on the contact DOFs, the dual cone Xi, C^kappa_j (55) and
+// D^gamma = Xi' Q^gamma (B^gamma)^-1 (54), whose inverse is applied online.
+void contact_arrays(const io::SnapshotSet& set, const ReferenceTerms& ref, const Eigen::MatrixXd& Theta,
+                    const std::vector<int>& kept, const Eigen::MatrixXd& Xi, const EIMResult& eim_k,
+                    const EIMResult& eim_g, ReducedModel& m) {
+  const int n_c = static_cast<int>(set.contact_dofs.size());
+  const int R_kept = static_cast<int>(kept.size());
+  m.Theta_c = Eigen::MatrixXd::Zero(n_c, Theta.cols());
   for (int i = 0; i < n_c; ++i) {
-    const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
+    const int fi = ref.global_to_free[sz(set.contact_dofs[sz(i)])];
     if (fi >= 0) m.Theta_c.row(i) = Theta.row(fi);
   }
-  m.lift_c = lift_c;
-
+  m.lift_c = ref.lift_c;
   m.kept_rows = kept;
   m.Xi = Xi;
-  // (55): C_j = Xi' Q_j Theta_c.
   for (int j = 0; j < eim_k.size(); ++j) {
     const auto rn = unflatten_index(eim_k.magic_points[sz(j)], n_c);
     m.kappa_row.push_back(rn.first);
     m.kappa_dof.push_back(rn.second);
     const Eigen::MatrixXd Qj = unflatten_column(eim_k.Q.col(j), R_kept, n_c);
-    m.C_kappa.push_back(Xi.transpose() * (Qj * m.Theta_c));
+    m.C_kappa.push_back(Xi.transpose() * (Qj * m.Theta_c));  // (55): C_j = Xi' Q_j Theta_c
   }
   m.B_kappa = eim_k.B;
   m.eim_kappa_errors = eim_k.errors;
-  // (54): D^gamma = Xi' Q^gamma (B^gamma)^-1, the inverse applied online.
   m.gamma_row = eim_g.magic_points;
   m.B_gamma = eim_g.B;
   m.XiQ_gamma = Xi.transpose() * eim_g.Q;
   m.eim_gamma_errors = eim_g.errors;
-  // The a posteriori error estimate's offline data (error_estimate.hpp).
-  m.estimate = build_estimate_data({&terms, &thetas, cases::reference_mu(spec.parameters), &set.free_dofs, &set.contact_dofs,
-                                    &Theta, &m.Theta_c, &Xi, &eim_k.Q, &eim_g.Q, &set, &kept, &lift_c, &ds.weights,
-                                    &eim_k.magic_points, &eim_k.B, &eim_g.magic_points, &eim_g.B});
-  check_model(m);
-  // The online initial guess: the reduced solutions at the training values (P online solves).
-  {
-    OnlineSolver solver(m);
-    OnlineSettings cold;
-    cold.initial_guess = InitialGuess::Zero;
-    for (int p = 0; p < P; ++p) {
-      const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
-      if (!sol.converged()) continue;
-      m.training_u_hat.col(p) = sol.u_hat;
-      m.training_lambda_hat.col(p) = sol.lambda_hat;
-    }
-  }
-  rep.reduction_s = seconds_since(t0);
+}
 
+// --- The a posteriori error estimate's offline data (error_estimate.hpp).
+EstimateData estimate_data_step(const io::SnapshotSet& set, const cases::CaseSpec& spec, const ReferenceTerms& ref,
+                                const Eigen::MatrixXd& Theta, const ReducedModel& m,
+                                const DualSnapshots& dual_snapshots, const EIMResult& eim_k, const EIMResult& eim_g) {
+  return build_estimate_data({&ref.terms, &ref.thetas, cases::reference_mu(spec.parameters), &set.free_dofs,
+                              &set.contact_dofs, &Theta, &m.Theta_c, &m.Xi, &eim_k.Q, &eim_g.Q, &set,
+                              &dual_snapshots.kept, &ref.lift_c, &dual_snapshots.weights, &eim_k.magic_points,
+                              &eim_k.B, &eim_g.magic_points, &eim_g.B});
+}
+
+// The training points and their coordinates. Theta is M-orthonormal, so Theta' M u_0 are the
+// projection coefficients: the initial guess where the reduced solve below does not converge.
+void training_coordinates(const Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<double>& inner,
+                          const PrimalSnapshots& primal, const io::SnapshotSet& set, ReducedModel& m) {
+  const int P = static_cast<int>(set.snapshots.size());
+  m.training_u_hat = Theta.transpose() * (inner * primal.U0);
+  m.training_lambda_hat = Eigen::MatrixXd::Zero(m.R_max, P);
+  m.training_mu.resize(ix(m.parameters.size()), P);
+  for (int p = 0; p < P; ++p) m.training_mu.col(p) = set.snapshots[sz(p)].mu;
+}
+
+// The online initial guess (OnlineSettings::initial_guess): the reduced solutions at the training
+// values, P online solves from zero.
+void solve_at_training_values(ReducedModel& m) {
+  OnlineSolver solver(m);
+  OnlineSettings cold;
+  cold.initial_guess = InitialGuess::Zero;
+  for (Index p = 0; p < m.training_mu.cols(); ++p) {
+    const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
+    if (!sol.converged()) continue;
+    m.training_u_hat.col(p) = sol.u_hat;
+    m.training_lambda_hat.col(p) = sol.lambda_hat;
+  }
+}
+
+// The HF-size data that reconstruct a field from (u_hat, lambda_hat) (reconstruction.hpp).
+ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const ReferenceTerms& ref,
+                                          const Eigen::MatrixXd& Theta, const ReducedModel& m) {
+  ReducedReconstruction rec;
   rec.num_dofs = set.num_dofs;
   rec.free_dofs = set.free_dofs;
   rec.Theta = Theta;
-  rec.lift = terms.lift;
-  rec.thetas = thetas;
-  rec.kept_rows = kept;
-  rec.num_constraints = R_hf;
-  rec.Xi = Xi;
-  rec.mesh = reference;
+  rec.lift = ref.terms.lift;
+  rec.thetas = ref.thetas;
+  rec.kept_rows = m.kept_rows;
+  rec.num_constraints = m.surface.num_constraints;
+  rec.Xi = m.Xi;
+  rec.mesh = ref.mesh;
+  return rec;
+}
+
+}  // namespace
+
+const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
+
+void check_settings(const OfflineSettings& s) {
+  require(std::isfinite(s.eps_pod) && s.eps_pod >= 0.0, "offline: eps_pod must be >= 0, got " + std::to_string(s.eps_pod));
+  require(s.pod_modes >= -1 && s.pod_modes != 0, "offline: pod_modes must be -1 (by eps_pod) or >= 1, got " +
+                                                    std::to_string(s.pod_modes));
+  require(std::isfinite(s.eps_du) && s.eps_du >= 0.0, "offline: eps_du must be >= 0, got " + std::to_string(s.eps_du));
+  require(s.dual_size >= -1 && s.dual_size != 0, "offline: dual_size must be -1 or >= 1, got " +
+                                                    std::to_string(s.dual_size));
+  require(std::isfinite(s.eps_eim_k) && s.eps_eim_k >= 0.0, "offline: eps_eim_k must be >= 0");
+  require(std::isfinite(s.eps_eim_g) && s.eps_eim_g >= 0.0, "offline: eps_eim_g must be >= 0");
+  require(s.eim_k_size >= -1 && s.eim_g_size >= -1, "offline: EIM sizes must be >= -1");
+}
+
+// The offline stage, paper Section 5 (docs/theory.md, "POD, dual cones, EIM"): (T2) POD,
+// (T3) dual cone, (T1) EIM of kappa and gamma, then the arrays (49), (54)-(55) of Algorithm 1.
+OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
+                                  const OfflineSettings& settings) {
+  const auto t_total = Clock::now();
+  check_settings(settings);
+  check_set_matches_case(set, spec);
+  check_distinct_training_values(set);
+  check_snapshot_sizes(set);
+
+  OfflineResult out;
+  OfflineReport& rep = out.report;
+  const ReferenceTerms ref = assemble_reference_terms(set, spec, settings.inner_product, rep);
+  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
+  const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
+  const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
+  const Eigen::MatrixXd Theta = primal_basis_step(set, ref, primal.pod, dual_snapshots, dual, settings, rep);
+  const EIMResult eim_k = eim_kappa_step(set, dual_snapshots.kept, settings, rep);  // (T1)
+  const EIMResult eim_g = eim_gamma_step(set, ref, dual_snapshots.kept, settings, rep);  // (T1)
+
+  const auto t0 = Clock::now();
+  ReducedModel& m = out.model;
+  record_provenance(set, spec, settings, ref.thetas, m);
+  m.N_max = rep.N;
+  m.N_supremizers = rep.N_supremizers;
+  m.R_max = rep.R;
+  m.Mk_max = rep.Mk;
+  m.Mg_max = rep.Mg;
+  m.singular_values = primal.pod.singular_values;
+  project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
+  m.surface = contact_surface(set, ref.mesh);
+  contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
+  m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g);
+  training_coordinates(Theta, ref.inner, primal, set, m);
+  check_model(m);
+  solve_at_training_values(m);
+  rep.reduction_s = seconds_since(t0);
+
+  out.reconstruction = reconstruction_data(set, ref, Theta, m);
   rep.total_s = seconds_since(t_total);
   return out;
 }

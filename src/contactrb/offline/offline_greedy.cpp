@@ -230,6 +230,179 @@ int greedy_start_index(const std::vector<cases::ParameterSpec>& parameters, cons
   return best;
 }
 
+namespace {
+
+// What the greedy's steps share: the problem, the training set and which of its points are
+// selected (HF snapshot taken) or excluded (HF solve failed), and the result being built.
+struct Greedy {
+  const cases::CaseSpec& spec;
+  const SnapshotRequest& request;
+  const GreedyOfflineSettings& settings;
+  const std::vector<GreedyMu>& training;
+  // HF data of the true error at the chosen points (offline side: A(mu) = sum theta^a_j A_j).
+  cases::AffineTerms terms;
+  cases::AffineThetas thetas;
+  OnlineSettings online;  // with the error estimate
+  std::vector<char> selected, excluded;
+  GreedyOfflineResult out;
+};
+
+// The HF solves at some training points: one snapshot set in the order of `indices`. Cold
+// starts (no warm start between the points of a step), so that each snapshot depends on its
+// point only, not on the threads or processes that share the step out.
+io::SnapshotSet hf_solve(Greedy& g, const std::vector<int>& indices) {
+  SnapshotRequest step = g.request;
+  step.mu.clear();
+  for (int i : indices) step.mu.push_back(g.training[sz(i)]);
+  g.out.hf_solves += static_cast<int>(indices.size());
+  const GreedyOfflineSettings& settings = g.settings;
+  const auto solve = [&settings](const SnapshotRequest& part) {
+    SnapshotRunOptions run;
+    run.jobs = settings.jobs;
+    run.warm_start = SnapshotRunOptions::WarmStart::Off;
+    return generate_snapshots(part, run);
+  };
+  // Distributed: each process solves its share, every process gets all (the same set everywhere).
+  return settings.distribution.share ? settings.distribution.share(solve, step) : solve(step);
+}
+
+// Start: one HF solve at the training point nearest the domain centre.
+void start(Greedy& g, GreedyProgress& progress) {
+  g.out.start = greedy_start_index(g.spec.parameters, g.training);
+  const auto t0 = Clock::now();
+  g.out.snapshots = hf_solve(g, {g.out.start});
+  g.out.start_hf_s = seconds_since(t0);
+  const io::Snapshot& s = g.out.snapshots.snapshots.front();
+  progress.start(g.training[sz(g.out.start)], g.out.start, static_cast<int>(g.training.size()), s);
+  require(s.converged, "greedy: the HF solve at the start point mu = " + mu_text(s.mu) + " failed (" + s.status +
+                           (s.message.empty() ? "" : ": " + s.message) + "); no model can be built");
+  g.out.snapshots.set_name = "greedy";
+  g.out.selected.push_back(g.out.start);
+  g.selected[sz(g.out.start)] = 1;
+}
+
+// Extend's counterpart: the reduced model of the selected snapshots.
+void build_model(Greedy& g, GreedyStep& row) {
+  const auto t0 = Clock::now();
+  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.settings.offline);
+  row.build_s = seconds_since(t0);
+  const ReducedModel& model = g.out.offline.model;
+  row.N = model.N_max;
+  row.R = model.R_max;
+  row.Mk = model.Mk_max;
+  row.Mg = model.Mg_max;
+}
+
+// Evaluate: the relative estimate over the training set (the excluded points do not count).
+// Returns the points not selected yet, largest estimate first: the next HF solves.
+std::vector<int> evaluate(const Greedy& g, GreedyStep& row) {
+  const auto t0 = Clock::now();
+  const int P = static_cast<int>(g.training.size());
+  const Sweep sweep = sweep_all(g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution);
+  row.sweep_s = seconds_since(t0);
+  row.online_failures = sweep.failures;
+  row.max_estimate = -kInf;
+  std::vector<int> candidates;
+  for (int i = 0; i < P; ++i) {
+    if (g.excluded[sz(i)]) continue;
+    if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
+      row.max_estimate = sweep.criterion[sz(i)];
+      row.argmax = i;
+    }
+    if (!g.selected[sz(i)]) candidates.push_back(i);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),  // stable: ties to the smallest index
+                   [&](int a, int b) { return sweep.criterion[sz(a)] > sweep.criterion[sz(b)]; });
+  row.argmax_mu = g.training[sz(row.argmax)];
+  return candidates;
+}
+
+// The stopping test, in this order: the tolerance, the HF budget, no point left. nullptr: go on.
+const char* stop_reason(Greedy& g, const GreedyStep& row, const std::vector<int>& candidates) {
+  if (row.max_estimate <= g.settings.tolerance) {
+    g.out.status = GreedyOfflineStatus::ToleranceReached;
+    return "tolerance reached";
+  }
+  if (g.out.hf_solves >= g.settings.max_hf) {
+    g.out.status = GreedyOfflineStatus::Budget;
+    return "HF budget spent";
+  }
+  if (candidates.empty()) {
+    g.out.status = GreedyOfflineStatus::Stagnated;
+    return "every training point is selected (stagnated)";
+  }
+  return nullptr;
+}
+
+// The current model's true error at mu against the HF snapshot there: |u_rb - u_hf|_A(mu) /
+// |u_hf|_A(mu) and e_press, the L2(Gamma^c) norm of the P0 pressures with the weights |I_r|(mu)
+// of the HF quadrature.
+void true_errors(const Greedy& g, const GreedyMu& mu, const OnlineSolution& rb, const io::Snapshot& snap,
+                 GreedyStep& row) {
+  const ReducedReconstruction& rec = g.out.offline.reconstruction;
+  const fem::SparseMatrix A = cases::combine(g.terms.A, cases::evaluate(g.thetas.a, mu));
+  const Eigen::VectorXd d = reconstruct_displacement(rec, mu, rb.u_hat) - snap.u;
+  const double norm_hf = std::sqrt(std::max(0.0, snap.u.dot(A * snap.u)));
+  const double norm_d = std::sqrt(std::max(0.0, d.dot(A * d)));
+  row.true_error = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;
+  const Eigen::VectorXd dl = reconstruct_multipliers(rec, rb.lambda_hat) - snap.lambda;
+  const double lh = std::sqrt(snap.weight.dot(snap.lambda.cwiseAbs2()));
+  const double ld = std::sqrt(snap.weight.dot(dl.cwiseAbs2()));
+  row.true_e_press = lh > 0.0 ? ld / lh : ld;
+}
+
+// The step's converged snapshots join the set; a point whose HF solve failed leaves the
+// training set (reported in the step).
+void add_snapshots(Greedy& g, io::SnapshotSet& s, GreedyStep& row) {
+  for (std::size_t k = 0; k < row.batch_points.size(); ++k) {
+    const int index = row.batch_points[k];
+    io::Snapshot& solved = s.snapshots[k];
+    if (solved.converged) {
+      g.out.snapshots.snapshots.push_back(std::move(solved));
+      g.out.selected.push_back(index);
+      g.selected[sz(index)] = 1;
+    } else {
+      ++row.batch_failures;
+      g.out.excluded.push_back(index);
+      g.excluded[sz(index)] = 1;
+    }
+  }
+}
+
+// Extend: the HF solves at the `batch` largest estimates among the points not selected yet
+// (within the budget). Where the overall max is at a selected point, the estimate there is its
+// floor (docs/offline-online.md, "Greedy sampling"): another solve there adds nothing, a new
+// point still enriches the bases, the cone and the EIM. Then the current model's true error at
+// the first of them.
+void extend(Greedy& g, const std::vector<int>& candidates, GreedyStep& row) {
+  const std::size_t count =
+      std::min({candidates.size(), sz(g.settings.batch), sz(g.settings.max_hf - g.out.hf_solves)});
+  row.batch_points.assign(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(count));
+  row.chosen = candidates.front();
+  const GreedyMu& mu = g.training[sz(row.chosen)];
+  row.chosen_mu = mu;
+  OnlineSolver solver(g.out.offline.model);
+  const OnlineSolution rb = solver.solve(mu, g.online);
+  const auto t0 = Clock::now();
+  io::SnapshotSet s = hf_solve(g, row.batch_points);
+  row.hf_s = seconds_since(t0);
+  require(s.snapshots.size() == count, "internal: the greedy's HF solves gave " + std::to_string(s.snapshots.size()) +
+                                           " snapshots for " + std::to_string(count) + " points");
+  const io::Snapshot& snap = s.snapshots.front();
+  row.hf_converged = snap.converged;
+  row.hf_status = snap.status;
+  if (std::any_of(s.snapshots.begin(), s.snapshots.end(), [](const io::Snapshot& x) { return x.converged; })) {
+    check_same_layout(g.out.snapshots, s, mu);
+  }
+  if (snap.converged && rb.converged()) true_errors(g, mu, rb, snap, row);
+  add_snapshots(g, s, row);
+}
+
+}  // namespace
+
+// The weak greedy as pyMOR's two-step protocol: each step builds the model of the selected
+// snapshots, evaluates the estimate over the training set and extends by HF solves at its
+// largest values, until the tolerance, the HF budget or the training set is spent.
 GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const SnapshotRequest& request,
                                        const GreedyOfflineSettings& settings) {
   const auto t_total = Clock::now();
@@ -237,161 +410,30 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   const std::vector<GreedyMu>& training = request.mu;
   require(!training.empty(), "greedy: the training set '" + request.set_name + "' is empty");
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
-  const int P = static_cast<int>(training.size());
-
-  // HF data of the true error at the chosen points (offline side: A(mu) = sum theta^a_j A_j).
-  const mesh::Mesh reference = cases::reference_mesh(spec, request.level);
-  const cases::AffineTerms terms = cases::assemble_affine_terms(spec, reference);
-  const cases::AffineThetas thetas = cases::theta_functions(spec);
-
-  OnlineSettings online = settings.online;
-  online.error_estimate = true;
+  const std::size_t P = training.size();
+  Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
+           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), {}};
+  g.online.error_estimate = true;
   GreedyProgress progress(settings.progress, settings.progress_stream);
 
-  GreedyOfflineResult out;
-  std::vector<char> selected(sz(P), 0), excluded(sz(P), 0);
-  // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
-  // starts (no warm start between the points of a step), so that each snapshot depends on its
-  // point only, not on the threads or processes that share the step out.
-  const auto hf_solve = [&](const std::vector<int>& indices) {
-    SnapshotRequest step = request;
-    step.mu.clear();
-    for (int i : indices) step.mu.push_back(training[sz(i)]);
-    out.hf_solves += static_cast<int>(indices.size());
-    const auto solve = [&settings](const SnapshotRequest& part) {
-      SnapshotRunOptions run;
-      run.jobs = settings.jobs;
-      run.warm_start = SnapshotRunOptions::WarmStart::Off;
-      return generate_snapshots(part, run);
-    };
-    // Distributed: each process solves its share, every process gets all (the same set everywhere).
-    return settings.distribution.share ? settings.distribution.share(solve, step) : solve(step);
-  };
-
-  // Start: one HF solve at the training point nearest the domain centre.
-  out.start = greedy_start_index(spec.parameters, training);
-  {
-    const auto t0 = Clock::now();
-    out.snapshots = hf_solve({out.start});
-    out.start_hf_s = seconds_since(t0);
-    const io::Snapshot& s = out.snapshots.snapshots.front();
-    progress.start(training[sz(out.start)], out.start, P, s);
-    require(s.converged, "greedy: the HF solve at the start point mu = " + mu_text(s.mu) + " failed (" + s.status +
-                             (s.message.empty() ? "" : ": " + s.message) + "); no model can be built");
-  }
-  out.snapshots.set_name = "greedy";
-  out.selected.push_back(out.start);
-  selected[sz(out.start)] = 1;
-
+  start(g, progress);
   for (int step = 1;; ++step) {
     const auto t_step = Clock::now();
     GreedyStep row;
     row.step = step;
-    row.snapshots = static_cast<int>(out.selected.size());
-    row.hf_solves = out.hf_solves;
-
-    // Extend's counterpart: the reduced model of the selected snapshots.
-    auto t0 = Clock::now();
-    out.offline = build_reduced_model(out.snapshots, spec, settings.offline);
-    row.build_s = seconds_since(t0);
-    const ReducedModel& model = out.offline.model;
-    row.N = model.N_max;
-    row.R = model.R_max;
-    row.Mk = model.Mk_max;
-    row.Mg = model.Mg_max;
-
-    // Evaluate: the relative estimate over the training set (the excluded points do not count).
-    t0 = Clock::now();
-    const Sweep sweep = sweep_all(model, training, online, settings.jobs, settings.distribution);
-    row.sweep_s = seconds_since(t0);
-    row.online_failures = sweep.failures;
-    row.max_estimate = -kInf;
-    std::vector<int> candidates;  // the points not selected yet, largest estimate first: the next HF solves
-    for (int i = 0; i < P; ++i) {
-      if (excluded[sz(i)]) continue;
-      if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
-        row.max_estimate = sweep.criterion[sz(i)];
-        row.argmax = i;
-      }
-      if (!selected[sz(i)]) candidates.push_back(i);
-    }
-    std::stable_sort(candidates.begin(), candidates.end(),  // stable: ties to the smallest index
-                     [&](int a, int b) { return sweep.criterion[sz(a)] > sweep.criterion[sz(b)]; });
-    const int next = candidates.empty() ? -1 : candidates.front();
-    row.argmax_mu = training[sz(row.argmax)];
-
-    const char* stop = nullptr;
-    if (row.max_estimate <= settings.tolerance) {
-      out.status = GreedyOfflineStatus::ToleranceReached;
-      stop = "tolerance reached";
-    } else if (out.hf_solves >= settings.max_hf) {
-      out.status = GreedyOfflineStatus::Budget;
-      stop = "HF budget spent";
-    } else if (next < 0) {
-      out.status = GreedyOfflineStatus::Stagnated;
-      stop = "every training point is selected (stagnated)";
-    } else {
-      // Extend: the HF solves at the `batch` largest estimates among the points not selected yet
-      // (within the budget). Where the overall max is at a selected point, the estimate there is
-      // its floor (docs/offline-online.md, "Greedy sampling"): another solve there adds nothing, a
-      // new point still enriches the bases, the cone and the EIM. Then the current model's true
-      // error at the first of them.
-      const std::size_t count = std::min({candidates.size(), sz(settings.batch), sz(settings.max_hf - out.hf_solves)});
-      row.batch_points.assign(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(count));
-      row.chosen = next;
-      const GreedyMu& mu = training[sz(row.chosen)];
-      row.chosen_mu = mu;
-      OnlineSolver solver(model);
-      const OnlineSolution rb = solver.solve(mu, online);
-      t0 = Clock::now();
-      io::SnapshotSet s = hf_solve(row.batch_points);
-      row.hf_s = seconds_since(t0);
-      require(s.snapshots.size() == count, "internal: the greedy's HF solves gave " +
-                                               std::to_string(s.snapshots.size()) + " snapshots for " +
-                                               std::to_string(count) + " points");
-      io::Snapshot& snap = s.snapshots.front();
-      row.hf_converged = snap.converged;
-      row.hf_status = snap.status;
-      if (std::any_of(s.snapshots.begin(), s.snapshots.end(), [](const io::Snapshot& x) { return x.converged; })) {
-        check_same_layout(out.snapshots, s, mu);
-      }
-      if (snap.converged) {
-        if (rb.converged()) {
-          const ReducedReconstruction& rec = out.offline.reconstruction;
-          const fem::SparseMatrix A = cases::combine(terms.A, cases::evaluate(thetas.a, mu));
-          const Eigen::VectorXd d = reconstruct_displacement(rec, mu, rb.u_hat) - snap.u;
-          const double norm_hf = std::sqrt(std::max(0.0, snap.u.dot(A * snap.u)));
-          const double norm_d = std::sqrt(std::max(0.0, d.dot(A * d)));
-          row.true_error = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;
-          // e_press: the L2(Gamma^c) norm of the P0 pressures, weights |I_r|(mu) of the HF quadrature.
-          const Eigen::VectorXd dl = reconstruct_multipliers(rec, rb.lambda_hat) - snap.lambda;
-          const double lh = std::sqrt(snap.weight.dot(snap.lambda.cwiseAbs2()));
-          const double ld = std::sqrt(snap.weight.dot(dl.cwiseAbs2()));
-          row.true_e_press = lh > 0.0 ? ld / lh : ld;
-        }
-      }
-      for (std::size_t k = 0; k < count; ++k) {
-        const int index = row.batch_points[k];
-        io::Snapshot& solved = s.snapshots[k];
-        if (solved.converged) {
-          out.snapshots.snapshots.push_back(std::move(solved));
-          out.selected.push_back(index);
-          selected[sz(index)] = 1;
-        } else {
-          // No snapshot to add: the point leaves the training set (reported in the step).
-          ++row.batch_failures;
-          out.excluded.push_back(index);
-          excluded[sz(index)] = 1;
-        }
-      }
-    }
+    row.snapshots = static_cast<int>(g.out.selected.size());
+    row.hf_solves = g.out.hf_solves;
+    build_model(g, row);
+    const std::vector<int> candidates = evaluate(g, row);
+    const char* stop = stop_reason(g, row, candidates);
+    if (stop == nullptr) extend(g, candidates, row);
     row.step_s = seconds_since(t_step);
     progress.step(row, stop);
-    out.steps.push_back(row);
+    g.out.steps.push_back(row);
     if (stop != nullptr) break;
   }
-  out.total_s = seconds_since(t_total);
-  return out;
+  g.out.total_s = seconds_since(t_total);
+  return std::move(g.out);
 }
 
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path) {

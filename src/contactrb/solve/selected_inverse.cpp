@@ -47,6 +47,7 @@ struct SparseColumn {
   std::vector<int> rows;
   std::vector<double> values;
 };
+struct ColumnCursors;
 }  // namespace
 
 struct SelectedInverse::Impl {
@@ -64,12 +65,18 @@ struct SelectedInverse::Impl {
   // G(i, j) = x_i . x_j over the cached columns, column-major with leading dimension g_capacity
   // (>= columns.size()): new columns are written in place, and the storage grows by a quarter
   // beyond what is asked, so that a Newton iteration adding a few columns neither copies G nor
-  // touches fresh memory (at 1.2e6 DOFs G is ~3 500^2 doubles, ~100 MB: a new one per call was
-  // freed to the OS and page-faulted again by the next: docs/performance.md, "Why the defaults are what they are",
-  // "Newton: storage reused across systems").
+  // touches fresh memory (at 1.2e6 DOFs G is ~3 500^2 doubles, ~100 MB: a new one per call is
+  // freed to the OS and page-faulted again by the next; docs/performance.md, "Why the defaults
+  // are what they are", "Newton: storage reused across systems").
   std::vector<double> G;
   int g_capacity = 0;
   double& g(int i, int j) { return G[static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * static_cast<std::size_t>(g_capacity)]; }
+  // block(): G[:, new] for the cached columns old.. (defined with block()).
+  void gram_new_columns(int old);
+  std::vector<int> new_rows(int old, int total);
+  void grow_gram(int old, int total);
+  void gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present, Eigen::MatrixXd& Xc,
+                  Eigen::MatrixXd& Gc);
 
   Impl() { cholmod_start(&common); }
   ~Impl() {
@@ -170,8 +177,8 @@ struct SelectedInverse::Impl {
   // children before parents: in supernode s, B_s (its columns x the batch columns J_s whose
   // chain passes through s) gets B_s = L_ss^-1 B_s (dtrsm), then L_below,s B_s (dgemm) is
   // subtracted from the ancestors' blocks. Dense BLAS per supernode instead of one scalar sparse
-  // substitution per column along the paths of a simplicial L (4 of the 15 CPU seconds of a
-  // hertz-a level 6 solve; 0.9 s with the supernodal sweep).
+  // substitution per column (simplicial L), which takes 4 of the 15 CPU seconds of a hertz-a
+  // level 6 solve.
   std::vector<SparseColumn> forward_batch(const std::vector<int>& q) {
     const int* super = static_cast<const int*>(L->super);
     const int* pi = static_cast<const int*>(L->pi);
@@ -698,6 +705,138 @@ Eigen::MatrixXd SelectedInverse::block(const std::vector<int>& idx) {
   return block(idx, storage);
 }
 
+namespace {
+
+// Per cached column, a cursor on its entries (ascending rows, so ascending positions on the
+// rows U_new of block()); next_position(j) skips the rows outside U_new (row_pos < 0) and gives
+// the position of the next entry (`end` past the last). The entries are read in place: a copy of
+// every column's entries on U_new (16 bytes per entry) would be ~300 MB of fresh memory in the
+// first call at 1.2e6 DOFs.
+struct ColumnCursors {
+  const std::vector<SparseColumn>& columns;
+  const std::vector<int>& row_pos;
+  int end;
+  std::vector<std::size_t> at;
+  int next_position(int j) {
+    const SparseColumn& col = columns[static_cast<std::size_t>(j)];
+    std::size_t& c = at[static_cast<std::size_t>(j)];
+    while (c < col.rows.size() && row_pos[static_cast<std::size_t>(col.rows[c])] < 0) ++c;
+    return c < col.rows.size() ? row_pos[static_cast<std::size_t>(col.rows[c])] : end;
+  }
+};
+
+}  // namespace
+
+// The pattern rows of the columns old..total-1, ascending: U_new; row_pos holds their positions.
+std::vector<int> SelectedInverse::Impl::new_rows(int old, int total) {
+  std::vector<int> union_rows;
+  for (int j = old; j < total; ++j) {
+    for (int r : columns[static_cast<std::size_t>(j)].rows) {
+      int& pos = row_pos[static_cast<std::size_t>(r)];
+      if (pos < 0) {
+        pos = 0;
+        union_rows.push_back(r);
+      }
+    }
+  }
+  std::sort(union_rows.begin(), union_rows.end());
+  for (std::size_t a = 0; a < union_rows.size(); ++a) row_pos[static_cast<std::size_t>(union_rows[a])] = static_cast<int>(a);
+  return union_rows;
+}
+
+// G to hold `total` columns: exactly at the first call (all the columns of the first system:
+// hertz-a level 7, 3 960, the most of the solve); a quarter more than asked when later calls
+// add columns.
+void SelectedInverse::Impl::grow_gram(int old, int total) {
+  if (total <= g_capacity) return;
+  const int capacity = old == 0 ? total : total + total / 4;
+  std::vector<double> grown(static_cast<std::size_t>(capacity) * static_cast<std::size_t>(capacity));
+  for (int j = 0; j < old; ++j) {
+    std::copy_n(&g(0, j), old, grown.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(capacity));
+  }
+  G = std::move(grown);
+  g_capacity = capacity;
+}
+
+// One chunk [begin, end) of U_new: G[:, old:] += Xc' Xc[:, new], Xc = X[chunk, J_c] over the
+// columns J_c present in the chunk. Old columns x new ones (dgemm), new x new (dsyrk, one
+// triangle: the first call has only new columns, and this halves its flops).
+void SelectedInverse::Impl::gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present,
+                                      Eigen::MatrixXd& Xc, Eigen::MatrixXd& Gc) {
+  const int total = static_cast<int>(columns.size());
+  present.clear();
+  int first_new = -1;  // position in `present` of the first new column
+  for (int j = 0; j < total; ++j) {
+    if (cursors.next_position(j) < end) {
+      if (j >= old && first_new < 0) first_new = static_cast<int>(present.size());
+      present.push_back(j);
+    }
+  }
+  if (first_new < 0) {  // no new column here: nothing to add, but advance the cursors
+    for (int j : present) {
+      while (cursors.next_position(j) < end) ++cursors.at[static_cast<std::size_t>(j)];
+    }
+    return;
+  }
+  const int np = static_cast<int>(present.size());
+  Xc.setZero(end - begin, np);
+  for (int a = 0; a < np; ++a) {
+    const int j = present[static_cast<std::size_t>(a)];
+    const std::vector<double>& values = columns[static_cast<std::size_t>(j)].values;
+    for (int pos; (pos = cursors.next_position(j)) < end; ++cursors.at[static_cast<std::size_t>(j)]) {
+      Xc(pos - begin, a) = values[cursors.at[static_cast<std::size_t>(j)]];
+    }
+  }
+  const int nn = np - first_new;  // the new columns are the last ones of `present`
+  const int rows_c = end - begin;
+  const double* Xnew = Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(rows_c);
+  const char t = 'T', nt = 'N', upper = 'U';
+  const double one = 1.0, zero = 0.0;
+  auto right = [this, old](int i, int jb) -> double& { return g(i, old + jb); };  // G[:, old:total]
+  if (first_new > 0) {
+    Gc.resize(first_new, nn);
+    dgemm_(&t, &nt, &first_new, &nn, &rows_c, &one, Xc.data(), &rows_c, Xnew, &rows_c, &zero, Gc.data(), &first_new);
+    for (int b = 0; b < nn; ++b) {
+      const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
+      for (int a = 0; a < first_new; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
+    }
+  }
+  Gc.resize(nn, nn);
+  dsyrk_(&upper, &t, &nn, &rows_c, &one, Xnew, &rows_c, &zero, Gc.data(), &nn);
+  for (int b = 0; b < nn; ++b) {
+    const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
+    for (int a = 0; a < nn; ++a) {
+      right(present[static_cast<std::size_t>(first_new + a)], jb) += a <= b ? Gc(a, b) : Gc(b, a);
+    }
+  }
+}
+
+// G[:, new] = X' X[:, new], X = [x_1 .. x_total], for the columns old..total-1. Only the rows
+// U_new of the new columns' patterns count (X[:, new] is zero elsewhere). The patterns are
+// elimination-tree paths: near the root every column has entries, further down only a few. So
+// U_new is cut into chunks of kChunk rows, and each chunk contributes a dense BLAS product over
+// the columns present in it only. One dense product over all of U_new would cost
+// |U_new| x total x new: on hertz-a level 6 (1 400 columns, paths of ~3 000 rows) 7 of the 15
+// CPU seconds of a solve.
+void SelectedInverse::Impl::gram_new_columns(int old) {
+  constexpr int kChunk = 256;
+  const int total = static_cast<int>(columns.size());
+  const std::vector<int> union_rows = new_rows(old, total);
+  const int u = static_cast<int>(union_rows.size());
+  grow_gram(old, total);
+  for (int j = old; j < total; ++j) std::fill_n(&g(0, j), total, 0.0);  // accumulated in place
+  ColumnCursors cursors{columns, row_pos, u, std::vector<std::size_t>(static_cast<std::size_t>(total), 0)};
+  std::vector<int> present;
+  Eigen::MatrixXd Xc, Gc;
+  for (int begin = 0; begin < u; begin += kChunk) {
+    gram_chunk(begin, std::min(u, begin + kChunk), old, cursors, present, Xc, Gc);
+  }
+  for (int r : union_rows) row_pos[static_cast<std::size_t>(r)] = -1;
+  for (int i = old; i < total; ++i) {  // G[new, old] = G[old, new]'
+    for (int j = 0; j < old; ++j) g(i, j) = g(j, i);
+  }
+}
+
 Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>& idx, std::vector<double>& storage) {
   Impl& m = *impl_;
   require(m.status == SelectedInverseStatus::Success,
@@ -713,111 +852,7 @@ Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>&
     }
   }
   for (SparseColumn& x : m.forward_batch(fresh_permuted)) m.columns.push_back(std::move(x));
-  const int total = static_cast<int>(m.columns.size());
-  if (!fresh.empty()) {
-    // G[:, new] = X' X[:, new], X = [x_1 .. x_total]. Only the rows U_new of the new columns'
-    // patterns count (X[:, new] is zero elsewhere). The patterns are elimination-tree paths:
-    // near the root every column has entries, further down only a few. So U_new (ascending)
-    // is cut into chunks of kChunk rows, and each chunk contributes a dense BLAS product over
-    // the columns present in it only: Xc' Xc[:, new], Xc = X[chunk, J_c]. One dense product
-    // over all of U_new costs |U_new| x total x new; on hertz-a level 6 (1 400 columns, paths
-    // of ~3 000 rows) that is 7 of the 15 CPU seconds of a solve.
-    const int old = total - static_cast<int>(fresh.size());
-    std::vector<int> union_rows;
-    for (int j = old; j < total; ++j) {
-      for (int r : m.columns[static_cast<std::size_t>(j)].rows) {
-        int& pos = m.row_pos[static_cast<std::size_t>(r)];
-        if (pos < 0) {
-          pos = 0;
-          union_rows.push_back(r);
-        }
-      }
-    }
-    std::sort(union_rows.begin(), union_rows.end());
-    for (std::size_t a = 0; a < union_rows.size(); ++a) m.row_pos[static_cast<std::size_t>(union_rows[a])] = static_cast<int>(a);
-    constexpr int kChunk = 256;
-    const int u = static_cast<int>(union_rows.size());
-    if (total > m.g_capacity) {
-      // The first call (all the columns of the first system: hertz-a level 7, 3 960, the most
-      // of the solve) exactly; a quarter more than asked when later calls add columns.
-      const int capacity = old == 0 ? total : total + total / 4;
-      std::vector<double> grown(static_cast<std::size_t>(capacity) * static_cast<std::size_t>(capacity));
-      for (int j = 0; j < old; ++j) {
-        std::copy_n(&m.g(0, j), old, grown.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(capacity));
-      }
-      m.G = std::move(grown);
-      m.g_capacity = capacity;
-    }
-    // G[:, old:total] accumulates in place (zero first): the columns `right` of the new ones.
-    for (int j = old; j < total; ++j) std::fill_n(&m.g(0, j), total, 0.0);
-    auto right = [&m, old](int i, int jb) -> double& { return m.g(i, old + jb); };
-    // Per column, a cursor on its entries (ascending rows, so ascending positions on U_new);
-    // next_position(j) skips the rows outside U_new and gives the position of the next entry
-    // (u at the end). Read in place: a copy of every column's entries on U_new (16 bytes per
-    // entry) would be ~300 MB of fresh memory in the first call at 1.2e6 DOFs.
-    std::vector<std::size_t> cursor(static_cast<std::size_t>(total), 0);
-    auto next_position = [&](int j) {
-      const SparseColumn& col = m.columns[static_cast<std::size_t>(j)];
-      std::size_t& c = cursor[static_cast<std::size_t>(j)];
-      while (c < col.rows.size() && m.row_pos[static_cast<std::size_t>(col.rows[c])] < 0) ++c;
-      return c < col.rows.size() ? m.row_pos[static_cast<std::size_t>(col.rows[c])] : u;
-    };
-    std::vector<int> present;
-    Eigen::MatrixXd Xc, Gc;
-    for (int begin = 0; begin < u; begin += kChunk) {
-      const int end = std::min(u, begin + kChunk);
-      present.clear();
-      int first_new = -1;  // position in `present` of the first new column
-      for (int j = 0; j < total; ++j) {
-        if (next_position(j) < end) {
-          if (j >= old && first_new < 0) first_new = static_cast<int>(present.size());
-          present.push_back(j);
-        }
-      }
-      if (first_new < 0) {  // no new column here: nothing to add, but advance the cursors
-        for (int j : present) {
-          while (next_position(j) < end) ++cursor[static_cast<std::size_t>(j)];
-        }
-        continue;
-      }
-      const int np = static_cast<int>(present.size());
-      Xc.setZero(end - begin, np);
-      for (int a = 0; a < np; ++a) {
-        const int j = present[static_cast<std::size_t>(a)];
-        const std::vector<double>& values = m.columns[static_cast<std::size_t>(j)].values;
-        for (int pos; (pos = next_position(j)) < end; ++cursor[static_cast<std::size_t>(j)]) {
-          Xc(pos - begin, a) = values[cursor[static_cast<std::size_t>(j)]];
-        }
-      }
-      const int nn = np - first_new;  // the new columns are the last ones of `present`
-      const int rows_c = end - begin;
-      const double* Xnew = Xc.data() + static_cast<std::size_t>(first_new) * static_cast<std::size_t>(rows_c);
-      const char t = 'T', nt = 'N', upper = 'U';
-      const double one = 1.0, zero = 0.0;
-      // Old columns x new ones (dgemm), new x new (dsyrk, one triangle: the first call has
-      // only new columns, and this halves its flops).
-      if (first_new > 0) {
-        Gc.resize(first_new, nn);
-        dgemm_(&t, &nt, &first_new, &nn, &rows_c, &one, Xc.data(), &rows_c, Xnew, &rows_c, &zero, Gc.data(), &first_new);
-        for (int b = 0; b < nn; ++b) {
-          const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
-          for (int a = 0; a < first_new; ++a) right(present[static_cast<std::size_t>(a)], jb) += Gc(a, b);
-        }
-      }
-      Gc.resize(nn, nn);
-      dsyrk_(&upper, &t, &nn, &rows_c, &one, Xnew, &rows_c, &zero, Gc.data(), &nn);
-      for (int b = 0; b < nn; ++b) {
-        const int jb = present[static_cast<std::size_t>(first_new + b)] - old;
-        for (int a = 0; a < nn; ++a) {
-          right(present[static_cast<std::size_t>(first_new + a)], jb) += a <= b ? Gc(a, b) : Gc(b, a);
-        }
-      }
-    }
-    for (int r : union_rows) m.row_pos[static_cast<std::size_t>(r)] = -1;
-    for (int i = old; i < total; ++i) {  // G[new, old] = G[old, new]'
-      for (int j = 0; j < old; ++j) m.g(i, j) = m.g(j, i);
-    }
-  }
+  if (!fresh.empty()) m.gram_new_columns(static_cast<int>(m.columns.size() - fresh.size()));
   const std::size_t e = idx.size();
   if (storage.capacity() < e * e) {
     storage = std::vector<double>();  // no copy of the old contents
