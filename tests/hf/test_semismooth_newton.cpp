@@ -51,7 +51,7 @@ void expect_same_solution(const hf::ContactProblem& problem, const std::string& 
   const hf::HFSolver solver(problem);
   const hf::HFSolution k = solver.solve(kacanov_to_roundoff());
   hf::HFSettings ns = newton(1e-13);
-  ns.newton.max_free_steps = free_steps;
+  ns.newton.tuning.max_free_steps = free_steps;
   const hf::HFSolution n = solver.solve(ns);  // lambda = u-error x stiffness: solve tight
   ASSERT_TRUE(k.converged) << label << ": " << k.message;
   ASSERT_TRUE(n.converged) << label << ": " << n.message;
@@ -155,7 +155,7 @@ TEST(SemismoothNewton, KacanovSafeguardEndsTheCrawlOfHertzALevelFiveAtTheLargest
   const std::size_t m = r.size() - 1;
   EXPECT_LT(r[m] / r[m - 1], 1e-2);
   EXPECT_LT(std::min(r[m] / r[m - 1], r[m - 1] / r[m - 2]), 1e-4);
-  s.newton.kacanov_safeguard = 0.0;  // the previous globalization
+  s.newton.tuning.kacanov_safeguard = 0.0;  // the previous globalization
   const hf::HFSolution old = solver.solve(s);
   ASSERT_TRUE(old.converged) << old.message;
   EXPECT_GE(old.iterations, 15);
@@ -178,7 +178,7 @@ TEST(SemismoothNewton, KacanovSafeguardEndsTheCrawlOfHertzALevelFiveAtTheLargest
 TEST(SemismoothNewton, ChordCorrectionsBringHertzALevelFourAtTheLargestMuToAtMostEightIterations) {
   const hf::HFSolver solver(cases::make_problem("hertz-a", 0.45, 4, contact::Discretization::Collocation));
   hf::HFSettings s = newton();
-  s.newton.chord_steps = 2;  // off by default (slower on the large levels)
+  s.newton.tuning.chord_steps = 2;  // off by default (slower on the large levels)
   const hf::HFSolution n = solver.solve(s);
   ASSERT_TRUE(n.converged) << n.message;
   EXPECT_LE(n.kkt.max(), s.newton.tolerance);
@@ -189,7 +189,7 @@ TEST(SemismoothNewton, ChordCorrectionsBringHertzALevelFourAtTheLargestMuToAtMos
     chords += it.chord_steps;
   }
   EXPECT_GE(chords, 1);
-  s.newton.chord_steps = 0;  // without the corrections
+  s.newton.tuning.chord_steps = 0;  // without the corrections
   const hf::HFSolution old = solver.solve(s);
   ASSERT_TRUE(old.converged) << old.message;
   EXPECT_GE(old.iterations, 9);
@@ -230,7 +230,7 @@ TEST(SemismoothNewton, ActiveSchurTakesTheStepsOfTheSaddlePointLU) {
     // The Newton phase's systems by GMRES (default, preconditioned by the frozen-geometry
     // system) and by the dense LU of size |E| + |A| (krylov_max_iterations 0): the same steps.
     s.newton.linear_solver = hf::NewtonLinearSolver::ActiveSchur;
-    s.newton.krylov_max_iterations = 0;
+    s.newton.tuning.krylov_max_iterations = 0;
     const hf::HFSolution d = solver.solve(s);
     ASSERT_TRUE(d.converged) << name << ": " << d.message;
     ASSERT_EQ(a.iterations, d.iterations) << name;
@@ -256,8 +256,8 @@ TEST(SemismoothNewton, OrderingAndBlasThreadsGiveTheSameSolution) {
   s.newton.ordering = solve::FactorOrdering::Cholmod;
   const hf::HFSolution a = solver.solve(s);
   s.newton.ordering = solve::FactorOrdering::NodeMetis;
-  s.newton.blas_threads = 2;
-  s.newton.blas_threads_from = 0;
+  s.newton.tuning.blas_threads = 2;
+  s.newton.tuning.blas_threads_from = 0;
   const hf::HFSolution b = solver.solve(s);
   ASSERT_TRUE(a.converged) << a.message;
   ASSERT_TRUE(b.converged) << b.message;
@@ -392,17 +392,17 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
   s.newton.max_iterations = 0;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
   s = newton();
-  s.newton.min_step = 2.0;
+  s.newton.tuning.min_step = 2.0;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
   // Each bad value is refused with an error that names its setting.
   const std::vector<std::pair<std::string, std::function<void(hf::NewtonSettings&)>>> named{
-      {"max_branch_passes", [](hf::NewtonSettings& n) { n.max_branch_passes = -1; }},
-      {"branch_passes_below", [](hf::NewtonSettings& n) { n.branch_passes_below = -1.0; }},
-      {"kacanov_safeguard", [](hf::NewtonSettings& n) { n.kacanov_safeguard = -0.5; }},
-      {"max_newton_passes", [](hf::NewtonSettings& n) { n.max_newton_passes = 0; }},
-      {"switch_passes", [](hf::NewtonSettings& n) { n.switch_passes = 0; }},
-      {"chord_steps", [](hf::NewtonSettings& n) { n.chord_steps = -1; }},
-      {"blas_threads", [](hf::NewtonSettings& n) { n.blas_threads = -1; }},
+      {"max_branch_passes", [](hf::NewtonSettings& n) { n.tuning.max_branch_passes = -1; }},
+      {"branch_passes_below", [](hf::NewtonSettings& n) { n.tuning.branch_passes_below = -1.0; }},
+      {"kacanov_safeguard", [](hf::NewtonSettings& n) { n.tuning.kacanov_safeguard = -0.5; }},
+      {"max_newton_passes", [](hf::NewtonSettings& n) { n.tuning.max_newton_passes = 0; }},
+      {"switch_passes", [](hf::NewtonSettings& n) { n.tuning.switch_passes = 0; }},
+      {"chord_steps", [](hf::NewtonSettings& n) { n.tuning.chord_steps = -1; }},
+      {"blas_threads", [](hf::NewtonSettings& n) { n.tuning.blas_threads = -1; }},
   };
   for (const auto& [name, spoil] : named) {
     s = newton();
@@ -415,10 +415,10 @@ TEST(SemismoothNewton, InvalidSettingsThrowNamingTheSetting) {
     }
   }
   s = newton();
-  s.newton.krylov_max_iterations = -1;
+  s.newton.tuning.krylov_max_iterations = -1;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
   s = newton();
-  s.newton.krylov_tolerance = 1.0;
+  s.newton.tuning.krylov_tolerance = 1.0;
   EXPECT_THROW(solver.solve(s), contactrb::Error);
   EXPECT_THROW(hf::hf_method_from_string("gauss"), contactrb::Error);
 }
