@@ -2,7 +2,8 @@
 // The steps of the semi-smooth Newton solver (docs/theory.md, "Semi-smooth Newton", steps 1-6),
 // over the state of one solve: the iterate, the factorization of A_00, the linearization at
 // the iterate, the step and its trials. semismooth_newton() (semismooth_newton.cpp) is the
-// driver. Internal to the hf module.
+// driver; steps 1-3 and 6 are in newton_steps.cpp, steps 4 and 5 in newton_globalization.cpp.
+// Internal to the hf module.
 #include <Eigen/Core>
 #include <chrono>
 #include <optional>
