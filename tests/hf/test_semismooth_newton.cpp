@@ -171,8 +171,8 @@ TEST(SemismoothNewton, ActiveSchurTakesTheStepsOfTheSaddlePointLU) {
     ASSERT_EQ(a.iterations, b.iterations) << name;
     for (std::size_t k = 0; k < a.newton_history.size(); ++k) {
       EXPECT_EQ(a.newton_history[k].active, b.newton_history[k].active) << name << " iteration " << k;
-      // Absolute floor 1e-12: round-off. Summing G = X'X in another order (dsyrk instead of
-      // dgemm) moved ring-block's residual after 4 steps (1.66e-8) by 1.6e-13.
+      // Absolute floor 1e-12: round-off. Summing G = X'X in another order (dsyrk or
+      // dgemm) moves ring-block's residual after 4 steps (1.66e-8) by 1.6e-13.
       EXPECT_NEAR(a.newton_history[k].residual, b.newton_history[k].residual, 1e-6 * b.newton_history[k].residual + 1e-12)
           << name << " iteration " << k;
     }
