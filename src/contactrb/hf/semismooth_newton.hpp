@@ -63,7 +63,8 @@ NewtonInnerPasses newton_inner_passes_from_string(const std::string& name);  // 
 // The tuning of the method: every knob with the reason of its default (docs/performance.md,
 // "Why the defaults are what they are", the sub-heading named at each knob; the steps are those
 // of docs/theory.md, "Semi-smooth Newton"). A user sets NewtonSettings; these stay as they are
-// unless a study of the method needs otherwise (bench/bench_hf_scaling.cpp sets each of them).
+// unless a study of the method needs otherwise (bench/bench_hf_scaling.cpp has an option for
+// most of them).
 struct NewtonTuning {
   // Step 5, the line search: Armijo constant and the smallest damping factor tried (halving).
   double armijo = 1e-4;
@@ -119,6 +120,8 @@ struct NewtonTuning {
   int blas_threads_from = 200000;
 };
 
+// What a user sets: the tolerance, the iteration cap, the linear solver; the method's tuning
+// apart (NewtonTuning).
 struct NewtonSettings {
   double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
   int max_iterations = 50;
