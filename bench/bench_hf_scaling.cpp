@@ -119,23 +119,23 @@ int main(int argc, char** argv) {
     settings.method = hf::hf_method_from_string(solver);
     settings.newton.lu = solve::sparse_lu_backend_from_string(lu);
     settings.newton.linear_solver = hf::newton_linear_solver_from_string(linear);
-    if (inner > 0) settings.newton.max_inner_iterations = inner;
-    settings.newton.inner_passes = hf::newton_inner_passes_from_string(passes);
-    if (free_steps >= 0) settings.newton.max_free_steps = free_steps;
-    if (branch_passes >= 0) settings.newton.max_branch_passes = branch_passes;
-    if (branch_below >= 0.0) settings.newton.branch_passes_below = branch_below;
-    if (safeguard >= 0.0) settings.newton.kacanov_safeguard = safeguard;
-    if (newton_passes > 0) settings.newton.max_newton_passes = newton_passes;
-    if (switch_passes > 0) settings.newton.switch_passes = switch_passes;
-    if (chord >= 0) settings.newton.chord_steps = chord;
+    if (inner > 0) settings.newton.tuning.max_inner_iterations = inner;
+    settings.newton.tuning.inner_passes = hf::newton_inner_passes_from_string(passes);
+    if (free_steps >= 0) settings.newton.tuning.max_free_steps = free_steps;
+    if (branch_passes >= 0) settings.newton.tuning.max_branch_passes = branch_passes;
+    if (branch_below >= 0.0) settings.newton.tuning.branch_passes_below = branch_below;
+    if (safeguard >= 0.0) settings.newton.tuning.kacanov_safeguard = safeguard;
+    if (newton_passes > 0) settings.newton.tuning.max_newton_passes = newton_passes;
+    if (switch_passes > 0) settings.newton.tuning.switch_passes = switch_passes;
+    if (chord >= 0) settings.newton.tuning.chord_steps = chord;
     if (linearization == "fd") {
       settings.newton.linearization.method = contact::LinearizationMethod::FiniteDifference;
     } else if (linearization != "analytic") {
       std::fprintf(stderr, "unknown --linearization %s (analytic or fd)\n", linearization.c_str());
       return 2;
     }
-    if (krylov >= 0) settings.newton.krylov_max_iterations = krylov;
-    settings.newton.blas_threads = threads;
+    if (krylov >= 0) settings.newton.tuning.krylov_max_iterations = krylov;
+    settings.newton.tuning.blas_threads = threads;
     if (ordering == "cholmod") settings.newton.ordering = solve::FactorOrdering::Cholmod;
     else if (ordering == "node-metis") settings.newton.ordering = solve::FactorOrdering::NodeMetis;
     else if (ordering != "auto") {

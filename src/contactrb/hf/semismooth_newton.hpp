@@ -1,7 +1,7 @@
 #pragma once
 // Semi-smooth Newton (primal-dual active set) solver of the HF contact problem
-// (docs/solvers.md, "Semi-smooth Newton"). It solves the same equations as the fixed point
-// of Kacanov (paper (12)):
+// (docs/theory.md, "Semi-smooth Newton", steps 1-6; docs/solvers.md, "Semi-smooth Newton").
+// It solves the same equations as the fixed point of Kacanov (paper (12)):
 //   A_00 u_0 - b + K_0(u)' lambda = 0,
 //   min(lambda_r, c_r d_r(u)) = 0,   d(u) = g(u) - K(u) u,   u = u_D + u_0,
 // (the second line is lambda >= 0, d >= 0, lambda_r d_r = 0: (26) and its complementarity),
@@ -14,8 +14,9 @@
 // (NewtonLinearSolver): by default reduced EXACTLY to the few DOFs E that H, K_A, D_A touch,
 // with A_00 factorized once per solve and the block (A_00^-1)[E, E] from sparse substitutions
 // (solve/selected_inverse.hpp), the reduced system solved by GMRES preconditioned by the
-// frozen-geometry one (solve/gmres.hpp; a dense LU as the fallback); or, for comparison, by a
-// sparse LU of the whole saddle point (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is ever formed.
+// frozen-geometry one (solve/gmres.hpp; a dense LU as the fallback); or by a sparse LU of the
+// whole saddle point (solve/sparse_lu.hpp). No dense K A^-1 K' over all candidate rows is
+// ever formed (docs/solvers.md, "Newton linear algebra").
 // Globalization: a Kacanov phase first (NewtonInnerPasses::Frozen): from the start, each step
 // solves the frozen-geometry linearization (H = 0, D = -K, a convex QP) exactly by active-set
 // passes, until those passes find the active set at once; then Newton steps. Every step is
@@ -23,8 +24,8 @@
 // rows in force units, |I_r| min(lambda_r, c_r d_r)); optionally a bounded number of full steps
 // without a decrease (max_free_steps). In the Newton phase a full step that does not halve the
 // merit is compared with the exact frozen-geometry step, and the better one is tried first
-// (kacanov_safeguard). A Newton step's full trial is then corrected with the iterate's
-// Jacobian (chord_steps, kept while the merit falls).
+// (kacanov_safeguard). Optionally a Newton step's full trial is then corrected with the
+// iterate's Jacobian (chord_steps, kept while the merit falls).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
@@ -42,9 +43,9 @@
 namespace contactrb::hf {
 
 // ActiveSchur: A_00 = L L' once per solve (CHOLMOD), then per system a dense one of size
-//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md), |A| with the frozen
-//   geometry, GMRES on it in the Newton phase; SaddleLU: one sparse
-//   LU of the (n + |A|)-square saddle point per system (the first implementation, kept to compare).
+//   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md, "Newton linear
+//   algebra"), |A| with the frozen geometry, GMRES on it in the Newton phase; SaddleLU: one sparse
+//   LU of the (n + |A|)-square saddle point per system (kept to compare).
 enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
 const char* to_string(NewtonLinearSolver solver);
 NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  // "schur" | "lu"
@@ -52,67 +53,61 @@ NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  /
 // Frozen (default): a Kacanov phase first. Each iteration solves the frozen-geometry
 // linearization exactly (active-set passes on a convex QP: an undamped Kacanov step) until one
 // pass finds the active set at once; the following iterations are semi-smooth Newton steps with
-// the consistent linearization (passes on it when the set still moves). Consistent (the earlier
-// method): Newton steps from the start. Measured (docs/benchmarks.md, "HF solver scaling"):
-// hertz-a level 5 (88k DOFs) 8 iterations / 27 systems against 11 / ~70, and the consistent
-// passes cycled (a 2-cycle of 7 rows until the cap of 20 passes) or did not converge (level 6).
+// the consistent linearization (passes on it when the set still moves). Consistent: Newton
+// steps from the start; from u = u_D their consistent passes can cycle on fine meshes
+// (docs/performance.md, "Why the defaults are what they are", "Newton: Kacanov phase first").
 enum class NewtonInnerPasses { Frozen, Consistent };
 const char* to_string(NewtonInnerPasses passes);
 NewtonInnerPasses newton_inner_passes_from_string(const std::string& name);  // "frozen" | "consistent"
 
-struct NewtonSettings {
-  double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
-  int max_iterations = 50;
-  // Line search: Armijo constant and the smallest damping factor tried (halving).
+// The tuning of the method: every knob with the reason of its default (docs/performance.md,
+// "Why the defaults are what they are", the sub-heading named at each knob; the steps are those
+// of docs/theory.md, "Semi-smooth Newton"). A user sets NewtonSettings; these stay as they are
+// unless a study of the method needs otherwise (bench/bench_hf_scaling.cpp has an option for
+// most of them).
+struct NewtonTuning {
+  // Step 5, the line search: Armijo constant and the smallest damping factor tried (halving).
   double armijo = 1e-4;
   double min_step = 1.0 / 1024.0;
-  // Full steps accepted without a merit decrease (the combinatorial phase), in all. Default 0:
-  // on hertz-a level 5 (88k DOFs, mu 0.3) free steps let the active set ping-pong (30-70 rows
-  // per step, no convergence in 50 iterations); with 0 it converges in 14, and levels 0-4 take
-  // the same iterations either way (docs/benchmarks.md, "HF solver scaling").
+  // Step 5: full steps accepted without a merit decrease, in all. 0: with free steps the
+  // active set of fine meshes ping-pongs ("Newton: no free steps").
   int max_free_steps = 0;
-  // Inner primal-dual active-set passes on the linearized problem per Newton iteration (systems).
+  // Step 2: active-set passes on the linearized problem per iteration (systems).
   int max_inner_iterations = 20;
+  // Step 2: the Kacanov phase first ("Newton: Kacanov phase first").
   NewtonInnerPasses inner_passes = NewtonInnerPasses::Frozen;
-  // Branch passes per Newton-phase iteration (pointwise rows; semismooth_newton.cpp): when the
-  // step moves slave nodes to other branches of the piecewise smooth contact maps (closest
-  // segment, clamped wedge at a vertex), it is solved again on the maps at u continued on the
-  // branches it lands on. 0: off.
+  // Step 3, branch passes per Newton-phase iteration (pointwise rows): when the step moves
+  // slave nodes to other branches of the piecewise smooth contact maps (closest segment,
+  // clamped wedge at a vertex), it is solved again on the maps at u continued on the branches
+  // it lands on. 0: off. Only in the iterations whose KKT residual is at most
+  // branch_passes_below: the last, quadratic steps, where a kink crossing costs a whole
+  // iteration ("Newton: branch passes near the solution").
   int max_branch_passes = 2;
-  // ... in the iterations whose KKT residual is at most this (the last, quadratic steps, where a
-  // kink crossing costs a whole iteration).
   double branch_passes_below = 1e-5;
-  // Kacanov safeguard (Newton phase, iterations without branch passes): when the full Newton
-  // step leaves the merit above kacanov_safeguard x the iterate's, the exact frozen-geometry
-  // step (the Kacanov phase's, active-set passes on the convex QP) is computed too and the full
-  // step with the smaller merit is taken (then the line search as before). 0: off. Measured
-  // (docs/solvers.md, "Globalization"): hertz-a level 5 at mu 0.45 22 -> 10 iterations (the
-  // first Newton step from merit 0.21 went to 0.24, the frozen one to 0.065); mu 0.15 / 0.3 and
-  // ring-block unchanged (the Newton step always wins there).
+  // Step 4, the Kacanov safeguard (Newton phase, iterations without branch passes): when the
+  // full Newton step leaves the merit above kacanov_safeguard x the iterate's, the exact
+  // frozen-geometry step (the Kacanov phase's) is computed too and the full step with the
+  // smaller merit is taken. 0: off ("Newton: Kacanov safeguard").
   double kacanov_safeguard = 0.5;
-  // Inner passes on the consistent linearization per Newton-phase iteration (systems, <=
+  // Step 2: passes on the consistent linearization per Newton-phase iteration (systems, <=
   // max_inner_iterations). Their LCP is not monotone: where they do not settle in a few passes
-  // (hertz-a level 5, mu 0.45: the cap of 20 reached), the step is the safeguard's anyway.
+  // the step is the safeguard's anyway ("Newton: consistent passes capped").
   int max_newton_passes = 4;
-  // The Kacanov phase ends after an iteration whose frozen passes settled in at most this many
-  // systems (1: the active set was found at once).
+  // Step 3: the Kacanov phase ends after an iteration whose frozen passes settled in at most
+  // this many systems (1: the active set was found at once; "Newton: consistent passes capped").
   int switch_passes = 1;
-  // Chord corrections per Newton-phase iteration (systems; semismooth_newton.cpp): the full
-  // Newton step's trial is corrected with the iterate's Jacobian (same active rows), each kept
-  // only when it lowers the merit. 0: off. Measured (docs/benchmarks.md, "Chord corrections"):
-  // hertz-a mu 0.45 levels 4-6 9, 10, 10 -> 7, 8, 8 iterations (+2-3 systems, ~5 % more CPU
-  // on level 5); mu 0.15 / 0.3 and ring-block 0 or 1 fewer per level, never more. Off by
-  // default: fewer linearizations but more systems, and measured slower where time matters
-  // (hertz-a mu 0.3 level 5 +4 %, level 7 +8 %; mu 0.45 level 5 +12 %; stop 23, interleaved).
+  // Step 4, chord corrections per Newton-phase iteration (systems): the full Newton step's trial
+  // is corrected with the iterate's Jacobian (same active rows), each kept only when it lowers
+  // the merit. 0: off; fewer linearizations but more systems, slower where time matters
+  // ("Newton: chord corrections off").
   int chord_steps = 0;
-  NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
-  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: a reduced system whose reciprocal condition estimate is below this is treated
-  // as singular (the frozen-geometry fallback below), like a zero pivot of the sparse LU.
+  // as singular (the frozen-geometry fallback of step 2), like a zero pivot of the sparse LU.
   double min_rcond = 1e-14;
   // ActiveSchur, Newton phase: GMRES preconditioned by the frozen-geometry system, from the
-  // iterate, to this residual of the equilibrated reduced system relative to the iterate's; the dense LU when it does not
-  // converge in krylov_max_iterations products (0: always the dense LU).
+  // iterate, to this residual of the equilibrated reduced system relative to the iterate's; the
+  // dense LU when it does not converge in krylov_max_iterations products (0: always the dense
+  // LU; "Newton: GMRES in the Newton phase").
   int krylov_max_iterations = 100;
   double krylov_tolerance = 1e-13;
   // ActiveSchur: OpenBLAS threads for the BLAS-3 parts (the supernodal factorization of A_00, the
@@ -120,16 +115,29 @@ struct NewtonSettings {
   // the rest of the solve and, from 2, the full backward substitutions on two threads
   // (SelectedInverse::set_substitution_threads); below blas_threads_from and with 0, the BLAS's
   // own count (OPENBLAS_NUM_THREADS) everywhere. The count is process-wide (solve/blas_threads.hpp):
-  // leave 0 when solves run in parallel threads. Measured: docs/benchmarks.md, "HF solver scaling".
+  // leave 0 when solves run in parallel threads ("BLAS threads").
   int blas_threads = 0;
-  int blas_threads_from = 200000;  // level 5 (8.8e4 rows): 2 threads no faster (docs/benchmarks.md)
-  // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp).
+  int blas_threads_from = 200000;
+};
+
+// What a user sets: the tolerance, the iteration cap, the linear solver; the method's tuning
+// apart (NewtonTuning).
+struct NewtonSettings {
+  double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
+  int max_iterations = 50;
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
+  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
+  // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp;
+  // docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering").
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;
+  // Step 1: analytic (default) or finite differences, and the projection's options
+  // ("Newton: analytic linearization").
   contact::LinearizationOptions linearization;
+  NewtonTuning tuning;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
 // outside (0, 1/2), a min_step outside (0, 1], a negative kacanov_safeguard or
-// max_newton_passes < 1 (and the other bounds named in the messages).
+// max_newton_passes < 1 (and the other bounds of NewtonTuning, named in the messages).
 void check_settings(const NewtonSettings& settings);
 
 struct NewtonIteration {
@@ -142,9 +150,9 @@ struct NewtonIteration {
   bool frozen = false;     // the consistent Jacobian was singular: frozen-geometry fallback step
   double step = 0.0;       // damping factor taken
   int colours = 0;         // colours of the finite-difference linearization (0: analytic)
-  int branch_passes = 0;   // systems re-solved on the branches of the step (max_branch_passes)
+  int branch_passes = 0;   // systems re-solved on the branches of the step (NewtonTuning::max_branch_passes)
   bool kacanov_step = false;  // Newton phase: the safeguard took the exact frozen-geometry step
-  int chord_steps = 0;        // chord corrections kept (NewtonSettings::chord_steps)
+  int chord_steps = 0;        // chord corrections kept (NewtonTuning::chord_steps)
   double linearize_s = 0.0, factorize_s = 0.0;
   double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
   double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
