@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::solve {
@@ -30,6 +31,11 @@ const char* to_string(SparseLUStatus status) {
     case SparseLUStatus::InvalidInput: return "invalid_input";
   }
   return "unknown";
+}
+
+SparseLUStatus sparse_lu_status_from_string(const std::string& name) {
+  using enum SparseLUStatus;
+  return enum_from_string(name, "sparse LU status", std::array{Success, Singular, InvalidInput});
 }
 
 struct SparseLU::Impl {
