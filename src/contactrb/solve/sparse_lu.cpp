@@ -19,9 +19,8 @@ const char* to_string(SparseLUBackend backend) {
 }
 
 SparseLUBackend sparse_lu_backend_from_string(const std::string& name) {
-  if (name == "umfpack") return SparseLUBackend::Umfpack;
-  if (name == "eigen") return SparseLUBackend::EigenSparseLU;
-  throw Error("unknown sparse LU backend '" + name + "' (expected umfpack or eigen)");
+  using enum SparseLUBackend;
+  return enum_from_string(name, "sparse LU backend", std::array{Umfpack, EigenSparseLU});
 }
 
 const char* to_string(SparseLUStatus status) {
