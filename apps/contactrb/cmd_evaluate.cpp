@@ -26,6 +26,7 @@
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/study/evaluation.hpp"
+#include "contactrb/study/evaluation_json.hpp"
 
 namespace contactrb::app {
 
@@ -82,30 +83,6 @@ std::string value_text(double mu) {
   std::ostringstream os;
   os << std::setprecision(17) << mu;
   return os.str();
-}
-
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-nlohmann::json summary_json(const rb::EvaluationSummary& s) {
-  return {{"count", s.count},
-          {"hf_failures", s.hf_failures},
-          {"rb_failures", s.rb_failures},
-          {"e_ener", {{"max", s.max_e_ener}, {"mean", s.mean_e_ener}}},
-          {"e_displ", {{"max", s.max_e_displ}, {"mean", s.mean_e_displ}}},
-          {"e_inter", {{"max", s.max_e_inter}, {"mean", s.mean_e_inter}}},
-          {"e_press", {{"max", s.max_e_press}, {"mean", s.mean_e_press}}},
-          {"e_force", {{"max", s.max_e_force}, {"mean", s.mean_e_force}}},
-          {"e_peak", {{"max", s.max_e_peak}, {"mean", s.mean_e_peak}}},
-          {"e_press_cone", {{"max", s.max_e_press_cone}}},
-          {"median_hf_time_s", s.median_hf_time_s},
-          {"median_online_time_s", s.median_online_time_s},
-          {"median_speedup", s.median_speedup},
-          // NaN (no row with a defined effectivity) is written as null.
-          {"effectivity",
-           {{"count", s.effectivity_count},
-            {"min", finite_or_null(s.min_effectivity)},
-            {"median", finite_or_null(s.median_effectivity)},
-            {"max", finite_or_null(s.max_effectivity)}}}};
 }
 
 void print_table(const rb::Evaluation& e) {
@@ -199,25 +176,9 @@ int run_evaluate(const EvaluateOptions& opt) {
     multiplier_files.push_back({{"mu", r.mu(0)}, {"file", path}});
     written.push_back(path);
   }
-  nlohmann::json j;
+  nlohmann::json j = rb::evaluation_json(e, model, mus, options);
   j["model"] = opt.model;
-  j["case"] = model.case_name;
-  j["level"] = model.level;
   j["set"] = opt.set;
-  nlohmann::json values = nlohmann::json::array();
-  for (const cases::Mu& mu : mus) values.push_back(mu_json(model.parameters, mu));
-  j["values"] = values;
-  nlohmann::json names = nlohmann::json::array();
-  for (const cases::ParameterSpec& p : model.parameters) names.push_back(p.name);
-  j["parameters"] = names;
-  j["sizes"] = {{"N", e.N}, {"R", e.R}, {"Mk", e.Mk}, {"Mg", e.Mg}};
-  j["max_sizes"] = {{"N", model.N_max}, {"R", model.R_max}, {"Mk", model.Mk_max}, {"Mg", model.Mg_max}};
-  j["kacanov"] = {{"alpha", model.kacanov_alpha},
-                  {"tolerance", model.kacanov_tolerance},
-                  {"max_iterations", model.kacanov_max_iterations}};
-  j["online_repeats"] = opt.repeats;
-  j["jobs"] = opt.jobs;
-  j["summary"] = summary_json(e.summary);
   j["multipliers"] = multiplier_files;
   io::write_json(j, json_path);
 

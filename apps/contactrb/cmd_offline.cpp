@@ -34,6 +34,8 @@
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
 #include "contactrb/model/reduced_model.hpp"
+#include "contactrb/offline/offline_greedy_json.hpp"
+#include "contactrb/offline/offline_report_json.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/offline/snapshot_parts.hpp"
 
@@ -135,22 +137,8 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   rb::OfflineSettings s;
   s.eps_pod = opt.eps_pod;
   s.pod_modes = opt.n.value_or(-1);
-  if (opt.inner_product == "energy") {
-    s.inner_product = rb::InnerProduct::Energy;
-  } else if (opt.inner_product == "h1") {
-    s.inner_product = rb::InnerProduct::H1;
-  } else {
-    throw Error("--inner-product must be 'energy' or 'h1', got '" + opt.inner_product + "'");
-  }
-  if (opt.dual == "cpg") {
-    s.dual_method = rb::DualConeMethod::CPG;
-  } else if (opt.dual == "angle") {
-    s.dual_method = rb::DualConeMethod::AngleGreedy;
-  } else if (opt.dual == "nmf") {
-    s.dual_method = rb::DualConeMethod::NMF;
-  } else {
-    throw Error("--dual must be 'cpg', 'angle' or 'nmf', got '" + opt.dual + "'");
-  }
+  s.inner_product = option_enum("--inner-product", opt.inner_product, rb::inner_product_from_string);
+  s.dual_method = option_enum("--dual", opt.dual, rb::dual_cone_method_from_string);
   // Every value given is checked: -1 must not pass as "no fixed size" where -3 is refused.
   require(!opt.n || *opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n.value_or(0)) + ")");
   require(!opt.r || *opt.r >= 1, "--r must be >= 1 (got " + std::to_string(opt.r.value_or(0)) + ")");
@@ -178,12 +166,6 @@ cases::CaseSpec spec_of(const io::SnapshotSet& set, const std::string& path) {
   // A set that stores its mesh needs no .msh file (it may have been moved since).
   return cases::case_from_record(set.case_kind, set.case_spec, path,
                                  set.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
-}
-
-nlohmann::json to_json(const Eigen::VectorXd& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v(i));
-  return a;
 }
 
 // --greedy: the weak greedy over the set's points (or --values), then the same model file as
@@ -242,60 +224,8 @@ int run_greedy(const OfflineOptions& opt) {
     io::write_snapshot_file(g.snapshots, snapshots_path);
     io::write_reduced_model_file(g.offline.model, g.offline.reconstruction, opt.out);
     rb::write_greedy_csv(g, csv_path);
-    nlohmann::json j;
-    j["case"] = spec.name;
-    j["level"] = opt.level;
-    j["training"] = {{"set", request.set_name}, {"count", request.mu.size()}};
-    j["tolerance"] = gs.tolerance;
-    j["max_hf"] = gs.max_hf;
-    j["batch"] = gs.batch;
-    j["status"] = rb::to_string(g.status);
-    j["hf_solves"] = g.hf_solves;
-    const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-    // A point: its value for p = 1, an object {name: value} otherwise; null when absent.
-    const auto point = [&](const cases::Mu& mu) {
-      if (mu.size() == 0) return nlohmann::json(nullptr);
-      if (mu.size() == 1) return nlohmann::json(mu(0));
-      nlohmann::json o = nlohmann::json::object();
-      for (std::size_t k = 0; k < spec.parameters.size(); ++k) o[spec.parameters[k].name] = mu(static_cast<Eigen::Index>(k));
-      return o;
-    };
-    nlohmann::json selected = nlohmann::json::array(), excluded = nlohmann::json::array();
-    for (int i : g.selected) selected.push_back(point(request.mu[static_cast<std::size_t>(i)]));
-    for (int i : g.excluded) excluded.push_back(point(request.mu[static_cast<std::size_t>(i)]));
-    j["start"] = point(request.mu[static_cast<std::size_t>(g.start)]);
-    j["selected"] = selected;
-    j["excluded"] = excluded;
-    j["sizes"] = {{"N", g.offline.model.N_max}, {"R", g.offline.model.R_max}, {"Mk", g.offline.model.Mk_max},
-                  {"Mg", g.offline.model.Mg_max}};
-    // A step's HF points, the chosen (largest estimate) first.
-    const auto batch_points = [&](const rb::GreedyStep& r) {
-      nlohmann::json a = nlohmann::json::array();
-      for (int i : r.batch_points) a.push_back(point(request.mu[static_cast<std::size_t>(i)]));
-      return a;
-    };
-    nlohmann::json steps = nlohmann::json::array();
-    for (const rb::GreedyStep& r : g.steps) {
-      steps.push_back({{"step", r.step},
-                       {"snapshots", r.snapshots},
-                       {"hf_solves", r.hf_solves},
-                       {"N", r.N},
-                       {"R", r.R},
-                       {"Mk", r.Mk},
-                       {"Mg", r.Mg},
-                       {"max_estimate", finite_or_null(r.max_estimate)},  // null: +inf (an online failure)
-                       {"argmax_mu", point(r.argmax_mu)},
-                       {"online_failures", r.online_failures},
-                       {"chosen_mu", point(r.chosen_mu)},
-                       {"hf_status", r.hf_status},
-                       {"true_error", finite_or_null(r.true_error)},
-                       {"true_e_press", finite_or_null(r.true_e_press)},
-                       {"batch_mu", batch_points(r)},
-                       {"batch_failures", r.batch_failures},
-                       {"times_s", {{"build", r.build_s}, {"sweep", r.sweep_s}, {"hf", r.hf_s}, {"step", r.step_s}}}});
-    }
-    j["steps"] = steps;
-    j["times_s"] = {{"start_hf", g.start_hf_s}, {"greedy", g.total_s}, {"total", seconds(t0, Clock::now())}};
+    nlohmann::json j = rb::greedy_json(g, request, gs);
+    j["times_s"]["total"] = seconds(t0, Clock::now());
     io::write_json(j, json_path);
   }
   const rb::GreedyStep& last = g.steps.back();
@@ -350,70 +280,13 @@ int run_offline(const OfflineOptions& opt) {
   const rb::OfflineReport& rep = result.report;
   const rb::ReducedModel& m = result.model;
 
-  nlohmann::json j;
+  nlohmann::json j = rb::offline_json(set, settings, result);
   j["snapshots"] = snapshots_path;
   j["snapshots_computed"] = compute;
   j["model"] = opt.out;
-  j["case"] = set.case_name;
-  j["case_kind"] = set.case_kind;
-  j["level"] = set.level;
-  j["constraint"] = set.constraint;
-  nlohmann::json params = nlohmann::json::array();
-  for (const io::SnapshotParameter& q : set.parameters) {
-    params.push_back({{"name", q.name}, {"kind", q.kind}, {"units", q.units}, {"min", q.min}, {"max", q.max}});
-  }
-  if (set.parameters.size() == 1) j["parameter"] = params.front();
-  j["parameters"] = params;
-  nlohmann::json mus = nlohmann::json::array();
-  for (const auto& s : set.snapshots) {
-    if (s.mu.size() == 1) {
-      mus.push_back(s.mu(0));
-    } else {
-      mus.push_back(std::vector<double>(s.mu.data(), s.mu.data() + s.mu.size()));
-    }
-  }
-  j["training"] = {{"set", set.set_name}, {"values", mus}, {"count", set.snapshots.size()}};
-  j["snapshot_kacanov"] = {{"alpha", set.kacanov_alpha},
-                           {"tolerance", set.kacanov_tolerance},
-                           {"max_iterations", set.kacanov_max_iterations}};
-  j["settings"] = {{"eps_pod", settings.eps_pod},
-                   {"eps_pod_relative", settings.eps_pod_relative},
-                   {"n", settings.pod_modes >= 1 ? nlohmann::json(settings.pod_modes) : nlohmann::json(nullptr)},
-                   {"inner_product", rb::to_string(settings.inner_product)},
-                   {"dual", opt.dual},
-                   {"eps_du", settings.eps_du},
-                   {"eps_du_relative", settings.eps_du_relative},
-                   {"r", settings.dual_size >= 1 ? nlohmann::json(settings.dual_size) : nlohmann::json(nullptr)},
-                   {"eps_eim_k", settings.eps_eim_k},
-                   {"eps_eim_k_relative", settings.eps_eim_k_relative},
-                   {"eps_eim_g", settings.eps_eim_g},
-                   {"eps_eim_g_relative", settings.eps_eim_g_relative},
-                   {"compression", settings.compression},
-                   {"supremizers", settings.supremizers}};
-  // The absolute thresholds the tolerances came to (null: a fixed size, no threshold).
-  j["thresholds"] = {{"pod", settings.pod_modes >= 1 ? nlohmann::json(nullptr) : nlohmann::json(rep.pod_threshold)},
-                     {"eim_kappa", rep.eim_kappa_threshold},
-                     {"eim_gamma", rep.eim_gamma_threshold}};
-  j["sizes"] = {{"N", m.N_max}, {"R", m.R_max}, {"Mk", m.Mk_max}, {"Mg", m.Mg_max}};
-  j["pod"] = {{"singular_values", to_json(rep.singular_values)}, {"N", rep.N_pod}};
-  j["supremizers"] = {{"enabled", settings.supremizers}, {"count", rep.N_supremizers}, {"time_s", rep.supremizer_s}};
-  j["compression"] = {{"enabled", settings.compression},
-                      {"constraints", rep.R_hf},
-                      {"kept", rep.R_kept},
-                      {"dropped", rep.R_hf - rep.R_kept}};
-  j["dual"] = {{"method", opt.dual},
-               {"R", rep.R},
-               {"errors", rep.dual_errors},
-               {"relative_errors", rep.dual_relative_errors},
-               {"status", rep.dual_status},
-               {"condition_number", rep.dual_condition_number}};
-  j["eim_kappa"] = {{"M", rep.Mk}, {"errors", rep.eim_kappa_errors}, {"status", rep.eim_kappa_status}};
-  j["eim_gamma"] = {{"M", rep.Mg}, {"errors", rep.eim_gamma_errors}, {"status", rep.eim_gamma_status}};
-  j["model_doubles"] = rb::model_doubles(m);
-  j["times_s"] = {{compute ? "snapshots" : "read", seconds(t0, t1)},        {"assembly", rep.assembly_s},   {"pod", rep.pod_s},
-                  {"dual", rep.dual_s},             {"eim_kappa", rep.eim_kappa_s}, {"eim_gamma", rep.eim_gamma_s},
-                  {"reduction", rep.reduction_s},   {"build", rep.total_s},         {"write", seconds(t2, t3)},
-                  {"total", seconds(t0, Clock::now())}};
+  j["times_s"][compute ? "snapshots" : "read"] = seconds(t0, t1);
+  j["times_s"]["write"] = seconds(t2, t3);
+  j["times_s"]["total"] = seconds(t0, Clock::now());
   io::write_json(j, json_path);
 
   const auto last = [](const std::vector<double>& v) { return v.empty() ? 0.0 : v.back(); };

@@ -36,6 +36,7 @@
 #include "contactrb/common/printable.hpp"
 #include "contactrb/io/pvd_writer.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
+#include "contactrb/online/online_solution_json.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/model/reduced_model.hpp"
 #include "contactrb/io/batch_table.hpp"
@@ -75,41 +76,6 @@ constexpr std::array<const char*, 3> kBatchCollections = {"solutions.pvd", "solu
 std::string line_directory(int k) {
   std::string digits = std::to_string(k);
   return std::string(digits.size() < 6 ? 6 - digits.size() : 0, '0') + digits;
-}
-
-nlohmann::json to_json(const Eigen::VectorXd& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v(i));
-  return a;
-}
-
-nlohmann::json solution_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu,
-                             const rb::OnlineSolver& solver, const rb::OnlineSolution& s) {
-  nlohmann::json j;
-  j["mu"] = mu_json(parameters, mu);
-  j["converged"] = s.converged();
-  j["status"] = solve::to_string(s.status);
-  if (!s.message.empty()) j["message"] = s.message;
-  j["iterations"] = s.iterations;
-  j["energy"] = s.energy;
-  j["contact_force"] = s.contact_force;
-  j["time_s"] = s.time_s;
-  j["sizes"] = {{"N", solver.N()}, {"R", solver.R()}, {"Mk", solver.Mk()}, {"Mg", solver.Mg()}};
-  // The a posteriori estimate of |u_hf - u_rb|_A(mu) and its parts (docs/offline-online.md); null when
-  // not available (a failed solve).
-  const rb::ErrorEstimate& e = s.estimate;
-  j["estimate"] = e.available ? nlohmann::json{{"energy", e.energy},
-                                               {"residual", e.residual},
-                                               {"coercivity", e.coercivity},
-                                               {"violation", e.violation},
-                                               {"complementarity", e.complementarity},
-                                               {"multiplier_norm", e.multiplier_norm},
-                                               {"eim_residual", e.eim_residual},
-                                               {"eim_slack", e.eim_slack}}
-                              : nlohmann::json(nullptr);
-  j["u_hat"] = to_json(s.u_hat);
-  j["lambda_hat"] = to_json(s.lambda_hat);
-  return j;
 }
 
 // Batch lines are bytes: no line can hold a parameter value beyond this length, and a longer
@@ -213,7 +179,7 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
       const rb::OnlineSolution s = solver.solve(mu, settings);
       if (json) {
         j = {{"line", k}};
-        j.update(solution_json(parameters, mu, solver, s));
+        j.update(rb::answer_json(parameters, mu, solver, s));
       } else {
         row = batch_row(k, mu, s);
       }
@@ -285,11 +251,7 @@ int run_online(const OnlineOptions& opt) {
   const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
   rb::OnlineSettings settings;
-  if (opt.start == "zero") {
-    settings.initial_guess = rb::InitialGuess::Zero;
-  } else if (opt.start != "interpolated") {
-    throw Error("--start must be 'interpolated' or 'zero', got '" + opt.start + "'");
-  }
+  settings.initial_guess = option_enum("--start", opt.start, rb::initial_guess_from_string);
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (opt.alpha) k.alpha = *opt.alpha;
@@ -325,7 +287,7 @@ int run_online(const OnlineOptions& opt) {
   }
 
   const rb::OnlineSolution s = solver.solve(mu, settings);
-  nlohmann::json j = solution_json(model.parameters, mu, solver, s);
+  nlohmann::json j = rb::answer_json(model.parameters, mu, solver, s);
   if (fields) {
     const OutputLock lock(opt.out);  // the four files of one run, never mixed with another's
     j["files"] = fields->write(model, mu, s, opt.out);

@@ -92,11 +92,11 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   rb::SnapshotRunOptions& run = p.run;
   run.jobs = opt.jobs;
   run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  if (opt.warm_start == "on") {
+  run.warm_start = option_enum("--warm-start", opt.warm_start, rb::warm_start_from_string);
+  if (run.warm_start == rb::SnapshotRunOptions::WarmStart::On) {
     // A warm start would need other parts' values.
     require(!part, "--warm-start on: a part (--part) is solved cold, it has not the other parts' values");
-    run.warm_start = rb::SnapshotRunOptions::WarmStart::On;
-  } else if (opt.warm_start == "off" || part) {
+  } else if (part) {
     run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;
   }
   p.solves_start = Clock::now();

@@ -20,8 +20,11 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/cases/level_sequence.hpp"
+#include "contactrb/cases/level_sequence_json.hpp"
+#include "contactrb/cases/parameter_json.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/output_file.hpp"
+#include "contactrb/hf/hf_solution_json.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
@@ -59,55 +62,20 @@ struct SolveOptions {
   std::string out_dir;
 };
 
+// solution.json (docs/user-guide.md, "solve"): the run's keys, the solve's and the discretization's
+// (hf::to_json, hf::discretization_json) and the grid sequencing's (cases::to_json).
 nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver, const hf::HFSolution& s,
                              const hf::HFSettings& settings, const cases::SequenceStart& start) {
-  nlohmann::json j;
+  nlohmann::json j = hf::to_json(s);
+  j.update(hf::discretization_json(solver));
+  j.update(cases::to_json(start));
   j["case"] = opt.case_name;
   if (!opt.case_file.empty()) j["case_file"] = opt.case_file;
-  j["mu"] = mu_json(opt.parameters, opt.mu);
+  j["mu"] = cases::mu_json(opt.parameters, opt.mu);
   j["level"] = opt.level;
-  j["constraint"] = contact::to_string(solver.problem().discretization);
   j["solver"] = hf::to_string(settings.method);
   j["alpha"] = settings.kacanov.alpha;
   j["tolerance"] = settings.kacanov.tolerance;
-  j["converged"] = s.converged;
-  j["status"] = solve::to_string(s.status);
-  if (!s.message.empty()) j["message"] = s.message;
-  j["iterations"] = s.iterations;
-  nlohmann::json du = nlohmann::json::array(), dl = nlohmann::json::array();
-  for (const auto& it : s.history) {
-    du.push_back(it.du);
-    dl.push_back(it.dlambda);
-  }
-  j["increments"] = {{"displacement", du}, {"multipliers", dl}};
-  nlohmann::json residuals = nlohmann::json::array();  // Newton: KKT residual before each step
-  for (const auto& it : s.newton_history) residuals.push_back(it.residual);
-  if (s.method == hf::HFMethod::Newton) j["newton_residuals"] = residuals;
-  j["energy"] = s.energy;
-  j["contact_force"] = s.contact_force;
-  j["active_constraints"] = s.active_constraints;
-  j["kkt"] = {{"stationarity", s.kkt.stationarity},
-              {"primal", s.kkt.primal},
-              {"dual", s.kkt.dual},
-              {"complementarity", s.kkt.complementarity}};
-  j["gap_violation"] = s.gap_violation;
-  // Grid sequencing: the coarse solves that chose the starting point (their iterations are not in
-  // "iterations", their time not in "time_s").
-  nlohmann::json stages = nlohmann::json::array();
-  for (const cases::SequenceStage& st : start.stages) {
-    stages.push_back({{"level", st.level},
-                      {"n_dofs", st.dofs},
-                      {"iterations", st.iterations},
-                      {"converged", st.converged},
-                      {"time_s", st.mesh_s + st.solve_s + st.transfer_s}});
-  }
-  j["sequence"] = stages;
-  j["sequence_time_s"] = start.time_s;
-  j["time_s"] = s.time_s;
-  j["setup_time_s"] = solver.setup_time_s();
-  j["n_dofs"] = solver.problem().mesh.num_dofs();
-  j["n_free_dofs"] = solver.dofs().num_free();
-  j["n_constraints"] = static_cast<int>(solver.quadrature().weight.size());
   return j;
 }
 

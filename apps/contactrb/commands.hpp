@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contactrb/cases/parameter.hpp"
+#include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
 struct OnlineSizes;
@@ -96,8 +97,16 @@ cases::Mu parse_mu_option(const std::string& text, const std::string& flag,
                           const std::vector<cases::ParameterSpec>& parameters);
 double parse_mu_option(const std::string& text, const std::string& flag);
 
-// The JSON of a point: a number for p = 1, an object {"name": value, ...} otherwise.
-nlohmann::json mu_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu);
+// The value of an option naming an enum, read by the library's *_from_string (e.g.
+// rb::inner_product_from_string); its error is prefixed by the option ("--dual: unknown ...").
+template <class FromString>
+auto option_enum(const char* option, const std::string& value, FromString from_string) {
+  try {
+    return from_string(value);
+  } catch (const Error& e) {
+    throw Error(std::string(option) + ": " + e.what());
+  }
+}
 
 // The comma-separated items of a list of parameter values (--values): each as
 // parse_mu_option, strictly increasing (a repeated value is refused). Throws contactrb::Error

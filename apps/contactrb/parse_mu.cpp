@@ -172,16 +172,6 @@ cases::Mu parse_mu_option(const std::string& text, const std::string& flag,
   return parse_point(text, parameters, flag + ": ", false);
 }
 
-nlohmann::json mu_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu) {
-  if (mu.size() == 1) return mu(0);
-  nlohmann::json j = nlohmann::json::object();
-  for (Eigen::Index k = 0; k < mu.size(); ++k) {
-    j[k < static_cast<Eigen::Index>(parameters.size()) ? parameters[static_cast<std::size_t>(k)].name
-                                                       : std::to_string(k)] = mu(k);
-  }
-  return j;
-}
-
 std::vector<double> parse_values_option(const std::vector<std::string>& items, const std::string& flag) {
   std::vector<double> values;
   for (std::size_t i = 0; i < items.size(); ++i) {

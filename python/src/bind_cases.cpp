@@ -82,10 +82,7 @@ HFResult solve_case(PyCase& c, const py::object& mu_in, int level, const std::op
   r.gap_violation = s.gap_violation;
   r.time_s = s.time_s;
   r.active_constraints = s.active_constraints;
-  r.kkt["stationarity"] = s.kkt.stationarity;
-  r.kkt["primal"] = s.kkt.primal;
-  r.kkt["dual"] = s.kkt.dual;
-  r.kkt["complementarity"] = s.kkt.complementarity;
+  r.kkt = to_python_dict(hf::to_json(s.kkt));
   r.u = node_vectors(s.u);
   r.nodes = node_coordinates(solver->problem().mesh);
   r.reference_nodes = node_coordinates(reference);

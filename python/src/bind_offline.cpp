@@ -79,24 +79,10 @@ rb::OfflineSettings offline_settings(const py::dict& kw) {
     require(n >= 1, "N must be >= 1 (got " + std::to_string(n) + ")");
     s.pod_modes = n;
   }
-  const std::string ip = get("inner_product").is_none() ? "energy" : get("inner_product").cast<std::string>();
-  if (ip == "energy") {
-    s.inner_product = rb::InnerProduct::Energy;
-  } else if (ip == "h1") {
-    s.inner_product = rb::InnerProduct::H1;
-  } else {
-    throw Error("inner_product must be 'energy' or 'h1', got '" + ip + "'");
+  if (!get("inner_product").is_none()) {
+    s.inner_product = rb::inner_product_from_string(get("inner_product").cast<std::string>());
   }
-  const std::string dual = get("dual").is_none() ? "cpg" : get("dual").cast<std::string>();
-  if (dual == "cpg") {
-    s.dual_method = rb::DualConeMethod::CPG;
-  } else if (dual == "angle") {
-    s.dual_method = rb::DualConeMethod::AngleGreedy;
-  } else if (dual == "nmf") {
-    s.dual_method = rb::DualConeMethod::NMF;
-  } else {
-    throw Error("dual must be 'cpg', 'angle' or 'nmf', got '" + dual + "'");
-  }
+  if (!get("dual").is_none()) s.dual_method = rb::dual_cone_method_from_string(get("dual").cast<std::string>());
   if (!get("R").is_none()) {
     const int r = get("R").cast<int>();
     require(r >= 1, "R must be >= 1 (got " + std::to_string(r) + ")");
@@ -116,33 +102,11 @@ rb::OfflineSettings offline_settings(const py::dict& kw) {
   return s;
 }
 
-py::dict report_dict(const rb::OfflineReport& rep) {
-  py::dict d;
-  d["singular_values"] = rep.singular_values;
-  d["N"] = rep.N;
-  d["N_pod"] = rep.N_pod;
-  d["N_supremizers"] = rep.N_supremizers;
-  d["pod_threshold"] = rep.pod_threshold;
-  d["R_hf"] = rep.R_hf;
-  d["R_kept"] = rep.R_kept;
-  d["R"] = rep.R;
-  d["dual_errors"] = rep.dual_errors;
-  d["dual_relative_errors"] = rep.dual_relative_errors;
-  d["dual_status"] = rep.dual_status;
-  d["Mk"] = rep.Mk;
-  d["Mg"] = rep.Mg;
-  d["eim_kappa_errors"] = rep.eim_kappa_errors;
-  d["eim_gamma_errors"] = rep.eim_gamma_errors;
-  d["eim_kappa_status"] = rep.eim_kappa_status;
-  d["eim_gamma_status"] = rep.eim_gamma_status;
-  d["total_s"] = rep.total_s;
-  return d;
-}
-
-py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest& request, int p) {
-  py::dict d;
-  d["status"] = rb::to_string(g.status);
-  d["hf_solves"] = g.hf_solves;
+// greedy.json's content, with the selected and excluded points as (n, p) arrays and the selected
+// HF snapshots as a Snapshots.
+py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest& request,
+                     const rb::GreedyOfflineSettings& settings, int p) {
+  py::dict d = to_python_dict(rb::greedy_json(g, request, settings));
   const auto points = [&](const std::vector<int>& idx) {
     Eigen::MatrixXd a(static_cast<Eigen::Index>(idx.size()), p);
     for (std::size_t k = 0; k < idx.size(); ++k) a.row(static_cast<Eigen::Index>(k)) = request.mu[static_cast<std::size_t>(idx[k])].transpose();
@@ -150,24 +114,7 @@ py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest
   };
   d["selected"] = points(g.selected);
   d["excluded"] = points(g.excluded);
-  std::vector<int> step, N, R, batch;
-  std::vector<double> max_estimate, true_error;
-  for (const rb::GreedyStep& s : g.steps) {
-    step.push_back(s.step);
-    N.push_back(s.N);
-    R.push_back(s.R);
-    batch.push_back(static_cast<int>(s.batch_points.size()));
-    max_estimate.push_back(s.max_estimate);
-    true_error.push_back(s.true_error);
-  }
-  d["step"] = py::array_t<int>(static_cast<py::ssize_t>(step.size()), step.data());
-  d["N"] = py::array_t<int>(static_cast<py::ssize_t>(N.size()), N.data());
-  d["R"] = py::array_t<int>(static_cast<py::ssize_t>(R.size()), R.data());
-  d["batch_solves"] = py::array_t<int>(static_cast<py::ssize_t>(batch.size()), batch.data());
-  d["max_estimate"] = py::array_t<double>(static_cast<py::ssize_t>(max_estimate.size()), max_estimate.data());
-  d["true_error"] = py::array_t<double>(static_cast<py::ssize_t>(true_error.size()), true_error.data());
   d["snapshots"] = PySnapshots{g.snapshots, {}};
-  d["total_s"] = g.total_s;
   return d;
 }
 
@@ -181,9 +128,9 @@ std::shared_ptr<PyModel> offline_from_set(const io::SnapshotSet& set, const std:
     result.emplace(rb::build_reduced_model(set, spec, settings));
   }
   auto m = std::make_shared<PyModel>();
+  m->report = to_python_dict(rb::offline_json(set, settings, *result));
   m->model = std::move(result->model);
   m->reconstruction = std::move(result->reconstruction);
-  m->report = report_dict(result->report);
   m->greedy = py::none();
   return m;
 }
@@ -247,8 +194,8 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     m = std::make_shared<PyModel>();
     m->model = g->offline.model;
     m->reconstruction = g->offline.reconstruction;
-    m->report = report_dict(g->offline.report);
-    m->greedy = greedy_dict(*g, request, c.spec.num_parameters());
+    m->report = to_python_dict(rb::offline_json(g->snapshots, settings, g->offline));
+    m->greedy = greedy_dict(*g, request, gs, c.spec.num_parameters());
   } else {
     throw Error("method must be 'pod' or 'greedy', got '" + method + "'");
   }

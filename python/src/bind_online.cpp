@@ -45,11 +45,7 @@ rb::OnlineSettings online_settings(const rb::ReducedModel& model, const std::opt
                                    const std::optional<double>& tol, const std::optional<int>& max_iterations,
                                    const std::string& start) {
   rb::OnlineSettings settings;
-  if (start == "zero") {
-    settings.initial_guess = rb::InitialGuess::Zero;
-  } else if (start != "interpolated") {
-    throw Error("start must be 'interpolated' or 'zero', got '" + start + "'");
-  }
+  settings.initial_guess = rb::initial_guess_from_string(start);
   if (alpha || tol || max_iterations) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (alpha) k.alpha = *alpha;
@@ -59,20 +55,6 @@ rb::OnlineSettings online_settings(const rb::ReducedModel& model, const std::opt
     settings.kacanov = k;
   }
   return settings;
-}
-
-py::object estimate_parts(const rb::ErrorEstimate& e) {
-  if (!e.available) return py::none();
-  py::dict d;
-  d["energy"] = e.energy;
-  d["residual"] = e.residual;
-  d["coercivity"] = e.coercivity;
-  d["violation"] = e.violation;
-  d["complementarity"] = e.complementarity;
-  d["multiplier_norm"] = e.multiplier_norm;
-  d["eim_residual"] = e.eim_residual;
-  d["eim_slack"] = e.eim_slack;
-  return d;
 }
 
 OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optional<int>& N, const std::optional<int>& R,
@@ -101,7 +83,7 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
   r.energy = s.energy;
   r.force = s.contact_force;
   r.estimate = s.estimate.available ? s.estimate.energy : kNaN;
-  r.estimate_parts = estimate_parts(s.estimate);
+  r.estimate_parts = to_python(rb::to_json(s.estimate));
   r.time_s = s.time_s;
   r.iterations = s.iterations;
   r.status = solve::to_string(s.status);
@@ -225,10 +207,16 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
   }
   py::dict d;
   d["mu"] = P;
-  d["coefficients"] = a.U;
-  d["multipliers"] = a.L;
+  // The same array under the CLI's name (online --batch: u_hat, lambda_hat, contact_force) and
+  // the module's own.
+  const py::object U = py::cast(a.U), L = py::cast(a.L), force = py::cast(a.force);
+  d["coefficients"] = U;
+  d["u_hat"] = U;
+  d["multipliers"] = L;
+  d["lambda_hat"] = L;
   d["energy"] = a.energy;
-  d["force"] = a.force;
+  d["force"] = force;
+  d["contact_force"] = force;
   d["estimate"] = a.estimate;
   d["iterations"] = a.iterations;
   d["status"] = a.status;
@@ -308,7 +296,9 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
     for (Eigen::Index i = 0; i < n; ++i) v(i) = e->rows[static_cast<std::size_t>(i)].*f;
     return v;
   };
-  py::dict d;
+  // evaluation.json's content (rb::evaluation_json) and the rows as arrays, named as the columns
+  // of evaluation.csv.
+  py::dict d = to_python_dict(rb::evaluation_json(*e, m.model, mus, options));
   Eigen::MatrixXd mu(n, spec.num_parameters());
   Eigen::VectorXi hf_it(n), rb_it(n);
   Eigen::Matrix<bool, Eigen::Dynamic, 1> hf_ok(n), rb_ok(n);
@@ -340,11 +330,10 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
       {"energy_rb", &Row::energy_rb},     {"e_energy_norm", &Row::e_energy_norm}, {"estimate", &Row::estimate},
       {"effectivity", &Row::effectivity}};
   for (const auto& [name, f] : columns) d[name] = column(f);
+  // The summary's numbers also under flat names (summary["max_e_displ"]), as docs/python.md
+  // shows them.
   const rb::EvaluationSummary& s = e->summary;
-  py::dict sum;
-  sum["count"] = s.count;
-  sum["hf_failures"] = s.hf_failures;
-  sum["rb_failures"] = s.rb_failures;
+  py::dict sum = d["summary"].cast<py::dict>();
   sum["max_e_ener"] = s.max_e_ener;
   sum["mean_e_ener"] = s.mean_e_ener;
   sum["max_e_displ"] = s.max_e_displ;
@@ -358,20 +347,10 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
   sum["max_e_peak"] = s.max_e_peak;
   sum["mean_e_peak"] = s.mean_e_peak;
   sum["max_e_press_cone"] = s.max_e_press_cone;
-  sum["median_hf_time_s"] = s.median_hf_time_s;
-  sum["median_online_time_s"] = s.median_online_time_s;
-  sum["median_speedup"] = s.median_speedup;
   sum["effectivity_count"] = s.effectivity_count;
   sum["min_effectivity"] = s.min_effectivity;
   sum["median_effectivity"] = s.median_effectivity;
   sum["max_effectivity"] = s.max_effectivity;
-  d["summary"] = sum;
-  py::dict sizes;
-  sizes["N"] = e->N;
-  sizes["R"] = e->R;
-  sizes["Mk"] = e->Mk;
-  sizes["Mg"] = e->Mg;
-  d["sizes"] = sizes;
   return d;
 }
 
@@ -439,7 +418,8 @@ void bind_online(py::module_& m) {
       .def_readonly("force", &OnlineResult::force, "total contact force")
       .def_readonly("estimate", &OnlineResult::estimate,
                     "a posteriori estimate of |u_hf - u_rb|_A(mu) (NaN: not available)")
-      .def_readonly("estimate_parts", &OnlineResult::estimate_parts, "its parts (dict), or None")
+      .def_readonly("estimate_parts", &OnlineResult::estimate_parts,
+                    "the estimate and its parts (dict: the 'estimate' of `contactrb online`), or None")
       .def_readonly("iterations", &OnlineResult::iterations)
       .def_readonly("status", &OnlineResult::status, "converged | max_iterations | step_failed | non_finite")
       .def_readonly("message", &OnlineResult::message)
@@ -471,8 +451,11 @@ void bind_online(py::module_& m) {
           },
           py::arg("path"), "Writes the model and its reconstruction data (atomically).")
       .def_readonly("path", &PyModel::path)
-      .def_readonly("report", &PyModel::report, "the offline report (a model from offline())")
-      .def_readonly("greedy", &PyModel::greedy, "offline(method='greedy'): its steps and selected snapshots")
+      .def_readonly("report", &PyModel::report,
+                    "offline.json's content, but for the CLI's paths and times (a model from offline())")
+      .def_readonly("greedy", &PyModel::greedy,
+                    "offline(method='greedy'): greedy.json's content, the selected and excluded points as\n"
+                    "(n, p) arrays and the selected snapshots; None otherwise")
       .def_property_readonly("case_name", [](const PyModel& mm) { return mm.model.case_name; })
       .def_property_readonly("level", [](const PyModel& mm) { return mm.model.level; })
       .def_property_readonly("parameters", [](const PyModel& mm) { return parameter_list(mm.model.parameters); })
@@ -509,6 +492,7 @@ void bind_online(py::module_& m) {
            "thread); the rows are in input order and bitwise those of jobs=1 (time_s aside). Returns\n"
            "a dict of numpy arrays, one row per point:\n"
            "mu, coefficients (n, N), multipliers (n, R), energy, force, estimate (NaN: none), iterations,\n"
+           "(u_hat, lambda_hat, contact_force: the same arrays under the names of `online --batch`),\n"
            "status (codes: contactrb.STATUS[code]), converged, time_s; with fields=True also\n"
            "displacement (n, n_nodes, 2), the reconstructed displacement on the HF mesh. A point outside\n"
            "the domain raises contactrb.Error naming the point.")
@@ -529,8 +513,8 @@ void bind_online(py::module_& m) {
         py::arg("jobs") = 1, py::arg("repeats") = 5, py::arg("progress") = false,
         "Errors (64)-(66), estimates and speed-ups of a model against HF solves over a named set of its\n"
         "case, an (n, p) array of points or the points of a Snapshots (solved again), as `contactrb\n"
-        "evaluate`. Returns a dict of numpy arrays (one\n"
-        "row per point) and 'summary', 'sizes' dicts.");
+        "evaluate`. Returns evaluation.json's content (summary, sizes, values, ...) and one numpy array\n"
+        "per column of evaluation.csv (one row per point).");
 }
 
 }  // namespace contactrb::python

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,13 +25,18 @@
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/version.hpp"
+#include "contactrb/hf/hf_solution_json.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/study/evaluation.hpp"
+#include "contactrb/study/evaluation_json.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/offline/offline_greedy_json.hpp"
+#include "contactrb/offline/offline_report_json.hpp"
 #include "contactrb/online/online_many.hpp"
+#include "contactrb/online/online_solution_json.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/model/reduced_model.hpp"
@@ -62,7 +68,7 @@ struct PyModel {
   rb::ReducedModel model;
   std::optional<rb::ReducedReconstruction> reconstruction;
   std::string path;       // the file it was loaded from or saved to (empty: none)
-  py::dict report;        // offline report (offline()), empty for a loaded model
+  py::dict report;        // offline report (offline(): offline.json's content), empty for a loaded model
   py::object greedy;      // greedy table (offline(method='greedy')), None otherwise
   std::unique_ptr<rb::OnlineSolver> solver;
   rb::OnlineSizes solver_sizes;
@@ -84,6 +90,10 @@ py::array_t<double> node_vectors(const Eigen::VectorXd& u);
 py::array_t<double> node_coordinates(const mesh::Mesh& m);
 py::array_t<int> triangle_array(const mesh::Mesh& m);
 py::list parameter_list(const std::vector<cases::ParameterSpec>& parameters);
+// A JSON value of the library (a record's to_json) as Python: dict, list, float, int, bool, str
+// or None (json_to_python.cpp); to_python_dict for an object.
+py::object to_python(const nlohmann::json& j);
+py::dict to_python_dict(const nlohmann::json& j);
 
 void bind_cases(py::module_& m);
 void bind_offline(py::module_& m);

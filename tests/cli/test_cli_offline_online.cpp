@@ -320,7 +320,8 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("online" + m + " --mu 0.9"), "outside the domain");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --n 100"), "--n = 100 is above the maximum");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --mk 1000"), "--mk = 1000");
-  expect_user_error(run_cli("online" + m + " --mu 0.3 --start warm"), "--start must be 'interpolated' or 'zero'");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --start warm"),
+                    "--start: unknown initial guess 'warm' (expected interpolated or zero)");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --alpha 2"), "alpha");
   expect_user_error(run_cli("online" + m + " --batch " + shell_quote(dir_->file("none.txt"))), "none.txt");
   expect_user_error(run_cli("online" + m + " --batch ''"), "--batch needs a file name");

@@ -40,6 +40,7 @@ def test_hf_solve_equals_cli_to_the_last_digit(cli, tmp_path):
     assert r.energy == j["energy"]
     assert r.force == j["contact_force"]
     assert r.active_constraints == j["active_constraints"]
+    assert r.kkt == j["kkt"]
     assert r.u.shape == (j["n_dofs"] // 2, 2)
     assert len(r.multipliers) == j["n_constraints"]
     # The multipliers as multipliers.csv lists them (shortest round-trip digits).

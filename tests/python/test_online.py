@@ -26,7 +26,19 @@ def assert_equals_cli(r, j):
     assert r.coefficients.tolist() == j["u_hat"]
     assert r.multipliers.tolist() == j["lambda_hat"]
     assert r.estimate == j["estimate"]["energy"]
+    assert r.estimate_parts == j["estimate"]
     assert r.sizes == j["sizes"]
+
+
+def without_times(j, top=("model", "snapshots", "snapshots_computed")):
+    """A JSON value without its wall times and speed-ups, and without the CLI's own top-level keys
+    (the paths of offline.json)."""
+    if isinstance(j, dict):
+        return {k: without_times(v, ()) for k, v in j.items()
+                if k not in top and k not in ("times_s", "time_s", "median_speedup") and not k.endswith("_time_s")}
+    if isinstance(j, list):
+        return [without_times(v, ()) for v in j]
+    return j
 
 
 @pytest.mark.parametrize("mu", [0.15, 0.2625, 0.41])
@@ -52,6 +64,8 @@ def test_solve_many_equals_cli_batch_and_a_loop_of_solve(model, cli_model, tmp_p
         assert many["iterations"][i] == j["iterations"]
         assert many["coefficients"][i].tolist() == j["u_hat"]
         assert many["multipliers"][i].tolist() == j["lambda_hat"]
+        assert many["u_hat"][i].tolist() == j["u_hat"] and many["lambda_hat"][i].tolist() == j["lambda_hat"]
+        assert many["contact_force"][i] == j["contact_force"]
         assert many["estimate"][i] == j["estimate"]["energy"]
         assert contactrb.STATUS[many["status"][i]] == j["status"]
         assert bool(many["converged"][i]) == j["converged"]
@@ -66,6 +80,9 @@ def test_offline_from_cli_snapshots_equals_cli_model(cli_snapshots, cli_model, t
     assert len(snaps) == 5 and snaps.num_failed == 0
     model = contactrb.offline(snaps)
     assert model.sizes == contactrb.Model.load(str(cli_model)).sizes
+    # model.report is offline.json but for the CLI's paths and times.
+    report = json.loads((cli_model.parent / "offline.json").read_text())
+    assert without_times(model.report) == without_times(report)
     assert_equals_cli(model.solve(0.33), online_json(cli_model, 0.33))
     # Saved from Python, answered by the CLI.
     path = tmp_path / "py_model.h5"
@@ -97,6 +114,9 @@ def test_greedy_offline_equals_cli(tmp_path):
     assert model.greedy["status"] == g["status"]
     assert model.greedy["hf_solves"] == g["hf_solves"]
     assert model.greedy["selected"][:, 0].tolist() == g["selected"]
+    # greedy.json's content, the points as arrays.
+    assert without_times({k: v for k, v in model.greedy.items() if k not in ("selected", "excluded", "snapshots")}) == \
+        without_times({k: v for k, v in g.items() if k not in ("selected", "excluded")})
     assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
 
 
@@ -111,8 +131,8 @@ def test_batched_greedy_offline_equals_cli(tmp_path):
     g = json.loads((out.parent / "greedy.json").read_text())
     assert g["batch"] == 2
     assert model.greedy["hf_solves"] == g["hf_solves"] == 4
-    assert model.greedy["batch_solves"].tolist() == [len(step["batch_mu"]) for step in g["steps"]]
-    assert model.greedy["batch_solves"][0] == 2
+    assert [len(step["batch_mu"]) for step in model.greedy["steps"]] == [len(step["batch_mu"]) for step in g["steps"]]
+    assert len(model.greedy["steps"][0]["batch_mu"]) == 2
     assert model.greedy["selected"][:, 0].tolist() == g["selected"]
     assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
 
@@ -149,6 +169,12 @@ def test_evaluate_equals_cli(model, cli_model, tmp_path):
     for key in ["e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak"]:
         assert e["summary"]["max_" + key] == s[key]["max"], key
         assert e["summary"]["mean_" + key] == s[key]["mean"], key
+    # evaluation.json's content but for the CLI's own keys (model path, set name, multiplier files)
+    # and the times.
+    mine = {k: v for k, v in e.items() if k in j}
+    mine["summary"] = {k: v for k, v in e["summary"].items() if k in s}
+    theirs = {k: v for k, v in j.items() if k not in ("model", "set", "multipliers")}
+    assert without_times(mine) == without_times(theirs)
     assert e["sizes"] == j["sizes"]
     rows = np.genfromtxt(tmp_path / "ev" / "evaluation.csv", delimiter=",", names=True)
     assert np.array_equal(e["energy_rb"], rows["energy_rb"])

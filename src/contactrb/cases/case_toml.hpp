@@ -22,6 +22,8 @@ CaseSpec case_from_toml_file(const std::string& path);
 // MeshFile::Optional: a mesh.file that does not exist (any more) is accepted; for a case
 // recorded in a snapshot or model file that stores its mesh (docs/file-formats.md, /mesh).
 enum class MeshFile { Required, Optional };
+const char* to_string(MeshFile value);  // "required" | "optional"
+MeshFile mesh_file_from_string(const std::string& name);  // throws contactrb::Error
 CaseSpec case_from_toml_string(const std::string& text, const std::string& origin,
                                MeshFile mesh_file = MeshFile::Required);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::cases {
@@ -43,12 +44,9 @@ const char* to_string(ParameterKind kind) {
 }
 
 ParameterKind parameter_kind_from_string(const std::string& name) {
-  for (ParameterKind k : {ParameterKind::DirichletScale, ParameterKind::BodyScaling, ParameterKind::YoungModulus,
-                          ParameterKind::Traction, ParameterKind::BodyForce}) {
-    if (name == to_string(k)) return k;
-  }
-  throw Error("unknown parameter kind '" + name +
-              "' (expected dirichlet-scale, body-scaling, young-modulus, traction or body-force)");
+  using enum ParameterKind;
+  return enum_from_string(name, "parameter kind",
+                          std::array{DirichletScale, BodyScaling, YoungModulus, Traction, BodyForce});
 }
 
 bool has_body(ParameterKind kind) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb {
@@ -29,6 +30,19 @@ enum class SealState {
   Absent,    // no seal: an HDF5 file without a user block (an older version, another program's)
   Mismatch,  // sealed, but the bytes changed since (damaged, truncated, edited), or a damaged seal
 };
+
+inline const char* to_string(SealState state) {
+  switch (state) {
+    case SealState::Valid: return "valid";
+    case SealState::Absent: return "absent";
+    case SealState::Mismatch: return "mismatch";
+  }
+  return "unknown";
+}
+
+inline SealState seal_state_from_string(const std::string& name) {
+  return enum_from_string(name, "seal state", std::array{SealState::Valid, SealState::Absent, SealState::Mismatch});
+}
 
 namespace seal_detail {
 inline constexpr char kMagic[kSealHashOffset] = "contactrb-seal1";

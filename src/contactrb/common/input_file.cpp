@@ -7,12 +7,19 @@
 #include <limits>
 #include <system_error>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 
 namespace contactrb {
 
 namespace fs = std::filesystem;
+
+const char* to_string(InputKind kind) { return kind == InputKind::Text ? "text" : "hdf5"; }
+
+InputKind input_kind_from_string(const std::string& name) {
+  return enum_from_string(name, "input kind", std::array{InputKind::Text, InputKind::Hdf5});
+}
 
 namespace {
 

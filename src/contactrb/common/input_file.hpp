@@ -11,6 +11,8 @@ namespace contactrb {
 // Text inputs are read whole (.msh, TOML case files, parameter files, batch files); HDF5
 // inputs (snapshot and model files) dataset by dataset.
 enum class InputKind { Text, Hdf5 };
+const char* to_string(InputKind kind);  // "text" | "hdf5"
+InputKind input_kind_from_string(const std::string& name);  // throws contactrb::Error
 
 // Default limits in MiB. A .msh of a 1e6-DOF mesh is about 70 MB; a snapshot file of
 // 100 snapshots of 1e6 DOFs about 1 GB.

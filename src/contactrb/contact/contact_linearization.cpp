@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_derivatives.hpp"
 
@@ -240,6 +241,19 @@ ContactLinearization linearize_contact_on_branches(const mesh::Mesh& mesh, const
   maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
   maps.d = maps.rows.g - maps.rows.K * u;
   return linearize_contact(mesh, pair, quadrature, u, lambda, movable, std::move(maps));
+}
+
+const char* to_string(LinearizationMethod value) {
+  switch (value) {
+    case LinearizationMethod::Analytic: return "analytic";
+    case LinearizationMethod::FiniteDifference: return "finite-difference";
+  }
+  return "unknown";
+}
+
+LinearizationMethod linearization_method_from_string(const std::string& name) {
+  using enum LinearizationMethod;
+  return enum_from_string(name, "linearization method", std::array{Analytic, FiniteDifference});
 }
 
 }  // namespace contactrb::contact

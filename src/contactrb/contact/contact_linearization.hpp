@@ -25,6 +25,7 @@
 // slope; both are elements of the generalized Jacobian (the latter up to O(step)).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -34,6 +35,8 @@
 namespace contactrb::contact {
 
 enum class LinearizationMethod { Analytic, FiniteDifference };
+const char* to_string(LinearizationMethod value);  // "analytic" | "finite-difference"
+LinearizationMethod linearization_method_from_string(const std::string& name);  // throws contactrb::Error
 
 struct LinearizationOptions {
   LinearizationMethod method = LinearizationMethod::Analytic;

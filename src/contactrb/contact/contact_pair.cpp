@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::contact {
@@ -22,10 +23,8 @@ const char* to_string(Discretization d) {
 }
 
 Discretization discretization_from_string(const std::string& name) {
-  for (Discretization d : {Discretization::Collocation, Discretization::LAC, Discretization::LACSimpson}) {
-    if (name == to_string(d)) return d;
-  }
-  throw Error("unknown contact discretization '" + name + "' (valid: 'collocation', 'lac', 'lac-simpson')");
+  using enum Discretization;
+  return enum_from_string(name, "contact discretization", std::array{Collocation, LAC, LACSimpson});
 }
 
 namespace {

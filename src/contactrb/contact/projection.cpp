@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/master_polyline.hpp"
@@ -272,6 +273,20 @@ ConstraintRows constraint_rows(const mesh::Mesh& mesh, const ContactPair& pair, 
   rows.K = quadrature.W * pointwise.K;
   rows.g = quadrature.W * pointwise.g;
   return rows;
+}
+
+const char* to_string(SearchMethod value) {
+  switch (value) {
+    case SearchMethod::Automatic: return "automatic";
+    case SearchMethod::AllPairs: return "all-pairs";
+    case SearchMethod::Tree: return "tree";
+  }
+  return "unknown";
+}
+
+SearchMethod search_method_from_string(const std::string& name) {
+  using enum SearchMethod;
+  return enum_from_string(name, "projection search method", std::array{Automatic, AllPairs, Tree});
 }
 
 }  // namespace contactrb::contact

@@ -30,6 +30,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -59,6 +60,8 @@ enum class SearchMethod {
   AllPairs,   // O(S M): every slave node against every master segment
   Tree,       // bounding-volume tree over the master chain (O(M log M) build, ~O(log M) per node)
 };
+const char* to_string(SearchMethod value);  // "automatic" | "all-pairs" | "tree"
+SearchMethod search_method_from_string(const std::string& name);  // throws contactrb::Error
 
 struct ProjectionOptions {
   SearchMethod search = SearchMethod::Automatic;

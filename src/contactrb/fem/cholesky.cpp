@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 #if __has_include(<cholmod.h>)
@@ -85,6 +86,11 @@ const char* to_string(FactorStatus status) {
   return "unknown";
 }
 
+FactorStatus factor_status_from_string(const std::string& name) {
+  using enum FactorStatus;
+  return enum_from_string(name, "factorization status", std::array{Success, NotPositiveDefinite, InvalidInput});
+}
+
 const char* to_string(CholeskyBackend backend) {
   switch (backend) {
     case CholeskyBackend::Automatic:
@@ -95,6 +101,11 @@ const char* to_string(CholeskyBackend backend) {
       return "eigen-simplicial";
   }
   return "unknown";
+}
+
+CholeskyBackend cholesky_backend_from_string(const std::string& name) {
+  using enum CholeskyBackend;
+  return enum_from_string(name, "Cholesky backend", std::array{Automatic, Cholmod, EigenSimplicial});
 }
 
 SparseCholesky::SparseCholesky() : SparseCholesky(kDefaultBackend) {}

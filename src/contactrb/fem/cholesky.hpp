@@ -5,11 +5,13 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <string>
 
 namespace contactrb::fem {
 
 enum class FactorStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(FactorStatus status);
+FactorStatus factor_status_from_string(const std::string& name);  // throws contactrb::Error
 
 // EigenSimplicial: Eigen::SimplicialLLT with AMD ordering; faster below about 2e4 DOFs
 // (docs/performance.md, "FEM assembly and factorization").
@@ -22,6 +24,7 @@ const char* to_string(FactorStatus status);
 enum class CholeskyBackend { Automatic, Cholmod, EigenSimplicial };
 inline constexpr int kCholmodMinRows = 20000;
 const char* to_string(CholeskyBackend backend);
+CholeskyBackend cholesky_backend_from_string(const std::string& name);  // throws contactrb::Error
 
 class SparseCholesky {
  public:

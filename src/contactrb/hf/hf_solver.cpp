@@ -7,6 +7,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/fem/sparsity.hpp"
 #include "contactrb/fem/traction.hpp"
@@ -31,9 +32,7 @@ const char* to_string(HFMethod method) {
 }
 
 HFMethod hf_method_from_string(const std::string& name) {
-  if (name == "newton") return HFMethod::Newton;
-  if (name == "kacanov") return HFMethod::Kacanov;
-  throw Error("unknown HF solver '" + name + "' (expected newton or kacanov)");
+  return enum_from_string(name, "HF solver", std::array{HFMethod::Newton, HFMethod::Kacanov});
 }
 
 double HFKKT::max() const { return std::max({stationarity, primal, dual, complementarity}); }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
@@ -14,6 +15,11 @@ const char* to_string(DualConeMethod method) {
     case DualConeMethod::NMF: return "nmf";
   }
   return "unknown";
+}
+
+DualConeMethod dual_cone_method_from_string(const std::string& name) {
+  using enum DualConeMethod;
+  return enum_from_string(name, "dual cone method", std::array{CPG, AngleGreedy, NMF});
 }
 
 void check_dual_snapshots(const char* who, const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights) {

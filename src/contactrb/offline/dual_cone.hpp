@@ -3,6 +3,7 @@
 // (Algorithm 2, cpg.hpp), angle-greedy (angle_greedy.hpp) and NMF (Appendix A, nmf.hpp).
 // The Lambda norm is |v|_Lambda^2 = sum_r w_r v_r^2 with w_r = |I_r| (L2(Gamma^c)) or w = 1.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "contactrb/offline/greedy.hpp"
@@ -12,6 +13,7 @@ namespace contactrb::rb {
 
 enum class DualConeMethod { CPG, AngleGreedy, NMF };
 const char* to_string(DualConeMethod method);
+DualConeMethod dual_cone_method_from_string(const std::string& name);  // throws contactrb::Error
 
 struct DualConeSettings {
   // tolerance = eps_DU of (58) (absolute, or relative when greedy.relative), max_size = a fixed R

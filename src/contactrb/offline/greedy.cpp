@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
@@ -35,6 +36,11 @@ const char* to_string(GreedyStatus status) {
     case GreedyStatus::Exhausted: return "training set exhausted";
   }
   return "unknown";
+}
+
+GreedyStatus greedy_status_from_string(const std::string& name) {
+  using enum GreedyStatus;
+  return enum_from_string(name, "greedy status", std::array{ToleranceReached, MaxSize, Exhausted});
 }
 
 void check_settings(const GreedySettings& s) {

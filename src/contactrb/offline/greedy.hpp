@@ -5,6 +5,7 @@
 // run_greedy() alternates them until a stopping test holds (the protocol of pyMOR's
 // weak_greedy; see docs/rb.md).
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 namespace contactrb::rb {
@@ -16,6 +17,7 @@ enum class GreedyStatus {
                      // or every training element is selected
 };
 const char* to_string(GreedyStatus status);
+GreedyStatus greedy_status_from_string(const std::string& name);  // throws contactrb::Error
 
 struct GreedySettings {
   // Stop when max_mu criterion(mu) <= tolerance; criterion = error (absolute, (58)) or

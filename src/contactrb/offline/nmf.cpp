@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 
@@ -67,6 +68,10 @@ const char* to_string(NMFStatus status) {
     case NMFStatus::MaxIterations: return "maximum iterations reached";
   }
   return "unknown";
+}
+
+NMFStatus nmf_status_from_string(const std::string& name) {
+  return enum_from_string(name, "NMF status", std::array{NMFStatus::Converged, NMFStatus::MaxIterations});
 }
 
 void check_settings(const NMFSettings& s) {

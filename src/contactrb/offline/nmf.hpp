@@ -8,6 +8,7 @@
 // first pair uses |u_1|, |v_1|); zero entries, and the ranks beyond min(R_hf, P), are filled
 // with the mean of T so that the multiplicative updates can move them.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "contactrb/offline/dual_cone.hpp"
@@ -16,6 +17,7 @@ namespace contactrb::rb {
 
 enum class NMFStatus { Converged, MaxIterations };
 const char* to_string(NMFStatus status);
+NMFStatus nmf_status_from_string(const std::string& name);  // throws contactrb::Error
 
 struct NMFSettings {
   int max_iterations = 2000;

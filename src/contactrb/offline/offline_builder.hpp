@@ -19,6 +19,7 @@ namespace contactrb::rb {
 
 enum class InnerProduct { Energy, H1 };
 const char* to_string(InnerProduct p);  // "energy" | "h1"
+InnerProduct inner_product_from_string(const std::string& name);  // throws contactrb::Error
 
 // Every tolerance is relative by default, so that a case gives the same sizes whatever its
 // units (docs/cli.md, "`contactrb offline`"); *_relative = false makes one absolute.

@@ -15,6 +15,7 @@
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
 #include "contactrb/io/csv_writer.hpp"
@@ -169,6 +170,11 @@ const char* to_string(GreedyOfflineStatus status) {
     case GreedyOfflineStatus::Stagnated: return "stagnated";
   }
   return "unknown";
+}
+
+GreedyOfflineStatus greedy_offline_status_from_string(const std::string& name) {
+  using enum GreedyOfflineStatus;
+  return enum_from_string(name, "greedy status", std::array{ToleranceReached, Budget, Stagnated});
 }
 
 void check_settings(const GreedyOfflineSettings& s) {

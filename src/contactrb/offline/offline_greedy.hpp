@@ -36,6 +36,7 @@ enum class GreedyOfflineStatus {
   Stagnated,         // every usable training point is selected: nothing left to add
 };
 const char* to_string(GreedyOfflineStatus status);  // "tolerance_reached" | "budget" | "stagnated"
+GreedyOfflineStatus greedy_offline_status_from_string(const std::string& name);  // throws contactrb::Error
 
 
 // The greedy over several processes (`mpirun -np K contactrb offline --greedy`,

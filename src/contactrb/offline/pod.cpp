@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
@@ -120,6 +121,19 @@ PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings) {
   require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
   return pod_impl(
       snapshots, settings, [](const Eigen::MatrixXd& U) { return U; }, [](const Eigen::MatrixXd& X) { return X; });
+}
+
+const char* to_string(PODTruncation value) {
+  switch (value) {
+    case PODTruncation::SingularValue: return "singular-value";
+    case PODTruncation::ProjectionError: return "projection-error";
+  }
+  return "unknown";
+}
+
+PODTruncation pod_truncation_from_string(const std::string& name) {
+  using enum PODTruncation;
+  return enum_from_string(name, "POD truncation", std::array{SingularValue, ProjectionError});
 }
 
 }  // namespace contactrb::rb

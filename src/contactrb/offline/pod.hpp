@@ -7,6 +7,7 @@
 // the SVD keeps them down to about 1e-15 sigma_1 (tests/rb/test_pod.cpp).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 namespace contactrb::rb {
@@ -18,6 +19,8 @@ enum class PODTruncation {
   // (= the Frobenius M-norm of the snapshots' projection error).
   ProjectionError
 };
+const char* to_string(PODTruncation value);  // "singular-value" | "projection-error"
+PODTruncation pod_truncation_from_string(const std::string& name);  // throws contactrb::Error
 
 struct PODSettings {
   // eps_POD. Absolute (relative = false): the threshold is the tolerance itself, in the units

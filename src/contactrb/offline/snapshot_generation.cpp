@@ -20,6 +20,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/catalog.hpp"
 #include "contactrb/cases/parameter_sets.hpp"
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
 
@@ -398,6 +399,35 @@ std::vector<io::SnapshotParameter> snapshot_parameters(const cases::CaseSpec& sp
   std::vector<io::SnapshotParameter> out;
   for (const cases::ParameterSpec& p : spec.parameters) out.push_back({p.name, cases::to_string(p.kind), p.units, p.min, p.max});
   return out;
+}
+
+const char* to_string(ProgressMode value) {
+  switch (value) {
+    case ProgressMode::Automatic: return "automatic";
+    case ProgressMode::Terminal: return "terminal";
+    case ProgressMode::Lines: return "lines";
+    case ProgressMode::None: return "none";
+  }
+  return "unknown";
+}
+
+ProgressMode progress_mode_from_string(const std::string& name) {
+  using enum ProgressMode;
+  return enum_from_string(name, "progress mode", std::array{Automatic, Terminal, Lines, None});
+}
+
+const char* to_string(SnapshotRunOptions::WarmStart value) {
+  switch (value) {
+    case SnapshotRunOptions::WarmStart::Automatic: return "auto";
+    case SnapshotRunOptions::WarmStart::On: return "on";
+    case SnapshotRunOptions::WarmStart::Off: return "off";
+  }
+  return "unknown";
+}
+
+SnapshotRunOptions::WarmStart warm_start_from_string(const std::string& name) {
+  using enum SnapshotRunOptions::WarmStart;
+  return enum_from_string(name, "warm start", std::array{Automatic, On, Off});
 }
 
 }  // namespace contactrb::rb

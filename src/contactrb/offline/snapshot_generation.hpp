@@ -61,6 +61,8 @@ enum class ProgressMode {
   Lines,      // one line per finished parameter value
   None,
 };
+const char* to_string(ProgressMode value);  // "automatic" | "terminal" | "lines" | "none"
+ProgressMode progress_mode_from_string(const std::string& name);  // throws contactrb::Error
 
 struct SnapshotRunOptions {
   int jobs = 1;  // worker threads (>= 1; more than the number of values is capped)
@@ -80,6 +82,8 @@ struct SnapshotRunOptions {
   ProgressMode progress = ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
 };
+const char* to_string(SnapshotRunOptions::WarmStart value);  // "auto" | "on" | "off"
+SnapshotRunOptions::WarmStart warm_start_from_string(const std::string& name);  // throws contactrb::Error
 
 // Runs the HF solves of `request` and returns the snapshot set (one Snapshot per value of
 // request.mu, in order). Throws contactrb::Error for jobs < 1, an empty set, a missing

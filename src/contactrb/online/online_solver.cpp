@@ -9,6 +9,7 @@
 #include <string>
 
 #include "contactrb/cases/geometric_map.hpp"
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
@@ -533,6 +534,32 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   }
   sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   return sol;
+}
+
+const char* to_string(OnlineIteration value) {
+  switch (value) {
+    case OnlineIteration::Automatic: return "automatic";
+    case OnlineIteration::Relaxed: return "relaxed";
+    case OnlineIteration::Accelerated: return "accelerated";
+  }
+  return "unknown";
+}
+
+OnlineIteration online_iteration_from_string(const std::string& name) {
+  using enum OnlineIteration;
+  return enum_from_string(name, "online iteration", std::array{Automatic, Relaxed, Accelerated});
+}
+
+const char* to_string(InitialGuess value) {
+  switch (value) {
+    case InitialGuess::Interpolated: return "interpolated";
+    case InitialGuess::Zero: return "zero";
+  }
+  return "unknown";
+}
+
+InitialGuess initial_guess_from_string(const std::string& name) {
+  return enum_from_string(name, "initial guess", std::array{InitialGuess::Interpolated, InitialGuess::Zero});
 }
 
 }  // namespace contactrb::rb

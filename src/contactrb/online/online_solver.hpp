@@ -63,6 +63,8 @@ enum class OnlineIteration {
   // "Online: accelerated iteration").
   Accelerated,
 };
+const char* to_string(OnlineIteration value);  // "automatic" | "relaxed" | "accelerated"
+OnlineIteration online_iteration_from_string(const std::string& name);  // throws contactrb::Error
 
 // Where the reduced Kacanov iteration starts. The fixed point and the stopping test are the same;
 // a start near the answer needs fewer steps.
@@ -74,6 +76,8 @@ enum class InitialGuess {
   // u_hat = 0 (the paper's Algorithm 1).
   Zero,
 };
+const char* to_string(InitialGuess value);  // "interpolated" | "zero"
+InitialGuess initial_guess_from_string(const std::string& name);  // throws contactrb::Error
 
 struct OnlineSettings {
   // Empty: the tolerance and iteration cap of the HF snapshots the model was built from (and

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::rb {
@@ -146,6 +147,19 @@ OutputStats output_stats(const std::string& name, const std::vector<double>& val
     s.histogram[std::min(b, nb - 1)] += 1;
   }
   return s;
+}
+
+const char* to_string(SampleDistribution::Kind value) {
+  switch (value) {
+    case SampleDistribution::Kind::Uniform: return "uniform";
+    case SampleDistribution::Kind::Normal: return "normal";
+  }
+  return "unknown";
+}
+
+SampleDistribution::Kind sample_distribution_kind_from_string(const std::string& name) {
+  using enum SampleDistribution::Kind;
+  return enum_from_string(name, "sample distribution", std::array{Uniform, Normal});
 }
 
 }  // namespace contactrb::rb

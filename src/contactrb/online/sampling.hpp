@@ -21,6 +21,8 @@ struct SampleDistribution {
   // Normal: per parameter. Truncated to the domain (a draw outside is drawn again).
   std::vector<double> mean, sd;
 };
+const char* to_string(SampleDistribution::Kind value);  // "uniform" | "normal"
+SampleDistribution::Kind sample_distribution_kind_from_string(const std::string& name);  // throws contactrb::Error
 
 // "uniform": each parameter uniform on [min, max]. "normal": each parameter normal with mean
 // the middle of its interval and standard deviation a sixth of its length. "normal:M:S" (one

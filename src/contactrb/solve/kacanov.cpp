@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::solve {
@@ -24,6 +25,11 @@ const char* to_string(KacanovStatus status) {
     case KacanovStatus::NonFinite: return "non_finite";
   }
   return "unknown";
+}
+
+KacanovStatus kacanov_status_from_string(const std::string& name) {
+  using enum KacanovStatus;
+  return enum_from_string(name, "Kacanov status", std::array{Converged, MaxIterations, StepFailed, NonFinite});
 }
 
 double relative_increment(const Eigen::VectorXd& current, const Eigen::VectorXd& previous) {

@@ -23,6 +23,7 @@ void check_settings(const KacanovSettings& settings);
 // the caller found a non-finite result (energy, force); never reported as converged.
 enum class KacanovStatus { Converged, MaxIterations, StepFailed, NonFinite };
 const char* to_string(KacanovStatus status);
+KacanovStatus kacanov_status_from_string(const std::string& name);  // throws contactrb::Error
 
 // Stopping test (63), applied to the unrelaxed step so that it does not depend on alpha:
 // max(|u_bar^k - u^{k-1}| / |u^{k-1}|, |lambda_bar^k - lambda^{k-1}| / |lambda^{k-1}|) <= eps_KA,

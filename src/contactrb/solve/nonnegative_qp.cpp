@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::solve {
@@ -54,6 +55,11 @@ const char* to_string(QPStatus status) {
       return "invalid-input";
   }
   return "unknown";
+}
+
+QPStatus qp_status_from_string(const std::string& name) {
+  using enum QPStatus;
+  return enum_from_string(name, "QP status", std::array{Solved, MaxIterations, Numerics, Unbounded, InvalidInput});
 }
 
 double KKTResiduals::max() const { return std::max({primal, dual, complementarity}); }

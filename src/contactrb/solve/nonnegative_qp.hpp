@@ -14,6 +14,7 @@ namespace contactrb::solve {
 
 enum class QPStatus { Solved, MaxIterations, Numerics, Unbounded, InvalidInput };
 const char* to_string(QPStatus status);
+QPStatus qp_status_from_string(const std::string& name);  // throws contactrb::Error
 
 struct QPSettings {
   int max_iterations = -1;  // -1: 10 * (n + 10); counts subproblem steps (see docs)

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 // BLAS (Debian: the libblas.so.3 alternative, OpenBLAS), Fortran calling convention.
@@ -39,6 +40,11 @@ const char* to_string(SelectedInverseStatus status) {
     case SelectedInverseStatus::InvalidInput: return "invalid input";
   }
   return "unknown";
+}
+
+SelectedInverseStatus selected_inverse_status_from_string(const std::string& name) {
+  using enum SelectedInverseStatus;
+  return enum_from_string(name, "selected inverse status", std::array{Success, NotPositiveDefinite, InvalidInput});
 }
 
 namespace {
@@ -340,6 +346,11 @@ const char* to_string(FactorOrdering ordering) {
     case FactorOrdering::NodeMetis: return "node-metis";
   }
   return "unknown";
+}
+
+FactorOrdering factor_ordering_from_string(const std::string& name) {
+  using enum FactorOrdering;
+  return enum_from_string(name, "factor ordering", std::array{Auto, Cholmod, NodeMetis});
 }
 
 FactorOrdering auto_ordering(int rows) { return rows >= kNodeMetisFrom ? FactorOrdering::NodeMetis : FactorOrdering::Cholmod; }

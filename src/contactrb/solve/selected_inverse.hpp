@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace contactrb::solve {
@@ -31,11 +32,13 @@ namespace contactrb::solve {
 // its smaller factor saves (CPU of the whole solve within the machine's noise).
 enum class FactorOrdering { Auto, Cholmod, NodeMetis };
 const char* to_string(FactorOrdering ordering);
+FactorOrdering factor_ordering_from_string(const std::string& name);  // throws contactrb::Error
 inline constexpr int kNodeMetisFrom = 500000;
 FactorOrdering auto_ordering(int rows);
 
 enum class SelectedInverseStatus { Success, NotPositiveDefinite, InvalidInput };
 const char* to_string(SelectedInverseStatus status);
+SelectedInverseStatus selected_inverse_status_from_string(const std::string& name);  // throws contactrb::Error
 
 // The ordering and symbolic analysis of SelectedInverse::compute, from the sparsity pattern alone
 // (the values are never read): it can run on another thread while the values are assembled

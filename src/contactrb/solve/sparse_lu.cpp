@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::solve {
@@ -18,9 +19,8 @@ const char* to_string(SparseLUBackend backend) {
 }
 
 SparseLUBackend sparse_lu_backend_from_string(const std::string& name) {
-  if (name == "umfpack") return SparseLUBackend::Umfpack;
-  if (name == "eigen") return SparseLUBackend::EigenSparseLU;
-  throw Error("unknown sparse LU backend '" + name + "' (expected umfpack or eigen)");
+  using enum SparseLUBackend;
+  return enum_from_string(name, "sparse LU backend", std::array{Umfpack, EigenSparseLU});
 }
 
 const char* to_string(SparseLUStatus status) {
@@ -30,6 +30,11 @@ const char* to_string(SparseLUStatus status) {
     case SparseLUStatus::InvalidInput: return "invalid_input";
   }
   return "unknown";
+}
+
+SparseLUStatus sparse_lu_status_from_string(const std::string& name) {
+  using enum SparseLUStatus;
+  return enum_from_string(name, "sparse LU status", std::array{Success, Singular, InvalidInput});
 }
 
 struct SparseLU::Impl {

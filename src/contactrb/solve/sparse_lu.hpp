@@ -18,6 +18,7 @@ SparseLUBackend sparse_lu_backend_from_string(const std::string& name);  // "umf
 
 enum class SparseLUStatus { Success, Singular, InvalidInput };
 const char* to_string(SparseLUStatus status);
+SparseLUStatus sparse_lu_status_from_string(const std::string& name);  // throws contactrb::Error
 
 class SparseLU {
  public:
