@@ -106,7 +106,7 @@ TEST_F(CliOfflineOnline, UnreachedDualToleranceAndEmptyEIMAreReported) {
   contactrb::test::TempDir own("offline_unreached");  // its own offline.json
   const std::string m = own.file("unreached.h5");
   // (The angle-greedy's case needs more snapshots than these 5, which it selects all:
-  // AngleGreedy.StopsOnTheTrueConeErrorNotTheLinearOne in tests/rb.)
+  // AngleGreedy.StopsOnTheTrueConeErrorNotTheLinearOne in tests/offline.)
   for (const char* dual : {"nmf"}) {
     const CliResult r = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual " + dual +
                                 " --eps-du 1e-9 --out " + shell_quote(m));

@@ -63,7 +63,7 @@ std::string verdict(const RunResult& r, double timeout_s) {
 }
 
 // HDF5 1.10.8 itself asks malloc for petabytes (H5C_protect) on some damaged HDF5 files, before
-// any check of ours runs (tests/snapshots/test_snapshot_file.cpp, byte flips). glibc's malloc
+// any check of ours runs (tests/io/test_snapshot_file.cpp, byte flips). glibc's malloc
 // returns NULL there, HDF5 reports the failed allocation and contactrb refuses the file with exit
 // 1 and one error line (the Release run checks that contract on the same cases); ASan instead
 // aborts with allocation-size-too-big. Such a run is listed and counted, not checked further.

@@ -4,7 +4,7 @@
 // (energy or H1 Gram matrix) or the identity. Computed by a thin SVD of the weighted
 // snapshots L' P S (M = P' L L' P, sparse Cholesky), not by the method of snapshots: the
 // eigenvalues of S' M S lose every singular value below about 1e-8 sigma_1 to round-off,
-// the SVD keeps them down to about 1e-15 sigma_1 (tests/rb/test_pod.cpp).
+// the SVD keeps them down to about 1e-15 sigma_1 (tests/offline/test_pod.cpp).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>

@@ -73,7 +73,7 @@ struct SnapshotRunOptions {
   // point farthest from those already ordered, ties to the smaller index) and solved in waves
   // of 1, 2, 4, ... points; the points of one wave run in parallel and start from the waves
   // before it (cold when none converged). The answers agree with cold starts to the solver
-  // tolerance, not bitwise (tests/snapshots/test_snapshot_warm_start.cpp).
+  // tolerance, not bitwise (tests/offline/test_snapshot_warm_start.cpp).
   // Automatic: on for the Newton method (tolerance 1e-10: start-dependence at 1e-9), off for
   // Kacanov (eps_KA = 1e-3: the snapshots move by up to 8e-4, enough to change the paper's
   // tables downstream, e.g. the hertz-b demo's N, R and the POD spectra; measured).

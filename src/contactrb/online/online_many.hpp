@@ -5,7 +5,7 @@
 // counter, and every answer goes to the slot of its index, so the output order is the input
 // order whatever J. A solver's answer at mu does not depend on the queries it answered before
 // (each query starts from its own initial guess and clears the QP warm start), so the answers
-// equal the serial ones bit for bit (tests/rb/test_online_many.cpp).
+// equal the serial ones bit for bit (tests/offline/test_online_many.cpp).
 #include <cstddef>
 #include <functional>
 #include <memory>

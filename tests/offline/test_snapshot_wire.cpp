@@ -8,7 +8,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/snapshot_wire.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 namespace rb = contactrb::rb;
 namespace io = contactrb::io;

@@ -11,7 +11,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_parts.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;

@@ -6,7 +6,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/nmf.hpp"
 #include "contactrb/offline/cone_projection.hpp"
-#include "rb_fixtures.hpp"
+#include "offline/offline_fixtures.hpp"
 
 namespace {
 constexpr int kExhaustedNmfIterations = 200;  // few enough that the ranks end at different local minima
@@ -17,7 +17,7 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 TEST(NMF, ObjectiveNonIncreasingAndFactorsNonNegative) {
-  const MatrixXd T = rb_fixtures::hertz_like_snapshots();
+  const MatrixXd T = offline_fixtures::hertz_like_snapshots();
   for (int R : {1, 3, 7}) {
     NMFSettings s;
     s.max_iterations = 300;
@@ -54,9 +54,9 @@ TEST(NMF, RecoversAnExactNonNegativeRank2Factorization) {
 }
 
 TEST(NMF, ConeHistoryAndTruncatedNMF) {
-  const MatrixXd T = rb_fixtures::hertz_like_snapshots(31, 12);
+  const MatrixXd T = offline_fixtures::hertz_like_snapshots(31, 12);
   DualConeSettings s;
-  s.weights = rb_fixtures::collocation_weights(31);
+  s.weights = offline_fixtures::collocation_weights(31);
   s.greedy.max_size = 4;  // truncated NMF, R = 4
   NMFSettings ns;
   ns.max_iterations = 200;
@@ -92,8 +92,8 @@ TEST(NMF, InvalidInputThrows) {
 // R = 8 reaches 0.0087, R = 15 only 0.070). An exhausted NMF must keep the best: the smallest cone error over the ranks tried (smallest R on ties),
 // recomputed here independently from the generators returned.
 TEST(NMF, ExhaustedKeepsTheBestRankNotTheLast) {
-  const MatrixXd T = rb_fixtures::hertz_like_snapshots(31, 12);
-  const VectorXd w = rb_fixtures::collocation_weights(31);
+  const MatrixXd T = offline_fixtures::hertz_like_snapshots(31, 12);
+  const VectorXd w = offline_fixtures::collocation_weights(31);
   DualConeSettings s;
   s.weights = w;
   s.greedy.tolerance = 0.0;  // never reached: runs every rank up to min(31, 12)

@@ -14,7 +14,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 using contactrb::Error;
 using contactrb::io::Snapshot;

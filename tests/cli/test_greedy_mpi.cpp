@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
-#include "mpi_runner.hpp"
+#include "cli/mpi_runner.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 using contactrb::test::CliResult;
 using contactrb::test::count;

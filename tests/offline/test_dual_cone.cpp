@@ -8,7 +8,7 @@
 #include "contactrb/offline/angle_greedy.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 #include "contactrb/offline/cpg.hpp"
-#include "rb_fixtures.hpp"
+#include "offline/offline_fixtures.hpp"
 
 using namespace contactrb::rb;
 using Eigen::MatrixXd;
@@ -89,8 +89,8 @@ TEST(CPG, FirstPickIsTheLargestAndHistoryDecreasesToZero) {
 }
 
 TEST(CPG, StopsOnAbsoluteRelativeToleranceOrFixedR) {
-  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
-  const VectorXd w = rb_fixtures::collocation_weights();
+  const MatrixXd S = offline_fixtures::hertz_like_snapshots();
+  const VectorXd w = offline_fixtures::collocation_weights();
   DualConeSettings s;
   s.weights = w;
   s.greedy.tolerance = 1e-2;
@@ -116,9 +116,9 @@ TEST(CPG, StopsOnAbsoluteRelativeToleranceOrFixedR) {
 }
 
 TEST(AngleGreedy, TrueConeErrorIsAtLeastTheLinearError) {
-  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
+  const MatrixXd S = offline_fixtures::hertz_like_snapshots();
   DualConeSettings s;
-  s.weights = rb_fixtures::collocation_weights();
+  s.weights = offline_fixtures::collocation_weights();
   s.greedy.max_size = 15;
   const DualConeResult r = build_angle_greedy(S, s);
   ASSERT_EQ(r.errors.size(), r.linear_errors.size());
@@ -190,8 +190,8 @@ TEST(AngleGreedy, StopsOnTheTrueConeErrorNotTheLinearOne) {
 // On the Hertz-like fixture, whenever the angle-greedy says ToleranceReached its cone error
 // (recomputed independently from its generators) is below eps_DU, and one step earlier it was not.
 TEST(AngleGreedy, ToleranceReachedMeansTheConeErrorReachedIt) {
-  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
-  const VectorXd w = rb_fixtures::collocation_weights();
+  const MatrixXd S = offline_fixtures::hertz_like_snapshots();
+  const VectorXd w = offline_fixtures::collocation_weights();
   for (double eps : {1e-1, 3e-2, 1e-2}) {
     DualConeSettings s;
     s.weights = w;
@@ -214,8 +214,8 @@ TEST(AngleGreedy, ToleranceReachedMeansTheConeErrorReachedIt) {
 // In relative mode every relative error of the empty cone is 1, so argmax would pick index 0
 // (the smallest snapshot here); (56) picks argmax |lambda|.
 TEST(CPG, RelativeModeStartsAtTheLargestSnapshot) {
-  const MatrixXd S = rb_fixtures::hertz_like_snapshots();
-  const VectorXd w = rb_fixtures::collocation_weights();
+  const MatrixXd S = offline_fixtures::hertz_like_snapshots();
+  const VectorXd w = offline_fixtures::collocation_weights();
   VectorXd norms(S.cols());
   for (Eigen::Index p = 0; p < S.cols(); ++p) norms(p) = weighted_norm(S.col(p), w);
   const Eigen::Index largest = argmax(norms);

@@ -18,7 +18,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::Error;

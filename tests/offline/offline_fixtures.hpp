@@ -1,10 +1,10 @@
 #pragma once
-// Synthetic multiplier snapshots shared by the rb tests (no HF solve needed).
+// Synthetic multiplier snapshots shared by the offline tests (no HF solve needed).
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 
-namespace rb_fixtures {
+namespace offline_fixtures {
 
 // "Hertz-like" contact pressures: lambda(mu)(x) = sqrt(max(0, a(mu)^2 - x^2)) on n points of
 // [-1, 1], contact half-width a(mu) growing with mu over P parameters.
@@ -29,4 +29,4 @@ inline Eigen::VectorXd collocation_weights(int n = 51) {
   return w;
 }
 
-}  // namespace rb_fixtures
+}  // namespace offline_fixtures

@@ -9,7 +9,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
-#include "snapshot_fixtures.hpp"
+#include "support/snapshot_fixtures.hpp"
 
 using contactrb::io::SnapshotSet;
 using contactrb::rb::generate_snapshots;

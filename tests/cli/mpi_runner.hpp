@@ -1,5 +1,5 @@
 #pragma once
-// The mpirun tests of contactrb (tests/snapshots/test_snapshot_mpi.cpp, test_greedy_mpi.cpp):
+// The mpirun tests of contactrb (tests/cli/test_snapshot_mpi.cpp, test_greedy_mpi.cpp):
 // `contactrb ARGS` on K ranks, and the skip of a build without MPI (CONTACTRB_MPIEXEC empty).
 #include <gtest/gtest.h>
 
