@@ -39,8 +39,8 @@ std::vector<double> split(const std::string& s) {
   return v;
 }
 
-void row(const std::string& name, const std::string& method, int hf, const rb::OfflineResult& r,
-         const rb::Evaluation& ev, double offline_s, const std::string& extra) {
+void row(const std::string& name, const std::string& method, int hf, const contactrb::offline::OfflineResult& r,
+         const study::Evaluation& ev, double offline_s, const std::string& extra) {
   std::cout << "| " << name << " | " << method << " | " << hf << " | " << r.model.N_max << " | " << r.model.R_max << " | "
             << r.model.Mk_max << ", " << r.model.Mg_max << " | " << std::setprecision(2) << std::scientific
             << ev.summary.max_e_displ << " | " << ev.summary.max_e_press << " | " << std::defaultfloat
@@ -56,10 +56,10 @@ int main(int argc, char** argv) {
   std::vector<double> tolerances{1e-2, 1e-3};
   int jobs = 2, dense = 0;
   bool steps = false;
-  double eps_eim = rb::OfflineSettings{}.eps_eim_k;
-  double eps_pod = rb::OfflineSettings{}.eps_pod;
+  double eps_eim = contactrb::offline::OfflineSettings{}.eps_eim_k;
+  double eps_pod = contactrb::offline::OfflineSettings{}.eps_pod;
   bool no_sup = false, no_compression = false;
-  double eps_du = rb::OfflineSettings{}.eps_du, hf_tol = solve::KacanovSettings{}.tolerance;
+  double eps_du = contactrb::offline::OfflineSettings{}.eps_du, hf_tol = solve::KacanovSettings{}.tolerance;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--tol" && i + 1 < argc) {
@@ -99,47 +99,50 @@ int main(int argc, char** argv) {
       values.emplace();
       for (double x : v) values->push_back(cases::Mu::Constant(1, x));
     }
-    rb::SnapshotRequest request = rb::make_snapshot_request(spec, "training", 0, std::nullopt, values);
+    contactrb::offline::SnapshotRequest request =
+        contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt, values);
     request.settings.kacanov.tolerance = hf_tol;
-    rb::OfflineSettings offline;  // the defaults of `contactrb offline`
+    contactrb::offline::OfflineSettings offline;  // the defaults of `contactrb offline`
     offline.eps_du = eps_du;
     offline.eps_pod = eps_pod;
     offline.supremizers = !no_sup;
     offline.compression = !no_compression;
     offline.eps_eim_k = offline.eps_eim_g = eps_eim;
     const std::vector<cases::Mu>& verification = spec.set("verification");
-    rb::EvaluationOptions eo;
+    study::EvaluationOptions eo;
     eo.jobs = jobs;
     eo.online_repeats = 1;
     for (double tol : tolerances) {
-      rb::GreedyOfflineSettings gs;
+      contactrb::offline::GreedyOfflineSettings gs;
       gs.tolerance = tol;
       gs.offline = offline;
       gs.jobs = jobs;
-      gs.progress = steps ? rb::ProgressMode::Lines : rb::ProgressMode::None;
+      gs.progress = steps ? contactrb::offline::ProgressMode::Lines : contactrb::offline::ProgressMode::None;
       gs.progress_stream = &std::cout;
       const auto t0 = std::chrono::steady_clock::now();
-      const rb::GreedyOfflineResult g = rb::run_offline_greedy(spec, request, gs);
+      const contactrb::offline::GreedyOfflineResult g = contactrb::offline::run_offline_greedy(spec, request, gs);
       const double greedy_s = seconds_since(t0);
       if (steps) {  // the parts of the estimate where the greedy stopped
-        rb::OnlineSolver solver(g.offline.model);
+        online::OnlineSolver solver(g.offline.model);
         const cases::Mu& mu = g.steps.back().argmax_mu;
-        const rb::OnlineSolution s = solver.solve(mu);
+        const online::OnlineSolution s = solver.solve(mu);
         const auto& e = s.estimate;
-        std::cout << "at argmax " << cases::mu_values_text(mu) << ": estimate " << e.energy << " residual " << e.residual << " viol "
-                  << e.violation << " compl " << e.complementarity << " |lambda| " << e.multiplier_norm << " eim_r "
-                  << e.eim_residual << " eim_s " << e.eim_slack << " norm " << rb::reduced_energy_norm(g.offline.model, mu, s.u_hat)
-                  << " iterations " << s.iterations << "\n";
+        std::cout << "at argmax " << cases::mu_values_text(mu) << ": estimate " << e.energy << " residual "
+                  << e.residual << " viol " << e.violation << " compl " << e.complementarity << " |lambda| "
+                  << e.multiplier_norm << " eim_r " << e.eim_residual << " eim_s " << e.eim_slack << " norm "
+                  << contactrb::offline::reduced_energy_norm(g.offline.model, mu, s.u_hat) << " iterations "
+                  << s.iterations << "\n";
       }
-      const rb::Evaluation ev = rb::evaluate_model(g.offline.model, g.offline.reconstruction, spec, verification, eo);
+      const study::Evaluation ev =
+          study::evaluate_model(g.offline.model, g.offline.reconstruction, spec, verification, eo);
       double hf_s = g.start_hf_s, build_s = 0.0, sweep_s = 0.0;
-      for (const rb::GreedyStep& s : g.steps) {
+      for (const contactrb::offline::GreedyStep& s : g.steps) {
         hf_s += s.hf_s;
         build_s += s.build_s;
         sweep_s += s.sweep_s;
       }
       std::ostringstream extra;
-      extra << rb::to_string(g.status) << ", " << std::setprecision(2) << std::scientific << g.steps.back().max_estimate
+      extra << to_string(g.status) << ", " << std::setprecision(2) << std::scientific << g.steps.back().max_estimate
             << std::defaultfloat << std::setprecision(3) << "; HF " << hf_s << " s, build " << build_s << " s, sweep "
             << sweep_s << " s over " << g.steps.size() << " steps";
       std::ostringstream method;
@@ -148,12 +151,12 @@ int main(int argc, char** argv) {
     }
     // POD over every training snapshot.
     const auto t0 = std::chrono::steady_clock::now();
-    rb::SnapshotRunOptions run;
+    contactrb::offline::SnapshotRunOptions run;
     run.jobs = jobs;
-    const io::SnapshotSet set = rb::generate_snapshots(request, run);
-    const rb::OfflineResult pod = rb::build_reduced_model(set, spec, offline);
+    const io::SnapshotSet set = contactrb::offline::generate_snapshots(request, run);
+    const contactrb::offline::OfflineResult pod = contactrb::offline::build_reduced_model(set, spec, offline);
     const double pod_s = seconds_since(t0);
-    const rb::Evaluation ev = rb::evaluate_model(pod.model, pod.reconstruction, spec, verification, eo);
+    const study::Evaluation ev = study::evaluate_model(pod.model, pod.reconstruction, spec, verification, eo);
     row(name, "POD, all training (" + std::to_string(request.mu.size()) + " points)", static_cast<int>(set.snapshots.size()),
         pod, ev, pod_s, "-");
   }

@@ -64,9 +64,10 @@ io::SnapshotSet snapshots(const std::string& name, const std::string& set_name) 
     path = std::string(cache) + "/" + name + "-" + set_name + ".h5";
     if (std::filesystem::exists(path)) return io::read_snapshot_file(path);
   }
-  rb::SnapshotRunOptions options;
+  contactrb::offline::SnapshotRunOptions options;
   options.jobs = 2;
-  io::SnapshotSet set = rb::generate_snapshots(rb::make_snapshot_request(cases::builtin_case_spec(name), set_name), options);
+  io::SnapshotSet set = contactrb::offline::generate_snapshots(
+      contactrb::offline::make_snapshot_request(cases::builtin_case_spec(name), set_name), options);
   if (!path.empty()) {
     std::filesystem::create_directories(cache);
     io::write_snapshot_file(set, path);
@@ -76,7 +77,7 @@ io::SnapshotSet snapshots(const std::string& name, const std::string& set_name) 
 
 struct CaseData {
   io::SnapshotSet verification;
-  rb::OfflineResult offline;
+  contactrb::offline::OfflineResult offline;
   cases::AffineTerms terms;  // for |u_RB - u_HF|_A(mu), the error the estimate bounds
 };
 
@@ -89,7 +90,7 @@ const CaseData& case_data(const std::string& name, bool paper, bool supremizers)
     slot = std::make_unique<CaseData>();
     if (training.count(name) == 0) training[name] = snapshots(name, "training");
     slot->verification = snapshots(name, "verification");
-    rb::OfflineSettings s;
+    contactrb::offline::OfflineSettings s;
     s.supremizers = supremizers;
     if (paper) {
       s.set_absolute();  // the paper's tolerances, read as absolute
@@ -97,9 +98,9 @@ const CaseData& case_data(const std::string& name, bool paper, bool supremizers)
       s.eps_du = 1e-4;
       s.eps_eim_k = 1e-2;
       s.eps_eim_g = 1e-3;
-      s.dual_method = rb::DualConeMethod::CPG;
+      s.dual_method = contactrb::offline::DualConeMethod::CPG;
     }
-    slot->offline = rb::build_reduced_model(training[name], cases::builtin_case_spec(name), s);
+    slot->offline = contactrb::offline::build_reduced_model(training[name], cases::builtin_case_spec(name), s);
     const cases::CaseSpec spec = cases::builtin_case_spec(name);
     slot->terms = cases::assemble_affine_terms(spec, cases::reference_mesh(spec, training[name].level));
   }
@@ -115,12 +116,12 @@ double median(std::vector<double> v) {
 
 void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper, bool supremizers) {
   const CaseData& d = case_data(name, paper, supremizers);
-  const rb::ReducedModel& m = d.offline.model;
-  rb::OnlineSolver solver(m);
-  rb::OnlineSettings settings;
+  const model::ReducedModel& m = d.offline.model;
+  online::OnlineSolver solver(m);
+  online::OnlineSettings settings;
   if (state.range(0) == 1) {
     settings.kacanov = solve::KacanovSettings{m.kacanov_alpha, m.kacanov_tolerance, m.kacanov_max_iterations};
-    settings.iteration = rb::OnlineIteration::Relaxed;
+    settings.iteration = online::OnlineIteration::Relaxed;
   }
   const auto& snaps = d.verification.snapshots;
   const std::size_t P = snaps.size();
@@ -130,18 +131,18 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
   std::vector<double> effectivity;
   int failures = 0;
   // The fixed point itself: the relaxed iteration at the HF alpha to eps_KA = 1e-10.
-  rb::OnlineSettings tight;
+  online::OnlineSettings tight;
   tight.kacanov = solve::KacanovSettings{m.kacanov_alpha, 1e-10, 10000};
-  tight.iteration = rb::OnlineIteration::Relaxed;
+  tight.iteration = online::OnlineIteration::Relaxed;
   // Accuracy against HF, once per mu (outside the timed loop).
   for (std::size_t p = 0; p < P; ++p) {
-    const rb::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
+    const online::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
     if (!sol.converged()) ++failures;
     iterations[p] = sol.iterations;
-    const rb::OnlineSolution fixed_point = solver.solve(snaps[p].mu, tight);
+    const online::OnlineSolution fixed_point = solver.solve(snaps[p].mu, tight);
     dev_u = std::max(dev_u, (sol.u_hat - fixed_point.u_hat).norm() / fixed_point.u_hat.norm());
-    const Eigen::VectorXd u = rb::reconstruct_displacement(d.offline.reconstruction, snaps[p].mu, sol.u_hat);
-    const Eigen::VectorXd l = rb::reconstruct_multipliers(d.offline.reconstruction, sol.lambda_hat);
+    const Eigen::VectorXd u = online::reconstruct_displacement(d.offline.reconstruction, snaps[p].mu, sol.u_hat);
+    const Eigen::VectorXd l = online::reconstruct_multipliers(d.offline.reconstruction, sol.lambda_hat);
     err_u = std::max(err_u, (u - snaps[p].u).norm() / snaps[p].u.norm());
     const Eigen::VectorXd& lh = snaps[p].lambda;
     const Eigen::VectorXd& w = snaps[p].weight;
@@ -154,19 +155,19 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
       if (err_A > 0.0) effectivity.push_back(sol.estimate.energy / err_A);
     }
   }
-  rb::OnlineSettings no_estimate = settings;
+  online::OnlineSettings no_estimate = settings;
   no_estimate.error_estimate = false;
   std::vector<std::vector<double>> times_noest(P);
   std::size_t q = 0;
   for (auto _ : state) {
     const std::size_t p = q++ % P;
     const double t0 = thread_cpu_seconds();
-    const rb::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
+    const online::OnlineSolution sol = solver.solve(snaps[p].mu, settings);
     const double t1 = thread_cpu_seconds();
     benchmark::DoNotOptimize(sol.u_hat.data());
     times[p].push_back(t1 - t0);
     const double t2 = thread_cpu_seconds();
-    const rb::OnlineSolution bare = solver.solve(snaps[p].mu, no_estimate);
+    const online::OnlineSolution bare = solver.solve(snaps[p].mu, no_estimate);
     const double t3 = thread_cpu_seconds();
     benchmark::DoNotOptimize(bare.u_hat.data());
     times_noest[p].push_back(t3 - t2);

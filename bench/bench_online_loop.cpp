@@ -24,8 +24,8 @@ void BM_OnlineLoop(benchmark::State& state) {
     state.SkipWithError("set CONTACTRB_BENCH_MODEL to a model file (contactrb offline --out ...)");
     return;
   }
-  const rb::ReducedModel model = io::read_reduced_model_file(path);
-  rb::OnlineSolver solver(model);
+  const contactrb::model::ReducedModel model = io::read_reduced_model_file(path);
+  online::OnlineSolver solver(model);
   const int n = static_cast<int>(state.range(0));
   std::vector<cases::Mu> points;
   for (int i = 0; i < n; ++i) {

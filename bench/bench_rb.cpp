@@ -19,7 +19,7 @@
 
 namespace {
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 
 constexpr int kPoints = 51;
 constexpr int kParameters = 31;

@@ -48,9 +48,9 @@ CaseData load(const std::string& name) {
   d.spec = cases::builtin_case_spec(name);
   const cases::CaseSpec& spec = d.spec;
   const auto t0 = std::chrono::steady_clock::now();
-  rb::SnapshotRunOptions options;
+  offline::SnapshotRunOptions options;
   options.jobs = 2;
-  d.set = rb::generate_snapshots(rb::make_snapshot_request(spec, "training"), options);
+  d.set = offline::generate_snapshots(offline::make_snapshot_request(spec, "training"), options);
   d.hf_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int P = static_cast<int>(d.set.snapshots.size());
   d.U0.resize(d.set.snapshots[0].u0.size(), P);
@@ -64,23 +64,23 @@ CaseData load(const std::string& name) {
     weights += s.weight;
   }
   weights /= static_cast<double>(P);
-  const rb::Compression comp = rb::compress_constraints(L, rb::CompressionSettings{});
-  d.L = rb::restrict_rows(L, comp.kept).cwiseMax(0.0);
-  d.weights = rb::restrict_rows(weights, comp.kept);
+  const offline::Compression comp = offline::compress_constraints(L, offline::CompressionSettings{});
+  d.L = offline::restrict_rows(L, comp.kept).cwiseMax(0.0);
+  d.weights = offline::restrict_rows(weights, comp.kept);
   d.kept = comp.kept;
   const hf::HFSolver solver(cases::make_problem(spec, cases::reference_mu(spec.parameters)));
   d.energy = solver.dofs().restrict_matrix(solver.stiffness());
   return d;
 }
 
-rb::DualConeSettings dual_settings(const CaseData& d, double eps) {
-  rb::DualConeSettings s;
+offline::DualConeSettings dual_settings(const CaseData& d, double eps) {
+  offline::DualConeSettings s;
   s.weights = d.weights;
   s.greedy.tolerance = eps;
   return s;
 }
 
-std::string r_cell(const rb::DualConeResult& r, double eps) {
+std::string r_cell(const offline::DualConeResult& r, double eps) {
   for (std::size_t k = 0; k < r.errors.size(); ++k) {
     if (r.errors[k] <= eps) return std::to_string(k);
   }
@@ -101,10 +101,10 @@ void dual_table(const char* title, const CaseData& d, const std::vector<double>&
   for (const char* method : {"NMF", "angle-greedy", "CPG"}) {
     std::printf("\n| %s R |", method);
     for (double e : eps) {
-      const rb::DualConeSettings s = dual_settings(d, e);
-      rb::DualConeResult r = std::string(method) == "CPG"   ? rb::build_cpg(d.L, s)
-                             : std::string(method) == "NMF" ? rb::build_nmf_cone(d.L, s)
-                                                            : rb::build_angle_greedy(d.L, s);
+      const offline::DualConeSettings s = dual_settings(d, e);
+      offline::DualConeResult r = std::string(method) == "CPG"   ? offline::build_cpg(d.L, s)
+                                  : std::string(method) == "NMF" ? offline::build_nmf_cone(d.L, s)
+                                                                 : offline::build_angle_greedy(d.L, s);
       // The smallest R whose true cone error is <= eps; when no R tried reaches it, say so and
       // give the best error seen (no fallback to the final size).
       std::printf(" %s |", r_cell(r, e).c_str());
@@ -114,10 +114,10 @@ void dual_table(const char* title, const CaseData& d, const std::vector<double>&
 }
 
 void history(const char* title, const CaseData& d) {
-  const rb::DualConeSettings s = dual_settings(d, 0.0);
-  const rb::DualConeResult cpg = rb::build_cpg(d.L, s);
-  const rb::DualConeResult angle = rb::build_angle_greedy(d.L, s);
-  const rb::DualConeResult nmf = rb::build_nmf_cone(d.L, s);
+  const offline::DualConeSettings s = dual_settings(d, 0.0);
+  const offline::DualConeResult cpg = offline::build_cpg(d.L, s);
+  const offline::DualConeResult angle = offline::build_angle_greedy(d.L, s);
+  const offline::DualConeResult nmf = offline::build_nmf_cone(d.L, s);
   std::printf("\n%s: max_mu |lambda - Pi(lambda)|_L2 against R (P = %d)\n\n", title, static_cast<int>(d.L.cols()));
   std::printf("| R | CPG | angle-greedy (cone) | angle-greedy (linear) | NMF |\n| ---: | ---: | ---: | ---: | ---: |\n");
   const std::size_t n = std::max({cpg.errors.size(), angle.errors.size(), nmf.errors.size()});
@@ -140,7 +140,7 @@ void eim_inputs(const CaseData& d, const std::vector<int>& rows, Eigen::MatrixXd
   gamma.resize(static_cast<Eigen::Index>(rows.size()), P);
   for (int p = 0; p < P; ++p) {
     const io::Snapshot& s = d.set.snapshots[static_cast<std::size_t>(p)];
-    K.push_back(rb::restrict_rows(s.K, rows));
+    K.push_back(offline::restrict_rows(s.K, rows));
     // u_D on the contact DOFs is u minus its free part.
     Eigen::VectorXd uD_c(static_cast<Eigen::Index>(d.set.contact_dofs.size()));
     Eigen::VectorXd u0_full = Eigen::VectorXd::Zero(d.set.num_dofs);
@@ -149,18 +149,18 @@ void eim_inputs(const CaseData& d, const std::vector<int>& rows, Eigen::MatrixXd
       const int g = d.set.contact_dofs[i];
       uD_c(static_cast<Eigen::Index>(i)) = s.u(g) - u0_full(g);
     }
-    gamma.col(p) = rb::restrict_rows(Eigen::VectorXd(s.g - s.K * uD_c), rows);
+    gamma.col(p) = offline::restrict_rows(Eigen::VectorXd(s.g - s.K * uD_c), rows);
   }
-  K_flat = rb::flatten_columns(K);
+  K_flat = offline::flatten_columns(K);
 }
 
 void eim_table(const char* title, const CaseData& d) {
   Eigen::MatrixXd K, gamma;
   eim_inputs(d, d.kept, K, gamma);  // the kept rows, as `contactrb offline`
-  rb::EIMSettings es;
+  offline::EIMSettings es;
   es.tolerance = 0.0;
-  const rb::EIMResult eg = rb::eim(gamma, es);
-  const rb::EIMResult ek = rb::eim(K, es);
+  const offline::EIMResult eg = offline::eim(gamma, es);
+  const offline::EIMResult ek = offline::eim(K, es);
   std::printf("\n%s: EIM l-infinity training error against M\n\n| M | gamma | kappa |\n| ---: | ---: | ---: |\n", title);
   const std::size_t n = std::max(eg.errors.size(), ek.errors.size());
   for (std::size_t m = 0; m < n; m += (m < 10 ? 1 : 5)) {
@@ -202,14 +202,15 @@ void magic_points_table(const char* title, const CaseData& d) {
     const std::vector<int>& rows = compression ? d.kept : all;
     Eigen::MatrixXd K, gamma;
     eim_inputs(d, rows, K, gamma);
-    rb::EIMSettings es;
+    offline::EIMSettings es;
     es.tolerance = 0.0;
     es.max_size = 10;
-    const rb::EIMResult ek = rb::eim(K, es);
-    const rb::EIMResult eg = rb::eim(gamma, es);
+    const offline::EIMResult ek = offline::eim(K, es);
+    const offline::EIMResult eg = offline::eim(gamma, es);
     const char* label = compression ? "kept (default)" : "all (--no-compression)";
     std::printf("| %s | kappa |", label);
-    for (int m : ek.magic_points) std::printf(" %.4g", x_of(rows[static_cast<std::size_t>(rb::unflatten_index(m, n_c).first)]));
+    for (int m : ek.magic_points)
+      std::printf(" %.4g", x_of(rows[static_cast<std::size_t>(offline::unflatten_index(m, n_c).first)]));
     std::printf(" |\n| %s | gamma |", label);
     for (int m : eg.magic_points) std::printf(" %.4g", x_of(rows[static_cast<std::size_t>(m)]));
     std::printf(" |\n");
@@ -217,22 +218,22 @@ void magic_points_table(const char* title, const CaseData& d) {
 }
 
 void singular_values(const char* title, const CaseData& d) {
-  const rb::PODResult p = rb::pod(d.U0, d.energy, rb::PODSettings{});
+  const offline::PODResult p = offline::pod(d.U0, d.energy, offline::PODSettings{});
   std::printf("\n%s: POD singular values, energy norm\n\n", title);
   for (int i = 0; i < p.singular_values.size(); ++i) std::printf(" %.3g", p.singular_values(i));
   std::printf("\n");
 }
 
 // The offline builder at the given settings: sizes and the wall time of each step.
-void offline_times(const char* title, const CaseData& d, const rb::OfflineSettings& settings) {
-  rb::OfflineResult r;
+void offline_times(const char* title, const CaseData& d, const offline::OfflineSettings& settings) {
+  offline::OfflineResult r;
   try {
-    r = rb::build_reduced_model(d.set, d.spec, settings);
+    r = offline::build_reduced_model(d.set, d.spec, settings);
   } catch (const Error& e) {  // e.g. an EIM tolerance above every value: M = 0 is refused
     std::printf("| %s | refused: %s |\n", title, e.what());
     return;
   }
-  const rb::OfflineReport& t = r.report;
+  const offline::OfflineReport& t = r.report;
   const double steps = t.assembly_s + t.pod_s + t.dual_s + t.eim_kappa_s + t.eim_gamma_s + t.reduction_s;
   std::printf("| %s | %d | %d | %d | %d | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f%% |\n", title,
               t.N, t.R, t.Mk, t.Mg, d.hf_seconds * 1e3, t.assembly_s * 1e3, t.pod_s * 1e3, t.dual_s * 1e3,
@@ -241,9 +242,9 @@ void offline_times(const char* title, const CaseData& d, const rb::OfflineSettin
 }
 
 // The tolerances `contactrb report` uses for a built-in case.
-rb::OfflineSettings report_settings(const std::string& name) {
-  const rb::StudyTolerances t = rb::default_study_tolerances(name);
-  rb::OfflineSettings s;
+offline::OfflineSettings report_settings(const std::string& name) {
+  const study::StudyTolerances t = study::default_study_tolerances(name);
+  offline::OfflineSettings s;
   s.eps_pod = t.eps_pod;
   s.eps_du = t.eps_du;
   s.eps_eim_k = t.eps_eim_k;
@@ -251,8 +252,8 @@ rb::OfflineSettings report_settings(const std::string& name) {
   return s;
 }
 
-rb::OfflineSettings paper_settings(double eps_pod, double eps_du, double eps_k, double eps_g) {
-  rb::OfflineSettings s;
+offline::OfflineSettings paper_settings(double eps_pod, double eps_du, double eps_k, double eps_g) {
+  offline::OfflineSettings s;
   s.set_absolute();  // the paper's tolerances, read as absolute
   s.eps_pod = eps_pod;
   s.eps_du = eps_du;
@@ -278,11 +279,11 @@ int main() {
   std::printf("\n| --- |");
   for (std::size_t i = 0; i < eps_pod.size(); ++i) std::printf(" ---: |");
   std::printf("\n| N |");
-  rb::PODResult last;
+  offline::PODResult last;
   for (double e : eps_pod) {
-    rb::PODSettings ps;
+    offline::PODSettings ps;
     ps.tolerance = e;
-    last = rb::pod(b.U0, b.energy, ps);
+    last = offline::pod(b.U0, b.energy, ps);
     std::printf(" %d |", last.N);
   }
   std::printf("\n\nsingular values (energy norm):");

@@ -117,16 +117,16 @@ void gather_answers(MpiWorld& world, std::vector<Line>& lines, std::size_t m) {
 
 }  // namespace
 
-BatchCounts answer_batch_lines(const rb::ReducedModel& model, const rb::OnlineSizes& sizes, int jobs,
+BatchCounts answer_batch_lines(const contactrb::model::ReducedModel& model, const online::OnlineSizes& sizes, int jobs,
                                const ReadLine& read, const AnswerLine& answer, std::ostream& out, MpiWorld* world) {
   require(jobs >= 0, "--jobs must be >= 0 (0: every hardware thread; got " + std::to_string(jobs) + ")");
-  if (jobs == 0) jobs = rb::hardware_jobs();
+  if (jobs == 0) jobs = online::hardware_jobs();
   const int ranks = world ? world->size() : 1;
   const bool root = !world || world->rank() == 0;
   const std::size_t chunk = jobs == 1 && ranks == 1 ? 1 : static_cast<std::size_t>(jobs) * 64 * static_cast<std::size_t>(ranks);
   std::vector<Line> lines(chunk);
-  std::vector<std::unique_ptr<rb::OnlineSolver>> solvers;  // one per thread, for the whole batch
-  for (int j = 0; j < jobs; ++j) solvers.push_back(std::make_unique<rb::OnlineSolver>(model, sizes));
+  std::vector<std::unique_ptr<online::OnlineSolver>> solvers;  // one per thread, for the whole batch
+  for (int j = 0; j < jobs; ++j) solvers.push_back(std::make_unique<online::OnlineSolver>(model, sizes));
   BatchCounts counts;
   if (!world && jobs > 1) return pipeline_batch_lines(solvers, chunk, read, answer, out);
   try {
@@ -141,7 +141,7 @@ BatchCounts answer_batch_lines(const rb::ReducedModel& model, const rb::OnlineSi
     if (m == 0) break;
     const int first = counts.lines + 1;
     const auto [begin, end] = rank_block(m, world ? world->rank() : 0, ranks);
-    rb::for_each_query(solvers, end - begin, [&](rb::OnlineSolver& solver, std::size_t j) {
+    online::for_each_query(solvers, end - begin, [&](online::OnlineSolver& solver, std::size_t j) {
       const std::size_t i = begin + j;
       lines[i].answer = answer(solver, first + static_cast<int>(i), lines[i].text, lines[i].too_long);
     }, 4);

@@ -31,7 +31,8 @@ struct LineAnswer {
 };
 // The answer to input line k (1-based). Called concurrently for different k with the calling
 // thread's solver: it may touch only what belongs to line k (or lock).
-using AnswerLine = std::function<LineAnswer(rb::OnlineSolver& solver, int k, const std::string& line, bool too_long)>;
+using AnswerLine =
+    std::function<LineAnswer(online::OnlineSolver& solver, int k, const std::string& line, bool too_long)>;
 
 struct BatchCounts {
   int lines = 0;
@@ -40,7 +41,7 @@ struct BatchCounts {
 };
 
 // jobs: threads (0: every hardware thread). The counts over every rank (on rank 0; the other ranks' own counts elsewhere).
-BatchCounts answer_batch_lines(const rb::ReducedModel& model, const rb::OnlineSizes& sizes, int jobs,
+BatchCounts answer_batch_lines(const contactrb::model::ReducedModel& model, const online::OnlineSizes& sizes, int jobs,
                                const ReadLine& read, const AnswerLine& answer, std::ostream& out,
                                MpiWorld* world = nullptr);
 

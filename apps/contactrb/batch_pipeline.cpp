@@ -49,7 +49,7 @@ class Pipeline {
 
   // A solver thread's loop: pieces of the oldest chunks with lines left, until the input is read
   // and every line handed out (or stop).
-  void work(rb::OnlineSolver& solver) {
+  void work(online::OnlineSolver& solver) {
     guarded([&] {
       std::unique_lock<std::mutex> lock(mutex_);
       for (;;) {
@@ -198,7 +198,7 @@ class Pipeline {
 
 }  // namespace
 
-BatchCounts pipeline_batch_lines(const std::vector<std::unique_ptr<rb::OnlineSolver>>& solvers, std::size_t chunk,
+BatchCounts pipeline_batch_lines(const std::vector<std::unique_ptr<online::OnlineSolver>>& solvers, std::size_t chunk,
                                  const ReadLine& read, const AnswerLine& answer, std::ostream& out) {
   require(!solvers.empty() && chunk >= 1, "internal: a batch pipeline without solvers or chunks");
   Pipeline pipeline(chunk, answer, out);

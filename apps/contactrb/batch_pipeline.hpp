@@ -20,7 +20,7 @@
 namespace contactrb::app {
 
 // Lines answered by solvers.size() threads (>= 1), chunk lines read at a time (>= 1).
-BatchCounts pipeline_batch_lines(const std::vector<std::unique_ptr<rb::OnlineSolver>>& solvers, std::size_t chunk,
+BatchCounts pipeline_batch_lines(const std::vector<std::unique_ptr<online::OnlineSolver>>& solvers, std::size_t chunk,
                                  const ReadLine& read, const AnswerLine& answer, std::ostream& out);
 
 }  // namespace contactrb::app

@@ -36,14 +36,14 @@ struct DemoOptions {
 
 // Offline tolerances of the demo (absolute; docs/cli.md, "`contactrb demo`"): the errors come
 // down to the level of the Kacanov tolerance of the HF snapshots (eps_KA = 1e-3).
-rb::OfflineSettings demo_settings() {
-  rb::OfflineSettings s;
+offline::OfflineSettings demo_settings() {
+  offline::OfflineSettings s;
   s.set_absolute();
   s.eps_pod = 1e-5;    // N = 11 of 22 (the numerical rank; paper Table 4 at 1e-5: 20)
   s.eps_du = 1e-3;     // R = 10 (paper Table 5: CPG R = 13 at 1e-3)
   s.eps_eim_k = 1e-4;  // the paper's 1e-2 / 1e-3 keep M^g = 1: e_displ 2.8%
   s.eps_eim_g = 1e-5;
-  s.dual_method = rb::DualConeMethod::CPG;
+  s.dual_method = offline::DualConeMethod::CPG;
   return s;
 }
 
@@ -68,7 +68,7 @@ int run_demo(const DemoOptions& opt) {
   const std::string csv_path = (fs::path(opt.out) / "evaluation.csv").string();
   check_output_file(model_path);
   check_file_roles({}, {{"model.h5 in --out", model_path}, {"evaluation.csv in --out", csv_path}});
-  const rb::ProgressMode progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  const offline::ProgressMode progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   const auto step = [&](const std::string& text) {
     if (!opt.quiet) std::cerr << "demo: " << text << std::endl;
   };
@@ -82,10 +82,10 @@ int run_demo(const DemoOptions& opt) {
 
   step("[1/3] HF snapshots on the training set");
   auto t0 = Clock::now();
-  rb::SnapshotRunOptions run;
+  offline::SnapshotRunOptions run;
   run.jobs = opt.jobs;
   run.progress = progress;
-  const io::SnapshotSet set = rb::generate_snapshots(rb::make_snapshot_request(spec, "training"), run);
+  const io::SnapshotSet set = offline::generate_snapshots(offline::make_snapshot_request(spec, "training"), run);
   const double snapshots_s = seconds(t0);
   for (const io::Snapshot& s : set.snapshots) {
     require(s.converged, "demo: the HF solve at mu = " + cases::mu_values_text(s.mu) + " failed (" + s.status + ": " +
@@ -94,8 +94,8 @@ int run_demo(const DemoOptions& opt) {
 
   step("[2/3] offline stage: POD, CPG dual cone, EIM of kappa and gamma");
   t0 = Clock::now();
-  const rb::OfflineSettings settings = demo_settings();
-  const rb::OfflineResult off = rb::build_reduced_model(set, spec, settings);
+  const offline::OfflineSettings settings = demo_settings();
+  const offline::OfflineResult off = offline::build_reduced_model(set, spec, settings);
   const double offline_s = seconds(t0);
   // Held to the end: the files of one demo run are never mixed with those of another.
   const OutputLock lock(opt.out);
@@ -103,13 +103,13 @@ int run_demo(const DemoOptions& opt) {
 
   step("[3/3] online stage on the verification set against the HF solver");
   t0 = Clock::now();
-  rb::EvaluationOptions eo;
+  study::EvaluationOptions eo;
   eo.jobs = opt.jobs;
   eo.progress = progress;
-  const rb::Evaluation ev = rb::evaluate_model(off.model, off.reconstruction, spec, verification, eo);
+  const study::Evaluation ev = study::evaluate_model(off.model, off.reconstruction, spec, verification, eo);
   const double evaluation_s = seconds(t0);
-  rb::write_evaluation_csv(ev, csv_path);
-  const rb::EvaluationSummary& su = ev.summary;
+  study::write_evaluation_csv(ev, csv_path);
+  const study::EvaluationSummary& su = ev.summary;
 
   std::cout << "contactrb demo: case hertz-b, " << set.snapshots.size() << " training snapshots ("
             << fmt("%.2f", snapshots_s) << " s), offline " << fmt("%.2f", offline_s) << " s, "

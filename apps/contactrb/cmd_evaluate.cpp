@@ -85,7 +85,7 @@ std::string value_text(double mu) {
   return os.str();
 }
 
-void print_table(const rb::Evaluation& e) {
+void print_table(const study::Evaluation& e) {
   if (e.parameter_names.size() > 1) {
     for (const std::string& name : e.parameter_names) std::cout << std::setw(std::max<int>(10, static_cast<int>(name.size()) + 1)) << name;
   } else {
@@ -95,7 +95,7 @@ void print_table(const rb::Evaluation& e) {
             << "e_inter" << std::setw(12) << "e_press" << std::setw(12) << "e_force" << std::setw(10) << "HF ms"
             << std::setw(12) << "online us" << std::setw(10) << "speed-up" << std::setw(12) << "|e|_A" << std::setw(12)
             << "estimate" << std::setw(10) << "eff." << "\n";
-  for (const rb::EvaluationRow& r : e.rows) {
+  for (const study::EvaluationRow& r : e.rows) {
     for (Eigen::Index k = 0; k < r.mu.size(); ++k) {
       const int width = e.parameter_names.size() > 1
                             ? std::max<int>(10, static_cast<int>(e.parameter_names[static_cast<std::size_t>(k)].size()) + 1)
@@ -113,7 +113,7 @@ void print_table(const rb::Evaluation& e) {
     if (!r.rb_converged) std::cout << "  online " << r.rb_status;
     std::cout << "\n";
   }
-  const rb::EvaluationSummary& s = e.summary;
+  const study::EvaluationSummary& s = e.summary;
   std::cout << std::setprecision(3) << std::scientific << "summary over " << s.count << " values"
             << (s.hf_failures + s.rb_failures > 0 ? " (errors and times over the rows where both solves converged)"
                                                   : "")
@@ -133,12 +133,12 @@ void print_table(const rb::Evaluation& e) {
 }
 
 int run_evaluate(const EvaluateOptions& opt) {
-  const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
+  const online::OnlineSizes sizes = checked_size_flags(opt.sizes);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
-  const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
+  const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
-  const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
+  const contactrb::model::ReducedReconstruction rec = io::read_reconstruction(opt.model);
   // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
   const cases::CaseSpec spec = cases::case_from_record(
       model.case_kind, model.case_spec, opt.model,
@@ -152,31 +152,31 @@ int run_evaluate(const EvaluateOptions& opt) {
   }
   ensure_output_directory(opt.out);
 
-  rb::EvaluationOptions options;
+  study::EvaluationOptions options;
   options.sizes = sizes;
   options.online_repeats = opt.repeats;
   options.jobs = opt.jobs;
-  options.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
+  options.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   require(opt.multipliers.empty() || spec.num_parameters() == 1,
           "--multipliers is for one-parameter models (this one has " + std::to_string(spec.num_parameters()) + ")");
   options.multiplier_mus = cases::points_1d(opt.multipliers);
-  const rb::Evaluation e = rb::evaluate_model(model, rec, spec, mus, options);
+  const study::Evaluation e = study::evaluate_model(model, rec, spec, mus, options);
 
   const std::filesystem::path dir(opt.out);
   const OutputLock lock(dir);  // one run's files, never mixed with another's
   const std::string csv_path = (dir / "evaluation.csv").string();
   const std::string json_path = (dir / "evaluation.json").string();
-  rb::write_evaluation_csv(e, csv_path);
+  study::write_evaluation_csv(e, csv_path);
   std::vector<std::string> written{csv_path, json_path};
   nlohmann::json multiplier_files = nlohmann::json::array();
-  for (const rb::EvaluationRow& r : e.rows) {
+  for (const study::EvaluationRow& r : e.rows) {
     if (r.multipliers.abscissa.empty()) continue;
     const std::string path = (dir / ("multipliers_mu" + value_text(r.mu(0)) + ".csv")).string();
-    rb::write_multiplier_csv(r.multipliers, path);
+    study::write_multiplier_csv(r.multipliers, path);
     multiplier_files.push_back({{"mu", r.mu(0)}, {"file", path}});
     written.push_back(path);
   }
-  nlohmann::json j = rb::evaluation_json(e, model, mus, options);
+  nlohmann::json j = study::evaluation_json(e, model, mus, options);
   j["model"] = opt.model;
   j["set"] = opt.set;
   j["multipliers"] = multiplier_files;

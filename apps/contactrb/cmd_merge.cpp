@@ -35,14 +35,14 @@ int run_merge(const MergeOptions& opt) {
   for (const std::string& p : opt.parts) inputs.push_back({"the part", p});
   check_file_roles(inputs, {{"--out", opt.out}});
 
-  std::vector<rb::PartFile> parts;
+  std::vector<offline::PartFile> parts;
   for (const std::string& p : opt.parts) parts.push_back({p, io::read_snapshot_file(p)});
-  const io::SnapshotSet set = rb::merge_snapshot_parts(parts);
+  const io::SnapshotSet set = offline::merge_snapshot_parts(parts);
   {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());
     io::write_snapshot_file(set, opt.out);
   }
-  const rb::SnapshotSummary s = rb::summarize(set);
+  const offline::SnapshotSummary s = offline::summarize(set);
   std::cout << "case " << set.case_name << ", set " << set.set_name << ": " << parts.size() << " parts, "
             << set.snapshots.size() << " values\n"
             << "solves: " << s.solves << "\n"

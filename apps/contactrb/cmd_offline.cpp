@@ -60,15 +60,15 @@ struct OfflineOptions {
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   bool quiet = false;
-  double eps_pod = rb::OfflineSettings{}.eps_pod;
+  double eps_pod = offline::OfflineSettings{}.eps_pod;
   std::optional<int> n;  // absent: --eps-pod decides
   std::string inner_product = "energy";
   std::string dual = "cpg";
-  double eps_du = rb::OfflineSettings{}.eps_du;
+  double eps_du = offline::OfflineSettings{}.eps_du;
   bool eps_du_relative = false;  // the default anyway; kept for scripts that pass it
   std::optional<int> r;  // absent: --eps-du decides
-  double eps_eim_k = rb::OfflineSettings{}.eps_eim_k;
-  double eps_eim_g = rb::OfflineSettings{}.eps_eim_g;
+  double eps_eim_k = offline::OfflineSettings{}.eps_eim_k;
+  double eps_eim_g = offline::OfflineSettings{}.eps_eim_g;
   // Tolerances are relative by default; these make all of them, or one, absolute.
   bool absolute_tolerances = false;
   bool eps_pod_absolute = false;
@@ -77,11 +77,11 @@ struct OfflineOptions {
   bool eps_eim_g_absolute = false;
   bool no_compression = false;
   bool no_supremizers = false;
-  // --greedy (rb::run_offline_greedy): tolerance on the max relative estimate, HF budget.
+  // --greedy (offline::run_offline_greedy): tolerance on the max relative estimate, HF budget.
   bool greedy = false;
-  double greedy_tol = rb::GreedyOfflineSettings{}.tolerance;
-  int max_hf = rb::GreedyOfflineSettings{}.max_hf;
-  int greedy_batch = rb::GreedyOfflineSettings{}.batch;
+  double greedy_tol = offline::GreedyOfflineSettings{}.tolerance;
+  int max_hf = offline::GreedyOfflineSettings{}.max_hf;
+  int greedy_batch = offline::GreedyOfflineSettings{}.batch;
   std::string out;
 };
 
@@ -92,11 +92,11 @@ std::string sibling_path(const std::string& model_path, const char* name) {
 
 // The HF solves the options ask for: the case's set (or --values), level, constraint and the
 // Kacanov settings (both the POD path and the greedy).
-rb::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases::CaseSpec& spec) {
+offline::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases::CaseSpec& spec) {
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
-  rb::SnapshotRequest request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  offline::SnapshotRequest request = offline::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   request.settings.kacanov.alpha = opt.alpha;
   request.settings.kacanov.tolerance = opt.tolerance;
   request.settings.kacanov.max_iterations = opt.max_iterations;
@@ -112,11 +112,11 @@ io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& 
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
-  const rb::SnapshotRequest request = snapshot_request(opt, spec);
-  rb::SnapshotRunOptions run;
+  const offline::SnapshotRequest request = snapshot_request(opt, spec);
+  offline::SnapshotRunOptions run;
   run.jobs = opt.jobs;
-  run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  io::SnapshotSet set = rb::generate_snapshots(request, run);
+  run.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
+  io::SnapshotSet set = offline::generate_snapshots(request, run);
   if (!lock) lock.emplace(std::filesystem::path(path).parent_path());
   io::write_snapshot_file(set, path);
   return set;
@@ -133,12 +133,12 @@ std::string failure_report(const io::SnapshotSet& set, const std::string& path) 
   return os.str();
 }
 
-rb::OfflineSettings settings_from(const OfflineOptions& opt) {
-  rb::OfflineSettings s;
+offline::OfflineSettings settings_from(const OfflineOptions& opt) {
+  offline::OfflineSettings s;
   s.eps_pod = opt.eps_pod;
   s.pod_modes = opt.n.value_or(-1);
-  s.inner_product = option_enum("--inner-product", opt.inner_product, rb::inner_product_from_string);
-  s.dual_method = option_enum("--dual", opt.dual, rb::dual_cone_method_from_string);
+  s.inner_product = option_enum("--inner-product", opt.inner_product, offline::inner_product_from_string);
+  s.dual_method = option_enum("--dual", opt.dual, offline::dual_cone_method_from_string);
   // Every value given is checked: -1 must not pass as "no fixed size" where -3 is refused.
   require(!opt.n || *opt.n >= 1, "--n must be >= 1 (got " + std::to_string(opt.n.value_or(0)) + ")");
   require(!opt.r || *opt.r >= 1, "--r must be >= 1 (got " + std::to_string(opt.r.value_or(0)) + ")");
@@ -158,7 +158,7 @@ rb::OfflineSettings settings_from(const OfflineOptions& opt) {
   s.eps_eim_g = opt.eps_eim_g;
   s.compression = !opt.no_compression;
   s.supremizers = !opt.no_supremizers;
-  rb::check_settings(s);
+  offline::check_settings(s);
   return s;
 }
 
@@ -183,7 +183,7 @@ int run_greedy(const OfflineOptions& opt) {
   require(opt.greedy_batch >= 1, "--greedy-batch must be >= 1 (got " + std::to_string(opt.greedy_batch) + ")");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
-  rb::GreedyOfflineSettings gs;
+  offline::GreedyOfflineSettings gs;
   gs.offline = settings_from(opt);
   // Compression as in `offline` (on unless --no-compression): docs/offline-online.md, "Greedy
   // sampling", gives the measured trade-off.
@@ -191,8 +191,8 @@ int run_greedy(const OfflineOptions& opt) {
   gs.max_hf = opt.max_hf;
   gs.batch = opt.greedy_batch;
   gs.jobs = opt.jobs;
-  gs.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  rb::check_settings(gs);
+  gs.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
+  offline::check_settings(gs);
   check_output_file(opt.out);
   const std::string snapshots_path = sibling_path(opt.out, "snapshots.h5");
   const std::string csv_path = sibling_path(opt.out, "greedy.csv");
@@ -205,9 +205,9 @@ int run_greedy(const OfflineOptions& opt) {
                             {"snapshots.h5 next to --out", snapshots_path},
                             {"greedy.csv next to --out", csv_path},
                             {"greedy.json next to --out", json_path}});
-  const rb::SnapshotRequest request = snapshot_request(opt, spec);
+  const offline::SnapshotRequest request = snapshot_request(opt, spec);
   if (world) {
-    if (world->rank() != 0) gs.progress = rb::ProgressMode::None;
+    if (world->rank() != 0) gs.progress = offline::ProgressMode::None;
     gs.distribution = mpi_greedy_distribution(*world);
     if (!world->agree(true)) {
       if (world->rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
@@ -216,25 +216,25 @@ int run_greedy(const OfflineOptions& opt) {
   }
 
   const auto t0 = Clock::now();
-  const rb::GreedyOfflineResult g = rb::run_offline_greedy(spec, request, gs);
+  const offline::GreedyOfflineResult g = offline::run_offline_greedy(spec, request, gs);
   const auto t1 = Clock::now();
   if (world && world->rank() != 0) return 0;  // rank 0 holds the same result and writes it
   {
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // one run's files together
     io::write_snapshot_file(g.snapshots, snapshots_path);
     io::write_reduced_model_file(g.offline.model, g.offline.reconstruction, opt.out);
-    rb::write_greedy_csv(g, csv_path);
-    nlohmann::json j = rb::greedy_json(g, request, gs);
+    offline::write_greedy_csv(g, csv_path);
+    nlohmann::json j = offline::greedy_json(g, request, gs);
     j["times_s"]["total"] = seconds(t0, Clock::now());
     io::write_json(j, json_path);
   }
-  const rb::GreedyStep& last = g.steps.back();
+  const offline::GreedyStep& last = g.steps.back();
   std::cout << "case " << spec.name << ", greedy over " << request.mu.size() << " points (set " << request.set_name
             << "), tolerance " << gs.tolerance << ", budget " << gs.max_hf << " HF solves\n"
-            << "status: " << rb::to_string(g.status) << " after " << g.steps.size() << " steps, " << g.hf_solves
+            << "status: " << to_string(g.status) << " after " << g.steps.size() << " steps, " << g.hf_solves
             << " HF solves" << (g.excluded.empty() ? "" : " (" + std::to_string(g.excluded.size()) + " failed)")
             << "\nmax relative estimate: " << last.max_estimate
-            << (g.status == rb::GreedyOfflineStatus::ToleranceReached ? "" : " (tolerance NOT reached)") << "\n"
+            << (g.status == offline::GreedyOfflineStatus::ToleranceReached ? "" : " (tolerance NOT reached)") << "\n"
             << "sizes: N " << last.N << ", R " << last.R << ", Mk " << last.Mk << ", Mg " << last.Mg << "\n"
             << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (greedy "
             << seconds(t0, t1) << (world ? ", " + std::to_string(world->size()) + " MPI ranks" : std::string()) << ")\n"
@@ -247,7 +247,7 @@ int run_offline(const OfflineOptions& opt) {
   if (opt.greedy) return run_greedy(opt);
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
-  const rb::OfflineSettings settings = settings_from(opt);
+  const offline::OfflineSettings settings = settings_from(opt);
   check_output_file(opt.out);
   const std::string json_path = sibling_path(opt.out, "offline.json");
   const bool compute = opt.snapshots.empty();
@@ -265,22 +265,22 @@ int run_offline(const OfflineOptions& opt) {
 
   const io::SnapshotSet set =
       compute ? compute_snapshots(opt, snapshots_path, lock) : io::read_snapshot_file(snapshots_path);
-  rb::refuse_snapshot_part(set, snapshots_path);
+  offline::refuse_snapshot_part(set, snapshots_path);
   if (set.num_failed() > 0) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
     return kExitSolveFailed;
   }
   const cases::CaseSpec spec = spec_of(set, snapshots_path);
   const auto t1 = Clock::now();
-  const rb::OfflineResult result = rb::build_reduced_model(set, spec, settings);
+  const offline::OfflineResult result = offline::build_reduced_model(set, spec, settings);
   const auto t2 = Clock::now();
   if (!lock) lock.emplace(std::filesystem::path(opt.out).parent_path());
   io::write_reduced_model_file(result.model, result.reconstruction, opt.out);
   const auto t3 = Clock::now();
-  const rb::OfflineReport& rep = result.report;
-  const rb::ReducedModel& m = result.model;
+  const offline::OfflineReport& rep = result.report;
+  const model::ReducedModel& m = result.model;
 
-  nlohmann::json j = rb::offline_json(set, settings, result);
+  nlohmann::json j = offline::offline_json(set, settings, result);
   j["snapshots"] = snapshots_path;
   j["snapshots_computed"] = compute;
   j["model"] = opt.out;
@@ -304,7 +304,7 @@ int run_offline(const OfflineOptions& opt) {
   std::cout << "case " << set.case_name << ", " << set.snapshots.size() << " snapshots (set " << set.set_name << "), "
             << set.constraint << "\n"
             << "sizes: N " << m.N_max << ", R " << m.R_max << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
-            << "pod: " << rb::to_string(settings.inner_product) << " product, N " << rep.N_pod << " of "
+            << "pod: " << to_string(settings.inner_product) << " product, N " << rep.N_pod << " of "
             << rep.singular_values.size() << " ("
             << (settings.pod_modes >= 1 ? "fixed N " + std::to_string(settings.pod_modes) + ", capped at the rank"
                                         : pod_tolerance(settings.eps_pod, settings.eps_pod_relative, rep.pod_threshold))

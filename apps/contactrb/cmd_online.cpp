@@ -120,7 +120,7 @@ void write_batch_collections(const std::string& out, std::size_t num_parameters,
 }
 
 // The numbers of one answer, for --format csv|npy (the JSON line's, nothing else).
-io::BatchRow batch_row(int k, const cases::Mu& mu, const rb::OnlineSolution& s) {
+io::BatchRow batch_row(int k, const cases::Mu& mu, const online::OnlineSolution& s) {
   io::BatchRow row;
   row.line = k;
   row.answered = true;
@@ -135,8 +135,8 @@ io::BatchRow batch_row(int k, const cases::Mu& mu, const rb::OnlineSolution& s) 
   return row;
 }
 
-int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb::OnlineSizes& sizes,
-              const rb::OnlineSettings& settings, const OnlineFields* fields, MpiWorld* world = nullptr) {
+int run_batch(const OnlineOptions& opt, const contactrb::model::ReducedModel& model, const online::OnlineSizes& sizes,
+              const online::OnlineSettings& settings, const OnlineFields* fields, MpiWorld* world = nullptr) {
   const std::vector<cases::ParameterSpec>& parameters = model.parameters;
   const bool root = world == nullptr || world->rank() == 0;
   std::ifstream file;
@@ -167,7 +167,7 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
   std::mutex written_mutex;
   std::vector<std::pair<int, cases::Mu>> written;  // --out: the lines with files, and their mu
   // On opt.jobs threads, in input order (batch_lines.hpp).
-  const auto answer = [&](rb::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
+  const auto answer = [&](online::OnlineSolver& solver, int k, const std::string& line, bool too_long) {
     nlohmann::json j;
     io::BatchRow row;
     row.line = k;
@@ -176,10 +176,10 @@ int run_batch(const OnlineOptions& opt, const rb::ReducedModel& model, const rb:
       require(!too_long, "line longer than " + std::to_string(kMaxBatchLineBytes) + " bytes (expected " +
                              (parameters.size() == 1 ? std::string("one number") : "one parameter point") + ")");
       const cases::Mu mu = parse_mu_line(line, parameters);
-      const rb::OnlineSolution s = solver.solve(mu, settings);
+      const online::OnlineSolution s = solver.solve(mu, settings);
       if (json) {
         j = {{"line", k}};
-        j.update(rb::answer_json(parameters, mu, solver, s));
+        j.update(online::answer_json(parameters, mu, solver, s));
       } else {
         row = batch_row(k, mu, s);
       }
@@ -247,11 +247,11 @@ int run_online(const OnlineOptions& opt) {
           "--format " + opt.format + " is for --batch (--mu prints one JSON object)");
   // A plain number is checked before the model is read (its errors come first, as for p = 1).
   if (single && opt.mu->find_first_of("=,") == std::string::npos) (void)parse_mu_option(*opt.mu, "--mu");
-  const rb::OnlineSizes sizes = checked_size_flags(opt.sizes);
-  const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
+  const online::OnlineSizes sizes = checked_size_flags(opt.sizes);
+  const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
-  rb::OnlineSettings settings;
-  settings.initial_guess = option_enum("--start", opt.start, rb::initial_guess_from_string);
+  online::OnlineSettings settings;
+  settings.initial_guess = option_enum("--start", opt.start, online::initial_guess_from_string);
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (opt.alpha) k.alpha = *opt.alpha;
@@ -275,7 +275,7 @@ int run_online(const OnlineOptions& opt) {
     return run_batch(opt, model, sizes, settings, fields.get());
   }
   const cases::Mu mu = parse_mu_option(*opt.mu, "--mu", model.parameters);
-  rb::OnlineSolver solver(model, sizes);
+  online::OnlineSolver solver(model, sizes);
 
   // --out: everything that can fail (reconstruction data, the case, its mesh) before the solve.
   std::unique_ptr<OnlineFields> fields;
@@ -286,8 +286,8 @@ int run_online(const OnlineOptions& opt) {
     fields = hooks.read(model, opt.model);
   }
 
-  const rb::OnlineSolution s = solver.solve(mu, settings);
-  nlohmann::json j = rb::answer_json(model.parameters, mu, solver, s);
+  const online::OnlineSolution s = solver.solve(mu, settings);
+  nlohmann::json j = online::answer_json(model.parameters, mu, solver, s);
   if (fields) {
     const OutputLock lock(opt.out);  // the four files of one run, never mixed with another's
     j["files"] = fields->write(model, mu, s, opt.out);

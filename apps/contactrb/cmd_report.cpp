@@ -48,11 +48,11 @@ struct ReportOptions {
   std::vector<std::string> training_values;  // parse_values_option
   std::vector<std::string> verification_values;
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
-  int history_r = rb::StudySettings{}.history_max_R;
-  int profiles = rb::StudySettings{}.multiplier_profiles;
-  int deformed = rb::StudySettings{}.deformed_configurations;
-  int comparisons = rb::StudySettings{}.constraint_comparisons;
-  int repeats = rb::StudySettings{}.online_repeats;
+  int history_r = study::StudySettings{}.history_max_R;
+  int profiles = study::StudySettings{}.multiplier_profiles;
+  int deformed = study::StudySettings{}.deformed_configurations;
+  int comparisons = study::StudySettings{}.constraint_comparisons;
+  int repeats = study::StudySettings{}.online_repeats;
 };
 
 void write_text(const std::string& path, const std::string& text) {
@@ -68,12 +68,12 @@ std::string g3(double v) {
 int run_report(const ReportOptions& opt) {
   const cases::CaseSpec spec =
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
-  rb::StudySettings s;
+  study::StudySettings s;
   s.level = opt.level;
   if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);
   // A case file gets `contactrb offline`'s defaults whatever its name (a user case named like a
   // built-in one is not that case).
-  s.tolerances = opt.case_file.empty() ? rb::default_study_tolerances(spec.name) : rb::StudyTolerances{};
+  s.tolerances = opt.case_file.empty() ? study::default_study_tolerances(spec.name) : study::StudyTolerances{};
   if (opt.eps_pod) s.tolerances.eps_pod = *opt.eps_pod;
   if (opt.eps_du) s.tolerances.eps_du = *opt.eps_du;
   if (opt.eps_eim_k) s.tolerances.eps_eim_k = *opt.eps_eim_k;
@@ -90,8 +90,8 @@ int run_report(const ReportOptions& opt) {
   s.constraint_comparisons = opt.comparisons;
   s.online_repeats = opt.repeats;
   s.jobs = opt.jobs;
-  s.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  rb::check_settings(s);
+  s.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
+  study::check_settings(s);
   const std::string out = opt.out.empty() ? "out/report-" + spec.name : opt.out;
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
                    {{"report.md in --out", (fs::path(out) / "report.md").string()},
@@ -102,26 +102,26 @@ int run_report(const ReportOptions& opt) {
   std::string script;
   if (!opt.no_plots) script = find_script("plot_report.py", "use --no-plots");
 
-  const rb::StudyResult r = rb::run_study(spec, s);
+  const study::StudyResult r = study::run_study(spec, s);
   // Held to the end (figures included): one run's files, never mixed with another's.
   const OutputLock lock(out);
-  const std::vector<std::string> files = rb::write_study_files(r, out);
+  const std::vector<std::string> files = study::write_study_files(r, out);
   const std::string report_md = (fs::path(out) / "report.md").string();
-  write_text(report_md, rb::study_markdown(r, {}));  // without figures until they exist
+  write_text(report_md, study::study_markdown(r, {}));  // without figures until they exist
 
   std::cout << "case " << r.case_name << ": " << r.training_mus.size() << " training values, "
             << r.verification_mus.size() << " verification values, " << r.constraint << "\n"
             << "| method | N | R | Mk | Mg | max e_displ (train) | max e_inter (train) | max e_displ (verif) | "
                "median speed-up |\n";
-  for (const rb::StudyModel& m : r.models) {
-    const rb::EvaluationSummary& t = m.training.summary;
+  for (const study::StudyModel& m : r.models) {
+    const study::EvaluationSummary& t = m.training.summary;
     std::cout << "| " << m.label << " | " << m.N << " | " << m.R << " | " << m.Mk << " | " << m.Mg << " | "
               << g3(t.max_e_displ) << " | " << g3(t.max_e_inter) << " | "
               << (m.verification ? g3(m.verification->summary.max_e_displ) : std::string("-")) << " | "
               << g3(t.median_speedup) << " |\n";
   }
   for (const std::string& f : files) std::cout << "wrote " << (fs::path(out) / f).string() << "\n";
-  for (const std::string& w : rb::study_warnings(r)) std::cerr << "contactrb: warning: " << w << "\n";
+  for (const std::string& w : study::study_warnings(r)) std::cerr << "contactrb: warning: " << w << "\n";
 
   if (opt.no_plots) {
     std::cout << "wrote " << report_md << " (no figures: --no-plots)\n";
@@ -141,7 +141,7 @@ int run_report(const ReportOptions& opt) {
     const std::string pdf = f.substr(0, f.size() - 4) + ".pdf";  // each figure also as PDF
     require(fs::is_regular_file(fs::path(out) / pdf), "the plotting script did not write " + pdf);
   }
-  write_text(report_md, rb::study_markdown(r, figures));
+  write_text(report_md, study::study_markdown(r, figures));
   std::cout << "wrote " << report_md << "\n";
   return 0;
 }

@@ -1,6 +1,6 @@
 // `contactrb sample`: uncertainty quantification with a reduced model (docs/parallel.md,
-// "Sampling"). Draws --n parameter points from --dist (rb/sampling.hpp: point i depends on
-// --seed and i only), answers them with online solves on --jobs threads (rb/online_many.hpp)
+// "Sampling"). Draws --n parameter points from --dist (online/sampling.hpp: point i depends on
+// --seed and i only), answers them with online solves on --jobs threads (online/online_many.hpp)
 // and, under mpirun, over the ranks (equal blocks, gathered on rank 0), then writes the
 // statistics of the outputs (--out, CSV), their histograms (<stem>_histograms.csv) and a
 // figure of them (<stem>.png, scripts/plot_sample.py). A query that does not converge is left
@@ -39,14 +39,14 @@ namespace contactrb::app {
 namespace {
 
 // The figure's title: the distribution of each parameter, as sampled (sampling.hpp), and n.
-std::string input_description(const std::vector<cases::ParameterSpec>& parameters, const rb::SampleDistribution& dist,
-                              std::size_t n, std::uint64_t seed) {
+std::string input_description(const std::vector<cases::ParameterSpec>& parameters,
+                              const online::SampleDistribution& dist, std::size_t n, std::uint64_t seed) {
   std::ostringstream os;
   os << std::setprecision(6) << n << " points (seed " << seed << "): ";
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const cases::ParameterSpec& p = parameters[k];
     os << (k == 0 ? "" : ", ") << p.name;
-    if (dist.kind == rb::SampleDistribution::Kind::Uniform) {
+    if (dist.kind == online::SampleDistribution::Kind::Uniform) {
       os << " uniform on [" << p.min << ", " << p.max << "]";
     } else {
       os << " normal (mean " << dist.mean[k] << ", sd " << dist.sd[k] << ") truncated to [" << p.min << ", " << p.max
@@ -98,8 +98,9 @@ std::string stem_of(const std::string& out) {
 
 // --points: one line per point, "index,<parameter names>,converged,<outputs>", numbers
 // round-trip exact (%.17g); an output without a value (not converged) is empty.
-void write_points(const std::string& path, const rb::ReducedModel& model, const rb::SampleDistribution& dist,
-                  std::uint64_t seed, Outputs& out, bool with_peak, bool with_gaps) {
+void write_points(const std::string& path, const contactrb::model::ReducedModel& model,
+                  const online::SampleDistribution& dist, std::uint64_t seed, Outputs& out, bool with_peak,
+                  bool with_gaps) {
   const auto columns = out.named(with_peak, with_gaps);
   write_file_atomically(path, [&](std::ostream& os) {
     os << "index";
@@ -116,7 +117,7 @@ void write_points(const std::string& path, const rb::ReducedModel& model, const 
     };
     for (std::size_t i = 0; i < out.contact_force.size(); ++i) {
       os << i;
-      const cases::Mu mu = rb::sample_point(dist, model.parameters, seed, i);
+      const cases::Mu mu = online::sample_point(dist, model.parameters, seed, i);
       for (Eigen::Index k = 0; k < mu.size(); ++k) {
         os << ',';
         number(mu(k));
@@ -139,7 +140,7 @@ int run_sample(const SampleOptions& opt) {
   require(opt.n <= 100000000, "--n must be at most 100000000 (got " + std::to_string(opt.n) + ")");
   require(opt.jobs >= 0, "--jobs must be >= 0 (0: every hardware thread; got " + std::to_string(opt.jobs) + ")");
   require(opt.bins >= 1 && opt.bins <= 100000, "--bins must be in [1, 100000] (got " + std::to_string(opt.bins) + ")");
-  const int jobs = opt.jobs == 0 ? rb::hardware_jobs() : opt.jobs;
+  const int jobs = opt.jobs == 0 ? online::hardware_jobs() : opt.jobs;
   const std::string hist_path = stem_of(opt.out) + "_histograms.csv";
   const std::string png_path = stem_of(opt.out) + ".png";
   check_output_file(opt.out);
@@ -152,15 +153,15 @@ int run_sample(const SampleOptions& opt) {
     outputs.push_back({"--points", opt.points});
   }
   check_file_roles({{"--model", opt.model}}, outputs);
-  const rb::ReducedModel model = io::read_reduced_model_file(opt.model);
-  const rb::SampleDistribution dist = rb::parse_distribution(opt.dist, model.parameters);
+  const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
+  const online::SampleDistribution dist = online::parse_distribution(opt.dist, model.parameters);
   const std::string script = opt.no_plot || rank != 0 ? std::string() : find_script("plot_sample.py", "use --no-plot");
   // The peak pressure max_r (Xi lambda_hat)_r on the HF rows: from the reconstruction data.
   const bool with_peak = io::has_reconstruction(opt.model);
   Eigen::MatrixXd Xi;
   if (with_peak) {
-    const rb::ReducedReconstruction rec = io::read_reconstruction(opt.model);
-    rb::check_reconstruction(model, rec);
+    const contactrb::model::ReducedReconstruction rec = io::read_reconstruction(opt.model);
+    online::check_reconstruction(model, rec);
     Xi = rec.Xi;
   }
   if (world && !world->agree(true)) {
@@ -176,11 +177,11 @@ int run_sample(const SampleOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
   try {
-    rb::OnlineSettings settings;
-    rb::for_each_query(model, {}, end - begin, jobs, [&](rb::OnlineSolver& solver, std::size_t j) {
+    online::OnlineSettings settings;
+    online::for_each_query(model, {}, end - begin, jobs, [&](online::OnlineSolver& solver, std::size_t j) {
       const std::size_t i = begin + j;
-      const cases::Mu mu = rb::sample_point(dist, model.parameters, opt.seed, i);
-      const rb::OnlineSolution s = solver.solve(mu, settings);
+      const cases::Mu mu = online::sample_point(dist, model.parameters, opt.seed, i);
+      const online::OnlineSolution s = solver.solve(mu, settings);
       out.iterations[i] = s.iterations;
       if (!s.converged()) return;  // NaN: left out of the statistics, counted
       out.contact_force[i] = s.contact_force;
@@ -188,7 +189,7 @@ int run_sample(const SampleOptions& opt) {
       if (s.estimate.available) out.estimate[i] = s.estimate.energy;
       if (with_peak) out.peak_pressure[i] = (Xi.leftCols(s.lambda_hat.size()) * s.lambda_hat).maxCoeff();
       if (opt.gaps) {
-        const rb::OnlineSolver::SurfaceGap gap = solver.surface_gap(mu, s);
+        const online::OnlineSolver::SurfaceGap gap = solver.surface_gap(mu, s);
         out.max_gap[i] = gap.max;
         out.min_gap[i] = gap.min;
       }
@@ -220,11 +221,12 @@ int run_sample(const SampleOptions& opt) {
   // The statistics of each output (a sort of its n values each, ~10 ms per 10^5): independent,
   // so on the --jobs threads, one output at a time (the same results as one after the other).
   const auto named = out.named(with_peak, opt.gaps);
-  std::vector<rb::OutputStats> all(named.size());
+  std::vector<online::OutputStats> all(named.size());
   {
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
-      for (std::size_t k = next++; k < named.size(); k = next++) all[k] = rb::output_stats(named[k].first, *named[k].second, opt.bins);
+      for (std::size_t k = next++; k < named.size(); k = next++)
+        all[k] = online::output_stats(named[k].first, *named[k].second, opt.bins);
     };
     std::vector<std::future<void>> helpers;
     for (int t = 1; t < jobs && static_cast<std::size_t>(t) < named.size(); ++t) helpers.push_back(std::async(std::launch::async, work));
@@ -233,7 +235,7 @@ int run_sample(const SampleOptions& opt) {
   }
   for (std::size_t k = 0; k < named.size(); ++k) {
     const std::string& name = named[k].first;
-    const rb::OutputStats& s = all[k];
+    const online::OutputStats& s = all[k];
     stats.add_row({name, static_cast<long long>(s.count), s.mean, s.sd, s.min, s.max, s.q05, s.q50, s.q95});
     const double width = s.histogram.size() > 1 ? (s.max - s.min) / static_cast<double>(s.histogram.size()) : 0.0;
     for (std::size_t b = 0; b < s.histogram.size(); ++b) {

@@ -48,7 +48,7 @@ struct SnapshotsOptions {
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   bool allow_failures = false;
   bool quiet = false;
-  std::string part;  // "k/K": part k of K of the values (rb/snapshot_parts.hpp)
+  std::string part;  // "k/K": part k of K of the values (offline/snapshot_parts.hpp)
   std::string warm_start = "auto";  // --warm-start (SnapshotRunOptions::warm_start)
   std::string out;
 };
@@ -57,8 +57,8 @@ using Clock = std::chrono::steady_clock;
 
 // What the solves need (the setup of one process or MPI rank).
 struct Setup {
-  rb::SnapshotRequest request;
-  rb::SnapshotRunOptions run;
+  offline::SnapshotRequest request;
+  offline::SnapshotRunOptions run;
   Clock::time_point start, solves_start;  // the setup's start (after the cheap checks), its end
 };
 
@@ -81,23 +81,23 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   check_output_file(opt.out);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
-  std::optional<rb::SnapshotPart> part;
-  if (!opt.part.empty()) part = rb::parse_snapshot_part(opt.part);
+  std::optional<offline::SnapshotPart> part;
+  if (!opt.part.empty()) part = offline::parse_snapshot_part(opt.part);
 
   Setup p;
   p.start = Clock::now();
-  p.request = rb::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  p.request = offline::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   p.request.settings = settings;
-  if (part) rb::restrict_to_part(p.request, *part);
-  rb::SnapshotRunOptions& run = p.run;
+  if (part) offline::restrict_to_part(p.request, *part);
+  offline::SnapshotRunOptions& run = p.run;
   run.jobs = opt.jobs;
-  run.progress = opt.quiet ? rb::ProgressMode::None : rb::ProgressMode::Automatic;
-  run.warm_start = option_enum("--warm-start", opt.warm_start, rb::warm_start_from_string);
-  if (run.warm_start == rb::SnapshotRunOptions::WarmStart::On) {
+  run.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
+  run.warm_start = option_enum("--warm-start", opt.warm_start, offline::warm_start_from_string);
+  if (run.warm_start == offline::SnapshotRunOptions::WarmStart::On) {
     // A warm start would need other parts' values.
     require(!part, "--warm-start on: a part (--part) is solved cold, it has not the other parts' values");
   } else if (part) {
-    run.warm_start = rb::SnapshotRunOptions::WarmStart::Off;
+    run.warm_start = offline::SnapshotRunOptions::WarmStart::Off;
   }
   p.solves_start = Clock::now();
   return p;
@@ -124,11 +124,12 @@ EarlyStart start_early(const SnapshotsOptions& opt, int rank) {
       return std::nullopt;
     }
     setup->set_value(s);
-    const std::optional<std::size_t> i = rank >= 0 ? first_task(rb::snapshot_schedule(s->request, s->run), rank) : std::nullopt;
+    const std::optional<std::size_t> i =
+        rank >= 0 ? first_task(offline::snapshot_schedule(s->request, s->run), rank) : std::nullopt;
     if (!i) return std::nullopt;
     EarlySolve solved;
     solved.index = *i;
-    solved.layout = rb::solve_snapshot(s->request, *i, solved.snapshot, nullptr);  // `s` keeps the request alive
+    solved.layout = offline::solve_snapshot(s->request, *i, solved.snapshot, nullptr);  // `s` keeps the request alive
     return solved;
   });
   return e;
@@ -152,13 +153,13 @@ int run_snapshots(const SnapshotsOptions& opt) {
   std::unique_ptr<MpiWorld> world = MpiWorld::start_if_launched();
   const std::shared_ptr<const Setup> setup =
       overlap ? early.setup.get() : std::make_shared<const Setup>(make_setup(opt, world != nullptr));
-  const rb::SnapshotRequest& request = setup->request;
+  const offline::SnapshotRequest& request = setup->request;
 
   const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   const auto t0 = setup->start;
   const auto t1 = setup->solves_start;
   std::optional<io::SnapshotSet> gathered = world ? mpi_generate_snapshots(*world, request, setup->run, std::move(early.early))
-                                                  : rb::generate_snapshots(request, setup->run);
+                                                  : offline::generate_snapshots(request, setup->run);
   if (!gathered) return 0;  // an MPI rank other than 0: its results are in rank 0's file
   const io::SnapshotSet set = std::move(*gathered);
   const auto t2 = Clock::now();
@@ -180,7 +181,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
   const auto t3 = Clock::now();
   const double solves_wall = seconds(t1, t2);
 
-  const rb::SnapshotSummary s = rb::summarize(set);
+  const offline::SnapshotSummary s = offline::summarize(set);
   const std::size_t rows = set.snapshots.empty() ? 0 : static_cast<std::size_t>(set.snapshots.front().lambda.size());
   std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows

@@ -151,8 +151,8 @@ int run_solve(SolveOptions opt) {
                    slack(r) / q.weight(r), s.lambda(r), q.weight(r)});
     }
     csv.write(csv_path);
-    rb::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
-                            opt.out_dir);
+    study::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
+                               opt.out_dir);
   }
 
   std::cout << "case " << opt.case_name << ", " << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu)

@@ -15,11 +15,14 @@
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::model {
+struct ReducedModel;
+}  // namespace contactrb::model
+
+namespace contactrb::online {
 struct OnlineSizes;
 struct OnlineSolution;
-struct ReducedModel;
-}  // namespace contactrb::rb
+}  // namespace contactrb::online
 
 namespace contactrb::app {
 
@@ -47,14 +50,15 @@ class OnlineFields {
  public:
   virtual ~OnlineFields() = default;
   // The files of one solution into `dir` (which exists); their paths as the JSON's "files".
-  virtual nlohmann::json write(const rb::ReducedModel& model, const cases::Mu& mu, const rb::OnlineSolution& s,
-                               const std::string& dir) const = 0;
+  virtual nlohmann::json write(const contactrb::model::ReducedModel& model, const cases::Mu& mu,
+                               const online::OnlineSolution& s, const std::string& dir) const = 0;
 };
 struct OnlineFieldHooks {
   // The outputs of one directory of --out, for check_file_roles.
   std::vector<FileRole> (*roles)(const std::string& dir, const std::string& where) = nullptr;
   // Everything --out needs, read before any solve (everything that can fail first).
-  std::unique_ptr<OnlineFields> (*read)(const rb::ReducedModel& model, const std::string& model_path) = nullptr;
+  std::unique_ptr<OnlineFields> (*read)(const contactrb::model::ReducedModel& model,
+                                        const std::string& model_path) = nullptr;
 };
 // online_fields.cpp (contactrb-full).
 const OnlineFieldHooks* online_field_hooks();
@@ -98,7 +102,7 @@ cases::Mu parse_mu_option(const std::string& text, const std::string& flag,
 double parse_mu_option(const std::string& text, const std::string& flag);
 
 // The value of an option naming an enum, read by the library's *_from_string (e.g.
-// rb::inner_product_from_string); its error is prefixed by the option ("--dual: unknown ...").
+// offline::inner_product_from_string); its error is prefixed by the option ("--dual: unknown ...").
 template <class FromString>
 auto option_enum(const char* option, const std::string& value, FromString from_string) {
   try {
@@ -126,7 +130,8 @@ struct SizeFlags {
 // online_sizes.cpp: the given sizes checked (N >= 1, R, Mk, Mg >= 0; a negative value is
 // refused whatever it is), then as OnlineSizes (-1: the model's maximum), and against the
 // maxima stored in the model read from `path`. Throw contactrb::Error naming the flag.
-rb::OnlineSizes checked_size_flags(const SizeFlags& flags);
-void check_sizes_against(const rb::OnlineSizes& sizes, const rb::ReducedModel& model, const std::string& path);
+online::OnlineSizes checked_size_flags(const SizeFlags& flags);
+void check_sizes_against(const online::OnlineSizes& sizes, const contactrb::model::ReducedModel& model,
+                         const std::string& path);
 
 }  // namespace contactrb::app

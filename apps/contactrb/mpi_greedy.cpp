@@ -63,10 +63,11 @@ bool all_gather(MpiWorld& world, std::vector<double>& values, bool ok) {
 // [pack_solved bytes] (status 0) or its error message (status 1); all ranks gather every rank's
 // {status, length} and then the bytes, so that each rank assembles the step's whole set, or throws
 // the first failing rank's error.
-io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& solve, const rb::SnapshotRequest& step) {
+io::SnapshotSet share(MpiWorld& world, const offline::GreedyDistribution::SolveFn& solve,
+                      const offline::SnapshotRequest& step) {
   const std::size_t K = step.mu.size();
   const auto size = static_cast<std::size_t>(world.size());
-  rb::SnapshotRequest part = step;
+  offline::SnapshotRequest part = step;
   part.mu.clear();
   std::vector<std::uint64_t> mine;
   for (std::size_t k = static_cast<std::size_t>(world.rank()); k < K; k += size) {
@@ -82,7 +83,7 @@ io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& so
       require(set.snapshots.size() == mine.size(), "internal: the greedy's HF solves gave " +
                                                        std::to_string(set.snapshots.size()) + " snapshots for " +
                                                        std::to_string(mine.size()) + " points");
-      rb::SnapshotLayout layout;
+      offline::SnapshotLayout layout;
       layout.valid = set.num_dofs > 0;  // assemble_snapshot_set leaves num_dofs 0 without a solver
       layout.num_dofs = set.num_dofs;
       layout.free_dofs = set.free_dofs;
@@ -91,7 +92,7 @@ io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& so
       layout.master = set.master;
       layout.constraint = set.constraint;
       for (std::size_t j = 0; j < mine.size(); ++j) {
-        const std::vector<char> record = rb::pack_solved(mine[j], set.snapshots[j], layout);
+        const std::vector<char> record = offline::pack_solved(mine[j], set.snapshots[j], layout);
         const std::uint64_t length = record.size();
         const char* l = reinterpret_cast<const char*>(&length);
         bytes.insert(bytes.end(), l, l + sizeof length);
@@ -136,7 +137,7 @@ io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& so
     }
   }
   std::vector<io::Snapshot> snapshots(K);
-  std::vector<rb::SnapshotLayout> layouts(K);
+  std::vector<offline::SnapshotLayout> layouts(K);
   std::vector<char> seen(K, 0);
   for (std::size_t at = 0; at < total;) {
     std::uint64_t length = 0;
@@ -149,25 +150,25 @@ io::SnapshotSet share(MpiWorld& world, const rb::GreedyDistribution::SolveFn& so
     at += length;
     std::uint64_t index = 0;
     io::Snapshot snapshot;
-    rb::SnapshotLayout layout;
-    rb::unpack_solved(record, index, snapshot, layout);
+    offline::SnapshotLayout layout;
+    offline::unpack_solved(record, index, snapshot, layout);
     require(index < K && !seen[index], "internal: an unexpected HF result index from another MPI rank");
     seen[index] = 1;
     snapshots[index] = std::move(snapshot);
     layouts[index] = std::move(layout);
   }
   for (std::size_t k = 0; k < K; ++k) require(seen[k] != 0, "internal: an HF result missing after the MPI gather");
-  return rb::assemble_snapshot_set(step, std::move(snapshots), layouts);
+  return offline::assemble_snapshot_set(step, std::move(snapshots), layouts);
 }
 
 }  // namespace
 
-rb::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
-  rb::GreedyDistribution d;
+offline::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
+  offline::GreedyDistribution d;
   MpiWorld* w = &world;
   d.block = [w](std::size_t n) { return rank_block(n, w->rank(), w->size()); };
   d.gather = [w](std::vector<double>& values, bool ok) { return all_gather(*w, values, ok); };
-  d.share = [w](const rb::GreedyDistribution::SolveFn& solve, const rb::SnapshotRequest& step) {
+  d.share = [w](const offline::GreedyDistribution::SolveFn& solve, const offline::SnapshotRequest& step) {
     return share(*w, solve, step);
   };
   return d;
@@ -175,7 +176,7 @@ rb::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
 
 #else
 
-rb::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
+offline::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
   require(world.size() == 1, "internal: the MPI greedy in a build without MPI");
   return {};
 }

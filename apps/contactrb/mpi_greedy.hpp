@@ -1,5 +1,5 @@
 #pragma once
-// `mpirun -np K contactrb offline --greedy ...`: the MPI side of rb::GreedyDistribution
+// `mpirun -np K contactrb offline --greedy ...`: the MPI side of offline::GreedyDistribution
 // (docs/parallel.md). Every rank runs the greedy and builds the same models; each sweeps the
 // estimate over its equal block of the training set (rank_block), MPI_Allgatherv gives every
 // rank all the estimates in point order, so every rank picks the serial run's points; a step's
@@ -12,6 +12,6 @@
 namespace contactrb::app {
 
 // The distribution over `world` (which must outlive the greedy run).
-rb::GreedyDistribution mpi_greedy_distribution(MpiWorld& world);
+offline::GreedyDistribution mpi_greedy_distribution(MpiWorld& world);
 
 }  // namespace contactrb::app

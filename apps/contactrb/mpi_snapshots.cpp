@@ -22,7 +22,7 @@
 
 namespace contactrb::app {
 
-std::optional<std::size_t> first_task(const rb::SnapshotSchedule& schedule, int rank) {
+std::optional<std::size_t> first_task(const offline::SnapshotSchedule& schedule, int rank) {
   const std::vector<std::size_t>& wave = schedule.waves.front();
   if (rank < 0 || static_cast<std::size_t>(rank) >= wave.size()) return std::nullopt;
   return wave[static_cast<std::size_t>(rank)];
@@ -73,13 +73,13 @@ std::vector<char> receive(const MPI_Status& status) {
 }
 
 // The ranks that start with a task of their own (first_task): 0 .. preassigned - 1.
-std::size_t preassigned(const rb::SnapshotSchedule& schedule, int size) {
+std::size_t preassigned(const offline::SnapshotSchedule& schedule, int size) {
   return std::min(schedule.waves.front().size(), static_cast<std::size_t>(size));
 }
 
 // The early solve when it is the one of index i, else a solve of i now (cold: a first-wave value).
-rb::SnapshotLayout solve_first(const rb::SnapshotRequest& request, std::size_t i,
-                               std::future<std::optional<EarlySolve>>& early, io::Snapshot& out) {
+offline::SnapshotLayout solve_first(const offline::SnapshotRequest& request, std::size_t i,
+                                    std::future<std::optional<EarlySolve>>& early, io::Snapshot& out) {
   if (early.valid()) {
     std::optional<EarlySolve> e = early.get();
     if (e && e->index == i) {
@@ -87,16 +87,16 @@ rb::SnapshotLayout solve_first(const rb::SnapshotRequest& request, std::size_t i
       return std::move(e->layout);
     }
   }
-  return rb::solve_snapshot(request, i, out, nullptr);
+  return offline::solve_snapshot(request, i, out, nullptr);
 }
 
-io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options,
-                          std::future<std::optional<EarlySolve>> early) {
+io::SnapshotSet run_rank0(MpiWorld& world, const offline::SnapshotRequest& request,
+                          const offline::SnapshotRunOptions& options, std::future<std::optional<EarlySolve>> early) {
   const std::size_t n = request.mu.size();
   std::vector<io::Snapshot> snapshots(n);
-  std::vector<rb::SnapshotLayout> layouts(n);
-  rb::SnapshotProgress progress(options.progress, options.progress_stream, n);
-  const rb::SnapshotSchedule schedule = rb::snapshot_schedule(request, options);
+  std::vector<offline::SnapshotLayout> layouts(n);
+  offline::SnapshotProgress progress(options.progress, options.progress_stream, n);
+  const offline::SnapshotSchedule schedule = offline::snapshot_schedule(request, options);
   const auto start_of = [&](std::size_t i) { return schedule.start[i] ? &snapshots[*schedule.start[i]] : nullptr; };
   std::deque<int> idle;  // ranks waiting for a task
   std::vector<char> heard(static_cast<std::size_t>(world.size()), 0);  // ranks that sent a first message
@@ -117,8 +117,8 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
     if (status.MPI_TAG == kResult) {
       std::uint64_t i = 0;
       io::Snapshot s;
-      rb::SnapshotLayout layout;
-      rb::unpack_solved(bytes, i, s, layout);
+      offline::SnapshotLayout layout;
+      offline::unpack_solved(bytes, i, s, layout);
       require(i < n && solved[i] == 0, "internal: rank " + std::to_string(status.MPI_SOURCE) +
                                            " returned value " + std::to_string(i) + ", which it was not given");
       solved[i] = 1;
@@ -152,7 +152,7 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
         }
         for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
           const std::size_t i = wave[k];
-          layouts[i] = rb::solve_snapshot(request, i, snapshots[i], start_of(i));
+          layouts[i] = offline::solve_snapshot(request, i, snapshots[i], start_of(i));
           solved[i] = 1;
           progress.finished(snapshots[i]);
         }
@@ -167,7 +167,7 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
         const std::size_t k = next.fetch_add(1);
         if (k >= wave.size()) break;
         const std::size_t i = wave[k];
-        send(rb::pack_task(i, start_of(i)), idle.front(), kTask);
+        send(offline::pack_task(i, start_of(i)), idle.front(), kTask);
         idle.pop_front();
         ++outstanding;
       }
@@ -192,16 +192,16 @@ io::SnapshotSet run_rank0(MpiWorld& world, const rb::SnapshotRequest& request, c
     handle(status);
   }
   for (int r = 1; r < world.size(); ++r) send({}, r, kStop);
-  return rb::assemble_snapshot_set(request, std::move(snapshots), layouts);
+  return offline::assemble_snapshot_set(request, std::move(snapshots), layouts);
 }
 
-void run_worker(const MpiWorld& world, const rb::SnapshotRequest& request, const rb::SnapshotRunOptions& options,
-                std::future<std::optional<EarlySolve>> early) {
+void run_worker(const MpiWorld& world, const offline::SnapshotRequest& request,
+                const offline::SnapshotRunOptions& options, std::future<std::optional<EarlySolve>> early) {
   // The first message: the result of this rank's first task, or "ready" when it has none.
-  if (const std::optional<std::size_t> i = first_task(rb::snapshot_schedule(request, options), world.rank())) {
+  if (const std::optional<std::size_t> i = first_task(offline::snapshot_schedule(request, options), world.rank())) {
     io::Snapshot s;
-    const rb::SnapshotLayout layout = solve_first(request, *i, early, s);
-    send(rb::pack_solved(*i, s, layout), 0, kResult);
+    const offline::SnapshotLayout layout = solve_first(request, *i, early, s);
+    send(offline::pack_solved(*i, s, layout), 0, kResult);
   } else {
     send({}, 0, kReady);
   }
@@ -215,18 +215,18 @@ void run_worker(const MpiWorld& world, const rb::SnapshotRequest& request, const
     std::uint64_t i = 0;
     bool has_start = false;
     io::Snapshot start;
-    rb::unpack_task(bytes, i, has_start, start);
+    offline::unpack_task(bytes, i, has_start, start);
     require(i < request.mu.size(), "internal: task index " + std::to_string(i) + " out of range");
     io::Snapshot s;
-    const rb::SnapshotLayout layout = rb::solve_snapshot(request, i, s, has_start ? &start : nullptr);
-    send(rb::pack_solved(i, s, layout), 0, kResult);
+    const offline::SnapshotLayout layout = offline::solve_snapshot(request, i, s, has_start ? &start : nullptr);
+    send(offline::pack_solved(i, s, layout), 0, kResult);
   }
 }
 
 }  // namespace
 
-std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb::SnapshotRequest& request,
-                                                      const rb::SnapshotRunOptions& options,
+std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const offline::SnapshotRequest& request,
+                                                      const offline::SnapshotRunOptions& options,
                                                       std::future<std::optional<EarlySolve>> early) {
   const bool ok = !request.mu.empty() && static_cast<bool>(request.make_problem);
   if (!world.agree(ok)) {
@@ -248,8 +248,9 @@ std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb:
 
 #else
 
-std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld&, const rb::SnapshotRequest&,
-                                                      const rb::SnapshotRunOptions&, std::future<std::optional<EarlySolve>>) {
+std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld&, const offline::SnapshotRequest&,
+                                                      const offline::SnapshotRunOptions&,
+                                                      std::future<std::optional<EarlySolve>>) {
   throw Error("internal: MPI snapshots in a build without MPI");
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// `mpirun -np K contactrb snapshots ...`: the solves of rb::generate_snapshots distributed over
+// `mpirun -np K contactrb snapshots ...`: the solves of offline::generate_snapshots distributed over
 // the ranks (docs/parallel.md). Rank 0 hands out the indices one at a time to whichever rank
 // asks (solve times vary with mu), solves values itself on a second thread, gathers the results
 // and reports the progress; ranks 1..K-1 solve what they are given. The solves are those of the
@@ -22,13 +22,13 @@ namespace contactrb::app {
 
 // The index of request.mu that rank `rank` solves first, nullopt when the first wave has no
 // value for it (then it asks the coordinator for one).
-std::optional<std::size_t> first_task(const rb::SnapshotSchedule& schedule, int rank);
+std::optional<std::size_t> first_task(const offline::SnapshotSchedule& schedule, int rank);
 
-// A value solved before the run (rb::solve_snapshot of `index`, cold).
+// A value solved before the run (offline::solve_snapshot of `index`, cold).
 struct EarlySolve {
   std::size_t index = 0;
   io::Snapshot snapshot;
-  rb::SnapshotLayout layout;
+  offline::SnapshotLayout layout;
 };
 
 // Every rank calls it with the same request (its setup done). Returns the whole set on rank 0
@@ -37,8 +37,8 @@ struct EarlySolve {
 // `early` (when valid): this rank's first task, solved or being solved on another thread; used
 // when its index is first_task(rank) (else the task is solved anew, e.g. when the launcher's
 // rank guess was not MPI's rank).
-std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const rb::SnapshotRequest& request,
-                                                      const rb::SnapshotRunOptions& options,
+std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const offline::SnapshotRequest& request,
+                                                      const offline::SnapshotRunOptions& options,
                                                       std::future<std::optional<EarlySolve>> early = {});
 
 }  // namespace contactrb::app

@@ -22,15 +22,15 @@ namespace {
 
 class FieldOutput final : public OnlineFields {
  public:
-  FieldOutput(rb::ReducedReconstruction rec, cases::CaseSpec spec, mesh::Mesh reference)
+  FieldOutput(contactrb::model::ReducedReconstruction rec, cases::CaseSpec spec, mesh::Mesh reference)
       : reconstruction_(std::move(rec)), spec_(std::move(spec)), reference_(std::move(reference)) {}
 
-  nlohmann::json write(const rb::ReducedModel& model, const cases::Mu& mu, const rb::OnlineSolution& s,
-                       const std::string& dir) const override {
-    const rb::SolutionFiles files =
-        rb::write_solution_fields(spec_, reference_, mu, model.surface.discretization,
-                                  rb::reconstruct_displacement(reconstruction_, mu, s.u_hat),
-                                  rb::reconstruct_multipliers(reconstruction_, s.lambda_hat), dir);
+  nlohmann::json write(const contactrb::model::ReducedModel& model, const cases::Mu& mu,
+                       const online::OnlineSolution& s, const std::string& dir) const override {
+    const study::SolutionFiles files =
+        study::write_solution_fields(spec_, reference_, mu, model.surface.discretization,
+                                     online::reconstruct_displacement(reconstruction_, mu, s.u_hat),
+                                     online::reconstruct_multipliers(reconstruction_, s.lambda_hat), dir);
     return {{"vtu", files.vtu},
             {"deformed_vtu", files.deformed_vtu},
             {"contact_vtu", files.contact_vtu},
@@ -38,24 +38,25 @@ class FieldOutput final : public OnlineFields {
   }
 
  private:
-  rb::ReducedReconstruction reconstruction_;
+  contactrb::model::ReducedReconstruction reconstruction_;
   cases::CaseSpec spec_;
   mesh::Mesh reference_;
 };
 
-std::unique_ptr<OnlineFields> read_field_output(const rb::ReducedModel& model, const std::string& model_path) {
-  rb::ReducedReconstruction rec = io::read_reconstruction(model_path);
-  rb::check_reconstruction(model, rec);
+std::unique_ptr<OnlineFields> read_field_output(const contactrb::model::ReducedModel& model,
+                                                const std::string& model_path) {
+  contactrb::model::ReducedReconstruction rec = io::read_reconstruction(model_path);
+  online::check_reconstruction(model, rec);
   // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
   cases::CaseSpec spec = cases::case_from_record(
       model.case_kind, model.case_spec, model_path,
       rec.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
-  mesh::Mesh reference = rb::model_reference_mesh(spec, model, rec);
+  mesh::Mesh reference = study::model_reference_mesh(spec, model, rec);
   return std::make_unique<FieldOutput>(std::move(rec), std::move(spec), std::move(reference));
 }
 
 std::vector<FileRole> field_roles(const std::string& dir, const std::string& where) {
-  const rb::SolutionFiles f = rb::solution_file_names(dir);
+  const study::SolutionFiles f = study::solution_file_names(dir);
   return {{"solution.vtu in " + where, f.vtu},
           {"solution_deformed.vtu in " + where, f.deformed_vtu},
           {"contact.vtu in " + where, f.contact_vtu},

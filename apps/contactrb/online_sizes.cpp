@@ -9,7 +9,7 @@
 
 namespace contactrb::app {
 
-rb::OnlineSizes checked_size_flags(const SizeFlags& f) {
+online::OnlineSizes checked_size_flags(const SizeFlags& f) {
   // Every negative value given is refused (-1 as well as -3); leaving the flag out is the way
   // to ask for the maximum.
   const auto size = [](const char* flag, const std::optional<int>& v, int min) {
@@ -18,10 +18,11 @@ rb::OnlineSizes checked_size_flags(const SizeFlags& f) {
                            "; leave it out for the model's maximum)");
     return *v;
   };
-  return rb::OnlineSizes{size("--n", f.n, 1), size("--r", f.r, 0), size("--mk", f.mk, 0), size("--mg", f.mg, 0)};
+  return online::OnlineSizes{size("--n", f.n, 1), size("--r", f.r, 0), size("--mk", f.mk, 0), size("--mg", f.mg, 0)};
 }
 
-void check_sizes_against(const rb::OnlineSizes& s, const rb::ReducedModel& model, const std::string& path) {
+void check_sizes_against(const online::OnlineSizes& s, const contactrb::model::ReducedModel& model,
+                         const std::string& path) {
   const auto above = [&path](const char* flag, int value, int max) {
     require(value <= max, std::string(flag) + " = " + std::to_string(value) + " is above the maximum " +
                               std::to_string(max) + " stored in '" + path + "'");

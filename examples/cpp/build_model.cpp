@@ -24,17 +24,17 @@ int main(int argc, char** argv) {
   try {
     const contactrb::cases::CaseSpec spec = contactrb::cases::builtin_case_spec("hertz-b");
     // The 22 training values of the lower radius R2; the reference mesh is generated once here.
-    const contactrb::rb::SnapshotRequest request = contactrb::rb::make_snapshot_request(spec, "training");
-    contactrb::rb::SnapshotRunOptions run;
+    const contactrb::offline::SnapshotRequest request = contactrb::offline::make_snapshot_request(spec, "training");
+    contactrb::offline::SnapshotRunOptions run;
     run.jobs = 2;  // the snapshots do not depend on the thread count
-    const contactrb::io::SnapshotSet snapshots = contactrb::rb::generate_snapshots(request, run);
-    const contactrb::rb::SnapshotSummary summary = contactrb::rb::summarize(snapshots);
+    const contactrb::io::SnapshotSet snapshots = contactrb::offline::generate_snapshots(request, run);
+    const contactrb::offline::SnapshotSummary summary = contactrb::offline::summarize(snapshots);
     if (summary.failures > 0) {  // a failed solve is recorded in the set, never dropped
       std::fprintf(stderr, "example_build_model: %d snapshot solves failed\n", summary.failures);
       return 1;
     }
     // POD, supremizers, compression, dual cone (CPG), EIM of kappa and gamma, estimate data.
-    const contactrb::rb::OfflineResult result = contactrb::rb::build_reduced_model(snapshots, spec);
+    const contactrb::offline::OfflineResult result = contactrb::offline::build_reduced_model(snapshots, spec);
     contactrb::io::write_reduced_model_file(result.model, result.reconstruction, argv[1]);
     std::printf("hertz-b: %d snapshots -> N %d, R %d, Mk %d, Mg %d\n", summary.solves, result.report.N,
                 result.report.R, result.report.Mk, result.report.Mg);

@@ -22,9 +22,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    const contactrb::rb::ReducedModel model = contactrb::io::read_reduced_model_file(argv[1]);
-    contactrb::rb::OnlineSolver solver(model);  // the model's largest N, R, Mk, Mg
-    const contactrb::rb::OnlineSolution s = solver.solve(std::stod(argv[2]));
+    const contactrb::model::ReducedModel model = contactrb::io::read_reduced_model_file(argv[1]);
+    contactrb::online::OnlineSolver solver(model);  // the model's largest N, R, Mk, Mg
+    const contactrb::online::OnlineSolution s = solver.solve(std::stod(argv[2]));
     if (!s.converged()) {  // non-convergence is a status; s.message says why
       std::fprintf(stderr, "example_online_query: not converged: %s\n", s.message.c_str());
       return 1;

@@ -12,9 +12,9 @@ namespace contactrb::python {
 namespace {
 
 // The HF solves a call asks for: a named set of the case, or explicit points (set "custom").
-rb::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int level,
-                                     const std::optional<std::string>& constraint_name, double alpha, double tolerance,
-                                     int max_iterations) {
+contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int level,
+                                                     const std::optional<std::string>& constraint_name, double alpha,
+                                                     double tolerance, int max_iterations) {
   require(level >= 0, "level must be >= 0 (got " + std::to_string(level) + ")");
   std::optional<contact::Discretization> constraint;
   if (constraint_name) constraint = contact::discretization_from_string(*constraint_name);
@@ -27,7 +27,8 @@ rb::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int
     values.emplace();
     for (Eigen::Index i = 0; i < points.rows(); ++i) values->push_back(points.row(i).transpose());
   }
-  rb::SnapshotRequest request = rb::make_snapshot_request(c.spec, set_name, level, constraint, values);
+  contactrb::offline::SnapshotRequest request =
+      contactrb::offline::make_snapshot_request(c.spec, set_name, level, constraint, values);
   request.settings.kacanov.alpha = alpha;
   request.settings.kacanov.tolerance = tolerance;
   request.settings.kacanov.max_iterations = max_iterations;
@@ -35,21 +36,24 @@ rb::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int
   return request;
 }
 
-rb::ProgressMode progress_mode(bool progress) { return progress ? rb::ProgressMode::Lines : rb::ProgressMode::None; }
+contactrb::offline::ProgressMode progress_mode(bool progress) {
+  return progress ? contactrb::offline::ProgressMode::Lines : contactrb::offline::ProgressMode::None;
+}
 
-io::SnapshotSet run_snapshots(const rb::SnapshotRequest& request, int jobs, bool progress) {
+io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request, int jobs, bool progress) {
   require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
-  rb::SnapshotRunOptions run;
+  contactrb::offline::SnapshotRunOptions run;
   run.jobs = jobs;
   run.progress = progress_mode(progress);
   py::gil_scoped_release release;
-  return rb::generate_snapshots(request, run);
+  return contactrb::offline::generate_snapshots(request, run);
 }
 
 PySnapshots make_snapshots(PyCase& c, const py::object& set, int jobs, int level,
                            const std::optional<std::string>& constraint, double alpha, double tolerance,
                            int max_iterations, const std::optional<std::string>& path, bool progress) {
-  const rb::SnapshotRequest request = snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+  const contactrb::offline::SnapshotRequest request =
+      snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
   PySnapshots s{run_snapshots(request, jobs, progress), {}};
   if (path) {
     io::write_snapshot_file(s.set, *path);
@@ -70,8 +74,8 @@ std::string failure_report(const io::SnapshotSet& set, const std::string& where)
 }
 
 // The offline settings of `contactrb offline`'s flags (settings_from in cmd_offline.cpp).
-rb::OfflineSettings offline_settings(const py::dict& kw) {
-  rb::OfflineSettings s;
+contactrb::offline::OfflineSettings offline_settings(const py::dict& kw) {
+  contactrb::offline::OfflineSettings s;
   const auto get = [&](const char* key) -> py::object { return kw.contains(key) ? py::object(kw[key]) : py::none(); };
   if (!get("eps_pod").is_none()) s.eps_pod = get("eps_pod").cast<double>();
   if (!get("N").is_none()) {
@@ -80,9 +84,10 @@ rb::OfflineSettings offline_settings(const py::dict& kw) {
     s.pod_modes = n;
   }
   if (!get("inner_product").is_none()) {
-    s.inner_product = rb::inner_product_from_string(get("inner_product").cast<std::string>());
+    s.inner_product = contactrb::offline::inner_product_from_string(get("inner_product").cast<std::string>());
   }
-  if (!get("dual").is_none()) s.dual_method = rb::dual_cone_method_from_string(get("dual").cast<std::string>());
+  if (!get("dual").is_none())
+    s.dual_method = contactrb::offline::dual_cone_method_from_string(get("dual").cast<std::string>());
   if (!get("R").is_none()) {
     const int r = get("R").cast<int>();
     require(r >= 1, "R must be >= 1 (got " + std::to_string(r) + ")");
@@ -98,15 +103,16 @@ rb::OfflineSettings offline_settings(const py::dict& kw) {
   if (!get("absolute_tolerances").is_none() && get("absolute_tolerances").cast<bool>()) s.set_absolute();
   if (!get("compression").is_none()) s.compression = get("compression").cast<bool>();
   if (!get("supremizers").is_none()) s.supremizers = get("supremizers").cast<bool>();
-  rb::check_settings(s);
+  contactrb::offline::check_settings(s);
   return s;
 }
 
 // greedy.json's content, with the selected and excluded points as (n, p) arrays and the selected
 // HF snapshots as a Snapshots.
-py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest& request,
-                     const rb::GreedyOfflineSettings& settings, int p) {
-  py::dict d = to_python_dict(rb::greedy_json(g, request, settings));
+py::dict greedy_dict(const contactrb::offline::GreedyOfflineResult& g,
+                     const contactrb::offline::SnapshotRequest& request,
+                     const contactrb::offline::GreedyOfflineSettings& settings, int p) {
+  py::dict d = to_python_dict(contactrb::offline::greedy_json(g, request, settings));
   const auto points = [&](const std::vector<int>& idx) {
     Eigen::MatrixXd a(static_cast<Eigen::Index>(idx.size()), p);
     for (std::size_t k = 0; k < idx.size(); ++k) a.row(static_cast<Eigen::Index>(k)) = request.mu[static_cast<std::size_t>(idx[k])].transpose();
@@ -119,16 +125,16 @@ py::dict greedy_dict(const rb::GreedyOfflineResult& g, const rb::SnapshotRequest
 }
 
 std::shared_ptr<PyModel> offline_from_set(const io::SnapshotSet& set, const std::string& origin,
-                                          const rb::OfflineSettings& settings) {
+                                          const contactrb::offline::OfflineSettings& settings) {
   require(set.num_failed() == 0, failure_report(set, origin));
   const cases::CaseSpec spec = cases::case_from_record(set.case_kind, set.case_spec, origin);
-  std::optional<rb::OfflineResult> result;
+  std::optional<contactrb::offline::OfflineResult> result;
   {
     py::gil_scoped_release release;
-    result.emplace(rb::build_reduced_model(set, spec, settings));
+    result.emplace(contactrb::offline::build_reduced_model(set, spec, settings));
   }
   auto m = std::make_shared<PyModel>();
-  m->report = to_python_dict(rb::offline_json(set, settings, *result));
+  m->report = to_python_dict(contactrb::offline::offline_json(set, settings, *result));
   m->model = std::move(result->model);
   m->reconstruction = std::move(result->reconstruction);
   m->greedy = py::none();
@@ -153,7 +159,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     const std::string key = py::str(item.first);
     require(std::find(known.begin(), known.end(), key) != known.end(), "offline: unknown setting '" + key + "'");
   }
-  const rb::OfflineSettings settings = offline_settings(kw);
+  const contactrb::offline::OfflineSettings settings = offline_settings(kw);
   std::shared_ptr<PyModel> m;
   if (method == "pod") {
     if (py::isinstance<PySnapshots>(source)) {
@@ -166,7 +172,8 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
       // A case (or its name / TOML path): its training snapshots first, as `offline --case`.
       const py::object case_object = as_case(source);
       PyCase& c = case_object.cast<PyCase&>();
-      const rb::SnapshotRequest request = snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+      const contactrb::offline::SnapshotRequest request =
+          snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
       m = offline_from_set(run_snapshots(request, jobs, progress), "snapshot set", settings);
     }
   } else if (method == "greedy") {
@@ -177,24 +184,25 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     require(max_hf >= 1, "max_hf must be >= 1 (got " + std::to_string(max_hf) + ")");
     require(greedy_batch >= 1, "greedy_batch must be >= 1 (got " + std::to_string(greedy_batch) + ")");
     require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
-    rb::GreedyOfflineSettings gs;
+    contactrb::offline::GreedyOfflineSettings gs;
     gs.offline = settings;
     gs.tolerance = greedy_tol;
     gs.max_hf = max_hf;
     gs.batch = greedy_batch;
     gs.jobs = jobs;
     gs.progress = progress_mode(progress);
-    rb::check_settings(gs);
-    const rb::SnapshotRequest request = snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
-    std::optional<rb::GreedyOfflineResult> g;
+    contactrb::offline::check_settings(gs);
+    const contactrb::offline::SnapshotRequest request =
+        snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+    std::optional<contactrb::offline::GreedyOfflineResult> g;
     {
       py::gil_scoped_release release;
-      g.emplace(rb::run_offline_greedy(c.spec, request, gs));
+      g.emplace(contactrb::offline::run_offline_greedy(c.spec, request, gs));
     }
     m = std::make_shared<PyModel>();
     m->model = g->offline.model;
     m->reconstruction = g->offline.reconstruction;
-    m->report = to_python_dict(rb::offline_json(g->snapshots, settings, g->offline));
+    m->report = to_python_dict(contactrb::offline::offline_json(g->snapshots, settings, g->offline));
     m->greedy = greedy_dict(*g, request, gs, c.spec.num_parameters());
   } else {
     throw Error("method must be 'pod' or 'greedy', got '" + method + "'");
@@ -282,9 +290,9 @@ void bind_offline(py::module_& m) {
   m.def("offline", &offline, py::arg("source"), py::arg("method") = "pod", py::kw_only(), py::arg("set") = "training",
         py::arg("jobs") = 1, py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha,
         py::arg("tol") = k.tolerance, py::arg("max_iterations") = k.max_iterations,
-        py::arg("greedy_tol") = rb::GreedyOfflineSettings{}.tolerance,
-        py::arg("max_hf") = rb::GreedyOfflineSettings{}.max_hf,
-        py::arg("greedy_batch") = rb::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
+        py::arg("greedy_tol") = contactrb::offline::GreedyOfflineSettings{}.tolerance,
+        py::arg("max_hf") = contactrb::offline::GreedyOfflineSettings{}.max_hf,
+        py::arg("greedy_batch") = contactrb::offline::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
         py::arg("progress") = false,
         "The offline stage, as `contactrb offline`: returns a Model (saved to path= when given).\n"
         "method='pod': source is a Snapshots, a snapshot file path, or a case (its `set` snapshots are\n"

@@ -1,7 +1,7 @@
 // contactrb.Model (load, save, solve, solve_many, fields, write_fields) and contactrb.evaluate: the
 // library calls of `contactrb online` and `contactrb evaluate` (apps/contactrb/cmd_online.cpp,
 // cmd_evaluate.cpp). solve_many loops in C++ with the GIL released, on one OnlineSolver (jobs = 1)
-// or on rb::for_each_query's threads, one solver each, as `contactrb online --batch --jobs` does.
+// or on online::for_each_query's threads, one solver each, as `contactrb online --batch --jobs` does.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -30,8 +30,8 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 
 // --n, --r, --mk, --mg of the CLI: absent is the model's maximum; a given value is checked here
 // (-1 would otherwise pass as "the maximum") and by the solver against the model.
-rb::OnlineSizes online_sizes(const std::optional<int>& N, const std::optional<int>& R, const std::optional<int>& Mk,
-                             const std::optional<int>& Mg) {
+online::OnlineSizes online_sizes(const std::optional<int>& N, const std::optional<int>& R, const std::optional<int>& Mk,
+                                 const std::optional<int>& Mg) {
   require(!N || *N >= 1, "N must be >= 1 (got " + std::to_string(N.value_or(0)) + ")");
   require(!R || *R >= 0, "R must be >= 0 (got " + std::to_string(R.value_or(0)) + ")");
   require(!Mk || *Mk >= 0, "Mk must be >= 0 (got " + std::to_string(Mk.value_or(0)) + ")");
@@ -41,11 +41,11 @@ rb::OnlineSizes online_sizes(const std::optional<int>& N, const std::optional<in
 
 // The settings of `contactrb online` (--alpha, --tol, --start); max_iterations is ours. Any of
 // alpha, tol, max_iterations given: the relaxed iteration with them (as the CLI's --alpha, --tol).
-rb::OnlineSettings online_settings(const rb::ReducedModel& model, const std::optional<double>& alpha,
-                                   const std::optional<double>& tol, const std::optional<int>& max_iterations,
-                                   const std::string& start) {
-  rb::OnlineSettings settings;
-  settings.initial_guess = rb::initial_guess_from_string(start);
+online::OnlineSettings online_settings(const contactrb::model::ReducedModel& model, const std::optional<double>& alpha,
+                                       const std::optional<double>& tol, const std::optional<int>& max_iterations,
+                                       const std::string& start) {
+  online::OnlineSettings settings;
+  settings.initial_guess = online::initial_guess_from_string(start);
   if (alpha || tol || max_iterations) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (alpha) k.alpha = *alpha;
@@ -62,14 +62,14 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
                          const std::optional<double>& tol, const std::optional<int>& max_iterations,
                          const std::string& start) {
   const cases::Mu mu = mu_from_python(mu_in);
-  const rb::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
-  const rb::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
-  rb::OnlineSolution s;
+  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
+  const online::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
+  online::OnlineSolution s;
   int n_sizes[4] = {0, 0, 0, 0};
   {
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> lock(m.solver_mutex);
-    rb::OnlineSolver& solver = m.online(sizes);
+    online::OnlineSolver& solver = m.online(sizes);
     s = solver.solve(mu, settings);
     n_sizes[0] = solver.N();
     n_sizes[1] = solver.R();
@@ -83,7 +83,7 @@ OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optiona
   r.energy = s.energy;
   r.force = s.contact_force;
   r.estimate = s.estimate.available ? s.estimate.energy : kNaN;
-  r.estimate_parts = to_python(rb::to_json(s.estimate));
+  r.estimate_parts = to_python(to_json(s.estimate));
   r.time_s = s.time_s;
   r.iterations = s.iterations;
   r.status = solve::to_string(s.status);
@@ -105,12 +105,13 @@ struct ManyArrays {
   Eigen::Matrix<std::int8_t, Eigen::Dynamic, 1> status;
   Eigen::Matrix<bool, Eigen::Dynamic, 1> converged;
 
-  ManyArrays(Eigen::Index n, const rb::ReducedReconstruction* rec)
+  ManyArrays(Eigen::Index n, const contactrb::model::ReducedReconstruction* rec)
       : energy(n), force(n), estimate(n), time_s(n), iterations(n), status(n), converged(n) {
     if (rec != nullptr) displacement.resize(n, rec->num_dofs);
   }
   // Row i, except coefficients and multipliers (sized once the solver's N and R are known).
-  void set(Eigen::Index i, const rb::OnlineSolution& s, const rb::ReducedReconstruction* rec, const cases::Mu& mu) {
+  void set(Eigen::Index i, const online::OnlineSolution& s, const contactrb::model::ReducedReconstruction* rec,
+           const cases::Mu& mu) {
     energy(i) = s.energy;
     force(i) = s.contact_force;
     estimate(i) = s.estimate.available ? s.estimate.energy : kNaN;
@@ -118,21 +119,22 @@ struct ManyArrays {
     iterations(i) = s.iterations;
     status(i) = static_cast<std::int8_t>(s.status);
     converged(i) = s.converged();
-    if (rec != nullptr) displacement.row(i) = rb::reconstruct_displacement(*rec, mu, s.u_hat).transpose();
+    if (rec != nullptr) displacement.row(i) = online::reconstruct_displacement(*rec, mu, s.u_hat).transpose();
   }
 };
 
 // jobs == 1: the Model's own solver, under its lock (the solver holds per-query workspaces).
-void solve_many_serial(PyModel& m, const Eigen::MatrixXd& P, const rb::OnlineSizes& sizes,
-                       const rb::OnlineSettings& settings, const rb::ReducedReconstruction* rec, ManyArrays& a) {
+void solve_many_serial(PyModel& m, const Eigen::MatrixXd& P, const online::OnlineSizes& sizes,
+                       const online::OnlineSettings& settings, const contactrb::model::ReducedReconstruction* rec,
+                       ManyArrays& a) {
   const std::lock_guard<std::mutex> lock(m.solver_mutex);
-  rb::OnlineSolver& solver = m.online(sizes);
+  online::OnlineSolver& solver = m.online(sizes);
   a.U.resize(P.rows(), solver.N());
   a.L.resize(P.rows(), solver.R());
   cases::Mu mu(P.cols());
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     mu = P.row(i).transpose();
-    rb::OnlineSolution s;
+    online::OnlineSolution s;
     try {
       s = solver.solve(mu, settings);
     } catch (const Error& e) {
@@ -144,23 +146,23 @@ void solve_many_serial(PyModel& m, const Eigen::MatrixXd& P, const rb::OnlineSiz
   }
 }
 
-// jobs > 1: rb::for_each_query, one OnlineSolver per thread built from the (read-only) model, so
+// jobs > 1: online::for_each_query, one OnlineSolver per thread built from the (read-only) model, so
 // the Model's solver and its lock are not used and two Python threads do not wait for each
 // other. A solver's answer at mu does not depend on its earlier queries (online_many.hpp), so
 // every row equals the serial one bit for bit. A point the solver refuses: every point is still
 // tried, and the lowest such index is reported, as the serial loop would report it.
-void solve_many_threads(const PyModel& m, const Eigen::MatrixXd& P, const rb::OnlineSizes& sizes,
-                        const rb::OnlineSettings& settings, const rb::ReducedReconstruction* rec, int jobs,
-                        ManyArrays& a) {
+void solve_many_threads(const PyModel& m, const Eigen::MatrixXd& P, const online::OnlineSizes& sizes,
+                        const online::OnlineSettings& settings, const contactrb::model::ReducedReconstruction* rec,
+                        int jobs, ManyArrays& a) {
   const auto n = static_cast<std::size_t>(P.rows());
   std::vector<Eigen::VectorXd> u(n), lambda(n);
   std::mutex error_mutex;
   std::size_t error_index = n;
   std::string error_message;
-  rb::for_each_query(m.model, sizes, n, jobs, [&](rb::OnlineSolver& solver, std::size_t k) {
+  online::for_each_query(m.model, sizes, n, jobs, [&](online::OnlineSolver& solver, std::size_t k) {
     const auto i = static_cast<Eigen::Index>(k);
     const cases::Mu mu = P.row(i).transpose();
-    rb::OnlineSolution s;
+    online::OnlineSolution s;
     try {
       s = solver.solve(mu, settings);
     } catch (const Error& e) {
@@ -191,11 +193,12 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
                           const std::optional<int>& max_iterations, const std::string& start, bool fields, int jobs) {
   require(jobs >= 0, "jobs must be >= 0 (0: every hardware thread), got " + std::to_string(jobs));
   const Eigen::MatrixXd P = points_from_python(points, static_cast<int>(m.model.parameters.size()));
-  const rb::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
-  const rb::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
-  const rb::ReducedReconstruction* rec = fields ? &m.reconstruction_data() : nullptr;  // may read the file
+  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
+  const online::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
+  const contactrb::model::ReducedReconstruction* rec =
+      fields ? &m.reconstruction_data() : nullptr;  // may read the file
   const Eigen::Index n = P.rows();
-  if (jobs == 0) jobs = rb::hardware_jobs();
+  if (jobs == 0) jobs = online::hardware_jobs();
   ManyArrays a(n, rec);
   {
     py::gil_scoped_release release;  // no Python object is touched in the loop
@@ -234,7 +237,7 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
 
 // The displacement and multipliers of a reduced solution on the HF mesh.
 py::dict model_fields(PyModel& m, const OnlineResult& r) {
-  const rb::ReducedReconstruction& rec = m.reconstruction_data();
+  const contactrb::model::ReducedReconstruction& rec = m.reconstruction_data();
   const mesh::Mesh& reference = m.reference_mesh();
   const cases::CaseSpec spec = m.spec();
   const mesh::Mesh mapped = cases::mapped_mesh(spec, reference, r.mu);
@@ -243,20 +246,21 @@ py::dict model_fields(PyModel& m, const OnlineResult& r) {
   d["reference_nodes"] = node_coordinates(reference);
   d["triangles"] = triangle_array(reference);
   d["body"] = py::array_t<int>(static_cast<py::ssize_t>(reference.body.size()), reference.body.data());
-  d["displacement"] = node_vectors(rb::reconstruct_displacement(rec, r.mu, r.coefficients));
-  d["multipliers"] = rb::reconstruct_multipliers(rec, r.multipliers);
+  d["displacement"] = node_vectors(online::reconstruct_displacement(rec, r.mu, r.coefficients));
+  d["multipliers"] = online::reconstruct_multipliers(rec, r.multipliers);
   return d;
 }
 
 py::dict model_write_fields(PyModel& m, const OnlineResult& r, const std::string& dir) {
-  const rb::ReducedReconstruction& rec = m.reconstruction_data();
+  const contactrb::model::ReducedReconstruction& rec = m.reconstruction_data();
   const mesh::Mesh& reference = m.reference_mesh();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   require(std::filesystem::is_directory(dir), "cannot create the directory '" + dir + "'");
-  const rb::SolutionFiles f = rb::write_solution_fields(
-      m.spec(), reference, r.mu, m.model.surface.discretization, rb::reconstruct_displacement(rec, r.mu, r.coefficients),
-      rb::reconstruct_multipliers(rec, r.multipliers), dir);
+  const study::SolutionFiles f =
+      study::write_solution_fields(m.spec(), reference, r.mu, m.model.surface.discretization,
+                                   online::reconstruct_displacement(rec, r.mu, r.coefficients),
+                                   online::reconstruct_multipliers(rec, r.multipliers), dir);
   py::dict d;
   d["vtu"] = f.vtu;
   d["deformed_vtu"] = f.deformed_vtu;
@@ -279,32 +283,32 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
     const Eigen::MatrixXd P = points_from_python(set, spec.num_parameters());
     for (Eigen::Index i = 0; i < P.rows(); ++i) mus.push_back(P.row(i).transpose());
   }
-  const rb::ReducedReconstruction& rec = m.reconstruction_data();
-  rb::EvaluationOptions options;
+  const contactrb::model::ReducedReconstruction& rec = m.reconstruction_data();
+  study::EvaluationOptions options;
   options.sizes = online_sizes(N, R, Mk, Mg);
   options.online_repeats = repeats;
   options.jobs = jobs;
-  options.progress = progress ? rb::ProgressMode::Lines : rb::ProgressMode::None;
-  std::optional<rb::Evaluation> e;
+  options.progress = progress ? offline::ProgressMode::Lines : offline::ProgressMode::None;
+  std::optional<study::Evaluation> e;
   {
     py::gil_scoped_release release;
-    e.emplace(rb::evaluate_model(m.model, rec, spec, mus, options));
+    e.emplace(study::evaluate_model(m.model, rec, spec, mus, options));
   }
   const auto n = static_cast<Eigen::Index>(e->rows.size());
-  const auto column = [&](double rb::EvaluationRow::*f) {
+  const auto column = [&](double study::EvaluationRow::*f) {
     Eigen::VectorXd v(n);
     for (Eigen::Index i = 0; i < n; ++i) v(i) = e->rows[static_cast<std::size_t>(i)].*f;
     return v;
   };
-  // evaluation.json's content (rb::evaluation_json) and the rows as arrays, named as the columns
+  // evaluation.json's content (study::evaluation_json) and the rows as arrays, named as the columns
   // of evaluation.csv.
-  py::dict d = to_python_dict(rb::evaluation_json(*e, m.model, mus, options));
+  py::dict d = to_python_dict(study::evaluation_json(*e, m.model, mus, options));
   Eigen::MatrixXd mu(n, spec.num_parameters());
   Eigen::VectorXi hf_it(n), rb_it(n);
   Eigen::Matrix<bool, Eigen::Dynamic, 1> hf_ok(n), rb_ok(n);
   std::vector<std::string> hf_status, rb_status;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const rb::EvaluationRow& r = e->rows[static_cast<std::size_t>(i)];
+    const study::EvaluationRow& r = e->rows[static_cast<std::size_t>(i)];
     mu.row(i) = r.mu.transpose();
     hf_it(i) = r.hf_iterations;
     rb_it(i) = r.rb_iterations;
@@ -320,7 +324,7 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
   d["rb_converged"] = rb_ok;
   d["rb_status"] = rb_status;
   d["rb_iterations"] = rb_it;
-  using Row = rb::EvaluationRow;
+  using Row = study::EvaluationRow;
   const std::vector<std::pair<const char*, double Row::*>> columns = {
       {"hf_time_s", &Row::hf_time_s},     {"online_time_s", &Row::online_time_s}, {"speedup", &Row::speedup},
       {"e_ener", &Row::e_ener},           {"e_displ", &Row::e_displ},             {"e_inter", &Row::e_inter},
@@ -332,7 +336,7 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
   for (const auto& [name, f] : columns) d[name] = column(f);
   // The summary's numbers also under flat names (summary["max_e_displ"]), as docs/python.md
   // shows them.
-  const rb::EvaluationSummary& s = e->summary;
+  const study::EvaluationSummary& s = e->summary;
   py::dict sum = d["summary"].cast<py::dict>();
   sum["max_e_ener"] = s.max_e_ener;
   sum["mean_e_ener"] = s.mean_e_ener;
@@ -364,23 +368,23 @@ std::shared_ptr<PyModel> load_model(const std::string& path) {
 
 }  // namespace
 
-rb::OnlineSolver& PyModel::online(const rb::OnlineSizes& sizes) {
-  const auto same = [](const rb::OnlineSizes& a, const rb::OnlineSizes& b) {
+online::OnlineSolver& PyModel::online(const online::OnlineSizes& sizes) {
+  const auto same = [](const online::OnlineSizes& a, const online::OnlineSizes& b) {
     return a.N == b.N && a.R == b.R && a.Mk == b.Mk && a.Mg == b.Mg;
   };
   if (!solver || !same(sizes, solver_sizes)) {
     solver.reset();
-    solver = std::make_unique<rb::OnlineSolver>(model, sizes);
+    solver = std::make_unique<online::OnlineSolver>(model, sizes);
     solver_sizes = sizes;
   }
   return *solver;
 }
 
-const rb::ReducedReconstruction& PyModel::reconstruction_data() {
+const contactrb::model::ReducedReconstruction& PyModel::reconstruction_data() {
   if (!reconstruction) {
     require(!path.empty(), "this model holds no reconstruction data");
-    rb::ReducedReconstruction rec = io::read_reconstruction(path);
-    rb::check_reconstruction(model, rec);
+    contactrb::model::ReducedReconstruction rec = io::read_reconstruction(path);
+    online::check_reconstruction(model, rec);
     reconstruction = std::move(rec);
   }
   return *reconstruction;
@@ -393,9 +397,9 @@ cases::CaseSpec PyModel::spec() const {
 const mesh::Mesh& PyModel::reference_mesh() {
   if (!reference) {
     const cases::CaseSpec s = spec();
-    const rb::ReducedReconstruction& rec = reconstruction_data();
+    const contactrb::model::ReducedReconstruction& rec = reconstruction_data();
     py::gil_scoped_release release;
-    reference = std::make_shared<const mesh::Mesh>(rb::model_reference_mesh(s, model, rec));
+    reference = std::make_shared<const mesh::Mesh>(study::model_reference_mesh(s, model, rec));
   }
   return *reference;
 }

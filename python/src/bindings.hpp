@@ -65,17 +65,17 @@ struct PySnapshots {
 // one online solver per set of sizes (the last one used is kept). The solver is used with the GIL
 // released: `solver_mutex` serializes its use (and its replacement) between Python threads.
 struct PyModel {
-  rb::ReducedModel model;
-  std::optional<rb::ReducedReconstruction> reconstruction;
+  contactrb::model::ReducedModel model;
+  std::optional<contactrb::model::ReducedReconstruction> reconstruction;
   std::string path;       // the file it was loaded from or saved to (empty: none)
   py::dict report;        // offline report (offline(): offline.json's content), empty for a loaded model
   py::object greedy;      // greedy table (offline(method='greedy')), None otherwise
-  std::unique_ptr<rb::OnlineSolver> solver;
-  rb::OnlineSizes solver_sizes;
+  std::unique_ptr<contactrb::online::OnlineSolver> solver;
+  contactrb::online::OnlineSizes solver_sizes;
   std::mutex solver_mutex;
   std::shared_ptr<const mesh::Mesh> reference;  // the HF reference mesh (fields), on first use
-  rb::OnlineSolver& online(const rb::OnlineSizes& sizes);
-  const rb::ReducedReconstruction& reconstruction_data();
+  contactrb::online::OnlineSolver& online(const contactrb::online::OnlineSizes& sizes);
+  const contactrb::model::ReducedReconstruction& reconstruction_data();
   cases::CaseSpec spec() const;  // the case the model records
   const mesh::Mesh& reference_mesh();
 };

@@ -25,21 +25,21 @@
 
 namespace {
 
-using contactrb::rb::ReducedModel;
+using contactrb::model::ReducedModel;
 
-const contactrb::rb::OfflineResult& built() {
-  static std::unique_ptr<contactrb::rb::OfflineResult> result;
+const contactrb::offline::OfflineResult& built() {
+  static std::unique_ptr<contactrb::offline::OfflineResult> result;
   if (!result) {
     const auto spec = contactrb::cases::builtin_case_spec("hertz-b");
-    const auto request = contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt,
-                                                              contactrb::cases::points_1d({0.905, 1.005, 1.105}));
-    const auto set = contactrb::rb::generate_snapshots(request);
-    contactrb::rb::OfflineSettings s;
+    const auto request = contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt,
+                                                                   contactrb::cases::points_1d({0.905, 1.005, 1.105}));
+    const auto set = contactrb::offline::generate_snapshots(request);
+    contactrb::offline::OfflineSettings s;
     s.eps_pod = 0.0;
     s.eps_du = 0.0;
     s.eps_eim_k = 0.0;
     s.eps_eim_g = 0.0;
-    result = std::make_unique<contactrb::rb::OfflineResult>(contactrb::rb::build_reduced_model(set, spec, s));
+    result = std::make_unique<contactrb::offline::OfflineResult>(contactrb::offline::build_reduced_model(set, spec, s));
   }
   return *result;
 }
@@ -74,7 +74,7 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   const std::string path = dir.file("model.h5");
   contactrb::io::write_reduced_model_file(m, path);
   const ReducedModel r = contactrb::io::read_reduced_model_file(path);
-  EXPECT_NO_THROW(contactrb::rb::check_model(r));
+  EXPECT_NO_THROW(contactrb::online::check_model(r));
   EXPECT_EQ(r.eps_du, m.eps_du);
   EXPECT_EQ(r.eps_du_relative, m.eps_du_relative);
   EXPECT_TRUE(m.eps_pod_relative && m.eps_du_relative && m.eps_eim_k_relative && m.eps_eim_g_relative);  // defaults
@@ -154,7 +154,7 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   for (std::size_t j = 0; j < m.estimate.QTheta_kappa.size(); ++j) {
     EXPECT_TRUE(same(r.estimate.QTheta_kappa[j], m.estimate.QTheta_kappa[j]));
   }
-  contactrb::rb::OnlineSolver a(m), b(r);
+  contactrb::online::OnlineSolver a(m), b(r);
   const auto sa = a.solve(1.0), sb = b.solve(1.0);
   ASSERT_TRUE(sa.converged());
   EXPECT_TRUE(same(sa.u_hat, sb.u_hat));
@@ -184,7 +184,7 @@ TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
   EXPECT_NE(t.find(truncated), std::string::npos) << t;
 
   ReducedModel future = m;
-  future.format_version = contactrb::rb::kReducedModelFormatVersion + 1;
+  future.format_version = contactrb::model::kReducedModelFormatVersion + 1;
   const std::string newer = dir.file("newer.h5");
   contactrb::io::write_reduced_model_file(future, newer);
   EXPECT_NE(read_error(newer).find("format version"), std::string::npos) << read_error(newer);
@@ -249,9 +249,9 @@ TEST(ReducedModelFile, CompleteOtherThanOneIsRefused) {
 TEST(ReducedModelFile, ASnapshotFileIsNamedAsSuch) {
   contactrb::test::TempDir dir("reduced_model_snapshots");
   const std::string path = dir.file("snapshots.h5");
-  const auto request = contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-a"), "training",
-                                                            0, std::nullopt, contactrb::cases::points_1d({0.3}));
-  contactrb::io::write_snapshot_file(contactrb::rb::generate_snapshots(request), path);
+  const auto request = contactrb::offline::make_snapshot_request(
+      contactrb::cases::builtin_case_spec("hertz-a"), "training", 0, std::nullopt, contactrb::cases::points_1d({0.3}));
+  contactrb::io::write_snapshot_file(contactrb::offline::generate_snapshots(request), path);
   const std::string e = read_error(path);
   EXPECT_NE(e.find("'" + path + "': a contactrb snapshot file, not a reduced model"), std::string::npos) << e;
 }
@@ -282,7 +282,7 @@ TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
   H5Fclose(file);
   const std::string e = read_error(path);
   EXPECT_NE(e.find("format version 4, this build reads version " +
-                   std::to_string(contactrb::rb::kReducedModelFormatVersion) +
+                   std::to_string(contactrb::model::kReducedModelFormatVersion) +
                    " (rebuild the model with `contactrb offline`)"),
             std::string::npos)
       << e;

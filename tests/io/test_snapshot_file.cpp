@@ -476,7 +476,7 @@ TEST(SnapshotFile, WriterRefusesWhatTheReaderWouldRefuse) {
 TEST(SnapshotFile, AReducedModelFileIsNamedAsSuch) {
   TempDir dir("model_as_snapshots");
   const std::string path = dir.file("model.h5");
-  contactrb::io::write_reduced_model_file(contactrb::rb::ReducedModel{}, path);
+  contactrb::io::write_reduced_model_file(contactrb::model::ReducedModel{}, path);
   expect_error_naming(path, "is a contactrb reduced model file, not a snapshot file");
   EXPECT_FALSE(contactrb::io::is_snapshot_file(path));
   write_snapshot_file(synthetic_set(), dir.file("s.h5"));

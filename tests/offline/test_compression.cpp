@@ -3,7 +3,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/compression.hpp"
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 

@@ -9,7 +9,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 

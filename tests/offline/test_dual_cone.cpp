@@ -10,7 +10,7 @@
 #include "contactrb/offline/cpg.hpp"
 #include "offline/offline_fixtures.hpp"
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 

@@ -6,7 +6,7 @@
 #include "contactrb/offline/eim.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 

@@ -35,10 +35,10 @@
 namespace {
 
 using contactrb::io::SnapshotSet;
-using contactrb::rb::OfflineResult;
-using contactrb::rb::OfflineSettings;
-using contactrb::rb::OnlineSizes;
-using contactrb::rb::OnlineSolver;
+using contactrb::offline::OfflineResult;
+using contactrb::offline::OfflineSettings;
+using contactrb::online::OnlineSizes;
+using contactrb::online::OnlineSolver;
 using Index = Eigen::Index;
 
 constexpr double kTightTolerance = 1e-10;  // Kacanov eps of the snapshots and the online solves
@@ -61,13 +61,13 @@ const SnapshotSet& snapshots(const std::string& name, bool verification) {
   static std::map<std::string, std::unique_ptr<SnapshotSet>> cache;
   auto& slot = cache[name + (verification ? "/verification" : "/training")];
   if (!slot) {
-    contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
+    contactrb::offline::SnapshotRequest r = contactrb::offline::make_snapshot_request(
         contactrb::cases::builtin_case_spec(name), "training", 0, std::nullopt,
         contactrb::cases::points_1d(verification ? verification_values().at(name) : training_values().at(name)));
     r.settings.kacanov = contactrb::solve::KacanovSettings{1.0, kTightTolerance, 500};
-    contactrb::rb::SnapshotRunOptions options;
+    contactrb::offline::SnapshotRunOptions options;
     options.jobs = 2;
-    slot = std::make_unique<SnapshotSet>(contactrb::rb::generate_snapshots(r, options));
+    slot = std::make_unique<SnapshotSet>(contactrb::offline::generate_snapshots(r, options));
   }
   return *slot;
 }
@@ -83,7 +83,7 @@ const OfflineResult& untruncated_model(const std::string& name) {
     s.eps_eim_k = 0.0;
     s.eps_eim_g = 0.0;
     slot = std::make_unique<OfflineResult>(
-        contactrb::rb::build_reduced_model(snapshots(name, false), contactrb::cases::builtin_case_spec(name), s));
+        contactrb::offline::build_reduced_model(snapshots(name, false), contactrb::cases::builtin_case_spec(name), s));
   }
   return *slot;
 }
@@ -138,14 +138,14 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   Eigen::MatrixXd G(m.R_kept(), static_cast<Index>(set.snapshots.size()));
   for (std::size_t p = 0; p < set.snapshots.size(); ++p) {
     const auto& s = set.snapshots[p];
-    Ks.push_back(contactrb::rb::restrict_rows(Eigen::MatrixXd(s.K), m.kept_rows));
+    Ks.push_back(contactrb::offline::restrict_rows(Eigen::MatrixXd(s.K), m.kept_rows));
     const Eigen::VectorXd lift = m.lift_c * contactrb::cases::evaluate(m.thetas.lift, s.mu);
-    G.col(static_cast<Index>(p)) = contactrb::rb::restrict_rows(Eigen::VectorXd(s.g - s.K * lift), m.kept_rows);
+    G.col(static_cast<Index>(p)) = contactrb::offline::restrict_rows(Eigen::VectorXd(s.g - s.K * lift), m.kept_rows);
   }
-  contactrb::rb::EIMSettings exhaust;
+  contactrb::offline::EIMSettings exhaust;
   exhaust.tolerance = 0.0;
-  const auto eim_k = contactrb::rb::eim(contactrb::rb::flatten_columns(Ks), exhaust);
-  const auto eim_g = contactrb::rb::eim(G, exhaust);
+  const auto eim_k = contactrb::offline::eim(contactrb::offline::flatten_columns(Ks), exhaust);
+  const auto eim_g = contactrb::offline::eim(G, exhaust);
   ASSERT_EQ(eim_k.size(), m.Mk_max);
   ASSERT_EQ(eim_g.size(), m.Mg_max);
   ASSERT_LT((eim_k.B - m.B_kappa).norm(), 1e-12 * m.B_kappa.norm());  // the same EIM as the builder's
@@ -165,10 +165,10 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   const Eigen::VectorXd phi_gamma = 1e-2 * random(Mg);
   const Eigen::VectorXd weight = 0.01 * (1.0 + random(m.R_kept()).array()).matrix();
 
-  contactrb::rb::ErrorEstimator estimator;
+  contactrb::online::ErrorEstimator estimator;
   estimator.setup(m, N, R, Mk, Mg);
   ASSERT_TRUE(estimator.available());
-  const contactrb::rb::ErrorEstimate e = estimator.evaluate(mu, u_hat, lambda_hat, phi, phi_gamma, weight);
+  const contactrb::online::ErrorEstimate e = estimator.evaluate(mu, u_hat, lambda_hat, phi, phi_gamma, weight);
   ASSERT_TRUE(e.available);
 
   // HF side: r = f_0(mu) - A_00 Theta u_hat - (A u_D(mu))_0 - E_c' K' Xi lambda_hat, K = sum phi_i Q_i.
@@ -181,7 +181,7 @@ TEST_P(ErrorEstimate, PartsEqualTheHighFidelityComputation) {
   const Eigen::VectorXd lift =
       contactrb::cases::combine(terms.lift, contactrb::cases::evaluate(th.lift, mu), static_cast<Index>(set.num_dofs));
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m.R_kept(), n_c);
-  for (int i = 0; i < Mk; ++i) K += phi(i) * contactrb::rb::unflatten_column(eim_k.Q.col(i), m.R_kept(), n_c);
+  for (int i = 0; i < Mk; ++i) K += phi(i) * contactrb::offline::unflatten_column(eim_k.Q.col(i), m.R_kept(), n_c);
   const Eigen::VectorXd lambda = m.Xi.leftCols(R) * lambda_hat;
   Eigen::VectorXd u = lift;  // global u_D + P Theta u_hat
   const Eigen::VectorXd u0 = off.reconstruction.Theta.leftCols(N) * u_hat;
@@ -316,7 +316,7 @@ TEST_P(ErrorEstimate, EffectivityOnVerificationValues) {
       if (!sol.converged()) continue;  // a truncated model may not converge; not this test's subject
       ASSERT_TRUE(sol.estimate.available);
       const auto A = stiffness_at(name, ver, snap.mu);
-      const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
+      const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
       const double err = energy_norm(A, u - snap.u);
       const double e = sol.estimate.energy / err;
       std::printf("[ %s ] N %d R %d Mk %d mu %.3f: |e|_A %.3e estimate %.3e effectivity %.2f (res %.2e viol %.2e)\n",

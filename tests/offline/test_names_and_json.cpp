@@ -122,7 +122,7 @@ TEST(EnumNames, EveryEnumOfTheMethodReadsBackItsNames) {
 
 TEST(EnumNames, TheMessageListsTheAcceptedNames) {
   try {
-    rb::dual_cone_method_from_string("cgp");
+    offline::dual_cone_method_from_string("cgp");
     FAIL();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "unknown dual cone method 'cgp' (expected cpg, angle or nmf)");
@@ -130,12 +130,12 @@ TEST(EnumNames, TheMessageListsTheAcceptedNames) {
 }
 
 TEST(RecordJson, AnAbsentEstimateIsNull) {
-  rb::OnlineSolution s;
+  online::OnlineSolution s;
   s.status = solve::KacanovStatus::MaxIterations;
   s.message = "did not converge";
   s.u_hat = Eigen::VectorXd::Zero(2);
   s.lambda_hat = Eigen::VectorXd::Zero(1);
-  const nlohmann::json j = rb::to_json(s);
+  const nlohmann::json j = online::to_json(s);
   EXPECT_TRUE(j.at("estimate").is_null());
   EXPECT_EQ(j.at("converged"), false);
   EXPECT_EQ(j.at("status"), "max_iterations");
@@ -143,9 +143,9 @@ TEST(RecordJson, AnAbsentEstimateIsNull) {
   EXPECT_EQ(j.at("u_hat").size(), 2u);
   s.estimate.available = true;
   s.estimate.energy = 0.5;
-  EXPECT_EQ(rb::to_json(s).at("estimate").at("energy"), 0.5);
+  EXPECT_EQ(online::to_json(s).at("estimate").at("energy"), 0.5);
   s.message.clear();
-  EXPECT_FALSE(rb::to_json(s).contains("message"));
+  EXPECT_FALSE(online::to_json(s).contains("message"));
 }
 
 TEST(RecordJson, APointIsANumberForOneParameterAndNamedOtherwise) {
@@ -157,30 +157,30 @@ TEST(RecordJson, APointIsANumberForOneParameterAndNamedOtherwise) {
 }
 
 TEST(RecordJson, UndefinedEffectivitiesAreNull) {
-  rb::EvaluationSummary s;  // no row: NaN effectivities
-  const nlohmann::json j = rb::to_json(s);
+  study::EvaluationSummary s;  // no row: NaN effectivities
+  const nlohmann::json j = study::to_json(s);
   EXPECT_TRUE(j.at("effectivity").at("min").is_null());
   EXPECT_EQ(j.at("effectivity").at("count"), 0);
   EXPECT_EQ(j.at("e_displ").at("max"), 0.0);
-  rb::EvaluationRow row;
+  study::EvaluationRow row;
   row.mu = cases::Mu::Constant(1, 0.2);
-  const nlohmann::json r = rb::to_json(row, {});
+  const nlohmann::json r = study::to_json(row, {});
   EXPECT_TRUE(r.at("estimate").is_null());
   EXPECT_EQ(r.at("mu"), 0.2);
 }
 
 TEST(RecordJson, AFixedSizeHasNoThreshold) {
-  rb::OfflineSettings settings;
-  rb::OfflineReport report;
+  offline::OfflineSettings settings;
+  offline::OfflineReport report;
   report.pod_threshold = 1e-3;
-  EXPECT_EQ(rb::to_json(report, settings).at("thresholds").at("pod"), 1e-3);
-  EXPECT_TRUE(rb::to_json(settings).at("n").is_null());
+  EXPECT_EQ(offline::to_json(report, settings).at("thresholds").at("pod"), 1e-3);
+  EXPECT_TRUE(offline::to_json(settings).at("n").is_null());
   settings.pod_modes = 4;
-  settings.dual_method = rb::DualConeMethod::NMF;
-  EXPECT_TRUE(rb::to_json(report, settings).at("thresholds").at("pod").is_null());
-  EXPECT_EQ(rb::to_json(settings).at("n"), 4);
-  EXPECT_EQ(rb::to_json(settings).at("dual"), "nmf");
-  EXPECT_EQ(rb::to_json(report, settings).at("dual").at("method"), "nmf");
+  settings.dual_method = offline::DualConeMethod::NMF;
+  EXPECT_TRUE(offline::to_json(report, settings).at("thresholds").at("pod").is_null());
+  EXPECT_EQ(offline::to_json(settings).at("n"), 4);
+  EXPECT_EQ(offline::to_json(settings).at("dual"), "nmf");
+  EXPECT_EQ(offline::to_json(report, settings).at("dual").at("method"), "nmf");
 }
 
 TEST(RecordJson, TheHFSolveOfEachMethod) {

@@ -12,7 +12,7 @@ namespace {
 constexpr int kExhaustedNmfIterations = 200;  // few enough that the ranks end at different local minima
 }  // namespace
 
-using namespace contactrb::rb;
+using namespace contactrb::offline;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 

@@ -27,9 +27,9 @@
 
 namespace {
 
-using contactrb::rb::GreedyOfflineResult;
-using contactrb::rb::GreedyOfflineSettings;
-using contactrb::rb::GreedyOfflineStatus;
+using contactrb::offline::GreedyOfflineResult;
+using contactrb::offline::GreedyOfflineSettings;
+using contactrb::offline::GreedyOfflineStatus;
 
 // A tolerance the hertz-a estimate reaches in about 25 steps (its floor is near 1.4e-2 at the
 // default offline tolerances: docs/offline-online.md, "Greedy sampling").
@@ -49,9 +49,9 @@ std::vector<contactrb::cases::Mu> dense_training() {
   return points;
 }
 
-const contactrb::rb::SnapshotRequest& request() {
-  static const contactrb::rb::SnapshotRequest r =
-      contactrb::rb::make_snapshot_request(spec(), "training", 0, std::nullopt, dense_training());
+const contactrb::offline::SnapshotRequest& request() {
+  static const contactrb::offline::SnapshotRequest r =
+      contactrb::offline::make_snapshot_request(spec(), "training", 0, std::nullopt, dense_training());
   return r;
 }
 
@@ -61,7 +61,7 @@ const GreedyOfflineResult& greedy() {
     GreedyOfflineSettings s;
     s.tolerance = kTolerance;
     s.jobs = 2;
-    result = std::make_unique<GreedyOfflineResult>(contactrb::rb::run_offline_greedy(spec(), request(), s));
+    result = std::make_unique<GreedyOfflineResult>(contactrb::offline::run_offline_greedy(spec(), request(), s));
   }
   return *result;
 }
@@ -115,11 +115,11 @@ TEST(OfflineGreedy, EstimateAtTheChosenPointIsNotBelowTheTrueError) {
 
 TEST(OfflineGreedy, ModelMeetsTheToleranceOnTheVerificationSet) {
   const GreedyOfflineResult& g = greedy();
-  contactrb::rb::EvaluationOptions options;
+  contactrb::study::EvaluationOptions options;
   options.online_repeats = 1;
   options.jobs = 2;
-  const auto ev = contactrb::rb::evaluate_model(g.offline.model, g.offline.reconstruction, spec(),
-                                                spec().set("verification"), options);
+  const auto ev = contactrb::study::evaluate_model(g.offline.model, g.offline.reconstruction, spec(),
+                                                   spec().set("verification"), options);
   EXPECT_EQ(ev.summary.rb_failures, 0);
   EXPECT_EQ(ev.summary.hf_failures, 0);
   // e_displ (65) is an H1 error, the tolerance is on the energy-norm estimate: measured 5e-3 for
@@ -136,20 +136,20 @@ TEST(OfflineGreedy, ReducedEnergyNormEqualsTheHighFidelityOne) {
   const auto mesh = contactrb::cases::reference_mesh(spec(), 0);
   const auto terms = contactrb::cases::assemble_affine_terms(spec(), mesh);
   const auto thetas = contactrb::cases::theta_functions(spec());
-  contactrb::rb::OnlineSolver solver(model);
+  contactrb::online::OnlineSolver solver(model);
   for (double value : {0.152, 0.3, 0.447}) {
     const contactrb::cases::Mu mu = contactrb::cases::Mu::Constant(1, value);
     const auto s = solver.solve(mu);
     ASSERT_TRUE(s.converged());
-    const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(g.offline.reconstruction, mu, s.u_hat);
+    const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(g.offline.reconstruction, mu, s.u_hat);
     const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(thetas.a, mu));
     const double hf = std::sqrt(u.dot(A * u));
-    EXPECT_NEAR(contactrb::rb::reduced_energy_norm(model, mu, s.u_hat), hf, 1e-10 * hf) << value;
+    EXPECT_NEAR(contactrb::offline::reduced_energy_norm(model, mu, s.u_hat), hf, 1e-10 * hf) << value;
     // The criterion is the estimate over that norm.
-    EXPECT_NEAR(contactrb::rb::relative_estimate(model, mu, s), s.estimate.energy / hf, 1e-10) << value;
+    EXPECT_NEAR(contactrb::offline::relative_estimate(model, mu, s), s.estimate.energy / hf, 1e-10) << value;
   }
-  contactrb::rb::OnlineSolution failed;  // not converged: +inf, picked first
-  EXPECT_EQ(contactrb::rb::relative_estimate(model, contactrb::cases::Mu::Constant(1, 0.3), failed),
+  contactrb::online::OnlineSolution failed;  // not converged: +inf, picked first
+  EXPECT_EQ(contactrb::offline::relative_estimate(model, contactrb::cases::Mu::Constant(1, 0.3), failed),
             std::numeric_limits<double>::infinity());
 }
 
@@ -159,9 +159,9 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
   s.tolerance = 1e-6;
   s.max_hf = 3;
   s.jobs = 1;
-  const GreedyOfflineResult a = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  const GreedyOfflineResult a = contactrb::offline::run_offline_greedy(spec(), request(), s);
   s.jobs = 3;
-  const GreedyOfflineResult b = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  const GreedyOfflineResult b = contactrb::offline::run_offline_greedy(spec(), request(), s);
   EXPECT_EQ(a.status, GreedyOfflineStatus::Budget);
   EXPECT_EQ(a.hf_solves, 3);
   ASSERT_EQ(a.steps.size(), 3u);
@@ -189,9 +189,9 @@ TEST(OfflineGreedy, BatchSolvesTheLargestEstimatesWithinTheBudgetWhateverTheThre
   s.max_hf = 6;
   s.batch = 3;
   s.jobs = 1;
-  const GreedyOfflineResult a = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  const GreedyOfflineResult a = contactrb::offline::run_offline_greedy(spec(), request(), s);
   s.jobs = 3;  // the step's solves in parallel
-  const GreedyOfflineResult b = contactrb::rb::run_offline_greedy(spec(), request(), s);
+  const GreedyOfflineResult b = contactrb::offline::run_offline_greedy(spec(), request(), s);
   EXPECT_EQ(a.status, GreedyOfflineStatus::Budget);
   EXPECT_EQ(a.hf_solves, 6);
   ASSERT_EQ(a.steps.size(), 3u);
@@ -238,10 +238,10 @@ TEST(OfflineGreedy, StartIsTheTrainingPointNearestTheCentre) {
   p.max = 3.0;
   const std::vector<contactrb::cases::ParameterSpec> one{p};
   const auto pt = [](double a) { return Mu::Constant(1, a); };
-  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(1.0), pt(1.5), pt(2.4), pt(2.6)}), 2);
-  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(1.5), pt(2.5)}), 0);  // a tie: the smallest index
-  EXPECT_EQ(contactrb::rb::greedy_start_index(one, {pt(3.0)}), 0);
-  EXPECT_THROW(contactrb::rb::greedy_start_index(one, {}), contactrb::Error);
+  EXPECT_EQ(contactrb::offline::greedy_start_index(one, {pt(1.0), pt(1.5), pt(2.4), pt(2.6)}), 2);
+  EXPECT_EQ(contactrb::offline::greedy_start_index(one, {pt(1.5), pt(2.5)}), 0);  // a tie: the smallest index
+  EXPECT_EQ(contactrb::offline::greedy_start_index(one, {pt(3.0)}), 0);
+  EXPECT_THROW(contactrb::offline::greedy_start_index(one, {}), contactrb::Error);
   // Two parameters on different scales: the distance is taken in [0, 1]^2 (centre (2, 150)).
   contactrb::cases::ParameterSpec q;
   q.min = 100.0;
@@ -249,14 +249,14 @@ TEST(OfflineGreedy, StartIsTheTrainingPointNearestTheCentre) {
   const std::vector<contactrb::cases::ParameterSpec> two{p, q};
   const auto pt2 = [](double a, double b) { return Mu(Eigen::Vector2d(a, b)); };
   // (2.5, 150): scaled distance 0.25; (2.0, 180): 0.3 (unscaled, 30 against 0.5, it would lose).
-  EXPECT_EQ(contactrb::rb::greedy_start_index(two, {pt2(2.0, 180.0), pt2(2.5, 150.0)}), 1);
-  EXPECT_THROW(contactrb::rb::greedy_start_index(two, {pt(2.0)}), contactrb::Error);  // wrong size
+  EXPECT_EQ(contactrb::offline::greedy_start_index(two, {pt2(2.0, 180.0), pt2(2.5, 150.0)}), 1);
+  EXPECT_THROW(contactrb::offline::greedy_start_index(two, {pt(2.0)}), contactrb::Error);  // wrong size
 }
 
 TEST(OfflineGreedy, BadSettingsAreRefused) {
   const auto refused = [](const GreedyOfflineSettings& s, const std::string& words) {
     try {
-      contactrb::rb::check_settings(s);
+      contactrb::offline::check_settings(s);
       ADD_FAILURE() << "accepted: " << words;
     } catch (const contactrb::Error& e) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
@@ -282,10 +282,10 @@ TEST(OfflineGreedy, BadSettingsAreRefused) {
   s.offline.eps_pod = -1.0;
   refused(s, "eps_pod");
   // An empty training set, before any HF solve.
-  contactrb::rb::SnapshotRequest empty = request();
+  contactrb::offline::SnapshotRequest empty = request();
   empty.mu.clear();
   try {
-    contactrb::rb::run_offline_greedy(spec(), empty, {});
+    contactrb::offline::run_offline_greedy(spec(), empty, {});
     ADD_FAILURE() << "an empty training set was accepted";
   } catch (const contactrb::Error& e) {
     EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();

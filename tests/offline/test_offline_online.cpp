@@ -26,11 +26,11 @@
 namespace {
 
 using contactrb::io::SnapshotSet;
-using contactrb::rb::OfflineResult;
-using contactrb::rb::OfflineSettings;
-using contactrb::rb::OnlineSettings;
-using contactrb::rb::OnlineSizes;
-using contactrb::rb::OnlineSolver;
+using contactrb::offline::OfflineResult;
+using contactrb::offline::OfflineSettings;
+using contactrb::online::OnlineSettings;
+using contactrb::online::OnlineSizes;
+using contactrb::online::OnlineSolver;
 
 constexpr double kTightTolerance = 1e-10;  // Kacanov eps on both sides (alpha = 1)
 
@@ -52,15 +52,15 @@ const SnapshotSet& snapshots(const std::string& name, bool verification = false)
   static std::map<std::string, std::unique_ptr<SnapshotSet>> cache;
   auto& slot = cache[name + (verification ? "/verification" : "/training")];
   if (!slot) {
-    contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
+    contactrb::offline::SnapshotRequest r = contactrb::offline::make_snapshot_request(
         contactrb::cases::builtin_case_spec(name), "training", 0, std::nullopt,
         contactrb::cases::points_1d(verification ? verification_values().at(name) : training_values().at(name)));
     r.settings.kacanov.alpha = 1.0;
     r.settings.kacanov.tolerance = kTightTolerance;
     r.settings.kacanov.max_iterations = 500;
-    contactrb::rb::SnapshotRunOptions options;
+    contactrb::offline::SnapshotRunOptions options;
     options.jobs = 2;
-    slot = std::make_unique<SnapshotSet>(contactrb::rb::generate_snapshots(r, options));
+    slot = std::make_unique<SnapshotSet>(contactrb::offline::generate_snapshots(r, options));
   }
   return *slot;
 }
@@ -90,10 +90,10 @@ struct Errors {
 Errors compare(const OfflineResult& off, OnlineSolver& solver, const SnapshotSet& set, std::size_t p,
                const OnlineSettings& settings) {
   const contactrb::io::Snapshot& snap = set.snapshots[p];
-  const contactrb::rb::OnlineSolution sol = solver.solve(snap.mu, settings);
+  const contactrb::online::OnlineSolution sol = solver.solve(snap.mu, settings);
   EXPECT_TRUE(sol.converged()) << "mu = " << snap.mu << ": " << sol.message;
-  const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
-  const Eigen::VectorXd lambda = contactrb::rb::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+  const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
+  const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
   EXPECT_GE(sol.lambda_hat.minCoeff(), 0.0);
   return {(u - snap.u).norm() / snap.u.norm(), (lambda - snap.lambda).norm() / snap.lambda.norm()};
 }
@@ -106,15 +106,15 @@ OfflineResult truncated_model(const SnapshotSet& set, const std::string& name) {
   s.dual_size = 4;
   s.eim_k_size = 4;
   s.eim_g_size = 3;
-  return contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(name), s);
+  return contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(name), s);
 }
 
 // The reduced fixed point to 1e-12: the paper's relaxed iteration (alpha 0.3) from u_hat = 0.
 OnlineSettings reduced_fixed_point() {
   OnlineSettings s;
   s.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
-  s.iteration = contactrb::rb::OnlineIteration::Relaxed;
-  s.initial_guess = contactrb::rb::InitialGuess::Zero;
+  s.iteration = contactrb::online::OnlineIteration::Relaxed;
+  s.initial_guess = contactrb::online::InitialGuess::Zero;
   return s;
 }
 
@@ -126,7 +126,7 @@ TEST_P(OfflineOnline, UntruncatedModelReproducesTrainingSnapshots) {
   const auto spec = contactrb::cases::builtin_case_spec(GetParam());
   for (bool compression : {true, false}) {
     SCOPED_TRACE(compression ? "compression on" : "compression off");
-    const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(compression));
+    const OfflineResult off = contactrb::offline::build_reduced_model(set, spec, untruncated(compression));
     const auto& m = off.model;
     // Every POD mode, then the supremizers outside the snapshots' span.
     EXPECT_EQ(m.N_max - m.N_supremizers, static_cast<int>(set.snapshots.size()));
@@ -167,9 +167,10 @@ TEST_P(OfflineOnline, UntruncatedModelReproducesTrainingSnapshots) {
 TEST_P(OfflineOnline, UntruncatedAngleGreedyModelReproducesTrainingSnapshots) {
   const SnapshotSet& set = snapshots(GetParam());
   OfflineSettings s = untruncated(true);
-  s.dual_method = contactrb::rb::DualConeMethod::AngleGreedy;
-  s.inner_product = contactrb::rb::InnerProduct::H1;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  s.dual_method = contactrb::offline::DualConeMethod::AngleGreedy;
+  s.inner_product = contactrb::offline::InnerProduct::H1;
+  const OfflineResult off =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
   OnlineSolver solver(off.model);
   for (std::size_t p = 0; p < set.snapshots.size(); p += 2) {
     const Errors e = compare(off, solver, set, p, tight_online());
@@ -192,7 +193,7 @@ TEST_P(OfflineOnline, ErrorsFallAsOfflineTolerancesTighten) {
     s.eps_du = rel;
     s.eps_eim_k = rel;
     s.eps_eim_g = rel;
-    const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, s);
+    const OfflineResult off = contactrb::offline::build_reduced_model(set, spec, s);
     OnlineSolver solver(off.model);
     OnlineSettings settings;
     settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 1000};
@@ -214,14 +215,16 @@ TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
   s.dual_size = 3;
   s.eim_k_size = 4;
   s.eim_g_size = 4;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  const OfflineResult off =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
   OnlineSolver solver(off.model);
   OnlineSettings full;
   full.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-6, 500};
   full.restricted_rows = false;
   OnlineSettings restricted = full;
   restricted.restricted_rows = true;
-  for (const auto iteration : {contactrb::rb::OnlineIteration::Relaxed, contactrb::rb::OnlineIteration::Accelerated}) {
+  for (const auto iteration :
+       {contactrb::online::OnlineIteration::Relaxed, contactrb::online::OnlineIteration::Accelerated}) {
     full.iteration = restricted.iteration = iteration;
     for (const double mu : verification_values().at(GetParam())) {
       const auto a = solver.solve(mu, full);
@@ -246,10 +249,10 @@ TEST_P(OfflineOnline, InterpolatedInitialGuessSavesStepsAndKeepsTheFixedPoint) {
   const OnlineSettings fixed_point = reduced_fixed_point();
   OnlineSettings cold;
   cold.kacanov = contactrb::solve::KacanovSettings{1.0, kEps, 500};
-  cold.iteration = contactrb::rb::OnlineIteration::Accelerated;
-  cold.initial_guess = contactrb::rb::InitialGuess::Zero;
+  cold.iteration = contactrb::online::OnlineIteration::Accelerated;
+  cold.initial_guess = contactrb::online::InitialGuess::Zero;
   OnlineSettings warm = cold;
-  warm.initial_guess = contactrb::rb::InitialGuess::Interpolated;
+  warm.initial_guess = contactrb::online::InitialGuess::Interpolated;
   int cold_steps = 0, warm_steps = 0;
   for (const double mu : verification_values().at(GetParam())) {
     const auto ref = solver.solve(mu, fixed_point);
@@ -286,8 +289,8 @@ TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
   const OnlineSettings fixed_point = reduced_fixed_point();
   OnlineSettings relaxed;
   relaxed.kacanov = contactrb::solve::KacanovSettings{0.3, kEps, 500};
-  relaxed.iteration = contactrb::rb::OnlineIteration::Relaxed;
-  relaxed.initial_guess = contactrb::rb::InitialGuess::Zero;  // both from the paper's start
+  relaxed.iteration = contactrb::online::OnlineIteration::Relaxed;
+  relaxed.initial_guess = contactrb::online::InitialGuess::Zero;  // both from the paper's start
   for (const double mu : verification_values().at(GetParam())) {
     const auto ref = solver.solve(mu, fixed_point);
     ASSERT_TRUE(ref.converged()) << ref.message;
@@ -295,7 +298,7 @@ TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
     ASSERT_TRUE(r.converged()) << r.message;
     for (int depth : {0, 1, 3}) {
       OnlineSettings accelerated = relaxed;
-      accelerated.iteration = contactrb::rb::OnlineIteration::Accelerated;
+      accelerated.iteration = contactrb::online::OnlineIteration::Accelerated;
       accelerated.anderson_depth = depth;
       const auto a = solver.solve(mu, accelerated);
       ASSERT_TRUE(a.converged()) << "mu = " << mu << ", depth " << depth << ": " << a.message;
@@ -313,7 +316,7 @@ TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
     }
     // Tight tolerance: the same fixed point to round-off.
     OnlineSettings tight = fixed_point;
-    tight.iteration = contactrb::rb::OnlineIteration::Accelerated;
+    tight.iteration = contactrb::online::OnlineIteration::Accelerated;
     tight.kacanov->tolerance = 1e-10;
     const auto t = solver.solve(mu, tight);
     ASSERT_TRUE(t.converged()) << t.message;
@@ -326,15 +329,15 @@ TEST_P(OfflineOnline, AcceleratedIterationReachesTheRelaxedFixedPoint) {
 TEST(OnlineSolver, AutomaticIterationHonoursAnExplicitAlpha) {
   const SnapshotSet& set = snapshots("hertz-b");
   const OfflineResult off =
-      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), untruncated(true));
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), untruncated(true));
   OnlineSolver solver(off.model);
   const double mu = verification_values().at("hertz-b")[1];
   OnlineSettings given;
   given.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-6, 500};
   OnlineSettings relaxed = given;
-  relaxed.iteration = contactrb::rb::OnlineIteration::Relaxed;
+  relaxed.iteration = contactrb::online::OnlineIteration::Relaxed;
   OnlineSettings accelerated = given;
-  accelerated.iteration = contactrb::rb::OnlineIteration::Accelerated;
+  accelerated.iteration = contactrb::online::OnlineIteration::Accelerated;
   const auto a = solver.solve(mu, given);
   const auto b = solver.solve(mu, relaxed);
   const auto c = solver.solve(mu, accelerated);
@@ -360,13 +363,13 @@ TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {
   // N = 3 block of an enriched basis holds no supremizer (tested apart below).
   OfflineSettings full_settings = untruncated(true);
   full_settings.supremizers = false;
-  const OfflineResult full = contactrb::rb::build_reduced_model(set, spec, full_settings);
+  const OfflineResult full = contactrb::offline::build_reduced_model(set, spec, full_settings);
   OfflineSettings small = full_settings;
   small.pod_modes = 3;
   small.dual_size = 2;
   small.eim_k_size = 3;
   small.eim_g_size = 3;
-  const OfflineResult part = contactrb::rb::build_reduced_model(set, spec, small);
+  const OfflineResult part = contactrb::offline::build_reduced_model(set, spec, small);
   ASSERT_EQ(part.model.N_max, 3);
   ASSERT_EQ(part.model.R_max, 2);
   OnlineSolver from_blocks(full.model, OnlineSizes{3, 2, 3, 3});
@@ -378,8 +381,8 @@ TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {
   const auto b = from_part.solve(mu, settings);
   ASSERT_EQ(a.status, b.status);
   // POD modes are defined up to sign: compare the reconstructions.
-  const Eigen::VectorXd ua = contactrb::rb::reconstruct_displacement(full.reconstruction, mu, a.u_hat);
-  const Eigen::VectorXd ub = contactrb::rb::reconstruct_displacement(part.reconstruction, mu, b.u_hat);
+  const Eigen::VectorXd ua = contactrb::online::reconstruct_displacement(full.reconstruction, mu, a.u_hat);
+  const Eigen::VectorXd ub = contactrb::online::reconstruct_displacement(part.reconstruction, mu, b.u_hat);
   EXPECT_LT((ua - ub).norm(), 1e-8 * ub.norm());
   EXPECT_NEAR(a.energy, b.energy, 1e-8 * std::abs(b.energy));
 }
@@ -387,7 +390,7 @@ TEST_P(OfflineOnline, LeadingSubBlocksEqualModelBuiltAtThoseSizes) {
 TEST_P(OfflineOnline, ErrorsFallAsSizesGrow) {
   const SnapshotSet& set = snapshots(GetParam());
   const auto spec = contactrb::cases::builtin_case_spec(GetParam());
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const OfflineResult off = contactrb::offline::build_reduced_model(set, spec, untruncated(true));
   const auto& m = off.model;
   OnlineSettings settings;
   settings.kacanov = contactrb::solve::KacanovSettings{0.5, 1e-9, 1000};
@@ -408,7 +411,7 @@ TEST_P(OfflineOnline, ErrorsFallAsSizesGrow) {
 TEST_P(OfflineOnline, ReportHoldsTheHistoriesAndTimes) {
   const SnapshotSet& set = snapshots(GetParam());
   const OfflineResult off =
-      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), untruncated(true));
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), untruncated(true));
   const auto& rep = off.report;
   const auto& m = off.model;
   EXPECT_EQ(rep.singular_values.size(), static_cast<Eigen::Index>(set.snapshots.size()));
@@ -436,7 +439,7 @@ TEST_P(OfflineOnline, ReportHoldsTheHistoriesAndTimes) {
 TEST_P(OfflineOnline, ModelHoldsNoHighFidelitySizeArray) {
   const SnapshotSet& set = snapshots(GetParam());
   const auto spec = contactrb::cases::builtin_case_spec(GetParam());
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const OfflineResult off = contactrb::offline::build_reduced_model(set, spec, untruncated(true));
   const auto& m = off.model;
   const int n_free = static_cast<int>(set.free_dofs.size());
   const int n_c = static_cast<int>(set.contact_dofs.size());
@@ -453,11 +456,11 @@ TEST_P(OfflineOnline, ModelHoldsNoHighFidelitySizeArray) {
   EXPECT_EQ(m.training_lambda_hat.rows(), m.R_max);
   EXPECT_EQ(m.training_u_hat.cols(), static_cast<Eigen::Index>(set.snapshots.size()));
   // Every array together is smaller than one HF displacement per reduced dimension.
-  EXPECT_LT(contactrb::rb::model_doubles(m), static_cast<long long>(n_c) * (m.N_max + m.R_max + m.J_lift() + 4) +
-                                                 50LL * (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1) *
-                                                     (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1));
+  EXPECT_LT(contactrb::model::model_doubles(m),
+            static_cast<long long>(n_c) * (m.N_max + m.R_max + m.J_lift() + 4) +
+                50LL * (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1) * (m.N_max + m.R_max + m.Mk_max + m.Mg_max + 1));
   std::printf("[ %s ] model: %lld doubles; HF: %d DOFs, %d free, %d contact DOFs\n", GetParam().c_str(),
-              contactrb::rb::model_doubles(m), set.num_dofs, n_free, n_c);
+              contactrb::model::model_doubles(m), set.num_dofs, n_free, n_c);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, OfflineOnline, ::testing::Values("hertz-a", "hertz-b"),
@@ -466,12 +469,12 @@ INSTANTIATE_TEST_SUITE_P(Cases, OfflineOnline, ::testing::Values("hertz-a", "her
 TEST(OnlineSolver, RejectsSizesAboveTheMaximaAndMuOutsideTheDomain) {
   const SnapshotSet& set = snapshots("hertz-a");
   const OfflineResult off =
-      contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-a"), untruncated(true));
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-a"), untruncated(true));
   EXPECT_THROW(OnlineSolver(off.model, OnlineSizes{off.model.N_max + 1, -1, -1, -1}), contactrb::Error);
   EXPECT_THROW(OnlineSolver(off.model, OnlineSizes{0, -1, -1, -1}), contactrb::Error);
   OnlineSolver solver(off.model);
   EXPECT_THROW(solver.solve(10.0), contactrb::Error);
-  contactrb::rb::ReducedModel broken = off.model;
+  contactrb::model::ReducedModel broken = off.model;
   broken.C_kappa.pop_back();
   EXPECT_THROW(OnlineSolver{broken}, contactrb::Error);
 }
@@ -483,7 +486,7 @@ TEST(OfflineBuilder, RefusesAModelWithoutEIMFunctions) {
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
   const auto expect_refused = [&](const OfflineSettings& s, const std::string& words) {
     try {
-      contactrb::rb::build_reduced_model(set, spec, s);
+      contactrb::offline::build_reduced_model(set, spec, s);
       ADD_FAILURE() << "no error for " << words;
     } catch (const contactrb::Error& e) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
@@ -515,7 +518,7 @@ TEST(OnlineSolver, ATruncationThatLeavesThePressureUndeterminedIsNotConverged) {
   ASSERT_GE(m.R_max, 2);
   const double mu = set.snapshots[1].mu(0);
   OnlineSolver cut(m, OnlineSizes{1, m.R_max, -1, -1});
-  const contactrb::rb::OnlineSolution s = cut.solve(mu);
+  const contactrb::online::OnlineSolution s = cut.solve(mu);
   EXPECT_EQ(s.status, contactrb::solve::KacanovStatus::StepFailed);
   EXPECT_FALSE(s.converged());
   EXPECT_NE(s.message.find("the reduced pressure is not determined at N = 1, R = " + std::to_string(m.R_max)),
@@ -532,7 +535,7 @@ TEST(OnlineSolver, ATruncationThatLeavesThePressureUndeterminedIsNotConverged) {
 TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   const SnapshotSet& set = snapshots("hertz-a");
   OfflineResult off = truncated_model(set, "hertz-a");
-  contactrb::rb::ReducedModel m = off.model;
+  contactrb::model::ReducedModel m = off.model;
   m.Mk_max = 0;
   m.kappa_row.clear();
   m.kappa_dof.clear();
@@ -540,12 +543,12 @@ TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   m.B_kappa.resize(0, 0);
   m.estimate = {};  // sized for the original Mk_max; this artificial model has none
   OnlineSolver solver(m);
-  for (auto iteration : {contactrb::rb::OnlineIteration::Accelerated, contactrb::rb::OnlineIteration::Relaxed,
-                         contactrb::rb::OnlineIteration::Accelerated}) {
+  for (auto iteration : {contactrb::online::OnlineIteration::Accelerated, contactrb::online::OnlineIteration::Relaxed,
+                         contactrb::online::OnlineIteration::Accelerated}) {
     OnlineSettings s;
     s.iteration = iteration;
-    if (iteration == contactrb::rb::OnlineIteration::Relaxed) s.kacanov = contactrb::solve::KacanovSettings{};
-    const contactrb::rb::OnlineSolution sol = solver.solve(0.3, s);
+    if (iteration == contactrb::online::OnlineIteration::Relaxed) s.kacanov = contactrb::solve::KacanovSettings{};
+    const contactrb::online::OnlineSolution sol = solver.solve(0.3, s);
     EXPECT_FALSE(sol.converged());
     EXPECT_EQ(sol.status, contactrb::solve::KacanovStatus::StepFailed);
     EXPECT_NE(sol.message.find("D^kappa vanishes"), std::string::npos) << sol.message;
@@ -569,14 +572,14 @@ TEST(OnlineSolver, NonFiniteResultsAreFlaggedNeverConverged) {
   const SnapshotSet& set = snapshots("hertz-a");
   const OfflineResult off = truncated_model(set, "hertz-a");
   OnlineSolver reference(off.model);
-  const contactrb::rb::OnlineSolution good = reference.solve(0.3);
+  const contactrb::online::OnlineSolution good = reference.solve(0.3);
   ASSERT_TRUE(good.converged()) << good.message;
   ASSERT_TRUE(std::isfinite(good.energy));
 
-  contactrb::rb::ReducedModel m = off.model;
+  contactrb::model::ReducedModel m = off.model;
   for (double& v : m.lift_AA) v = std::numeric_limits<double>::infinity();
   OnlineSolver huge_lift(m);
-  const contactrb::rb::OnlineSolution a = huge_lift.solve(0.3);
+  const contactrb::online::OnlineSolution a = huge_lift.solve(0.3);
   EXPECT_EQ(a.status, contactrb::solve::KacanovStatus::NonFinite) << a.message;
   EXPECT_FALSE(a.converged());
   EXPECT_FALSE(std::isfinite(a.energy));
@@ -587,7 +590,7 @@ TEST(OnlineSolver, NonFiniteResultsAreFlaggedNeverConverged) {
   for (Eigen::VectorXd& f : m.f_hat) f *= 1e300;
   for (Eigen::VectorXd& f : m.A_lift_hat) f *= 1e300;
   OnlineSolver huge_load(m);
-  const contactrb::rb::OnlineSolution b = huge_load.solve(0.3);
+  const contactrb::online::OnlineSolution b = huge_load.solve(0.3);
   EXPECT_FALSE(b.converged()) << "energy " << b.energy;
   EXPECT_NE(b.status, contactrb::solve::KacanovStatus::Converged);
   EXPECT_FALSE(b.message.empty());
@@ -600,11 +603,11 @@ TEST(OfflineBuilder, RejectsFailedSnapshotsAndBadSettings) {
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
   OfflineSettings bad;
   bad.eps_pod = -1.0;
-  EXPECT_THROW(contactrb::rb::build_reduced_model(set, spec, bad), contactrb::Error);
+  EXPECT_THROW(contactrb::offline::build_reduced_model(set, spec, bad), contactrb::Error);
   set.snapshots[1].converged = false;
   set.snapshots[1].status = "max_iterations";
   try {
-    (void)contactrb::rb::build_reduced_model(set, spec);
+    (void)contactrb::offline::build_reduced_model(set, spec);
     ADD_FAILURE() << "a failed snapshot was accepted";
   } catch (const contactrb::Error& e) {
     EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos) << e.what();
@@ -620,7 +623,7 @@ TEST(OfflineBuilder, RefusesBadIndicesAndRepeatedTrainingValues) {
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
   const auto expect_refused = [&](const SnapshotSet& set, const std::string& words) {
     try {
-      (void)contactrb::rb::build_reduced_model(set, spec);
+      (void)contactrb::offline::build_reduced_model(set, spec);
       ADD_FAILURE() << "accepted; expected an error with '" << words << "'";
     } catch (const contactrb::Error& e) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
@@ -654,14 +657,14 @@ namespace {
 // a mapped slave body (ring radius): the untruncated model reproduces the training snapshots.
 const SnapshotSet& ring_block_snapshots() {
   static const SnapshotSet set = [] {
-    contactrb::rb::SnapshotRequest r = contactrb::rb::make_snapshot_request(
+    contactrb::offline::SnapshotRequest r = contactrb::offline::make_snapshot_request(
         contactrb::cases::builtin_case_spec("ring-block"), "training", 0, std::nullopt,
         contactrb::cases::points_1d({0.95, 1.0, 1.05, 1.1, 1.15}));
     r.settings.kacanov.alpha = 1.0;
     r.settings.kacanov.tolerance = kTightTolerance;
-    contactrb::rb::SnapshotRunOptions options;
+    contactrb::offline::SnapshotRunOptions options;
     options.jobs = 2;
-    return contactrb::rb::generate_snapshots(r, options);
+    return contactrb::offline::generate_snapshots(r, options);
   }();
   return set;
 }
@@ -670,7 +673,7 @@ TEST(OfflineOnlineRingBlock, UntruncatedLACModelReproducesTrainingSnapshots) {
   const auto spec = contactrb::cases::builtin_case_spec("ring-block");
   const SnapshotSet& set = ring_block_snapshots();
   ASSERT_EQ(set.num_failed(), 0) << set.snapshots[0].message;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, spec, untruncated(true));
+  const OfflineResult off = contactrb::offline::build_reduced_model(set, spec, untruncated(true));
   OnlineSolver solver(off.model);
   double worst_u = 0.0, worst_l = 0.0;
   for (std::size_t p = 0; p < set.snapshots.size(); ++p) {
@@ -695,7 +698,8 @@ TEST(OfflineOnlineRingBlock, RestrictedLACRowsEqualFullRows) {
   s.dual_size = 3;
   s.eim_k_size = 4;
   s.eim_g_size = 3;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("ring-block"), s);
+  const OfflineResult off =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec("ring-block"), s);
   ASSERT_EQ(off.model.Mk_max, 4);
   OnlineSolver solver(off.model);
   OnlineSettings full;
@@ -718,9 +722,10 @@ TEST(OfflineOnlineRingBlock, RestrictedLACRowsEqualFullRows) {
 TEST(OfflineOnlineNMF, TruncatedNMFModelSolves) {
   const SnapshotSet& set = snapshots("hertz-b");
   OfflineSettings s = untruncated(true);
-  s.dual_method = contactrb::rb::DualConeMethod::NMF;
+  s.dual_method = contactrb::offline::DualConeMethod::NMF;
   s.dual_size = 3;
-  const OfflineResult off = contactrb::rb::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), s);
+  const OfflineResult off =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec("hertz-b"), s);
   EXPECT_EQ(off.model.R_max, 3);
   EXPECT_GE(off.model.Xi.minCoeff(), 0.0);
   OnlineSolver solver(off.model);

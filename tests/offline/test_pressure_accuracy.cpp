@@ -26,18 +26,18 @@
 
 namespace {
 
-using contactrb::rb::Evaluation;
-using contactrb::rb::OfflineResult;
-using contactrb::rb::OfflineSettings;
+using contactrb::study::Evaluation;
+using contactrb::offline::OfflineResult;
+using contactrb::offline::OfflineSettings;
 
 const contactrb::io::SnapshotSet& training(const std::string& name) {
   static std::map<std::string, std::unique_ptr<contactrb::io::SnapshotSet>> cache;
   auto& slot = cache[name];
   if (!slot) {
-    contactrb::rb::SnapshotRunOptions options;
+    contactrb::offline::SnapshotRunOptions options;
     options.jobs = 2;
-    slot = std::make_unique<contactrb::io::SnapshotSet>(contactrb::rb::generate_snapshots(
-        contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec(name), "training"), options));
+    slot = std::make_unique<contactrb::io::SnapshotSet>(contactrb::offline::generate_snapshots(
+        contactrb::offline::make_snapshot_request(contactrb::cases::builtin_case_spec(name), "training"), options));
   }
   return *slot;
 }
@@ -46,12 +46,12 @@ Evaluation evaluate(const std::string& name, bool supremizers) {
   const auto spec = contactrb::cases::builtin_case_spec(name);
   OfflineSettings s;
   s.supremizers = supremizers;
-  const OfflineResult off = contactrb::rb::build_reduced_model(training(name), spec, s);
-  contactrb::rb::EvaluationOptions o;
+  const OfflineResult off = contactrb::offline::build_reduced_model(training(name), spec, s);
+  contactrb::study::EvaluationOptions o;
   o.jobs = 2;
   o.online_repeats = 1;
   const Evaluation e =
-      contactrb::rb::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
+      contactrb::study::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
   EXPECT_EQ(e.summary.hf_failures + e.summary.rb_failures, 0);
   std::printf("[ %s supremizers %s ] N %d R %d Mk %d Mg %d: max e_press %.3e (cone's best %.3e), e_force %.3e, "
               "e_peak %.3e, e_displ %.3e\n",

@@ -19,9 +19,9 @@
 using contactrb::Error;
 using contactrb::io::Snapshot;
 using contactrb::io::SnapshotSet;
-using contactrb::rb::generate_snapshots;
-using contactrb::rb::SnapshotRequest;
-using contactrb::rb::SnapshotRunOptions;
+using contactrb::offline::generate_snapshots;
+using contactrb::offline::SnapshotRequest;
+using contactrb::offline::SnapshotRunOptions;
 
 namespace {
 
@@ -30,7 +30,7 @@ const std::vector<double> kValues{0.15, 0.22, 0.31, 0.45};
 class SnapshotGeneration : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    request_ = std::make_unique<SnapshotRequest>(contactrb::rb::make_snapshot_request(
+    request_ = std::make_unique<SnapshotRequest>(contactrb::offline::make_snapshot_request(
         contactrb::cases::builtin_case_spec("hertz-a"), "training", 0, std::nullopt, contactrb::cases::points_1d(kValues)));
     SnapshotRunOptions one;
     one.jobs = 1;
@@ -130,7 +130,7 @@ TEST_F(SnapshotGeneration, NonConvergedSolvesAreRecordedAsFailed) {
     EXPECT_FALSE(snap.message.empty());
   }
   EXPECT_EQ(s.kacanov_max_iterations, 1);
-  EXPECT_EQ(contactrb::rb::summarize(s).failures, static_cast<int>(kValues.size()));
+  EXPECT_EQ(contactrb::offline::summarize(s).failures, static_cast<int>(kValues.size()));
 }
 
 TEST_F(SnapshotGeneration, ExceptionsAreRecordedAsFailed) {
@@ -173,7 +173,7 @@ TEST_F(SnapshotGeneration, ProgressLinesOnePerValue) {
   std::ostringstream out;
   SnapshotRunOptions opt;
   opt.jobs = 2;
-  opt.progress = contactrb::rb::ProgressMode::Lines;
+  opt.progress = contactrb::offline::ProgressMode::Lines;
   opt.progress_stream = &out;
   (void)generate_snapshots(r, opt);
   const std::string text = out.str();
@@ -193,23 +193,24 @@ TEST(SnapshotRequestErrors, BadArgumentsThrow) {
   EXPECT_THROW(generate_snapshots(r, zero), Error);
   r.mu.clear();
   EXPECT_THROW(generate_snapshots(r), Error);
-  EXPECT_THROW(contactrb::rb::make_snapshot_request(spec, "no-such-set"), Error);
-  EXPECT_THROW(contactrb::rb::make_snapshot_request(spec, "training", 0, std::nullopt, contactrb::cases::points_1d({0.9})),
-               Error);
+  EXPECT_THROW(contactrb::offline::make_snapshot_request(spec, "no-such-set"), Error);
+  EXPECT_THROW(
+      contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt, contactrb::cases::points_1d({0.9})),
+      Error);
 }
 
 // A TOML case is stored as its TOML text, which reads back to the same specification.
 TEST(SnapshotRequestCase, TomlCaseIsStoredAsItsText) {
   const std::string file = std::string(CONTACTRB_SOURCE_DIR) + "/examples/two-block-patch/case.toml";
   const auto spec = contactrb::cases::case_from_toml_file(file);
-  const SnapshotRequest r = contactrb::rb::make_snapshot_request(spec, "training");
+  const SnapshotRequest r = contactrb::offline::make_snapshot_request(spec, "training");
   EXPECT_EQ(r.case_kind, "toml");
   EXPECT_EQ(r.set_name, "training");
   EXPECT_EQ(r.mu, spec.set("training"));
   EXPECT_TRUE(contactrb::cases::same_case(contactrb::cases::case_from_toml_string(r.case_spec, "stored"), spec));
   // A built-in case is stored by name.
   const SnapshotRequest b =
-      contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-b"), "verification");
+      contactrb::offline::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-b"), "verification");
   EXPECT_EQ(b.case_kind, "builtin");
   EXPECT_EQ(b.case_spec, "hertz-b");
   EXPECT_EQ(b.mu.size(), 21u);  // midpoints of the 22 training values

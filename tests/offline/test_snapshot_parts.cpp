@@ -1,4 +1,4 @@
-// snapshots --part k/K and merge (rb/snapshot_parts.hpp): the merged file holds the same data
+// snapshots --part k/K and merge (offline/snapshot_parts.hpp): the merged file holds the same data
 // as the serial file, bit for bit but the timings; a missing, a repeated or a foreign part is
 // named in the error; a part is refused where a whole set is needed.
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ using contactrb::test::CliResult;
 using contactrb::test::expect_user_error;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
-namespace rb = contactrb::rb;
+namespace offline = contactrb::offline;
 
 namespace {
 
@@ -39,22 +39,22 @@ CliResult merge(const std::vector<std::string>& files, const std::string& out) {
 }  // namespace
 
 TEST(SnapshotParts, PartOptionParsing) {
-  const rb::SnapshotPart p = rb::parse_snapshot_part("2/4");
+  const offline::SnapshotPart p = offline::parse_snapshot_part("2/4");
   EXPECT_EQ(p.k, 2);
   EXPECT_EQ(p.count, 4);
   for (const char* bad : {"0/4", "5/4", "2", "/4", "2/", "a/4", "2/4x", " 2/4", "-1/4", "2/-4", "1/0"}) {
-    EXPECT_THROW(rb::parse_snapshot_part(bad), contactrb::Error) << bad;
+    EXPECT_THROW(offline::parse_snapshot_part(bad), contactrb::Error) << bad;
   }
-  EXPECT_EQ(rb::part_indices(7, {1, 3}), (std::vector<std::size_t>{0, 3, 6}));
-  EXPECT_EQ(rb::part_indices(7, {3, 3}), (std::vector<std::size_t>{2, 5}));
-  EXPECT_EQ(rb::part_indices(2, {3, 3}), (std::vector<std::size_t>{}));
+  EXPECT_EQ(offline::part_indices(7, {1, 3}), (std::vector<std::size_t>{0, 3, 6}));
+  EXPECT_EQ(offline::part_indices(7, {3, 3}), (std::vector<std::size_t>{2, 5}));
+  EXPECT_EQ(offline::part_indices(2, {3, 3}), (std::vector<std::size_t>{}));
 }
 
 TEST(SnapshotParts, TagRoundTrip) {
-  const rb::PartTag tag{"my set [x]", {3, 7}, 40, 0x0123456789abcdefULL};
-  const std::string text = rb::part_tag_text(tag);
+  const offline::PartTag tag{"my set [x]", {3, 7}, 40, 0x0123456789abcdefULL};
+  const std::string text = offline::part_tag_text(tag);
   EXPECT_EQ(text, "my set [x] [part 3/7 of 40 values, 0123456789abcdef]");
-  const auto back = rb::parse_part_tag(text);
+  const auto back = offline::parse_part_tag(text);
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->set, "my set [x]");
   EXPECT_EQ(back->part.k, 3);
@@ -63,7 +63,7 @@ TEST(SnapshotParts, TagRoundTrip) {
   EXPECT_EQ(back->values, 0x0123456789abcdefULL);
   for (const char* not_part : {"training", "custom", "training [part 2/4]", "t [part 2/4 of 3 values, 0123456789abcdef]",
                                "t [part 2/4 of 9 values, 0123456789ABCDEF]", "t [part 2/4 of 9 values, 01]"}) {
-    EXPECT_FALSE(rb::parse_part_tag(not_part).has_value()) << not_part;
+    EXPECT_FALSE(offline::parse_part_tag(not_part).has_value()) << not_part;
   }
 }
 

@@ -12,17 +12,17 @@
 #include "support/snapshot_fixtures.hpp"
 
 using contactrb::io::SnapshotSet;
-using contactrb::rb::generate_snapshots;
-using contactrb::rb::SnapshotRequest;
-using contactrb::rb::SnapshotRunOptions;
+using contactrb::offline::generate_snapshots;
+using contactrb::offline::SnapshotRequest;
+using contactrb::offline::SnapshotRunOptions;
 
 namespace {
 
 SnapshotRequest request(contactrb::hf::HFMethod method) {
   std::vector<double> values;
   for (int i = 0; i <= 8; ++i) values.push_back(0.15 + 0.0375 * i);
-  SnapshotRequest r = contactrb::rb::make_snapshot_request(contactrb::cases::builtin_case_spec("hertz-a"), "training", 0,
-                                                           std::nullopt, contactrb::cases::points_1d(values));
+  SnapshotRequest r = contactrb::offline::make_snapshot_request(
+      contactrb::cases::builtin_case_spec("hertz-a"), "training", 0, std::nullopt, contactrb::cases::points_1d(values));
   r.settings.method = method;
   return r;
 }

@@ -1,4 +1,4 @@
-// rb/snapshot_wire.hpp: a packed result and task unpack to the same bits (signed zeros, NaN
+// offline/snapshot_wire.hpp: a packed result and task unpack to the same bits (signed zeros, NaN
 // payloads, empty arrays), and damaged bytes are refused, never read past.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "contactrb/offline/snapshot_wire.hpp"
 #include "support/snapshot_fixtures.hpp"
 
-namespace rb = contactrb::rb;
+namespace offline = contactrb::offline;
 namespace io = contactrb::io;
 using contactrb::test::same_bits;
 
@@ -31,7 +31,7 @@ TEST(SnapshotWire, ResultRoundTripIsBitwise) {
   s.g = Eigen::VectorXd::Random(3);
   s.weight = Eigen::VectorXd();  // empty
   s.gap_pointwise = Eigen::VectorXd::Random(2);
-  rb::SnapshotLayout l;
+  offline::SnapshotLayout l;
   l.valid = true;
   l.num_dofs = 9;
   l.free_dofs = {0, 2, 5};
@@ -40,11 +40,11 @@ TEST(SnapshotWire, ResultRoundTripIsBitwise) {
   l.master = {3, 1, 3};
   l.constraint = "lac";
 
-  const std::vector<char> bytes = rb::pack_solved(42, s, l);
+  const std::vector<char> bytes = offline::pack_solved(42, s, l);
   std::uint64_t index = 0;
   io::Snapshot t;
-  rb::SnapshotLayout m;
-  rb::unpack_solved(bytes, index, t, m);
+  offline::SnapshotLayout m;
+  offline::unpack_solved(bytes, index, t, m);
   EXPECT_EQ(index, 42u);
   EXPECT_TRUE(same_bits(s.mu, t.mu));
   EXPECT_EQ(t.converged, true);
@@ -66,16 +66,16 @@ TEST(SnapshotWire, ResultRoundTripIsBitwise) {
   // Every truncation, and one byte too many, is refused.
   for (std::size_t n = 0; n < bytes.size(); n += 7) {
     const std::vector<char> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
-    EXPECT_THROW(rb::unpack_solved(cut, index, t, m), contactrb::Error) << n;
+    EXPECT_THROW(offline::unpack_solved(cut, index, t, m), contactrb::Error) << n;
   }
   std::vector<char> longer = bytes;
   longer.push_back(0);
-  EXPECT_THROW(rb::unpack_solved(longer, index, t, m), contactrb::Error);
+  EXPECT_THROW(offline::unpack_solved(longer, index, t, m), contactrb::Error);
   // A huge array length is refused before anything is allocated.
   std::vector<char> huge = bytes;
   const std::uint64_t big = std::numeric_limits<std::uint64_t>::max() / 2;
   std::memcpy(huge.data() + 8, &big, sizeof big);  // the length of mu
-  EXPECT_THROW(rb::unpack_solved(huge, index, t, m), contactrb::Error);
+  EXPECT_THROW(offline::unpack_solved(huge, index, t, m), contactrb::Error);
 }
 
 TEST(SnapshotWire, TaskRoundTrip) {
@@ -86,13 +86,13 @@ TEST(SnapshotWire, TaskRoundTrip) {
   std::uint64_t index = 0;
   bool has = false;
   io::Snapshot got;
-  rb::unpack_task(rb::pack_task(7, &start), index, has, got);
+  offline::unpack_task(offline::pack_task(7, &start), index, has, got);
   EXPECT_EQ(index, 7u);
   EXPECT_TRUE(has);
   EXPECT_TRUE(got.converged);
   EXPECT_TRUE(same_bits(start.u, got.u));
   EXPECT_TRUE(same_bits(start.lambda, got.lambda));
-  rb::unpack_task(rb::pack_task(3, nullptr), index, has, got);
+  offline::unpack_task(offline::pack_task(3, nullptr), index, has, got);
   EXPECT_EQ(index, 3u);
   EXPECT_FALSE(has);
   EXPECT_EQ(got.u.size(), 0);

@@ -54,31 +54,33 @@ class ScaledCases {
 };
 
 struct Study {
-  rb::OfflineResult offline;
-  rb::Evaluation evaluation;
+  contactrb::offline::OfflineResult offline;
+  study::Evaluation evaluation;
   double hf_energy_scale = 0.0;  // max |energy_hf| over the verification set
 };
 
 // Training snapshots, the model at the default settings, the evaluation on the verification set.
-Study study(const cases::CaseSpec& spec) {
-  rb::SnapshotRequest request = rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt);
-  rb::SnapshotRunOptions run;
+Study study_of(const cases::CaseSpec& spec) {
+  contactrb::offline::SnapshotRequest request =
+      contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt);
+  contactrb::offline::SnapshotRunOptions run;
   run.jobs = 2;
-  const io::SnapshotSet set = rb::generate_snapshots(request, run);
+  const io::SnapshotSet set = contactrb::offline::generate_snapshots(request, run);
   EXPECT_EQ(set.num_failed(), 0) << spec.name;
   Study s;
-  s.offline = rb::build_reduced_model(set, spec, rb::OfflineSettings{});
-  rb::EvaluationOptions options;
+  s.offline = contactrb::offline::build_reduced_model(set, spec, contactrb::offline::OfflineSettings{});
+  study::EvaluationOptions options;
   options.online_repeats = 1;
   options.jobs = 2;
-  s.evaluation = rb::evaluate_model(s.offline.model, s.offline.reconstruction, spec,
-                                    spec.set("verification"), options);
-  for (const rb::EvaluationRow& r : s.evaluation.rows) s.hf_energy_scale = std::max(s.hf_energy_scale, std::abs(r.energy_hf));
+  s.evaluation =
+      study::evaluate_model(s.offline.model, s.offline.reconstruction, spec, spec.set("verification"), options);
+  for (const study::EvaluationRow& r : s.evaluation.rows)
+    s.hf_energy_scale = std::max(s.hf_energy_scale, std::abs(r.energy_hf));
   return s;
 }
 
 void print(const std::string& name, const Study& s) {
-  const rb::ReducedModel& m = s.offline.model;
+  const model::ReducedModel& m = s.offline.model;
   std::printf("[ %s ] N %d, R %d, Mk %d, Mg %d; max e_displ %.3e, max e_inter %.3e, max e_ener %.3e\n", name.c_str(),
               m.N_max, m.R_max, m.Mk_max, m.Mg_max, s.evaluation.summary.max_e_displ, s.evaluation.summary.max_e_inter,
               s.evaluation.summary.max_e_ener);
@@ -95,8 +97,8 @@ void print(const std::string& name, const Study& s) {
 //    (65) is not unit-free, whatever the model (compared above through u_rb instead).
 void expect_same(const Study& base, const Study& scaled, double u_factor, double length, const std::string& what,
                  const std::vector<double>& base_mus, const std::vector<double>& scaled_mus) {
-  const rb::ReducedModel& a = base.offline.model;
-  const rb::ReducedModel& b = scaled.offline.model;
+  const model::ReducedModel& a = base.offline.model;
+  const model::ReducedModel& b = scaled.offline.model;
   EXPECT_EQ(b.N_max, a.N_max) << what;
   EXPECT_EQ(b.R_max, a.R_max) << what;
   EXPECT_EQ(b.Mk_max, a.Mk_max) << what;
@@ -105,22 +107,25 @@ void expect_same(const Study& base, const Study& scaled, double u_factor, double
   ASSERT_EQ(base_mus.size(), base.evaluation.rows.size());
   ASSERT_EQ(scaled_mus.size(), base_mus.size());
   EXPECT_EQ(scaled.evaluation.summary.rb_failures + scaled.evaluation.summary.hf_failures, 0) << what;
-  rb::OnlineSolver solver_a(a), solver_b(b);
+  online::OnlineSolver solver_a(a), solver_b(b);
   double worst_u = 0.0, worst_lambda = 0.0;
   const double rel = 1e-6;
   for (std::size_t i = 0; i < base_mus.size(); ++i) {
-    const rb::OnlineSolution x = solver_a.solve(base_mus[i]);
-    const rb::OnlineSolution y = solver_b.solve(scaled_mus[i]);
+    const online::OnlineSolution x = solver_a.solve(base_mus[i]);
+    const online::OnlineSolution y = solver_b.solve(scaled_mus[i]);
     ASSERT_TRUE(x.converged() && y.converged()) << what << ", mu = " << base_mus[i];
-    const Eigen::VectorXd ux = u_factor * rb::reconstruct_displacement(base.offline.reconstruction, Eigen::VectorXd::Constant(1, base_mus[i]), x.u_hat);
-    const Eigen::VectorXd uy = rb::reconstruct_displacement(scaled.offline.reconstruction, Eigen::VectorXd::Constant(1, scaled_mus[i]), y.u_hat);
-    const Eigen::VectorXd lx = rb::reconstruct_multipliers(base.offline.reconstruction, x.lambda_hat);
-    const Eigen::VectorXd ly = rb::reconstruct_multipliers(scaled.offline.reconstruction, y.lambda_hat);
+    const Eigen::VectorXd ux =
+        u_factor * online::reconstruct_displacement(base.offline.reconstruction,
+                                                    Eigen::VectorXd::Constant(1, base_mus[i]), x.u_hat);
+    const Eigen::VectorXd uy = online::reconstruct_displacement(scaled.offline.reconstruction,
+                                                                Eigen::VectorXd::Constant(1, scaled_mus[i]), y.u_hat);
+    const Eigen::VectorXd lx = online::reconstruct_multipliers(base.offline.reconstruction, x.lambda_hat);
+    const Eigen::VectorXd ly = online::reconstruct_multipliers(scaled.offline.reconstruction, y.lambda_hat);
     worst_u = std::max(worst_u, (uy - ux).norm() / ux.norm());
     worst_lambda = std::max(worst_lambda, (ly / ly.norm() - lx / lx.norm()).norm());
 
-    const rb::EvaluationRow& r = base.evaluation.rows[i];
-    const rb::EvaluationRow& t = scaled.evaluation.rows[i];
+    const study::EvaluationRow& r = base.evaluation.rows[i];
+    const study::EvaluationRow& t = scaled.evaluation.rows[i];
     if (length == 1.0) {
       EXPECT_NEAR(t.e_displ, r.e_displ, rel * r.e_displ) << what << ", mu = " << r.mu;
     }
@@ -150,9 +155,9 @@ TEST(UnitScaling, HertzAAndHertzBGiveTheSameModelInOtherUnits) {
     ASSERT_EQ(ref.num_nodes(), ref_mm.num_nodes());
     EXPECT_NEAR(ref_mm.nodes[7].x(), 1e-3 * ref.nodes[7].x(), 1e-18);
 
-    const Study base = study(spec);
-    const Study s_si = study(si);
-    const Study s_mm = study(mm);
+    const Study base = study_of(spec);
+    const Study s_si = study_of(si);
+    const Study s_mm = study_of(mm);
     print(name, base);
     print(name + "-si", s_si);
     print(name + "-mm", s_mm);
@@ -171,16 +176,16 @@ TEST(UnitScaling, AbsoluteTolerancesDependOnTheUnits) {
   const ScaledCases cases;
   const cases::CaseSpec spec = cases.spec("hertz-a");
   const cases::CaseSpec si = cases.spec("hertz-a-si");
-  rb::SnapshotRunOptions run;
+  contactrb::offline::SnapshotRunOptions run;
   run.jobs = 2;
-  rb::OfflineSettings absolute;
+  contactrb::offline::OfflineSettings absolute;
   absolute.set_absolute();
   absolute.eps_pod = 1e-3;
   absolute.eps_eim_k = absolute.eps_eim_g = 1e-6;
   const auto sizes = [&](const cases::CaseSpec& c) {
-    const io::SnapshotSet set =
-        rb::generate_snapshots(rb::make_snapshot_request(c, "training", 0, std::nullopt, std::nullopt), run);
-    const rb::ReducedModel m = rb::build_reduced_model(set, c, absolute).model;
+    const io::SnapshotSet set = contactrb::offline::generate_snapshots(
+        contactrb::offline::make_snapshot_request(c, "training", 0, std::nullopt, std::nullopt), run);
+    const model::ReducedModel m = contactrb::offline::build_reduced_model(set, c, absolute).model;
     std::printf("[ %s, absolute ] N %d, R %d, Mk %d, Mg %d\n", c.name.c_str(), m.N_max, m.R_max, m.Mk_max, m.Mg_max);
     return std::vector<int>{m.N_max, m.R_max};
   };
@@ -196,14 +201,14 @@ TEST(UnitScaling, AbsoluteTolerancesDependOnTheUnits) {
 // relative keeps more than 11 modes, each singular value kept above the threshold.
 TEST(OfflinePOD, HertzBGoesBeyondElevenModesAtATightTolerance) {
   const cases::CaseSpec spec = cases::builtin_case_spec("hertz-b");
-  rb::SnapshotRunOptions run;
+  contactrb::offline::SnapshotRunOptions run;
   run.jobs = 2;
-  const io::SnapshotSet set =
-      rb::generate_snapshots(rb::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt), run);
+  const io::SnapshotSet set = contactrb::offline::generate_snapshots(
+      contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt), run);
   ASSERT_EQ(set.snapshots.size(), 22u);
-  rb::OfflineSettings s;
+  contactrb::offline::OfflineSettings s;
   s.eps_pod = 1e-9;
-  const rb::OfflineResult off = rb::build_reduced_model(set, spec, s);
+  const contactrb::offline::OfflineResult off = contactrb::offline::build_reduced_model(set, spec, s);
   const Eigen::VectorXd& sigma = off.report.singular_values;
   const int N = off.report.N_pod;  // the POD modes (the supremizers follow them)
   std::printf("[ hertz-b ] eps_POD 1e-9 relative: N %d, sigma_N / sigma_1 = %.2e\n", N, sigma(N - 1) / sigma(0));

@@ -105,11 +105,11 @@ void expect_same_vector(const Eigen::VectorXd& v, const json& a, const char* wha
 }
 
 TEST_F(OnlineOnly, AnswersAsTheFullExecutableBitForBit) {
-  const contactrb::rb::ReducedModel model = contactrb::io::read_reduced_model_file(model_);
-  contactrb::rb::OnlineSolver solver(model);
+  const contactrb::model::ReducedModel model = contactrb::io::read_reduced_model_file(model_);
+  contactrb::online::OnlineSolver solver(model);
   for (const char* mu : {"0.26", "0.41"}) {  // between training values
     SCOPED_TRACE(mu);
-    const contactrb::rb::OnlineSolution s = solver.solve(std::strtod(mu, nullptr));
+    const contactrb::online::OnlineSolution s = solver.solve(std::strtod(mu, nullptr));
     ASSERT_TRUE(s.converged()) << s.message;
     for (const char* exe : {CONTACTRB_FULL_CLI, CONTACTRB_CLI}) {
       SCOPED_TRACE(exe);
@@ -130,17 +130,17 @@ TEST_F(OnlineOnly, AnswersAsTheFullExecutableBitForBit) {
 // surface_gap answers for the solver's last solve only: another mu, or a u_hat of the wrong
 // size, is refused; the same mu gives the same numbers again (a pure function of the solution).
 TEST_F(OnlineOnly, SurfaceGapIsForTheLastSolve) {
-  const contactrb::rb::ReducedModel model = contactrb::io::read_reduced_model_file(model_);
-  contactrb::rb::OnlineSolver solver(model);
+  const contactrb::model::ReducedModel model = contactrb::io::read_reduced_model_file(model_);
+  contactrb::online::OnlineSolver solver(model);
   const contactrb::cases::Mu mu = contactrb::cases::Mu::Constant(1, 0.26);
   EXPECT_THROW((void)solver.surface_gap(mu, {}), contactrb::Error);  // no solve yet
-  const contactrb::rb::OnlineSolution s = solver.solve(mu);
+  const contactrb::online::OnlineSolution s = solver.solve(mu);
   ASSERT_TRUE(s.converged()) << s.message;
   const auto gap = solver.surface_gap(mu, s);
   EXPECT_GT(gap.max, gap.min);
   EXPECT_TRUE(same(gap.max, solver.surface_gap(mu, s).max));
   EXPECT_THROW((void)solver.surface_gap(contactrb::cases::Mu::Constant(1, 0.41), s), contactrb::Error);
-  contactrb::rb::OnlineSolution shorter = s;
+  contactrb::online::OnlineSolution shorter = s;
   shorter.u_hat.conservativeResize(s.u_hat.size() - 1);
   EXPECT_THROW((void)solver.surface_gap(mu, shorter), contactrb::Error);
 }

@@ -35,10 +35,10 @@
 
 namespace {
 
-using contactrb::rb::Evaluation;
-using contactrb::rb::EvaluationOptions;
-using contactrb::rb::OfflineResult;
-using contactrb::rb::OfflineSettings;
+using contactrb::study::Evaluation;
+using contactrb::study::EvaluationOptions;
+using contactrb::offline::OfflineResult;
+using contactrb::offline::OfflineSettings;
 
 const std::vector<double> kTraining{0.15, 0.25, 0.35, 0.45};
 const std::vector<contactrb::cases::Mu> kTrainingPoints = contactrb::cases::points_1d(kTraining);
@@ -54,12 +54,12 @@ const contactrb::cases::CaseSpec& spec() {
 const contactrb::io::SnapshotSet& snapshots() {
   static std::unique_ptr<contactrb::io::SnapshotSet> set;
   if (!set) {
-    contactrb::rb::SnapshotRequest r =
-        contactrb::rb::make_snapshot_request(spec(), "training", 0, std::nullopt, kTrainingPoints);
+    contactrb::offline::SnapshotRequest r =
+        contactrb::offline::make_snapshot_request(spec(), "training", 0, std::nullopt, kTrainingPoints);
     r.settings.kacanov = contactrb::solve::KacanovSettings{1.0, 1e-10, 500};
-    contactrb::rb::SnapshotRunOptions options;
+    contactrb::offline::SnapshotRunOptions options;
     options.jobs = 2;
-    set = std::make_unique<contactrb::io::SnapshotSet>(contactrb::rb::generate_snapshots(r, options));
+    set = std::make_unique<contactrb::io::SnapshotSet>(contactrb::offline::generate_snapshots(r, options));
   }
   return *set;
 }
@@ -81,7 +81,7 @@ const OfflineResult& model(bool truncated) {
       s.eps_eim_k = 0.0;
       s.eps_eim_g = 0.0;
     }
-    slot = std::make_unique<OfflineResult>(contactrb::rb::build_reduced_model(snapshots(), spec(), s));
+    slot = std::make_unique<OfflineResult>(contactrb::offline::build_reduced_model(snapshots(), spec(), s));
   }
   return *slot;
 }
@@ -98,7 +98,7 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
   const OfflineResult& off = model(false);
   EvaluationOptions o = options();
   o.multiplier_mus = points({0.35});
-  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, o);
+  const Evaluation e = contactrb::study::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, o);
   ASSERT_EQ(e.rows.size(), kTraining.size());
   EXPECT_EQ(e.N - off.model.N_supremizers, static_cast<int>(kTraining.size()));
   EXPECT_EQ(e.R, off.model.R_max);
@@ -137,13 +137,14 @@ TEST(Evaluation, UntruncatedModelHasSolverToleranceErrorsAtTrainingValues) {
 
 TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
   const OfflineResult& off = model(true);
-  const Evaluation e = contactrb::rb::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, options());
+  const Evaluation e =
+      contactrb::study::evaluate_model(off.model, off.reconstruction, spec(), kTrainingPoints, options());
   ASSERT_EQ(e.N, 1);
   // Independent A(mu), f(mu) (affine terms), H1 product and HF solutions (the training snapshots).
   const auto reference = contactrb::cases::reference_mesh(spec(), 0);
   const auto terms = contactrb::cases::assemble_affine_terms(spec(), reference);
   const auto th = contactrb::cases::theta_functions(spec());
-  contactrb::rb::OnlineSolver solver(off.model);
+  contactrb::online::OnlineSolver solver(off.model);
   double worst = 0.0;
   std::vector<double> effectivities;
   for (std::size_t i = 0; i < kTraining.size(); ++i) {
@@ -153,7 +154,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     ASSERT_TRUE(r.hf_converged);
     const Eigen::VectorXd& uh = snapshots().snapshots[i].u;
     const auto sol = solver.solve(mu);
-    const Eigen::VectorXd u = contactrb::rb::reconstruct_displacement(off.reconstruction, one(mu), sol.u_hat);
+    const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(off.reconstruction, one(mu), sol.u_hat);
     const auto A = contactrb::cases::combine(terms.A, contactrb::cases::evaluate(th.a, one(mu)));
     const Eigen::VectorXd f =
         contactrb::cases::combine(terms.f, contactrb::cases::evaluate(th.f, one(mu)), reference.num_dofs());
@@ -167,7 +168,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     EXPECT_GT(r.e_displ, 1e-4);  // one mode cannot represent four Hertz solutions
     // Pressure measures from the snapshot's multipliers and weights |I_r| (same HF solve).
     const auto& snap = snapshots().snapshots[i];
-    const Eigen::VectorXd lr = contactrb::rb::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+    const Eigen::VectorXd lr = contactrb::online::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
     const Eigen::VectorXd& lh = snap.lambda;
     const Eigen::VectorXd& w = snap.weight;
     const double e_press = std::sqrt(w.dot((lr - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
@@ -209,7 +210,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
   EvaluationOptions o = options();
   o.sizes.N = 1;
   o.sizes.R = 1;
-  const Evaluation sub = contactrb::rb::evaluate_model(full.model, full.reconstruction, spec(), kTrainingPoints, o);
+  const Evaluation sub = contactrb::study::evaluate_model(full.model, full.reconstruction, spec(), kTrainingPoints, o);
   EXPECT_EQ(sub.N, 1);
   EXPECT_GT(sub.summary.max_e_displ, 1e-4);
   std::printf("[ truncated ] N=%d R=%d Mk=%d Mg=%d: max e_ener %.3e, e_displ %.3e, e_inter %.3e\n", e.N, e.R, e.Mk,
@@ -233,7 +234,7 @@ std::string error_of(const std::function<void()>& f) {
 TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   contactrb::test::TempDir dir("evaluation_reconstruction");
   const OfflineResult& off = model(false);
-  const contactrb::rb::ReducedReconstruction& rec = off.reconstruction;
+  const contactrb::model::ReducedReconstruction& rec = off.reconstruction;
   const std::string with = dir.file("with.h5");
   const std::string without = dir.file("without.h5");
   contactrb::io::write_reduced_model_file(off.model, rec, with);
@@ -261,14 +262,14 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   EXPECT_EQ(back.kept_rows, rec.kept_rows);
   EXPECT_EQ(back.num_constraints, rec.num_constraints);
   EXPECT_EQ(back.Xi, rec.Xi);
-  EXPECT_NO_THROW(contactrb::rb::check_reconstruction(off.model, back));
+  EXPECT_NO_THROW(contactrb::online::check_reconstruction(off.model, back));
   // Same reconstructed fields from the file's data as from memory.
-  contactrb::rb::OnlineSolver solver(off.model);
+  contactrb::online::OnlineSolver solver(off.model);
   const auto sol = solver.solve(0.3);
-  EXPECT_EQ(contactrb::rb::reconstruct_displacement(back, one(0.3), sol.u_hat),
-            contactrb::rb::reconstruct_displacement(rec, one(0.3), sol.u_hat));
-  EXPECT_EQ(contactrb::rb::reconstruct_multipliers(back, sol.lambda_hat),
-            contactrb::rb::reconstruct_multipliers(rec, sol.lambda_hat));
+  EXPECT_EQ(contactrb::online::reconstruct_displacement(back, one(0.3), sol.u_hat),
+            contactrb::online::reconstruct_displacement(rec, one(0.3), sol.u_hat));
+  EXPECT_EQ(contactrb::online::reconstruct_multipliers(back, sol.lambda_hat),
+            contactrb::online::reconstruct_multipliers(rec, sol.lambda_hat));
 
   // The model part reads the same from both files (the group is not loaded).
   const auto m1 = contactrb::io::read_reduced_model_file(with);
@@ -281,7 +282,7 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   EXPECT_NE(absent.find("no reconstruction data"), std::string::npos) << absent;
   EXPECT_NE(absent.find(without), std::string::npos) << absent;
   // Another model's data.
-  EXPECT_NE(error_of([&] { contactrb::rb::check_reconstruction(model(true).model, back); }).find("does not match"),
+  EXPECT_NE(error_of([&] { contactrb::online::check_reconstruction(model(true).model, back); }).find("does not match"),
             std::string::npos);
 
   // Damaged: change one double found only once in the file (an entry of the HF-size basis).
@@ -319,30 +320,33 @@ TEST(Evaluation, InvalidRequestsAreRefused) {
   const OfflineResult& off = model(false);
   const auto& m = off.model;
   const auto& rec = off.reconstruction;
-  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), {}, options()); }).find("no parameter"),
-            std::string::npos);
-  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.9}), options()); })
-                .find("outside the domain"),
+  EXPECT_NE(
+      error_of([&] { (void)contactrb::study::evaluate_model(m, rec, spec(), {}, options()); }).find("no parameter"),
+      std::string::npos);
+  EXPECT_NE(error_of([&] {
+              (void)contactrb::study::evaluate_model(m, rec, spec(), points({0.9}), options());
+            }).find("outside the domain"),
             std::string::npos);
   EvaluationOptions o = options();
   o.multiplier_mus = points({0.2});
-  EXPECT_NE(error_of([&] { (void)contactrb::rb::evaluate_model(m, rec, spec(), points({0.3}), o); }).find("mu = 0.2"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { (void)contactrb::study::evaluate_model(m, rec, spec(), points({0.3}), o); }).find("mu = 0.2"),
+      std::string::npos);
   // Without a stored mesh the case's mesh at the recorded level is used: here it differs from
   // the one the model was built on.
   ASSERT_FALSE(rec.mesh.nodes.empty());  // the builder stores the snapshots' mesh
-  contactrb::rb::ReducedModel finer = m;
+  contactrb::model::ReducedModel finer = m;
   finer.level = 1;
-  contactrb::rb::ReducedReconstruction no_mesh = rec;
+  contactrb::model::ReducedReconstruction no_mesh = rec;
   no_mesh.mesh = {};
   const std::string mismatch =
-      error_of([&] { (void)contactrb::rb::evaluate_model(finer, no_mesh, spec(), points({0.3}), options()); });
+      error_of([&] { (void)contactrb::study::evaluate_model(finer, no_mesh, spec(), points({0.3}), options()); });
   EXPECT_NE(mismatch.find("reconstruction data"), std::string::npos) << mismatch;
   // A stored mesh of another size is refused the same way.
-  contactrb::rb::ReducedReconstruction other_mesh = rec;
+  contactrb::model::ReducedReconstruction other_mesh = rec;
   other_mesh.mesh = contactrb::cases::reference_mesh(spec(), 1);
   const std::string other =
-      error_of([&] { (void)contactrb::rb::evaluate_model(m, other_mesh, spec(), points({0.3}), options()); });
+      error_of([&] { (void)contactrb::study::evaluate_model(m, other_mesh, spec(), points({0.3}), options()); });
   EXPECT_NE(other.find("reconstruction data"), std::string::npos) << other;
 }
 

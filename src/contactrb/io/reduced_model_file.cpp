@@ -93,7 +93,7 @@ void theta_group(V& v, const Loc& parent, cases::AffineThetas& t) {
 
 // Every field of the model (layout: docs/file-formats.md).
 template <typename V>
-void visit(V& v, const Loc& root, rb::ReducedModel& m) {
+void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
   {
     Handle g = v.group(root, "meta", "provenance, the settings the model was built with, the maximal sizes");
     const Loc meta{g.get(), "/meta"};
@@ -198,7 +198,7 @@ void visit(V& v, const Loc& root, rb::ReducedModel& m) {
     }
   }
   {
-    rb::ContactSurface& s = m.surface;
+    contactrb::model::ContactSurface& s = m.surface;
     Handle g = v.group(root, "surface",
                        "the contact surface in the reference configuration: the contact nodes (slave and master chain "
                        "nodes in ascending global index); contact-surface DOF 2 i + c is component c of node i");
@@ -225,7 +225,7 @@ void visit(V& v, const Loc& root, rb::ReducedModel& m) {
     v.integer(su, "num_constraints", s.num_constraints);
   }
   {
-    rb::EstimateData& e = m.estimate;
+    contactrb::model::EstimateData& e = m.estimate;
     Handle g = v.group(root, "estimate", "the a posteriori error estimate's arrays (rb/error_estimate_data.hpp)");
     const Loc es{g.get(), "/estimate"};
     v.vec(es, "theta_a_reference", e.theta_a_reference, {"J^a: theta^a_j at the reference parameter value", "1"});
@@ -244,7 +244,7 @@ constexpr const char* kReconstructionGroup = "reconstruction";
 
 // The reconstruction and the mesh (one checksum: root attribute of /reconstruction).
 template <typename V>
-void visit_reconstruction(V& v, const Loc& root, rb::ReducedReconstruction& r, bool with_mesh) {
+void visit_reconstruction(V& v, const Loc& root, contactrb::model::ReducedReconstruction& r, bool with_mesh) {
   {
     Handle g = v.group(root, kReconstructionGroup,
                        "HF-size data mapping a reduced solution back to the mesh: u = u_D(mu) + P Theta u_hat, "
@@ -266,11 +266,11 @@ void visit_reconstruction(V& v, const Loc& root, rb::ReducedReconstruction& r, b
   if (with_mesh) hdf5::visit_mesh(v, root, r.mesh);
 }
 
-void write_reconstruction(hid_t file, const rb::ReducedReconstruction& reconstruction) {
+void write_reconstruction(hid_t file, const contactrb::model::ReducedReconstruction& reconstruction) {
   FieldChecksum sum;
   hdf5::FieldWriter w(sum);
   const Loc root{file, ""};
-  rb::ReducedReconstruction copy = reconstruction;  // the visitor takes references
+  contactrb::model::ReducedReconstruction copy = reconstruction;  // the visitor takes references
   visit_reconstruction(w, root, copy, !copy.mesh.nodes.empty());
   Handle g = hdf5::open_group(file, kReconstructionGroup);
   hdf5::write_number_attribute(g.get(), "format_version", kReconstructionFormatVersion, H5T_STD_I32LE, H5T_NATIVE_INT);
@@ -279,8 +279,8 @@ void write_reconstruction(hid_t file, const rb::ReducedReconstruction& reconstru
   hdf5::write_number_attribute(g.get(), "complete", 1, H5T_STD_I32LE, H5T_NATIVE_INT);
 }
 
-void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction* reconstruction,
-                      const std::string& path) {
+void write_model_file(const contactrb::model::ReducedModel& model,
+                      const contactrb::model::ReducedReconstruction* reconstruction, const std::string& path) {
   QuietHdf5 quiet;
   check_output_target(path);
   remove_stale_temporaries(path);
@@ -297,7 +297,7 @@ void write_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruc
                                    "contactrb reduced model (paper Algorithm 1); layout: docs/file-formats.md");
       FieldChecksum sum;
       hdf5::FieldWriter w(sum);
-      rb::ReducedModel copy = model;  // the visitor takes references
+      contactrb::model::ReducedModel copy = model;  // the visitor takes references
       visit(w, Loc{f, ""}, copy);
       if (reconstruction != nullptr) write_reconstruction(f, *reconstruction);
       hdf5::write_number_attribute(f, "checksum", sum.value(), H5T_STD_U64LE, H5T_NATIVE_UINT64);
@@ -351,7 +351,7 @@ int old_layout_version(hid_t file) {
 
 std::string rebuild_message(int version) {
   return "format version " + std::to_string(version) + ", this build reads version " +
-         std::to_string(rb::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)";
+         std::to_string(contactrb::model::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)";
 }
 
 // Format, version and completeness of an open model file; throws H5Failure with the reason.
@@ -378,7 +378,7 @@ void check_header(hid_t file, const std::string& path, bool sealed) {
   }
   if (format != kReducedModelFormatName) throw H5Failure{"not a contactrb reduced model (format '" + format + "')"};
   const int version = hdf5::read_number_attribute<int>(file, "format_version", H5T_NATIVE_INT, H5T_INTEGER);
-  if (version != rb::kReducedModelFormatVersion) throw H5Failure{rebuild_message(version)};
+  if (version != contactrb::model::kReducedModelFormatVersion) throw H5Failure{rebuild_message(version)};
   // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
   if (!sealed) throw H5Failure{"damaged: its seal (the first bytes of the file) is missing"};
   // `complete` = 1 is written last: a missing one or any other value is not a finished write.
@@ -390,24 +390,24 @@ void check_header(hid_t file, const std::string& path, bool sealed) {
 
 }  // namespace
 
-void write_reduced_model_file(const rb::ReducedModel& model, const std::string& path) {
+void write_reduced_model_file(const contactrb::model::ReducedModel& model, const std::string& path) {
   write_model_file(model, nullptr, path);
 }
 
-void write_reduced_model_file(const rb::ReducedModel& model, const rb::ReducedReconstruction& reconstruction,
-                              const std::string& path) {
+void write_reduced_model_file(const contactrb::model::ReducedModel& model,
+                              const contactrb::model::ReducedReconstruction& reconstruction, const std::string& path) {
   write_model_file(model, &reconstruction, path);
 }
 
-rb::ReducedModel read_reduced_model_file(const std::string& path) {
+contactrb::model::ReducedModel read_reduced_model_file(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
   const bool sealed = check_model_path(path, where);
   try {
     Handle file = open_model_file(path);
     check_header(file.get(), path, sealed);
-    rb::ReducedModel m;
-    m.format_version = rb::kReducedModelFormatVersion;
+    contactrb::model::ReducedModel m;
+    m.format_version = contactrb::model::kReducedModelFormatVersion;
     FieldChecksum sum;
     hdf5::FieldReader r(sum);
     visit(r, Loc{file.get(), ""}, m);
@@ -434,7 +434,7 @@ bool has_reconstruction(const std::string& path) {
   }
 }
 
-rb::ReducedReconstruction read_reconstruction(const std::string& path) {
+contactrb::model::ReducedReconstruction read_reconstruction(const std::string& path) {
   QuietHdf5 quiet;
   const std::string where = "reduced model file '" + path + "': ";
   const bool sealed = check_model_path(path, where);
@@ -459,13 +459,13 @@ rb::ReducedReconstruction read_reconstruction(const std::string& path) {
     }
     const int has_mesh = attribute("has_mesh");
     if (has_mesh != 0 && has_mesh != 1) throw H5Failure{"/reconstruction has_mesh is neither 0 nor 1"};
-    rb::ReducedReconstruction rec;
+    contactrb::model::ReducedReconstruction rec;
     FieldChecksum sum;
     hdf5::FieldReader r(sum);
     visit_reconstruction(r, Loc{file.get(), ""}, rec, has_mesh == 1);
     const auto stored = hdf5::read_number_attribute<std::uint64_t>(g.get(), "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
     if (stored != sum.value()) throw H5Failure{"reconstruction checksum mismatch: the file was modified or damaged"};
-    // Sizes only (the model-dependent checks are rb::check_reconstruction's).
+    // Sizes only (the model-dependent checks are online::check_reconstruction's).
     require(rec.num_dofs > 0 && rec.Theta.rows() == static_cast<Eigen::Index>(rec.free_dofs.size()) &&
                 rec.Xi.rows() == static_cast<Eigen::Index>(rec.kept_rows.size()) &&
                 rec.lift.size() == rec.thetas.lift.size(),

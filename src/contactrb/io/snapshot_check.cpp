@@ -1,5 +1,5 @@
 // check_snapshot_set (snapshot_file.hpp): every index, size and value of a snapshot set,
-// checked by the writer, the reader and rb::build_reduced_model before any use. The messages
+// checked by the writer, the reader and offline::build_reduced_model before any use. The messages
 // name each field by its path in the file (docs/file-formats.md, "Snapshot file").
 #include <Eigen/Core>
 #include <algorithm>

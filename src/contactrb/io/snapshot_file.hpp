@@ -107,7 +107,7 @@ SnapshotSet read_snapshot_file(const std::string& path);
 // array size against num_dofs, free_dofs, contact_dofs or the slave chain; a non-finite value
 // in an array of a converged snapshot; no parameter, a mu of the wrong size or outside the
 // stored domains, a domain that is not an interval; a status that disagrees with `converged`; invalid Kacanov
-// settings. Run by the writer, the reader and rb::build_reduced_model.
+// settings. Run by the writer, the reader and offline::build_reduced_model.
 void check_snapshot_set(const SnapshotSet& set);
 
 // True when `path` is an HDF5 file whose root attribute `format` is kSnapshotFormatName

@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace contactrb::rb {
+namespace contactrb::model {
 
 // Columns of the column-pivoted QR whose pivot is below this fraction of the largest are dropped
 // (their contribution to |T y| is below the rounding of the kept ones). Offline (the whole
@@ -43,4 +43,4 @@ struct EstimateData {
   Eigen::MatrixXd eim_slack;     // (Mk_max + 1) x (Mg_max + 1)
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::model

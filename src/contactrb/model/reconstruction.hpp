@@ -9,7 +9,7 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::model {
 
 struct ReducedReconstruction {
   int num_dofs = 0;
@@ -25,4 +25,4 @@ struct ReducedReconstruction {
   mesh::Mesh mesh;
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::model

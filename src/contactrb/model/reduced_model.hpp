@@ -23,7 +23,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/model/error_estimate_data.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::model {
 
 // 3: N_supremizers, tolerance modes, the error estimate's arrays; 4: p parameters (the list, the
 // training points p x P, theta monomials with one factor per parameter); 5: the self-describing
@@ -57,7 +57,7 @@ struct ReducedModel {
   // Settings the model was built with (recorded, not used online except the Kacanov ones).
   std::string inner_product;  // "energy" | "h1"
   std::string dual_method;    // "cpg" | "angle" | "nmf"
-  // The offline tolerances and whether each was relative (rb::OfflineSettings; format 3 for
+  // The offline tolerances and whether each was relative (offline::OfflineSettings; format 3 for
   // the POD and EIM modes).
   double eps_pod = 0.0;
   bool eps_pod_relative = false;
@@ -147,4 +147,4 @@ inline long long model_doubles(const ReducedModel& m) {
   return n;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::model

@@ -9,7 +9,7 @@
 #include "contactrb/offline/cone_projection.hpp"
 #include "contactrb/offline/cpg.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 // A selected residual below this fraction of its snapshot's norm is round-off: the snapshot
@@ -155,4 +155,4 @@ DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualCo
   return out;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

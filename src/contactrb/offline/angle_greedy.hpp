@@ -9,7 +9,7 @@
 #include "contactrb/offline/dual_cone.hpp"
 #include "contactrb/offline/greedy.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // evaluate(): |lambda(mu) - Pi_{W_n}(lambda(mu))|_Lambda for every snapshot (0 for a selected one).
 // Keeps the residuals of all snapshots and a Lambda-orthonormal basis of W_n (Gram-Schmidt with
@@ -48,4 +48,4 @@ class AngleGreedyProblem final : public GreedyProblem {
 // seconds: the selection; history_seconds: the cone projections.
 DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {});
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -5,7 +5,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 void check_rows(const char* who, Eigen::Index n, const std::vector<int>& rows) {
@@ -53,4 +53,4 @@ Eigen::VectorXd restrict_rows(const Eigen::VectorXd& v, const std::vector<int>& 
   return out;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 struct CompressionSettings {
   bool enabled = true;     // off: every constraint is kept (the report still counts the active ones)
@@ -26,4 +26,4 @@ std::vector<int> active_constraints(const Eigen::MatrixXd& multipliers, double t
 Eigen::MatrixXd restrict_rows(const Eigen::MatrixXd& A, const std::vector<int>& rows);
 Eigen::VectorXd restrict_rows(const Eigen::VectorXd& v, const std::vector<int>& rows);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -7,7 +7,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 double weighted_norm(const Eigen::VectorXd& v, const Eigen::VectorXd& weights) {
   if (weights.size() == 0) return v.norm();
@@ -169,4 +169,4 @@ Eigen::VectorXd cone_projection_errors(const Eigen::MatrixXd& snapshots, const E
   return errors;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -8,7 +8,7 @@
 
 #include "contactrb/solve/nonnegative_qp.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 struct ConeProjection {
   solve::QPStatus status = solve::QPStatus::Solved;
@@ -63,4 +63,4 @@ Eigen::VectorXd cone_projection_errors(const Eigen::MatrixXd& snapshots, const E
                                        const Eigen::VectorXd& weights = {}, const solve::QPSettings& qp = {},
                                        int* qp_failures = nullptr);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

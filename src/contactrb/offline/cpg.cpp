@@ -6,7 +6,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 const char* to_string(DualConeMethod method) {
   switch (method) {
@@ -82,4 +82,4 @@ DualConeResult build_cpg(const Eigen::MatrixXd& snapshots, const DualConeSetting
   return out;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -9,7 +9,7 @@
 #include "contactrb/offline/dual_cone.hpp"
 #include "contactrb/offline/greedy.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // The evaluate / extend steps of Algorithm 2. Borrows `snapshots` (R_hf x P), which must
 // outlive the object. evaluate() returns the cone-projection error of every snapshot onto the
@@ -44,4 +44,4 @@ class CPGProblem final : public GreedyProblem {
 // non-finite snapshots, mismatched weights, invalid settings).
 DualConeResult build_cpg(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {});
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

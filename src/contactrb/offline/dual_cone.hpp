@@ -9,7 +9,7 @@
 #include "contactrb/offline/greedy.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 enum class DualConeMethod { CPG, AngleGreedy, NMF };
 const char* to_string(DualConeMethod method);
@@ -50,4 +50,4 @@ struct DualConeResult {
 // contactrb::Error naming the argument and the sizes.
 void check_dual_snapshots(const char* who, const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -6,7 +6,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 void check_settings(const EIMSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
@@ -101,4 +101,4 @@ Eigen::VectorXd EIMResult::restrict(const Eigen::VectorXd& f) const {
   return v;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -12,7 +12,7 @@
 
 #include "contactrb/offline/greedy.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 struct EIMSettings {
   // eps_EIM: stop when max_{mu, x} |r| <= tolerance (absolute) or <= tolerance * max |F|
@@ -74,4 +74,4 @@ class EIMProblem final : public GreedyProblem {
   std::vector<int> magic_;
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

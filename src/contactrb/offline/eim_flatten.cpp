@@ -4,7 +4,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 Eigen::MatrixXd flatten_columns(const std::vector<Eigen::MatrixXd>& matrices) {
   if (matrices.empty()) return Eigen::MatrixXd(0, 0);
@@ -37,4 +37,4 @@ std::pair<int, int> unflatten_index(int row, int n_c) {
   return {row / n_c, row % n_c};
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

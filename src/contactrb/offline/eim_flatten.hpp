@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // F (R n_c) x P from P matrices of equal size R x n_c. Throws contactrb::Error on size mismatch
 // (the message names the offending index and both sizes).
@@ -21,4 +21,4 @@ std::pair<int, int> unflatten_index(int row, int n_c);
 // (r, n) -> row.
 inline int flatten_index(int r, int n, int n_c) { return r * n_c + n; }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -12,7 +12,11 @@
 #include "contactrb/common/index_cast.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
+
+using model::EstimateData;
+using model::kEstimateRankTolerance;
+using model::residual_columns;
 
 // The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
 // leading size: I_M F = Q[:, :M] B[:M, :M]^-1 F(magic[:M]) (B lower triangular).
@@ -197,4 +201,4 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
   return e;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

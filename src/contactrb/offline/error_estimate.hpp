@@ -24,7 +24,7 @@ namespace contactrb::cases {
 struct AffineTerms;
 }
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // Inputs of the offline construction (all borrowed).
 struct EstimateInputs {
@@ -52,6 +52,6 @@ struct EstimateInputs {
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.
-EstimateData build_estimate_data(const EstimateInputs& in);
+model::EstimateData build_estimate_data(const EstimateInputs& in);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -7,7 +7,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -105,4 +105,4 @@ GreedyResult run_greedy(GreedyProblem& problem, const GreedySettings& settings) 
   return result;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

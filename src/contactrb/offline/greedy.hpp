@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 enum class GreedyStatus {
   ToleranceReached,  // max criterion <= tolerance, e.g. (58)
@@ -61,4 +61,4 @@ struct GreedyResult {
 // to the smallest index (deterministic).
 GreedyResult run_greedy(GreedyProblem& problem, const GreedySettings& settings);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

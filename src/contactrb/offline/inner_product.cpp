@@ -5,10 +5,10 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 InnerProduct inner_product_from_string(const std::string& name) {
   return enum_from_string(name, "inner product", std::array{InnerProduct::Energy, InnerProduct::H1});
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

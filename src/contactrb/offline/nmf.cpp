@@ -9,7 +9,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 
@@ -186,4 +186,4 @@ DualConeResult build_nmf_cone(const Eigen::MatrixXd& snapshots, const DualConeSe
   return out;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -13,7 +13,7 @@
 
 #include "contactrb/offline/dual_cone.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 enum class NMFStatus { Converged, MaxIterations };
 const char* to_string(NMFStatus status);
@@ -57,4 +57,4 @@ NMFResult nmf(const Eigen::MatrixXd& T, int R, const NMFSettings& settings = {})
 DualConeResult build_nmf_cone(const Eigen::MatrixXd& snapshots, const DualConeSettings& settings = {},
                               const NMFSettings& nmf_settings = {});
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -27,7 +27,17 @@
 #include "contactrb/online/model_check.hpp"
 #include "contactrb/offline/pod.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
+
+using model::ContactSurface;
+using model::EstimateData;
+using model::ReducedModel;
+using model::ReducedReconstruction;
+using online::InitialGuess;
+using online::OnlineSettings;
+using online::OnlineSolution;
+using online::OnlineSolver;
+using online::check_model;
 
 namespace {
 
@@ -614,4 +624,4 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   return out;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -15,7 +15,7 @@
 #include "contactrb/model/reconstruction.hpp"
 #include "contactrb/model/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 enum class InnerProduct { Energy, H1 };
 const char* to_string(InnerProduct p);  // "energy" | "h1"
@@ -96,8 +96,8 @@ struct OfflineReport {
 };
 
 struct OfflineResult {
-  ReducedModel model;
-  ReducedReconstruction reconstruction;
+  contactrb::model::ReducedModel model;
+  contactrb::model::ReducedReconstruction reconstruction;
   OfflineReport report;
 };
 
@@ -108,4 +108,4 @@ struct OfflineResult {
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {});
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -21,7 +21,15 @@
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/online/reconstruction.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
+
+using model::ReducedModel;
+using model::ReducedReconstruction;
+using online::OnlineSettings;
+using online::OnlineSolution;
+using online::OnlineSolver;
+using online::reconstruct_displacement;
+using online::reconstruct_multipliers;
 
 namespace {
 
@@ -474,4 +482,4 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
   csv.write(path);
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

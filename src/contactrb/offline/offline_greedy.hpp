@@ -3,7 +3,7 @@
 // "Error estimate"; docs/offline-online.md, "Greedy sampling"). pyMOR's weak_greedy protocol (STYLE.md): each
 // step *evaluates* the estimate of the current reduced model over the whole training set
 // (online solves only) and *extends* the snapshot set by one HF solve where the relative
-// estimate is largest. The reduced model of a step is rb::build_reduced_model on the snapshots
+// estimate is largest. The reduced model of a step is offline::build_reduced_model on the snapshots
 // selected so far (POD with the usual tolerance = plain greedy with compression, CPG on the
 // selected multipliers, EIM trained on the selected snapshots, supremizers).
 //
@@ -24,7 +24,7 @@
 #include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // The parameter point as the greedy sees it (p values; the code reaches it only through this
 // alias and SnapshotRequest::mu).
@@ -85,7 +85,7 @@ struct GreedyOfflineSettings {
   // every row and the models missed their own snapshots on hertz-3p (e_displ 0.17 at a selected
   // point, 5e-4 with compression) and were 100 times less accurate on ring-block.
   OfflineSettings offline;
-  OnlineSettings online;    // of the sweep (error_estimate is forced on)
+  contactrb::online::OnlineSettings online;    // of the sweep (error_estimate is forced on)
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
   GreedyDistribution distribution;             // empty: one process
@@ -140,11 +140,13 @@ struct GreedyOfflineResult {
 
 // |u_rb|_A(mu) = sqrt(u' A(mu) u), u = u_D(mu) + Theta u_hat the total displacement, from the
 // model's reduced arrays only ((49) and the lift terms lift_AA, A_lift_hat); u_hat of size N <= N_max.
-double reduced_energy_norm(const ReducedModel& model, const GreedyMu& mu, const Eigen::VectorXd& u_hat);
+double reduced_energy_norm(const contactrb::model::ReducedModel& model, const GreedyMu& mu,
+                           const Eigen::VectorXd& u_hat);
 
 // The greedy's criterion: Delta_u(mu) / |u_rb(mu)|_A(mu), +inf when the online solve did not
 // converge or carries no estimate (so that such a point is picked first); 0 / 0 = 0.
-double relative_estimate(const ReducedModel& model, const GreedyMu& mu, const OnlineSolution& solution);
+double relative_estimate(const contactrb::model::ReducedModel& model, const GreedyMu& mu,
+                         const contactrb::online::OnlineSolution& solution);
 
 // The start point: the training point nearest the centre of the parameter box (Euclidean distance
 // in coordinates scaled to [0, 1] per parameter; ties to the smallest index).
@@ -163,4 +165,4 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 // empty (NaN) when the greedy stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

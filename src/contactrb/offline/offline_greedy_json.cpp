@@ -5,7 +5,9 @@
 
 #include "contactrb/online/online_solution_json.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
+
+using online::sizes_json;
 
 namespace {
 
@@ -70,4 +72,4 @@ nlohmann::json greedy_json(const GreedyOfflineResult& g, const SnapshotRequest& 
   return j;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

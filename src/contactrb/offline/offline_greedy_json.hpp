@@ -7,7 +7,7 @@
 #include "contactrb/offline/offline_greedy.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // One step: step, snapshots, hf_solves, N, R, Mk, Mg, max_estimate (null: +inf, an online
 // failure), argmax_mu, online_failures, chosen_mu, hf_status, true_error, true_e_press,
@@ -21,4 +21,4 @@ nlohmann::json to_json(const GreedyStep& step, const SnapshotRequest& request);
 nlohmann::json greedy_json(const GreedyOfflineResult& result, const SnapshotRequest& request,
                            const GreedyOfflineSettings& settings);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -4,7 +4,10 @@
 
 #include "contactrb/online/online_solution_json.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
+
+using model::model_doubles;
+using online::sizes_json;
 
 namespace {
 
@@ -97,4 +100,4 @@ nlohmann::json offline_json(const io::SnapshotSet& set, const OfflineSettings& s
   return j;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

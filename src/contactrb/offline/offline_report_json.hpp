@@ -6,7 +6,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // The snapshot set a model is built from: case, case_kind, level, constraint, parameters (and
 // parameter when there is one), training {set, values, count}, snapshot_kacanov.
@@ -27,4 +27,4 @@ nlohmann::json to_json(const OfflineReport& report, const OfflineSettings& setti
 // model_doubles.
 nlohmann::json offline_json(const io::SnapshotSet& set, const OfflineSettings& settings, const OfflineResult& result);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -10,7 +10,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 
@@ -136,4 +136,4 @@ PODTruncation pod_truncation_from_string(const std::string& name) {
   return enum_from_string(name, "POD truncation", std::array{SingularValue, ProjectionError});
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 enum class PODTruncation {
   // Keep every mode with sigma_i > threshold (our reading of the paper's eps_POD).
@@ -55,4 +55,4 @@ PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double
 // Euclidean inner product (M = identity).
 PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings = {});
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -24,7 +24,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 
@@ -430,4 +430,4 @@ SnapshotRunOptions::WarmStart warm_start_from_string(const std::string& name) {
   return enum_from_string(name, "warm start", std::array{Automatic, On, Off});
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -22,7 +22,7 @@
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 // Builds the HF problem at mu. Called concurrently from the worker threads: it must not
 // modify shared state (capture immutable data only).
@@ -157,4 +157,4 @@ class SnapshotProgress {
   std::unique_ptr<State> state_;
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

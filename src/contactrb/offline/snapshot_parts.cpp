@@ -9,7 +9,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 
@@ -211,4 +211,4 @@ void refuse_snapshot_part(const io::SnapshotSet& set, const std::string& path) {
                                 " of a snapshot set, not a whole set: merge the parts first (`contactrb merge`)");
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -21,7 +21,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 struct SnapshotPart {
   int k = 1;      // 1..count
@@ -68,4 +68,4 @@ io::SnapshotSet merge_snapshot_parts(const std::vector<PartFile>& parts);
 // would silently miss the other parts' values).
 void refuse_snapshot_part(const io::SnapshotSet& set, const std::string& path);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

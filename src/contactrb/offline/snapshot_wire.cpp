@@ -5,7 +5,7 @@
 
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::offline {
 
 namespace {
 
@@ -172,4 +172,4 @@ void unpack_task(const std::vector<char>& bytes, std::uint64_t& index, bool& has
   r.finish();
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::offline

@@ -9,7 +9,12 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::EstimateData;
+using model::ReducedModel;
+using model::kEstimateRankTolerance;
+using model::residual_columns;
 
 void check_estimate_data(const ReducedModel& m) {
   const EstimateData& e = m.estimate;
@@ -155,4 +160,4 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   return est;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

@@ -11,7 +11,7 @@
 #include "contactrb/model/error_estimate_data.hpp"
 #include "contactrb/model/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 // One online answer's estimate (OnlineSolution::estimate). The energy norm is |v|_A(mu) =
 // sqrt(v' A(mu) v) on the free DOFs. What is bounded and what is estimated: docs/offline-online.md.
@@ -29,7 +29,7 @@ struct ErrorEstimate {
 
 // Throws contactrb::Error naming the first array of model.estimate whose shape disagrees with the
 // model (an empty estimate is accepted: available() is then false).
-void check_estimate_data(const ReducedModel& model);
+void check_estimate_data(const contactrb::model::ReducedModel& model);
 
 // The online evaluation for one set of leading sizes. Not thread-safe (workspaces).
 class ErrorEstimator {
@@ -37,7 +37,7 @@ class ErrorEstimator {
   ErrorEstimator() = default;
   // Copies the leading blocks of model.estimate for (N, R, Mk, Mg) and factors the selected
   // residual columns. The model must have passed check_model.
-  void setup(const ReducedModel& model, int N, int R, int Mk, int Mg);
+  void setup(const contactrb::model::ReducedModel& model, int N, int R, int Mk, int Mg);
   bool available() const { return available_; }
 
   // u_hat (N), lambda_hat (R), phi = (B^kappa)^-1 kappa_hat (Mk) and phi_gamma = (B^gamma)^-1
@@ -61,4 +61,4 @@ class ErrorEstimator {
   Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

@@ -6,7 +6,11 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/online/error_estimator.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ContactSurface;
+using model::ReducedModel;
+using model::kReducedModelFormatVersion;
 
 namespace {
 std::string dims(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + " x " + std::to_string(c); }
@@ -90,4 +94,4 @@ void check_model(const ReducedModel& m) {
   check_estimate_data(m);
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

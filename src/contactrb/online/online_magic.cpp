@@ -8,7 +8,9 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/segment_hit.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ContactSurface;
 
 namespace {
 using Vec2 = Eigen::Vector2d;
@@ -267,4 +269,4 @@ void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd
   }
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

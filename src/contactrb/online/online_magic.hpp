@@ -22,13 +22,13 @@
 #include "contactrb/contact/segment_hit.hpp"
 #include "contactrb/model/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 class MagicPointEvaluator {
  public:
   // kappa_row, gamma_row: magic rows in R_hf numbering; kappa_dof: contact-surface DOFs;
   // Theta_c (n_c x N), lift_c (n_c x J^D): the model's contact-surface rows.
-  void setup(const ContactSurface& surface, const std::vector<int>& kappa_row, const std::vector<int>& kappa_dof,
+  void setup(const model::ContactSurface& surface, const std::vector<int>& kappa_row, const std::vector<int>& kappa_dof,
              const std::vector<int>& gamma_row, const Eigen::MatrixXd& Theta_c);
 
   // Per mu: the contact-surface nodes in Omega(mu), the quadrature at mu (its W pattern decides
@@ -89,4 +89,4 @@ class MagicPointEvaluator {
   std::vector<double> block_bound_;         // squared distance of the current slave node to each box
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

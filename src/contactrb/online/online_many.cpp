@@ -7,7 +7,9 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ReducedModel;
 
 int hardware_jobs() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
@@ -66,4 +68,4 @@ std::vector<QueryAnswer> solve_many(const ReducedModel& model, const OnlineSizes
   return answers;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

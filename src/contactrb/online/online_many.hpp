@@ -15,7 +15,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/model/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 // The number of hardware threads (at least 1): the default of --jobs for many queries.
 int hardware_jobs();
@@ -25,7 +25,7 @@ int hardware_jobs();
 // threads with different i: it may write only what belongs to i. The first exception (of fn or
 // of a solver's construction) is rethrown once every thread has stopped (the others stop taking
 // new chunks). Throws contactrb::Error for jobs < 1 or chunk < 1.
-void for_each_query(const ReducedModel& model, const OnlineSizes& sizes, std::size_t count, int jobs,
+void for_each_query(const contactrb::model::ReducedModel& model, const OnlineSizes& sizes, std::size_t count, int jobs,
                     const std::function<void(OnlineSolver& solver, std::size_t i)>& fn, std::size_t chunk = 16);
 
 // The same with solvers made beforehand (kept across calls: a batch answered chunk by chunk):
@@ -43,7 +43,7 @@ struct QueryAnswer {
 };
 
 // Every point solved with `settings`, answers in the order of `points`.
-std::vector<QueryAnswer> solve_many(const ReducedModel& model, const OnlineSizes& sizes, const OnlineSettings& settings,
-                                    const std::vector<cases::Mu>& points, int jobs);
+std::vector<QueryAnswer> solve_many(const contactrb::model::ReducedModel& model, const OnlineSizes& sizes,
+                                    const OnlineSettings& settings, const std::vector<cases::Mu>& points, int jobs);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

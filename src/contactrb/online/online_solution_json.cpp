@@ -2,7 +2,9 @@
 
 #include "contactrb/cases/parameter_json.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ReducedModel;
 
 namespace {
 
@@ -57,4 +59,4 @@ nlohmann::json answer_json(const std::vector<cases::ParameterSpec>& parameters, 
   return j;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

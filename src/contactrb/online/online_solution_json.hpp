@@ -8,7 +8,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 // The estimate of |u_hf - u_rb|_A(mu) and its parts (docs/offline-online.md): {energy, residual,
 // coercivity, violation, complementarity, multiplier_norm, eim_residual, eim_slack}; null when
@@ -21,11 +21,11 @@ nlohmann::json to_json(const OnlineSolution& solution);
 
 // {N, R, Mk, Mg}: the sizes a solver uses, or a model's maxima.
 nlohmann::json sizes_json(const OnlineSolver& solver);
-nlohmann::json sizes_json(const ReducedModel& model);
+nlohmann::json sizes_json(const contactrb::model::ReducedModel& model);
 
 // The answer at mu: the solution's keys, "mu" (a number for p = 1, else {name: value}) and
 // "sizes".
 nlohmann::json answer_json(const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu,
                            const OnlineSolver& solver, const OnlineSolution& solution);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

@@ -15,7 +15,9 @@
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/online/model_check.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ReducedModel;
 
 namespace {
 // |D|_F below this fraction of its cancellation-free bound: the reduced constraints are blind.
@@ -562,4 +564,4 @@ InitialGuess initial_guess_from_string(const std::string& name) {
   return enum_from_string(name, "initial guess", std::array{InitialGuess::Interpolated, InitialGuess::Zero});
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

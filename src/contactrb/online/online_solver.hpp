@@ -34,7 +34,7 @@
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/nonnegative_qp.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 // -1: the model's maximum.
 struct OnlineSizes {
@@ -117,7 +117,7 @@ class OnlineSolver {
  public:
   // Borrows nothing: copies the leading blocks. Throws contactrb::Error for an inconsistent
   // model or sizes outside [1, max] (R, Mk, Mg may be 0 only when their maximum is 0).
-  explicit OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes = {});
+  explicit OnlineSolver(const contactrb::model::ReducedModel& model, const OnlineSizes& sizes = {});
 
   // Throws contactrb::Error for mu of the wrong size or outside the parameter domain, or invalid
   // settings; non-convergence is a status. The double overload is for one-parameter models.
@@ -195,7 +195,7 @@ class OnlineSolver {
   std::vector<int> kept_rows_;
   std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
   std::vector<int> lac_rows_, lac_positions_;           // LAC: the magic rows, their slave chain positions
-  ContactSurface surface_;
+  contactrb::model::ContactSurface surface_;
   Eigen::MatrixXd Theta_c_;              // n_c x N
   Eigen::MatrixXd lift_c_;               // n_c x J^D
   mesh::Mesh mesh_;                      // contact nodes in Omega(mu) (positions set per solve)
@@ -228,4 +228,4 @@ class OnlineSolver {
   Eigen::VectorXd weight_kept_;          // |I_r|(mu) on the kept rows
 };
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

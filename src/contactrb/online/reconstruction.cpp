@@ -5,7 +5,10 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
+
+using model::ReducedModel;
+using model::ReducedReconstruction;
 
 namespace {
 std::string str(long long v) { return std::to_string(v); }
@@ -59,4 +62,4 @@ void check_reconstruction(const ReducedModel& model, const ReducedReconstruction
   require(rec.kept_rows == model.kept_rows, where + "the kept constraint rows do not match the model's");
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

@@ -9,7 +9,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 namespace {
 
@@ -162,4 +162,4 @@ SampleDistribution::Kind sample_distribution_kind_from_string(const std::string&
   return enum_from_string(name, "sample distribution", std::array{Uniform, Normal});
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

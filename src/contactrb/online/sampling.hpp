@@ -13,7 +13,7 @@
 
 #include "contactrb/cases/parameter.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::online {
 
 struct SampleDistribution {
   enum class Kind { Uniform, Normal };
@@ -52,4 +52,4 @@ struct OutputStats {
 // contactrb::Error for bins < 1.
 OutputStats output_stats(const std::string& name, const std::vector<double>& values, int bins);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::online

@@ -25,7 +25,19 @@
 #include "contactrb/online/model_check.hpp"
 #include "contactrb/online/reconstruction.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
+
+using model::ReducedModel;
+using model::ReducedReconstruction;
+using offline::ProgressMode;
+using offline::project_onto_cone;
+using offline::weighted_norm;
+using online::OnlineSolution;
+using online::OnlineSolver;
+using online::check_model;
+using online::check_reconstruction;
+using online::reconstruct_displacement;
+using online::reconstruct_multipliers;
 
 namespace {
 
@@ -363,4 +375,4 @@ void write_multiplier_csv(const MultiplierProfile& profile, const std::string& p
   csv.write(path);
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

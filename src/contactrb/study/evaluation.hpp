@@ -17,13 +17,13 @@
 #include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 struct EvaluationOptions {
-  OnlineSizes sizes;          // -1: the model's maxima
+  online::OnlineSizes sizes;          // -1: the model's maxima
   int online_repeats = 5;     // the online time is the median over this many solves (>= 1)
   int jobs = 1;               // HF solves in parallel (online timings are taken serially)
-  ProgressMode progress = ProgressMode::None;
+  offline::ProgressMode progress = offline::ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
   std::vector<cases::Mu> multiplier_mus;    // mu points (among the evaluated ones) whose
                                             // multipliers are kept (EvaluationRow::multipliers)
@@ -109,9 +109,9 @@ struct Evaluation {
 // one of `mus`, invalid sizes or options, a reconstruction that does not match the model
 // (sizes), or a case spec whose HF discretization does not match it. A solve that does not
 // converge is not an error: see hf_converged, rb_converged and the summary's failure counts.
-Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction& reconstruction,
-                          const cases::CaseSpec& spec, const std::vector<cases::Mu>& mus,
-                          const EvaluationOptions& options = {});
+Evaluation evaluate_model(const contactrb::model::ReducedModel& model,
+                          const contactrb::model::ReducedReconstruction& reconstruction, const cases::CaseSpec& spec,
+                          const std::vector<cases::Mu>& mus, const EvaluationOptions& options = {});
 
 // CSV (one line per row: mu (p = 1) or one column per parameter, named as the parameter (p > 1),
 // hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
@@ -121,4 +121,4 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
 void write_evaluation_csv(const Evaluation& evaluation, const std::string& path);
 void write_multiplier_csv(const MultiplierProfile& profile, const std::string& path);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

@@ -5,7 +5,10 @@
 #include "contactrb/cases/parameter_json.hpp"
 #include "contactrb/online/online_solution_json.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
+
+using model::ReducedModel;
+using online::sizes_json;
 
 namespace {
 
@@ -85,4 +88,4 @@ nlohmann::json evaluation_json(const Evaluation& e, const ReducedModel& model, c
   return j;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

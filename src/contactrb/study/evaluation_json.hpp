@@ -7,7 +7,7 @@
 
 #include "contactrb/study/evaluation.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 // count, hf_failures, rb_failures, e_ener .. e_peak {max, mean}, e_press_cone {max},
 // median_hf_time_s, median_online_time_s, median_speedup, effectivity {count, min, median, max}.
@@ -22,7 +22,7 @@ nlohmann::json to_json(const EvaluationRow& row, const std::vector<cases::Parame
 // evaluation.json but for what only the command knows (the model's path, the set's name, the
 // multiplier files): case, level, values, parameters (names), sizes, max_sizes, kacanov,
 // online_repeats, jobs, summary.
-nlohmann::json evaluation_json(const Evaluation& evaluation, const ReducedModel& model, const std::vector<cases::Mu>& mus,
-                               const EvaluationOptions& options);
+nlohmann::json evaluation_json(const Evaluation& evaluation, const contactrb::model::ReducedModel& model,
+                               const std::vector<cases::Mu>& mus, const EvaluationOptions& options);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

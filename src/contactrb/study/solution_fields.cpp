@@ -10,7 +10,10 @@
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/vtu_writer.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
+
+using model::ReducedModel;
+using model::ReducedReconstruction;
 
 mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel& model,
                                 const ReducedReconstruction& reconstruction) {
@@ -145,4 +148,4 @@ SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mes
   return files;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

@@ -16,13 +16,13 @@
 #include "contactrb/model/reconstruction.hpp"
 #include "contactrb/model/reduced_model.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 // reconstruction.mesh, or cases::reference_mesh(spec, model.level) when it is empty. Throws contactrb::Error when its DOF count is not
 // the reconstruction's (the case changed since the model was built, e.g. another Gmsh version
 // or an edited .msh file).
-mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel& model,
-                                const ReducedReconstruction& reconstruction);
+mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const contactrb::model::ReducedModel& model,
+                                const contactrb::model::ReducedReconstruction& reconstruction);
 
 // The stress of a P1 displacement, constant per triangle: xx, yy, xy from fem::element_stress;
 // plane strain adds zz = nu (xx + yy) (nu of the triangle's body); von Mises
@@ -78,4 +78,4 @@ SolutionFiles write_solution_fields(const cases::CaseSpec& spec, const mesh::Mes
                                     contact::Discretization discretization, const Eigen::VectorXd& u,
                                     const Eigen::VectorXd& lambda, const std::string& dir);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

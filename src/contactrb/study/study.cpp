@@ -22,7 +22,31 @@
 #include "contactrb/offline/eim_flatten.hpp"
 #include "contactrb/offline/nmf.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
+
+using offline::Compression;
+using offline::CompressionSettings;
+using offline::DualConeMethod;
+using offline::DualConeResult;
+using offline::DualConeSettings;
+using offline::EIMSettings;
+using offline::OfflineReport;
+using offline::OfflineResult;
+using offline::OfflineSettings;
+using offline::ProgressMode;
+using offline::SnapshotRequest;
+using offline::SnapshotRunOptions;
+using offline::build_angle_greedy;
+using offline::build_cpg;
+using offline::build_nmf_cone;
+using offline::build_reduced_model;
+using offline::compress_constraints;
+using offline::eim;
+using offline::flatten_columns;
+using offline::generate_snapshots;
+using offline::make_snapshot_request;
+using offline::nmf;
+using offline::restrict_rows;
 
 namespace {
 
@@ -761,7 +785,7 @@ void markdown_paper_tables(std::ostringstream& md, const StudyResult& r, const S
     md << "\n| " << name << " |";
     for (double e : r.tolerances.table_eps_du) md << " " << r_cell(*h, e) << " |";
   }
-  md << "\n\nPrimal basis size N against eps_POD (Table 4; " << rb::to_string(cpg.settings.inner_product)
+  md << "\n\nPrimal basis size N against eps_POD (Table 4; " << to_string(cpg.settings.inner_product)
      << " inner product, P = " << r.training_mus.size() << "):\n\n| eps_POD |";
   for (double e : r.tolerances.table_eps_pod) md << " " << fmt(e) << " |";
   md << "\n| --- |";
@@ -812,4 +836,4 @@ std::string study_markdown(const StudyResult& r, const std::vector<std::string>&
   return md.str();
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

@@ -20,17 +20,17 @@
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/study/study_configurations.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 // The offline tolerances of a study (absolute, as OfflineSettings) and the tolerance lists of
 // the Table 3/5-style rows (R reaching eps_DU) and of the Table 4-style row (N against eps_POD).
 // The defaults are `contactrb offline`'s (OfflineSettings): a user case gets the same models
 // from `report` as from `offline` (the paper's eps_EIM 1e-2 / 1e-3 give M^g = 0 on user cases).
 struct StudyTolerances {
-  double eps_pod = OfflineSettings{}.eps_pod;
-  double eps_du = OfflineSettings{}.eps_du;
-  double eps_eim_k = OfflineSettings{}.eps_eim_k;
-  double eps_eim_g = OfflineSettings{}.eps_eim_g;
+  double eps_pod = offline::OfflineSettings{}.eps_pod;
+  double eps_du = offline::OfflineSettings{}.eps_du;
+  double eps_eim_k = offline::OfflineSettings{}.eps_eim_k;
+  double eps_eim_g = offline::OfflineSettings{}.eps_eim_g;
   // true: the four tolerances are relative, as `contactrb offline`'s defaults (a case file);
   // false: absolute (the built-in cases, the paper's reading). The tables of report.md
   // (table_eps_du, table_eps_pod: the paper's Tables 3-5) are absolute either way.
@@ -53,7 +53,7 @@ struct StudySettings {
   int level = 0;                                    // mesh refinement level (0: the paper's mesh)
   std::optional<contact::Discretization> constraint;  // empty: the case's
   StudyTolerances tolerances;
-  InnerProduct inner_product = InnerProduct::Energy;
+  offline::InnerProduct inner_product = offline::InnerProduct::Energy;
   bool compression = true;
   // Parameter sets: the case's "training" set, and its "verification" set when it has one.
   // max_*: keep at most that many values, evenly spaced, both ends included (-1: all;
@@ -75,7 +75,7 @@ struct StudySettings {
   int constraint_comparisons = 4;
   int online_repeats = 5;  // online time: median over this many solves
   int jobs = 1;            // HF solves in parallel
-  ProgressMode progress = ProgressMode::None;
+  offline::ProgressMode progress = offline::ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
 };
 // Throws contactrb::Error naming the first invalid setting.
@@ -85,8 +85,8 @@ void check_settings(const StudySettings& settings);
 struct StudyModel {
   std::string key;    // "cpg" | "angle" | "nmf" | "nmf-truncated" (CSV column values)
   std::string label;  // for tables and legends, e.g. "NMF (R = R_CPG)"
-  OfflineSettings settings;
-  OfflineReport report;
+  offline::OfflineSettings settings;
+  offline::OfflineReport report;
   int N = 0, R = 0, Mk = 0, Mg = 0;
   double dual_error = 0.0;  // max_mu |lambda - Pi_{K_R} lambda|_Lambda on the training set at its R
   Evaluation training;
@@ -159,4 +159,4 @@ std::vector<std::string> study_warnings(const StudyResult& result);
 // Table 3/4/5-style rows; `figures` (PNG file names, relative to the report) are linked.
 std::string study_markdown(const StudyResult& result, const std::vector<std::string>& figures);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

@@ -7,7 +7,7 @@
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 namespace {
 
@@ -120,4 +120,4 @@ std::vector<std::string> write_configuration_files(const std::vector<DeformedCon
   return files;
 }
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

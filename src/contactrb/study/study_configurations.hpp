@@ -11,7 +11,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
-namespace contactrb::rb {
+namespace contactrb::study {
 
 // Omega(mu) (the mapped mesh) and the total HF displacement at mu.
 struct DeformedConfiguration {
@@ -59,4 +59,4 @@ std::vector<std::string> write_configuration_files(const std::vector<DeformedCon
                                                    const std::vector<ConstraintComparison>& comparisons,
                                                    const std::string& dir);
 
-}  // namespace contactrb::rb
+}  // namespace contactrb::study

@@ -22,9 +22,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const contactrb::rb::ReducedModel model = contactrb::io::read_reduced_model_file(argv[1]);
-    contactrb::rb::OnlineSolver solver(model);
-    const contactrb::rb::OnlineSolution solution = solver.solve(std::stod(argv[2]));
+    const contactrb::model::ReducedModel model = contactrb::io::read_reduced_model_file(argv[1]);
+    contactrb::online::OnlineSolver solver(model);
+    const contactrb::online::OnlineSolution solution = solver.solve(std::stod(argv[2]));
     if (!solution.converged()) {
       std::fprintf(stderr, "consumer: not converged: %s\n", solution.message.c_str());
       return 1;
