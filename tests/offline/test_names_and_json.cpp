@@ -96,7 +96,8 @@ TEST(EnumNames, EveryEnumOfTheMethodReadsBackItsNames) {
                          linearization_method_from_string);
   expect_names_read_back(std::array{hf::HFMethod::Newton, hf::HFMethod::Kacanov}, hf::hf_method_from_string);
   expect_names_read_back(std::array{cases::MeshFile::Required, cases::MeshFile::Optional}, cases::mesh_file_from_string);
-  using namespace rb;
+  using namespace online;
+  using namespace offline;
   expect_names_read_back(std::array{OnlineIteration::Automatic, OnlineIteration::Relaxed, OnlineIteration::Accelerated},
                          online_iteration_from_string);
   expect_names_read_back(std::array{InitialGuess::Interpolated, InitialGuess::Zero}, initial_guess_from_string);

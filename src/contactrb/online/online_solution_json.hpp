@@ -6,7 +6,7 @@
 
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/online/online_solver.hpp"
-#include "contactrb/online/reduced_model.hpp"
+#include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::online {
 
