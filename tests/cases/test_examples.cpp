@@ -87,3 +87,31 @@ TEST(Examples, MshCaseRejectsRefinementAndMissingGroups) {
   spec.mesh.slave_group = "upper_side";
   EXPECT_THROW(cases::reference_mesh(spec), Error);
 }
+
+// A parameter domain and the loads it scales are capped like the case's other data (1e50): a
+// traction parameter on [0, 1e60], or a pressure of 1e40 scaled by a q up to 1e20, is refused.
+TEST(Examples, TractionDomainsAreCappedLikeTheOtherData) {
+  cases::CaseSpec spec = cases::case_from_toml_file(example("two-block-traction"));
+  EXPECT_NO_THROW(cases::check_case_spec(spec));
+  const auto q = static_cast<std::size_t>(cases::parameter_index(spec.parameters, "q"));
+  cases::CaseSpec wide = spec;
+  wide.parameters[q].max = 1e60;
+  try {
+    cases::check_case_spec(wide);
+    ADD_FAILURE() << "a domain up to 1e60 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("parameter 'q': domain [") , std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reaches above 1e50 in magnitude"), std::string::npos) << e.what();
+  }
+  cases::CaseSpec heavy = spec;
+  heavy.parameters[q].max = 1e20;
+  for (cases::TractionSpec& t : heavy.tractions) t.pressure = 1e40;
+  try {
+    cases::check_case_spec(heavy);
+    ADD_FAILURE() << "a load reaching 1e60 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the load scaled by 'q' reaches 1e+60 on the parameter domain, above 1e50"),
+              std::string::npos)
+        << e.what();
+  }
+}

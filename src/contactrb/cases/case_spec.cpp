@@ -284,6 +284,12 @@ void check_traction(const CaseSpec& c, const TractionSpec& t, std::vector<bool>&
                 where);
     }
     used[static_cast<std::size_t>(t.parameter)] = true;
+    const double scaled = size * std::max(std::abs(k.min), std::abs(k.max));
+    if (!(scaled <= kMaxDataMagnitude)) {
+      fail_case(on + ": the load scaled by '" + k.name + "' reaches " + shortest(scaled) +
+                    " on the parameter domain, above 1e50 (change the units)",
+                where);
+    }
   }
   if (t.body != -1) return;
   for (const ParameterSpec& k : c.parameters) {
@@ -310,6 +316,15 @@ void check_parameters_used(const CaseSpec& c, const std::vector<bool>& used, con
     if (q.kind == ParameterKind::BodyForce && c.bodies[static_cast<std::size_t>(q.body)].load.isZero(0.0)) {
       fail_case("parameter '" + q.name + "' of kind 'body-force' on a body without load (give the body a load vector)",
                 where);
+    }
+    if (q.kind == ParameterKind::BodyForce) {
+      const double scaled = c.bodies[static_cast<std::size_t>(q.body)].load.cwiseAbs().maxCoeff() *
+                            std::max(std::abs(q.min), std::abs(q.max));
+      if (!(scaled <= kMaxDataMagnitude)) {
+        fail_case("the body load scaled by '" + q.name + "' reaches " + shortest(scaled) +
+                      " on the parameter domain, above 1e50 (change the units)",
+                  where);
+      }
     }
   }
 }

@@ -78,6 +78,12 @@ void check_parameter_spec(const ParameterSpec& p, const std::string& context) {
   const std::string which = "parameter '" + p.name + "'";
   require(std::isfinite(p.min) && std::isfinite(p.max) && p.min <= p.max,
           which + ": domain [" + exact_text(p.min) + ", " + exact_text(p.max) + "] is not an interval" + where);
+  // The data a parameter multiplies (case_spec.cpp) are capped at this magnitude too.
+  constexpr double kMaxParameterMagnitude = 1e50;
+  require(std::abs(p.min) <= kMaxParameterMagnitude && std::abs(p.max) <= kMaxParameterMagnitude,
+          which + ": domain [" + exact_text(p.min) + ", " + exact_text(p.max) +
+              "] reaches above 1e50 in magnitude (products with the case's data would overflow double precision: "
+              "change the units)" + where);
   require(std::isfinite(p.reference) && p.reference >= p.min && p.reference <= p.max,
           which + ": reference value " + exact_text(p.reference) + " is outside the domain" + where);
   if (has_body(p.kind)) {
