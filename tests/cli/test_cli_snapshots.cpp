@@ -96,3 +96,14 @@ TEST(CliSnapshots, BadInputsGiveOneClearError) {
   EXPECT_NE(run_cli("snapshots --case hertz-a --case-file x.toml" + out).exit_code, 0);
   EXPECT_EQ(entries(dir.path()), 0);
 }
+
+// Progress lines print mu with at most six significant digits: hertz-b's training value
+// 0.905 + 0.01 * 10.5 is 1.0100000000000002 in double precision and reads "mu = 1.01".
+TEST(CliSnapshots, ProgressLinesPrintMuWithSixSignificantDigits) {
+  contactrb::test::TempDir dir("snapshots_digits");
+  const CliResult r = run_cli("snapshots --case hertz-b --values 1.0100000000000002 --out " +
+                              shell_quote((dir.path() / "s.h5").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("mu = 1.01 "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("1.0100000000000002"), std::string::npos) << r.err;
+}

@@ -11,6 +11,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::cases {
 
@@ -162,6 +163,13 @@ std::string mu_text(const std::vector<ParameterSpec>& parameters, const Mu& mu) 
     s += exact_text(mu(k));
   }
   return s;
+}
+
+std::string mu_short_text(const Mu& mu) {
+  if (mu.size() == 1) return number_text(mu(0));
+  std::string s = "(";
+  for (Eigen::Index k = 0; k < mu.size(); ++k) s += (k > 0 ? ", " : "") + number_text(mu(k));
+  return s + ")";
 }
 
 std::string mu_values_text(const Mu& mu) {

@@ -85,6 +85,8 @@ int parameter_index(const std::vector<ParameterSpec>& parameters, const std::str
 std::string mu_text(const std::vector<ParameterSpec>& parameters, const Mu& mu);
 // "0.3" for p = 1, "(0.3, 1.2)" otherwise.
 std::string mu_values_text(const Mu& mu);
+// mu_values_text with six significant digits (common/number_text.hpp): progress lines.
+std::string mu_short_text(const Mu& mu);
 
 // Throws contactrb::Error naming `context` and the first position where `values` does not
 // strictly increase.

@@ -124,7 +124,7 @@ class GreedyProgress {
   GreedyProgress(ProgressMode mode, std::ostream* stream) : stream_(stream ? stream : &std::cerr), on_(mode != ProgressMode::None) {}
   void start(const GreedyMu& mu, int index, int count, const io::Snapshot& s) {
     if (!on_) return;
-    *stream_ << "greedy: start at mu = " << mu_text(mu) << " (training point " << index << " of " << count << "), HF "
+    *stream_ << "greedy: start at mu = " << cases::mu_short_text(mu) << " (training point " << index << " of " << count << "), HF "
              << (s.converged ? "converged in " + std::to_string(s.iterations) + " iterations" : "FAILED (" + s.status + ")")
              << ", " << std::fixed << std::setprecision(3) << s.time_s << " s" << std::defaultfloat
              << std::setprecision(6) << "\n"
@@ -135,7 +135,7 @@ class GreedyProgress {
     std::ostream& os = *stream_;
     os << "greedy step " << r.step << ": " << r.snapshots << " snapshots, N " << r.N << ", R " << r.R << ", Mk " << r.Mk
        << ", Mg " << r.Mg << ", max estimate " << std::setprecision(3) << r.max_estimate << " at mu = "
-       << mu_text(r.argmax_mu);
+       << cases::mu_short_text(r.argmax_mu);
     if (r.online_failures > 0) os << " (" << r.online_failures << " online failures)";
     os << std::fixed << std::setprecision(3) << ", build " << r.build_s << " s, sweep " << r.sweep_s << " s";
     if (r.chosen >= 0) {

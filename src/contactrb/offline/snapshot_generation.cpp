@@ -160,7 +160,7 @@ class Progress {
          << std::fixed << std::setprecision(1) << seconds_since(start_) << " s" << std::defaultfloat
          << std::setprecision(6) << (done_ == total_ ? "\n" : "") << std::flush;
     } else {
-      os << "snapshot " << done_ << "/" << total_ << ": mu = " << cases::mu_values_text(s.mu) << " ";
+      os << "snapshot " << done_ << "/" << total_ << ": mu = " << cases::mu_short_text(s.mu) << " ";
       if (s.converged) {
         os << "converged in " << s.iterations << " iterations";
       } else {

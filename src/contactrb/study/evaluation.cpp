@@ -87,7 +87,7 @@ class Progress {
          << seconds_since(start_) << " s" << std::defaultfloat << std::setprecision(6) << (done_ == total_ ? "\n" : "")
          << std::flush;
     } else {
-      os << "evaluate " << done_ << "/" << total_ << ": mu = " << cases::mu_values_text(row.mu) << " HF "
+      os << "evaluate " << done_ << "/" << total_ << ": mu = " << cases::mu_short_text(row.mu) << " HF "
          << (row.hf_converged ? "converged in " + std::to_string(row.hf_iterations) + " iterations" : "FAILED (" + row.hf_status + ")")
          << ", " << std::fixed << std::setprecision(3) << row.hf_time_s << " s" << std::defaultfloat
          << std::setprecision(6) << ", e_displ " << row.e_displ << "\n"
