@@ -338,6 +338,9 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
                             shell_quote(dir_->file("no/dir/m.h5"))),
                     "does not exist");
   EXPECT_NE(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n 3 --eps-pod 1e-3" + out).exit_code, 0);
+  // Numbers in messages have six significant digits (a fixed-point 1e300 has 300 digits).
+  expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --eps-eim-k 1e300" + out),
+                    "eps_eim_k = 1e+300 is above max |kappa|");
   EXPECT_FALSE(fs::exists(dir_->file("bad.h5")));
 }
 

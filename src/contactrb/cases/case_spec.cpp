@@ -10,6 +10,7 @@
 #include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/geometries.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::cases {
 
@@ -197,10 +198,10 @@ void check_mesh_spec(const MeshSpec& m, const std::string& where) {
 
 void check_body(const BodySpec& b, const std::string& body, const std::string& where) {
   if (!(std::isfinite(b.E) && b.E > 0.0)) {
-    fail_case(body + ": Young's modulus E must be > 0 (got " + std::to_string(b.E) + ")", where);
+    fail_case(body + ": Young's modulus E must be > 0 (got " + number_text(b.E) + ")", where);
   }
   if (!(std::isfinite(b.nu) && b.nu > -1.0 && b.nu < 0.5)) {
-    fail_case(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + std::to_string(b.nu) + ")", where);
+    fail_case(body + ": Poisson's ratio nu must be in (-1, 0.5) (got " + number_text(b.nu) + ")", where);
   }
   if (b.nu > 0.5 - kIncompressibleMargin) {
     fail_case(body + ": Poisson's ratio nu = " + shortest(b.nu) +

@@ -22,7 +22,7 @@ namespace {
 std::string exact_text(double v) {
   std::array<char, 32> buf{};
   const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  if (ec != std::errc()) return std::to_string(v);
+  if (ec != std::errc()) return number_text(v);
   return std::string(buf.data(), end);
 }
 

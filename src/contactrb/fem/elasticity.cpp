@@ -8,6 +8,7 @@
 #include "contactrb/fem/p1_element.hpp"
 #include "contactrb/fem/quadrature.hpp"
 #include "contactrb/fem/sparsity.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::fem {
 namespace {
@@ -64,9 +65,9 @@ double Material::lame_mu() const { return E / (2.0 * (1.0 + nu)); }
 
 void check_material(const Material& material) {
   require(std::isfinite(material.E) && material.E > 0.0,
-          "material: Young modulus E = " + std::to_string(material.E) + " must be finite and > 0");
+          "material: Young modulus E = " + number_text(material.E) + " must be finite and > 0");
   require(std::isfinite(material.nu) && material.nu > -1.0 && material.nu < 0.5,
-          "material: Poisson ratio nu = " + std::to_string(material.nu) + " must lie in (-1, 0.5)");
+          "material: Poisson ratio nu = " + number_text(material.nu) + " must lie in (-1, 0.5)");
 }
 
 SparseMatrix stiffness_body(const mesh::Mesh& mesh, int body, const Material& material) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::fem {
 namespace {
@@ -21,7 +22,7 @@ P1Triangle p1_triangle(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, con
   const Eigen::Vector2d e1 = p1 - p0, e2 = p2 - p0;
   const double twice_area = e1.x() * e2.y() - e2.x() * e1.y();
   if (!(twice_area > 0.0)) {  // message built only on failure (hot path)
-    throw Error("p1_triangle: triangle is not counter-clockwise (signed area " + std::to_string(0.5 * twice_area) +
+    throw Error("p1_triangle: triangle is not counter-clockwise (signed area " + number_text(0.5 * twice_area) +
                 ")");
   }
   P1Triangle t;

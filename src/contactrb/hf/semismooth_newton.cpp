@@ -5,6 +5,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/newton_steps.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::hf {
 
@@ -40,30 +41,30 @@ void check_settings(const NewtonSettings& s) {
   const NewtonTuning& t = s.tuning;
   require(t.blas_threads >= 0, "Newton blas_threads must be >= 0 (got " + std::to_string(t.blas_threads) + ")");
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
-          "Newton tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
+          "Newton tolerance must be > 0 (got " + number_text(s.tolerance) + ")");
   require(s.max_iterations >= 1, "Newton max_iterations must be >= 1 (got " + std::to_string(s.max_iterations) + ")");
   require(std::isfinite(t.armijo) && t.armijo > 0.0 && t.armijo < 0.5,
-          "Newton armijo must be in (0, 1/2) (got " + std::to_string(t.armijo) + ")");
+          "Newton armijo must be in (0, 1/2) (got " + number_text(t.armijo) + ")");
   require(std::isfinite(t.min_step) && t.min_step > 0.0 && t.min_step <= 1.0,
-          "Newton min_step must be in (0, 1] (got " + std::to_string(t.min_step) + ")");
+          "Newton min_step must be in (0, 1] (got " + number_text(t.min_step) + ")");
   require(t.max_inner_iterations >= 1,
           "Newton max_inner_iterations must be >= 1 (got " + std::to_string(t.max_inner_iterations) + ")");
   require(std::isfinite(t.min_rcond) && t.min_rcond >= 0.0 && t.min_rcond < 1.0,
-          "Newton min_rcond must be in [0, 1) (got " + std::to_string(t.min_rcond) + ")");
+          "Newton min_rcond must be in [0, 1) (got " + number_text(t.min_rcond) + ")");
   require(t.krylov_max_iterations >= 0,
           "Newton krylov_max_iterations must be >= 0 (got " + std::to_string(t.krylov_max_iterations) + ")");
   require(std::isfinite(t.krylov_tolerance) && t.krylov_tolerance > 0.0 && t.krylov_tolerance < 1.0,
-          "Newton krylov_tolerance must be in (0, 1) (got " + std::to_string(t.krylov_tolerance) + ")");
+          "Newton krylov_tolerance must be in (0, 1) (got " + number_text(t.krylov_tolerance) + ")");
   require(t.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(t.max_free_steps) + ")");
   require(t.max_branch_passes >= 0,
           "Newton max_branch_passes must be >= 0 (got " + std::to_string(t.max_branch_passes) + ")");
   require(std::isfinite(t.kacanov_safeguard) && t.kacanov_safeguard >= 0.0,
-          "Newton kacanov_safeguard must be >= 0 (got " + std::to_string(t.kacanov_safeguard) + ")");
+          "Newton kacanov_safeguard must be >= 0 (got " + number_text(t.kacanov_safeguard) + ")");
   require(t.switch_passes >= 1, "Newton switch_passes must be >= 1 (got " + std::to_string(t.switch_passes) + ")");
   require(t.chord_steps >= 0, "Newton chord_steps must be >= 0 (got " + std::to_string(t.chord_steps) + ")");
   require(t.max_newton_passes >= 1,
           "Newton max_newton_passes must be >= 1 (got " + std::to_string(t.max_newton_passes) + ")");
-  require(t.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + std::to_string(t.branch_passes_below) + ")");
+  require(t.branch_passes_below >= 0.0, "Newton branch_passes_below must be >= 0 (got " + number_text(t.branch_passes_below) + ")");
 }
 
 // The method of docs/theory.md, "Semi-smooth Newton": its steps are NewtonSolve's

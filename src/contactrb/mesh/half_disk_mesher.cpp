@@ -6,11 +6,12 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/gmsh_session.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::mesh::detail {
 
 Mesh mesh_half_disk(const HalfDiskSpec& spec) {
-  require(spec.radius > 0.0, "half-disk radius must be positive (got " + std::to_string(spec.radius) + ")");
+  require(spec.radius > 0.0, "half-disk radius must be positive (got " + number_text(spec.radius) + ")");
   require(spec.arc_nodes >= 3, "half-disk arc needs at least 3 nodes (got " + std::to_string(spec.arc_nodes) + ")");
   const double R = spec.radius;
   const Eigen::Vector2d& c = spec.center;
@@ -43,7 +44,7 @@ Mesh mesh_half_disk(const HalfDiskSpec& spec) {
     mesh_2d({ramp});
     return extract_mesh({{surface, spec.body}}, {{spec.arc_group, arc}, {spec.flat_group, {flat}}});
   } catch (...) {
-    rethrow_as_error("meshing a half-disk of radius " + std::to_string(R));
+    rethrow_as_error("meshing a half-disk of radius " + number_text(R));
   }
 }
 

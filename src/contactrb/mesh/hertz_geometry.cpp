@@ -6,6 +6,7 @@
 #include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/half_disk_mesher.hpp"
 #include "contactrb/mesh/structured.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::mesh {
 
@@ -51,9 +52,9 @@ int hertz_arc_nodes_for_level(int level) {
 }
 
 Mesh generate_hertz(const HertzGeometry& g) {
-  require(g.R1 > 0.0 && g.R2 > 0.0, "Hertz radii must be positive (R1 = " + std::to_string(g.R1) +
-                                        ", R2 = " + std::to_string(g.R2) + ")");
-  require(g.gap >= 0.0, "Hertz gap must be >= 0 (got " + std::to_string(g.gap) + ")");
+  require(g.R1 > 0.0 && g.R2 > 0.0, "Hertz radii must be positive (R1 = " + number_text(g.R1) +
+                                        ", R2 = " + number_text(g.R2) + ")");
+  require(g.gap >= 0.0, "Hertz gap must be >= 0 (got " + number_text(g.gap) + ")");
   require(g.slave_arc_nodes >= 3,
           "Hertz slave_arc_nodes must be >= 3 (got " + std::to_string(g.slave_arc_nodes) + ")");
   detail::HalfDiskSpec upper;

@@ -13,6 +13,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/mesh/msh_io.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::mesh {
 
@@ -336,7 +337,7 @@ std::unordered_map<long long, int> read_nodes(const MshContent& c, const std::st
   const double z0 = c.node_coords.empty() ? 0.0 : c.node_coords.begin()->second.z();
   for (const auto& [tag, x] : c.node_coords) {
     if (used.count(tag) != 0 && std::abs(x.z() - z0) > 1e-12 * (1.0 + std::abs(x.x()) + std::abs(x.y()))) {
-      throw Error(where + "node " + std::to_string(tag) + " is off the plane z = " + std::to_string(z0) +
+      throw Error(where + "node " + std::to_string(tag) + " is off the plane z = " + number_text(z0) +
                   " (a 2D mesh is required)");
     }
   }

@@ -8,6 +8,7 @@
 #include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/gmsh_session.hpp"
 #include "contactrb/mesh/structured.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::mesh {
 
@@ -118,14 +119,14 @@ Mesh mesh_block(const RingBlockGeometry& g) {
 }  // namespace
 
 Mesh generate_ring_block(const RingBlockGeometry& g) {
-  require(g.R_out > 0.0, "ring-block R_out must be positive (got " + std::to_string(g.R_out) + ")");
+  require(g.R_out > 0.0, "ring-block R_out must be positive (got " + number_text(g.R_out) + ")");
   require(g.thickness > 0.0 && g.thickness < g.R_out,
-          "ring-block thickness must be in (0, R_out) (got " + std::to_string(g.thickness) + ")");
-  require(g.gap >= 0.0, "ring-block gap must be >= 0 (got " + std::to_string(g.gap) + ")");
+          "ring-block thickness must be in (0, R_out) (got " + number_text(g.thickness) + ")");
+  require(g.gap >= 0.0, "ring-block gap must be >= 0 (got " + number_text(g.gap) + ")");
   require(g.block_width > 2.0 * g.R_out,
           "ring-block block_width must exceed the ring's outer diameter 2 R_out (got " +
-              std::to_string(g.block_width) + ")");
-  require(g.block_height > 0.0, "ring-block block_height must be positive (got " + std::to_string(g.block_height) + ")");
+              number_text(g.block_width) + ")");
+  require(g.block_height > 0.0, "ring-block block_height must be positive (got " + number_text(g.block_height) + ")");
   require(g.slave_arc_nodes >= 3, "ring-block slave_arc_nodes must be >= 3 (got " +
                                       std::to_string(g.slave_arc_nodes) + ")");
   require(g.master_edge_nodes >= 6, "ring-block master_edge_nodes must be >= 6 (got " +

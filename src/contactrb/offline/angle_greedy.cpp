@@ -8,6 +8,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 #include "contactrb/offline/cpg.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -91,7 +92,7 @@ DualConeResult build_angle_greedy(const Eigen::MatrixXd& snapshots, const DualCo
   check_settings(gs);
   require(settings.cone_history || gs.tolerance == 0.0,
           "angle-greedy: the stopping test (58) reads the true cone-projection errors, so cone_history = false "
-          "needs tolerance 0 (a fixed size), got tolerance " + std::to_string(gs.tolerance));
+          "needs tolerance 0 (a fixed size), got tolerance " + number_text(gs.tolerance));
   DualConeResult out;
   out.method = DualConeMethod::AngleGreedy;
   auto t0 = Clock::now();

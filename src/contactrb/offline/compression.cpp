@@ -4,6 +4,7 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -18,7 +19,7 @@ void check_rows(const char* who, Eigen::Index n, const std::vector<int>& rows) {
 std::vector<int> active_constraints(const Eigen::MatrixXd& multipliers, double threshold) {
   require(multipliers.allFinite(), "active_constraints: the multipliers have non-finite entries");
   require(std::isfinite(threshold) && threshold >= 0.0,
-          "active_constraints: threshold must be finite and >= 0, got " + std::to_string(threshold));
+          "active_constraints: threshold must be finite and >= 0, got " + number_text(threshold));
   std::vector<int> active;
   for (Eigen::Index r = 0; r < multipliers.rows(); ++r)
     if (multipliers.cols() > 0 && multipliers.row(r).maxCoeff() > threshold) active.push_back(static_cast<int>(r));

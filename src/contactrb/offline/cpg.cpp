@@ -5,6 +5,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -28,7 +29,7 @@ void check_dual_snapshots(const char* who, const Eigen::MatrixXd& snapshots, con
                                      ") have non-finite entries");
   require(snapshots.size() == 0 || snapshots.minCoeff() >= 0.0,
           std::string(who) + ": the multiplier snapshots must be >= 0 (pressures), min entry is " +
-              std::to_string(snapshots.size() ? snapshots.minCoeff() : 0.0));
+              number_text(snapshots.size() ? snapshots.minCoeff() : 0.0));
   require(weights.size() == 0 || weights.size() == snapshots.rows(),
           std::string(who) + ": the Lambda weights have size " + std::to_string(weights.size()) +
               " but the snapshots have " + std::to_string(snapshots.rows()) + " rows (must be empty or match)");

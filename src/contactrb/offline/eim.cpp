@@ -5,15 +5,16 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
 void check_settings(const EIMSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
-          "eim: tolerance must be finite and >= 0, got " + std::to_string(s.tolerance));
+          "eim: tolerance must be finite and >= 0, got " + number_text(s.tolerance));
   require(s.max_size >= -1, "eim: max_size must be >= -1 (-1: no limit), got " + std::to_string(s.max_size));
   require(std::isfinite(s.rank_tolerance) && s.rank_tolerance >= 0.0 && s.rank_tolerance < 1.0,
-          "eim: rank_tolerance must lie in [0, 1), got " + std::to_string(s.rank_tolerance));
+          "eim: rank_tolerance must lie in [0, 1), got " + number_text(s.rank_tolerance));
 }
 
 EIMProblem::EIMProblem(const Eigen::MatrixXd& F) : residual_(F), Q_(F.rows(), 0), norms_(F.cols()) {

@@ -6,6 +6,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -45,10 +46,10 @@ GreedyStatus greedy_status_from_string(const std::string& name) {
 
 void check_settings(const GreedySettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
-          "greedy: tolerance must be finite and >= 0, got " + std::to_string(s.tolerance));
+          "greedy: tolerance must be finite and >= 0, got " + number_text(s.tolerance));
   require(s.max_size >= -1, "greedy: max_size must be >= -1 (-1: no limit), got " + std::to_string(s.max_size));
   require(std::isfinite(s.exhaustion_tolerance) && s.exhaustion_tolerance >= 0.0,
-          "greedy: exhaustion_tolerance must be finite and >= 0, got " + std::to_string(s.exhaustion_tolerance));
+          "greedy: exhaustion_tolerance must be finite and >= 0, got " + number_text(s.exhaustion_tolerance));
 }
 
 GreedyResult run_greedy(GreedyProblem& problem, const GreedySettings& settings) {

@@ -8,6 +8,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/offline/cone_projection.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -77,9 +78,9 @@ NMFStatus nmf_status_from_string(const std::string& name) {
 void check_settings(const NMFSettings& s) {
   require(s.max_iterations >= 1, "nmf: max_iterations must be >= 1, got " + std::to_string(s.max_iterations));
   require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
-          "nmf: tolerance must be finite and >= 0, got " + std::to_string(s.tolerance));
+          "nmf: tolerance must be finite and >= 0, got " + number_text(s.tolerance));
   require(std::isfinite(s.epsilon) && s.epsilon > 0.0,
-          "nmf: epsilon must be finite and > 0, got " + std::to_string(s.epsilon));
+          "nmf: epsilon must be finite and > 0, got " + number_text(s.epsilon));
 }
 
 NMFResult nmf(const Eigen::MatrixXd& T, int R, const NMFSettings& settings) {

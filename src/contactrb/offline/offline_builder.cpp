@@ -26,6 +26,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/model_check.hpp"
 #include "contactrb/offline/pod.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -260,10 +261,10 @@ PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<d
   pod_settings.max_modes = settings.pod_modes;
   out.pod = pod(out.U0, inner, pod_settings);
   const PODResult& r = out.pod;
-  require(r.N >= 1, "offline: POD kept no mode (eps_pod = " + std::to_string(settings.eps_pod) +
+  require(r.N >= 1, "offline: POD kept no mode (eps_pod = " + number_text(settings.eps_pod) +
                         (settings.eps_pod_relative ? " relative" : " absolute") +
                         " above every singular value, largest " +
-                        std::to_string(r.singular_values.size() ? r.singular_values(0) : 0.0) + ")");
+                        number_text(r.singular_values.size() ? r.singular_values(0) : 0.0) + ")");
   report.singular_values = r.singular_values;
   report.N_pod = r.N;
   report.pod_threshold = r.threshold;
@@ -359,8 +360,8 @@ EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kep
   // M^k = 0 makes D^kappa (54) zero: every online solve would fail (the primal space would not
   // see the contact). Refuse the model rather than write it.
   require(eim_k.size() >= 1, "offline: the EIM of the contact map kappa kept no function (M^k = 0: eps_eim_k = " +
-                                 std::to_string(settings.eps_eim_k) + " is above max |kappa| = " +
-                                 std::to_string(eim_k.errors.empty() ? 0.0 : eim_k.errors.front()) +
+                                 number_text(settings.eps_eim_k) + " is above max |kappa| = " +
+                                 number_text(eim_k.errors.empty() ? 0.0 : eim_k.errors.front()) +
                                  " on the training set, or eim_k_size = 0); lower eps_eim_k");
   report.Mk = eim_k.size();
   report.eim_kappa_errors = eim_k.errors;
@@ -392,7 +393,7 @@ EIMResult eim_gamma_step(const io::SnapshotSet& set, const ReferenceTerms& ref, 
   for (const auto& x : ref.mesh.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
   require(eim_g.size() >= 1 || gamma_max <= kGapRoundoff * extent,
           "offline: the EIM of the gap gamma kept no function (M^g = 0: eps_eim_g = " +
-              std::to_string(settings.eps_eim_g) + " is above max |gamma| = " + std::to_string(gamma_max) +
+              number_text(settings.eps_eim_g) + " is above max |gamma| = " + number_text(gamma_max) +
               " on the training set, or eim_g_size = 0), so the reduced gap would be 0; lower eps_eim_g");
   report.Mg = eim_g.size();
   report.eim_gamma_errors = eim_g.errors;
@@ -570,10 +571,10 @@ ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const Refe
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
 
 void check_settings(const OfflineSettings& s) {
-  require(std::isfinite(s.eps_pod) && s.eps_pod >= 0.0, "offline: eps_pod must be >= 0, got " + std::to_string(s.eps_pod));
+  require(std::isfinite(s.eps_pod) && s.eps_pod >= 0.0, "offline: eps_pod must be >= 0, got " + number_text(s.eps_pod));
   require(s.pod_modes >= -1 && s.pod_modes != 0, "offline: pod_modes must be -1 (by eps_pod) or >= 1, got " +
                                                     std::to_string(s.pod_modes));
-  require(std::isfinite(s.eps_du) && s.eps_du >= 0.0, "offline: eps_du must be >= 0, got " + std::to_string(s.eps_du));
+  require(std::isfinite(s.eps_du) && s.eps_du >= 0.0, "offline: eps_du must be >= 0, got " + number_text(s.eps_du));
   require(s.dual_size >= -1 && s.dual_size != 0, "offline: dual_size must be -1 or >= 1, got " +
                                                     std::to_string(s.dual_size));
   require(std::isfinite(s.eps_eim_k) && s.eps_eim_k >= 0.0, "offline: eps_eim_k must be >= 0");

@@ -20,6 +20,7 @@
 #include "contactrb/common/run_threads.hpp"
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/online/reconstruction.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -187,7 +188,7 @@ GreedyOfflineStatus greedy_offline_status_from_string(const std::string& name) {
 
 void check_settings(const GreedyOfflineSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
-          "greedy: the tolerance must be finite and > 0, got " + std::to_string(s.tolerance));
+          "greedy: the tolerance must be finite and > 0, got " + number_text(s.tolerance));
   require(s.max_hf >= 1, "greedy: the HF budget must be >= 1, got " + std::to_string(s.max_hf));
   require(s.jobs >= 1, "greedy: the number of jobs must be >= 1, got " + std::to_string(s.jobs));
   require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));

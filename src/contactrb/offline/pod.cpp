@@ -9,6 +9,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
 
@@ -91,11 +92,11 @@ PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const 
 
 void check_settings(const PODSettings& s) {
   require(std::isfinite(s.tolerance) && s.tolerance >= 0.0,
-          "pod: tolerance (eps_POD) must be finite and >= 0, got " + std::to_string(s.tolerance));
+          "pod: tolerance (eps_POD) must be finite and >= 0, got " + number_text(s.tolerance));
   require(s.max_modes >= -1, "pod: max_modes must be >= -1 (-1: truncate by tolerance), got " +
                                  std::to_string(s.max_modes));
   require(std::isfinite(s.rank_tolerance) && s.rank_tolerance >= 0.0 && s.rank_tolerance < 1.0,
-          "pod: rank_tolerance must lie in [0, 1), got " + std::to_string(s.rank_tolerance));
+          "pod: rank_tolerance must lie in [0, 1), got " + number_text(s.rank_tolerance));
 }
 
 PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M, const PODSettings& settings) {

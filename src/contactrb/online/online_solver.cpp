@@ -14,6 +14,7 @@
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/online/model_check.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::online {
 
@@ -282,7 +283,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   // not determined by (53): the QP would return round-off over round-off. Fail instead.
   const double d_norm = Dt_.norm();
   if (R_ > 0 && d_norm <= kBlindContactTolerance * d_scale) {
-    message = "the reduced contact operator D^kappa vanishes (|D| = " + std::to_string(d_norm) +
+    message = "the reduced contact operator D^kappa vanishes (|D| = " + number_text(d_norm) +
               "): the primal basis does not see the contact constraints, so the reduced multipliers "
               "are undetermined; rebuild the model with a larger N";
     return false;
@@ -452,8 +453,8 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
   result.iterations = ks.max_iterations;
   const solve::KacanovIteration& last = result.history.back();
   result.message = "Kacanov (accelerated) did not converge in " + std::to_string(ks.max_iterations) +
-                   " iterations (last relative residuals: displacement " + std::to_string(last.du) +
-                   ", multipliers " + std::to_string(last.dlambda) + ", tolerance " + std::to_string(ks.tolerance) + ")";
+                   " iterations (last relative residuals: displacement " + number_text(last.du) +
+                   ", multipliers " + number_text(last.dlambda) + ", tolerance " + number_text(ks.tolerance) + ")";
   return result;
 }
 
@@ -520,7 +521,7 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   if (sol.converged() && (!std::isfinite(sol.energy) || !std::isfinite(sol.contact_force))) {
     sol.status = solve::KacanovStatus::NonFinite;
     sol.message = "the energy or the contact force of the reduced solution is not finite (energy " +
-                  std::to_string(sol.energy) + ", contact force " + std::to_string(sol.contact_force) + ")";
+                  number_text(sol.energy) + ", contact force " + number_text(sol.contact_force) + ")";
   }
   if (check_inf_sup_ && sol.converged()) {
     const double beta = relative_inf_sup();

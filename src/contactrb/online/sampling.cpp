@@ -8,6 +8,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::online {
 
@@ -75,8 +76,8 @@ SampleDistribution parse_distribution(const std::string& text, const std::vector
     const cases::ParameterSpec& q = parameters[k];
     require(d.sd[k] > 0.0, flag + ": the standard deviation of " + q.name + " must be > 0");
     require(d.mean[k] >= q.min && d.mean[k] <= q.max,
-            flag + ": the mean of " + q.name + " is outside the model's domain [" + std::to_string(q.min) + ", " +
-                std::to_string(q.max) + "]");
+            flag + ": the mean of " + q.name + " is outside the model's domain [" + number_text(q.min) + ", " +
+                number_text(q.max) + "]");
   }
   return d;
 }

@@ -5,14 +5,15 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::solve {
 
 void check_settings(const KacanovSettings& s) {
   require(std::isfinite(s.alpha) && s.alpha > 0.0 && s.alpha <= 1.0,
-          "Kacanov relaxation alpha must be in (0, 1] (got " + std::to_string(s.alpha) + ")");
+          "Kacanov relaxation alpha must be in (0, 1] (got " + number_text(s.alpha) + ")");
   require(std::isfinite(s.tolerance) && s.tolerance > 0.0,
-          "Kacanov tolerance must be > 0 (got " + std::to_string(s.tolerance) + ")");
+          "Kacanov tolerance must be > 0 (got " + number_text(s.tolerance) + ")");
   require(s.max_iterations >= 1,
           "Kacanov max_iterations must be >= 1 (got " + std::to_string(s.max_iterations) + ")");
 }

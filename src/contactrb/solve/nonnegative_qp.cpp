@@ -9,6 +9,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::solve {
 
@@ -535,13 +536,13 @@ void validate(const Eigen::MatrixXd& Q, const Eigen::VectorXd& c, const QPSettin
                 std::to_string(settings.max_iterations));
   if (!(std::isfinite(settings.tolerance) && settings.tolerance > 0.0))
     throw Error(std::string(who) + "settings.tolerance must be positive and finite, got " +
-                std::to_string(settings.tolerance));
+                number_text(settings.tolerance));
   if (!(settings.rank_tolerance >= 0.0 && settings.rank_tolerance < 1.0))
     throw Error(std::string(who) + "settings.rank_tolerance must lie in [0, 1), got " +
-                std::to_string(settings.rank_tolerance));
+                number_text(settings.rank_tolerance));
   if (!(settings.symmetry_tolerance >= 0.0))
     throw Error(std::string(who) + "settings.symmetry_tolerance must be >= 0, got " +
-                std::to_string(settings.symmetry_tolerance));
+                number_text(settings.symmetry_tolerance));
   const Eigen::Index n = Q.rows();
   // Vectorized passes first; the offending index is searched only on failure (this runs on
   // every online QP: its cost matters next to the small active-set solve).

@@ -6,6 +6,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/csv_writer.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::study {
 
@@ -31,7 +32,7 @@ ConstraintProfile profile_of(const cases::CaseSpec& spec, const mesh::Mesh& refe
   p.energy = s.energy;
   p.contact_force = s.contact_force;
   require(s.lambda.size() == q.weight.size() && q.center_node.size() == static_cast<std::size_t>(q.weight.size()),
-          "report: the HF multipliers at mu = " + std::to_string(mu) + " do not match the contact quadrature");
+          "report: the HF multipliers at mu = " + number_text(mu) + " do not match the contact quadrature");
   for (Eigen::Index r = 0; r < s.lambda.size(); ++r) {
     p.abscissa.push_back(reference.nodes[static_cast<std::size_t>(q.center_node[static_cast<std::size_t>(r)])].x());
     p.pressure.push_back(s.lambda(r));
@@ -53,7 +54,7 @@ std::vector<DeformedConfiguration> deformed_configurations(const cases::CaseSpec
     c.u = s.u;
     c.converged = s.converged;
     c.status = solve::to_string(s.status);
-    require(c.u.size() == c.mesh.num_dofs(), "report: the HF displacement at mu = " + std::to_string(mu) +
+    require(c.u.size() == c.mesh.num_dofs(), "report: the HF displacement at mu = " + number_text(mu) +
                                                  " does not match the mesh");
     out.push_back(std::move(c));
   }
