@@ -195,7 +195,27 @@ TEST(CaseToml, MeshFileIsResolvedAgainstTheTomlDirectory) {
     cases::case_from_toml_file(path);
     ADD_FAILURE();
   } catch (const Error& e) {
-    expect_mentions(e.what(), {"mesh.file", "m.msh", "not found", "case.toml:5"});
+    expect_mentions(e.what(), {"mesh.file", "m.msh", "does not exist", "case.toml:5"});
+  }
+  // A directory in its place, and a device, are named as such.
+  fs::create_directories(dir / "meshes" / "m.msh");
+  try {
+    cases::case_from_toml_file(path);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    expect_mentions(e.what(), {"mesh.file", "m.msh", "is a directory, not a file", "case.toml:5"});
+  }
+  {
+    std::string device = text;
+    const std::size_t at = device.find("meshes/m.msh");
+    ASSERT_NE(at, std::string::npos) << device;
+    device.replace(at, std::string("meshes/m.msh").size(), "/dev/zero");
+    try {
+      cases::case_from_toml_string(device, path);
+      ADD_FAILURE();
+    } catch (const Error& e) {
+      expect_mentions(e.what(), {"mesh.file", "/dev/zero", "is not a regular file"});
+    }
   }
   fs::remove_all(dir);
   try {

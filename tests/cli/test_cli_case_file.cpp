@@ -106,7 +106,7 @@ TEST(CliCaseFile, WrongTypeIsNamedWithTheFile) {
 TEST(CliCaseFile, MissingMshIsNamedWithTheFile) {
   contactrb::test::TempDir dir("case_file_msh");
   const fs::path f = edited_case(dir.path(), "file = \"two-block-patch.msh\"", "file = \"gone.msh\"");
-  expect_user_error(solve(f, dir.path() / "out"), {"mesh.file", "gone.msh", "not found", "bad-case.toml:"});
+  expect_user_error(solve(f, dir.path() / "out"), {"mesh.file", "gone.msh", "does not exist", "bad-case.toml:"});
 }
 
 TEST(CliCaseFile, MissingCaseFileAndMuOutsideTheDomain) {

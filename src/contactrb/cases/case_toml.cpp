@@ -360,8 +360,13 @@ void Reader::read_mesh(const toml::table& root, CaseSpec& c) const {
   fs::path p(f);
   if (p.is_relative()) p = base_dir_ / p;
   p = p.lexically_normal();
-  std::error_code ec;
-  if (mesh_file_ == MeshFile::Required && !fs::is_regular_file(p, ec)) fail(file, "key 'mesh.file': mesh file " + p.string() + " not found");
+  if (mesh_file_ == MeshFile::Required) {
+    try {
+      check_input_file(p.string(), "mesh file", InputKind::Text);  // missing, a directory, a device, too large
+    } catch (const Error& e) {
+      fail(file, std::string("key 'mesh.file': ") + e.what());
+    }
+  }
   c.mesh.msh_file = p.string();
 }
 
