@@ -94,7 +94,7 @@ def main(argv):
         fig.suptitle(argv[4], fontsize=10)
     fig.tight_layout()
     try:
-        fig.savefig(argv[3], dpi=100)
+        fig.savefig(argv[3], dpi=100, format="png")  # the name may be a temporary without .png
     except OSError as exc:
         fail("cannot write %s: %s" % (argv[3], exc))
 

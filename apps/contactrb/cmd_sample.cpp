@@ -248,14 +248,23 @@ int run_sample(const SampleOptions& opt) {
           << " values)\n";
   }
   {
+    // The statistics, histograms, points and figure appear together or not at all (OutputSet):
+    // the script reads the staged tables and draws into a temporary of the figure.
     const OutputLock lock(std::filesystem::path(opt.out).parent_path());
+    OutputSet outputs;
     stats.write(opt.out);
     hist.write(hist_path);
     if (!opt.points.empty()) write_points(opt.points, model, dist, opt.seed, out, with_peak, opt.gaps);
     if (!script.empty()) {
-      run_python_script(script, {opt.out, hist_path, png_path, input_description(model.parameters, dist, n, opt.seed)},
-                        "the statistics are in " + opt.out + " and " + hist_path + " (or use --no-plot)");
+      remove_stale_temporaries(png_path);
+      const std::filesystem::path png_tmp = temporary_path(png_path);
+      outputs.add(png_tmp, png_path);
+      run_python_script(script,
+                        {outputs.staged(opt.out).string(), outputs.staged(hist_path).string(), png_tmp.string(),
+                         input_description(model.parameters, dist, n, opt.seed)},
+                        "no file was written (--no-plot writes the statistics without the figure)");
     }
+    outputs.commit();
   }
   std::cout << "sample: " << n << " points, " << opt.dist << ", seed " << opt.seed << ", " << jobs
             << (jobs == 1 ? " thread" : " threads") << (world ? " per rank, " + std::to_string(ranks) + " MPI ranks" : "")

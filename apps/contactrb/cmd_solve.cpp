@@ -130,18 +130,14 @@ int run_solve(SolveOptions opt) {
   const hf::HFSolution s = solver.solve(settings, start.guess);
   const mesh::Mesh& m = solver.problem().mesh;
 
-  // The five files of one run are written under a lock on DIR: two runs to the same --out
-  // leave the files of one of them, never a mix (the writes are atomic one by one).
+  // The five files of one run are written under a lock on DIR (two runs to the same --out leave
+  // the files of one of them, never a mix) and committed together (a failed write leaves the
+  // earlier files: common/output_file.hpp, OutputSet).
   const OutputLock lock(opt.out_dir);
+  OutputSet outputs;
   io::write_json(solution_json(opt, solver, s, settings, start), json_path);
-
-  if (s.rows.K.rows() != s.lambda.size() || s.lambda.size() == 0) {
-    // No fields of this run: the files of an earlier run would sit beside its solution.json.
-    for (const std::string& stale : {csv_path, vtu_path, deformed_path, contact_path}) {
-      std::error_code ignored;
-      std::filesystem::remove(stale, ignored);
-    }
-  } else {
+  const bool with_fields = s.rows.K.rows() == s.lambda.size() && s.lambda.size() > 0;
+  if (with_fields) {
     io::CsvWriter csv({"r", "abscissa", "x", "y", "gap", "pressure", "weight"});
     const Eigen::VectorXd slack = s.rows.g - s.rows.K * s.u;  // integrated deformed gap
     const auto& q = solver.quadrature();
@@ -153,6 +149,14 @@ int run_solve(SolveOptions opt) {
     csv.write(csv_path);
     study::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
                                opt.out_dir);
+  }
+  outputs.commit();
+  if (!with_fields) {
+    // No fields of this run: the files of an earlier run would sit beside its solution.json.
+    for (const std::string& stale : {csv_path, vtu_path, deformed_path, contact_path}) {
+      std::error_code ignored;
+      std::filesystem::remove(stale, ignored);
+    }
   }
 
   std::cout << "case " << opt.case_name << ", " << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu)

@@ -6,6 +6,7 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -396,3 +397,73 @@ TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
 }
 
 }  // namespace
+
+namespace {
+
+// A 64 KiB tmpfs mounted on a fresh directory for the lifetime of the object, when this process
+// may mount (root); `mounted()` false otherwise (the test then skips, saying why).
+class SmallDisk {
+ public:
+  explicit SmallDisk(const fs::path& dir) : dir_(dir) {
+    fs::create_directories(dir_);
+    if (::geteuid() != 0) return;
+    mounted_ = contactrb::test::run_shell("mount -t tmpfs -o size=64k contactrb-full-disk " +
+                                          shell_quote(dir_.string()))
+                   .exit_code == 0;
+  }
+  ~SmallDisk() {
+    if (mounted_) contactrb::test::run_shell("umount " + shell_quote(dir_.string()));
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  bool mounted() const { return mounted_; }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    return names;
+  }
+
+ private:
+  fs::path dir_;
+  bool mounted_ = false;
+};
+
+// One "contactrb: error:" line naming the full disk, exit 1, never a signal.
+void expect_no_space(const CliResult& r) {
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // -1 would be a signal (the exit crash of HDF5)
+  EXPECT_EQ(count_lines_starting(r.err, "contactrb: error: "), 1) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
+
+// A full disk: every HDF5 writer (snapshots, offline, merge) ends with one line and exit 1 (an
+// HDF5 file whose flush failed stayed open and crashed the process at exit), the file it
+// replaces keeps its content, and no temporary is left.
+TEST_F(CliFileSafety, FullDiskHdf5WritesEndWithOneLineAndKeepTheOldFile) {
+  const SmallDisk disk(dir_->path() / "full_hdf5");
+  if (!disk.mounted()) GTEST_SKIP() << "needs root to mount a 64 KiB tmpfs";
+  write_bytes(disk.file("m.h5"), "the earlier model");
+  for (int run = 0; run < 3; ++run) {
+    expect_no_space(run_cli("snapshots --case hertz-a --values 0.2,0.3 -q --out " + shell_quote(disk.file("s.h5"))));
+    expect_no_space(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(disk.file("m.h5"))));
+  }
+  EXPECT_EQ(read_bytes(disk.file("m.h5")), "the earlier model");
+  EXPECT_EQ(disk.entries(), std::vector<std::string>{"m.h5"});
+}
+
+// A full disk half way through a set of outputs: none of them appears (solve's solution.json
+// saying "converged" without its fields; sample's statistics without their figure).
+TEST_F(CliFileSafety, FullDiskLeavesNoPartOfAnOutputSet) {
+  const SmallDisk disk(dir_->path() / "full_sets");
+  if (!disk.mounted()) GTEST_SKIP() << "needs root to mount a 64 KiB tmpfs";
+  const CliResult solve = run_cli("solve --case hertz-a --mu 0.3 --out " + shell_quote(disk.file("sol")));
+  EXPECT_EQ(solve.exit_code, 1) << solve.out << solve.err;
+  EXPECT_TRUE(fs::is_empty(disk.file("sol"))) << solve.err;
+  const CliResult sample = run_cli("sample --model " + shell_quote(model_) + " --n 100 --out " +
+                                   shell_quote(disk.file("st.csv")));
+  EXPECT_NE(sample.exit_code, 0) << sample.out << sample.err;
+  EXPECT_EQ(disk.entries(), std::vector<std::string>{"sol"});
+}

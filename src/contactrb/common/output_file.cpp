@@ -104,12 +104,52 @@ void remove_stale_temporaries(const fs::path& target) {
   }
 }
 
+namespace {
+thread_local OutputSet* current_set = nullptr;
+}  // namespace
+
+OutputSet::OutputSet() : outer_(current_set) { current_set = this; }
+
+OutputSet::~OutputSet() {
+  if (current_set == this) current_set = outer_;
+  for (const Staged& s : staged_) remove_quietly(s.tmp);
+}
+
+fs::path OutputSet::staged(const fs::path& target) const {
+  for (auto it = staged_.rbegin(); it != staged_.rend(); ++it) {
+    if (it->target == target) return it->tmp;
+  }
+  return target;
+}
+
+void OutputSet::add(const fs::path& tmp, const fs::path& target) { staged_.push_back({tmp, target}); }
+
+void OutputSet::commit() {
+  // From here on this set stages nothing: later writes of this thread go to the enclosing set,
+  // if any, or straight to their targets.
+  if (current_set == this) current_set = outer_;
+  std::vector<Staged> pending;
+  pending.swap(staged_);
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    try {
+      commit_temporary(pending[i].tmp, pending[i].target);
+    } catch (...) {
+      for (std::size_t j = i + 1; j < pending.size(); ++j) remove_quietly(pending[j].tmp);
+      throw;
+    }
+  }
+}
+
 void commit_temporary(const fs::path& tmp, const fs::path& target) {
   try {
     check_output_target(target);  // a link or device may have appeared while we wrote
   } catch (...) {
     remove_quietly(tmp);
     throw;
+  }
+  if (current_set != nullptr) {
+    current_set->staged_.push_back({tmp, target});
+    return;
   }
   std::error_code ec;
   fs::rename(tmp, target, ec);

@@ -13,6 +13,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace contactrb {
 
@@ -33,8 +34,41 @@ std::filesystem::path temporary_path(const std::filesystem::path& target);
 void remove_stale_temporaries(const std::filesystem::path& target);
 
 // Renames the complete temporary file `tmp` to `target` after check_output_target(target);
-// removes `tmp` and throws contactrb::Error naming `target` when that fails.
+// removes `tmp` and throws contactrb::Error naming `target` when that fails. Inside an
+// OutputSet of this thread the rename waits for OutputSet::commit.
 void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::path& target);
+
+// The files one command writes appear together or not at all (a full disk half way through
+// must not leave a solution.json saying "converged" without its fields). While an OutputSet
+// lives, every complete temporary file this thread hands to commit_temporary (every writer of
+// the library does) stays under its temporary name; commit() renames them all to their
+// targets, in order (a rename within a directory needs no space). An OutputSet destroyed
+// without commit() (an exception) removes them, and the targets keep their earlier contents.
+// One per thread at a time; writes from other threads are committed at once as usual.
+class OutputSet {
+ public:
+  OutputSet();
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  // Where `target`'s content is until commit(): its temporary file when it was written in this
+  // set, else `target` itself (for a program that reads an output of this run, e.g. a plot).
+  std::filesystem::path staged(const std::filesystem::path& target) const;
+  // Adds a temporary file written by other means (a script) to commit as `target`.
+  void add(const std::filesystem::path& tmp, const std::filesystem::path& target);
+  // Renames every staged file to its target. Throws contactrb::Error naming the first target
+  // that cannot be replaced; the files not yet renamed are removed.
+  void commit();
+
+ private:
+  struct Staged {
+    std::filesystem::path tmp, target;
+  };
+  std::vector<Staged> staged_;
+  OutputSet* outer_ = nullptr;
+  friend void commit_temporary(const std::filesystem::path&, const std::filesystem::path&);
+};
 
 // Calls write(stream) on a new temporary file next to `path`, then renames it to `path`.
 // Throws contactrb::Error naming `path` when the target is not a regular file, the directory

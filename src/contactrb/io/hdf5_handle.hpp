@@ -16,11 +16,25 @@ struct Failure {
   std::string what;
 };
 
+// HDF5 closes the identifiers still open at process exit (its atexit handler). A file whose
+// flush failed (a full disk) cannot be closed: its identifier stays open, and closing it again
+// at exit crashes the process or loops ("infinite loop closing library"). Our files are closed
+// explicitly on every successful path, and a failed write's temporary is removed: the handler
+// is not needed, so it is turned off before the library starts (a no-op when it already has).
+inline void no_cleanup_at_exit() {
+  static const bool once = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)once;
+}
+
 // Silences HDF5's automatic error printing for the lifetime of the object and restores the
-// previous handler.
+// previous handler. Every public reader and writer starts with one, before any other HDF5 call.
 class Quiet {
  public:
   Quiet() {
+    no_cleanup_at_exit();
     H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
@@ -33,6 +47,18 @@ class Quiet {
   void* data_ = nullptr;
 };
 
+// The system's message inside an HDF5 description of a failed system call ("file write
+// failed: time = ..., errno = 28, error message = 'No space left on device', buf = ...") or, when
+// there is none, the description itself: one line either way.
+inline std::string system_message(const std::string& desc) {
+  const std::string key = "error message = '";
+  const std::size_t at = desc.find(key);
+  if (at == std::string::npos) return desc;
+  const std::size_t begin = at + key.size();
+  const std::size_t end = desc.find('\'', begin);
+  return end == std::string::npos ? desc : desc.substr(begin, end - begin);
+}
+
 // The innermost description on HDF5's error stack (e.g. "truncated file: eof = ...").
 inline std::string reason() {
   std::string out;
@@ -44,7 +70,7 @@ inline std::string reason() {
         return 0;
       },
       &out);
-  return out;
+  return system_message(out);
 }
 
 inline Failure failure(const std::string& what) {
@@ -103,7 +129,7 @@ class Handle {
   void close(const std::string& what) {
     const herr_t status = close_(id_);
     id_ = -1;
-    if (status < 0) throw Failure{what};
+    if (status < 0) throw failure(what);
   }
 
  private:
