@@ -17,6 +17,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/printable.hpp"
 #include "contactrb/common/version.hpp"
+#include "contactrb/online/online_many.hpp"
 
 namespace {
 
@@ -44,6 +45,32 @@ void refuse_empty_numbers(CLI::App& app, const CLI::Validator& check) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_numbers(*sub, check);
 }
 
+// --jobs above the hardware threads runs no faster and reserves a solver, a buffer and a thread
+// per job (a batch with --jobs 1000000 reserved 7 GB before its first line): every command's
+// --jobs is capped at the hardware threads, with a note. 0 (every thread) and values the
+// command refuses (negative, not a number) pass through to its own check.
+void cap_jobs(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (CLI::Option* jobs = sub->get_option_no_throw("--jobs")) {
+      jobs->transform(CLI::Validator(
+          [name = sub->get_name()](std::string& text) {
+            char* end = nullptr;
+            errno = 0;
+            const long long requested = std::strtoll(text.c_str(), &end, 10);
+            const long long threads = contactrb::online::hardware_jobs();
+            if (end != text.c_str() && *end == '\0' && errno == 0 && requested > threads) {
+              std::cerr << "contactrb: note: " << name << " --jobs " << requested << " is above the " << threads
+                        << " hardware threads of this machine: using " << threads << "\n";
+              text = std::to_string(threads);
+            }
+            return std::string();
+          },
+          "", "jobs cap"));
+    }
+    cap_jobs(*sub);
+  }
+}
+
 }  // namespace
 
 namespace contactrb::app {
@@ -55,6 +82,7 @@ int run_cli(int argc, char** argv, const std::function<std::vector<Command>(CLI:
   app.require_subcommand(0, 1);
   const std::vector<Command> commands = add_commands(app);
   refuse_empty_numbers(app, CLI::Validator(empty_or_underflow, "", "number"));
+  cap_jobs(app);
   try {
     check_names(app, argc, argv);
     app.parse(argc, argv);

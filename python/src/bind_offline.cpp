@@ -43,7 +43,7 @@ contactrb::offline::ProgressMode progress_mode(bool progress) {
 io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request, int jobs, bool progress) {
   require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
   contactrb::offline::SnapshotRunOptions run;
-  run.jobs = jobs;
+  run.jobs = std::min(jobs, contactrb::online::hardware_jobs());  // more threads than the hardware's: no faster
   run.progress = progress_mode(progress);
   py::gil_scoped_release release;
   return contactrb::offline::generate_snapshots(request, run);

@@ -198,7 +198,8 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
   const contactrb::model::ReducedReconstruction* rec =
       fields ? &m.reconstruction_data() : nullptr;  // may read the file
   const Eigen::Index n = P.rows();
-  if (jobs == 0) jobs = online::hardware_jobs();
+  // 0, and any value above the hardware threads (a thread and a solver each, no faster): every thread.
+  if (jobs == 0 || jobs > online::hardware_jobs()) jobs = online::hardware_jobs();
   ManyArrays a(n, rec);
   {
     py::gil_scoped_release release;  // no Python object is touched in the loop

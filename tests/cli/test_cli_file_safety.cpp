@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -466,4 +467,20 @@ TEST_F(CliFileSafety, FullDiskLeavesNoPartOfAnOutputSet) {
                                    shell_quote(disk.file("st.csv")));
   EXPECT_NE(sample.exit_code, 0) << sample.out << sample.err;
   EXPECT_EQ(disk.entries(), std::vector<std::string>{"sol"});
+}
+
+// --jobs above the hardware threads is capped with a note (a batch with --jobs 1000000 reserved a
+// solver per job: 7 GB before its first line).
+TEST_F(CliFileSafety, JobsAboveTheHardwareThreadsAreCappedWithANote) {
+  const std::string input = dir_->file("three_lines.txt");
+  write_bytes(input, "0.2\n0.3\n0.4\n");
+  const CliResult r = run_cli("online --model " + shell_quote(model_) + " --batch " + shell_quote(input) +
+                              " --jobs 1000000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines_of(r.out).size(), 3u) << r.out;
+  const std::string threads = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+  EXPECT_NE(r.err.find("contactrb: note: online --jobs 1000000 is above the " + threads +
+                       " hardware threads of this machine: using " + threads),
+            std::string::npos)
+      << r.err;
 }
