@@ -1,6 +1,8 @@
 // contactrb.snapshots(), contactrb.Snapshots and contactrb.offline(): the library calls of
 // `contactrb snapshots` and `contactrb offline` (POD path and --greedy), apps/contactrb/cmd_snapshots.cpp
 // and cmd_offline.cpp, with the same settings and defaults.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -36,11 +38,17 @@ contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::
   return request;
 }
 
-contactrb::offline::ProgressMode progress_mode(bool progress) {
-  return progress ? contactrb::offline::ProgressMode::Lines : contactrb::offline::ProgressMode::None;
+// None (the default): progress on stderr when it is a terminal (a line updated in place), none
+// otherwise (a script, a notebook, a test); True: a line per solve; False: none.
+contactrb::offline::ProgressMode progress_mode(const std::optional<bool>& progress) {
+  if (!progress) {
+    return ::isatty(STDERR_FILENO) ? contactrb::offline::ProgressMode::Terminal : contactrb::offline::ProgressMode::None;
+  }
+  return *progress ? contactrb::offline::ProgressMode::Lines : contactrb::offline::ProgressMode::None;
 }
 
-io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request, int jobs, bool progress) {
+io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request, int jobs,
+                              const std::optional<bool>& progress) {
   require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
   contactrb::offline::SnapshotRunOptions run;
   run.jobs = std::min(jobs, contactrb::online::hardware_jobs());  // more threads than the hardware's: no faster
@@ -51,7 +59,8 @@ io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request
 
 PySnapshots make_snapshots(PyCase& c, const py::object& set, int jobs, int level,
                            const std::optional<std::string>& constraint, double alpha, double tolerance,
-                           int max_iterations, const std::optional<std::string>& path, bool progress) {
+                           int max_iterations, const std::optional<std::string>& path,
+                           const std::optional<bool>& progress) {
   const contactrb::offline::SnapshotRequest request =
       snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
   PySnapshots s{run_snapshots(request, jobs, progress), {}};
@@ -151,7 +160,8 @@ py::object as_case(const py::object& source) {
 std::shared_ptr<PyModel> offline(const py::object& source, const std::string& method, const py::object& set, int jobs,
                                  int level, const std::optional<std::string>& constraint, double alpha,
                                  double tolerance, int max_iterations, double greedy_tol, int max_hf, int greedy_batch,
-                                 const std::optional<std::string>& path, bool progress, const py::kwargs& kw) {
+                                 const std::optional<std::string>& path, const std::optional<bool>& progress,
+                                 const py::kwargs& kw) {
   for (const auto& item : kw) {
     static const std::vector<std::string> known = {"eps_pod", "N", "inner_product", "dual", "R", "eps_du",
                                                    "eps_eim_k", "eps_eim_g", "absolute_tolerances",
@@ -283,7 +293,7 @@ void bind_offline(py::module_& m) {
   const solve::KacanovSettings k{};
   m.def("snapshots", &make_snapshots, py::arg("case"), py::arg("set") = "training", py::kw_only(), py::arg("jobs") = 1,
         py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha, py::arg("tol") = k.tolerance,
-        py::arg("max_iterations") = k.max_iterations, py::arg("path") = py::none(), py::arg("progress") = false,
+        py::arg("max_iterations") = k.max_iterations, py::arg("path") = py::none(), py::arg("progress") = py::none(),
         "HF snapshots of a case (a Case, or its name or TOML path) over a named parameter set or an (n, p)\n"
         "array of points, on `jobs` threads, as `contactrb snapshots`. Returns a Snapshots; with path=,\n"
         "also writes the snapshot file.");
@@ -293,7 +303,7 @@ void bind_offline(py::module_& m) {
         py::arg("greedy_tol") = contactrb::offline::GreedyOfflineSettings{}.tolerance,
         py::arg("max_hf") = contactrb::offline::GreedyOfflineSettings{}.max_hf,
         py::arg("greedy_batch") = contactrb::offline::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
-        py::arg("progress") = false,
+        py::arg("progress") = py::none(),
         "The offline stage, as `contactrb offline`: returns a Model (saved to path= when given).\n"
         "method='pod': source is a Snapshots, a snapshot file path, or a case (its `set` snapshots are\n"
         "computed first). method='greedy': source is a case; the weak greedy on the error estimate over\n"

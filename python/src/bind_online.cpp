@@ -123,6 +123,20 @@ struct ManyArrays {
   }
 };
 
+// The largest contact pressure max_r (Xi lambda_hat)_r on the HF rows of each converged answer
+// (as `contactrb sample`): NaN for the others, and for all when the model holds no
+// reconstruction data.
+Eigen::VectorXd peak_pressures(PyModel& m, const ManyArrays& a) {
+  Eigen::VectorXd peak = Eigen::VectorXd::Constant(a.L.rows(), kNaN);
+  const bool has_data = m.reconstruction.has_value() || (!m.path.empty() && io::has_reconstruction(m.path));
+  if (!has_data || a.L.cols() == 0) return peak;
+  const Eigen::MatrixXd& Xi = m.reconstruction_data().Xi;
+  for (Eigen::Index i = 0; i < a.L.rows(); ++i) {
+    if (a.converged(i)) peak(i) = (Xi.leftCols(a.L.cols()) * a.L.row(i).transpose()).maxCoeff();
+  }
+  return peak;
+}
+
 // jobs == 1: the Model's own solver, under its lock (the solver holds per-query workspaces).
 void solve_many_serial(PyModel& m, const Eigen::MatrixXd& P, const online::OnlineSizes& sizes,
                        const online::OnlineSettings& settings, const contactrb::model::ReducedReconstruction* rec,
@@ -226,6 +240,7 @@ py::dict model_solve_many(PyModel& m, const py::object& points, const std::optio
   d["status"] = a.status;
   d["converged"] = a.converged;
   d["time_s"] = a.time_s;
+  d["peak_pressure"] = peak_pressures(m, a);
   if (rec != nullptr) {
     // (n, n_nodes, 2): DOF 2 i + c of row k is [k, i, c].
     py::array_t<double> arr({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(a.displacement.cols() / 2),

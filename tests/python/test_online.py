@@ -319,3 +319,12 @@ def test_solve_many_on_threads_from_two_python_threads_equals_serial(model):
         t.join()
     for k in range(2):
         assert_many_equal(out[k], serial)
+
+
+def test_solve_many_returns_the_peak_pressure_of_each_answer(model):
+    points = np.array([0.2, 0.3, 0.4])
+    many = model.solve_many(points)
+    assert many["peak_pressure"].shape == (3,)
+    for i, mu in enumerate(points):
+        r = model.solve(mu)
+        assert many["peak_pressure"][i] == pytest.approx(np.max(model.fields(r)["multipliers"]), rel=1e-12)
