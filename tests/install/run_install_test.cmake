@@ -51,7 +51,15 @@ string(FIND "${found_dir}" "${real_prefix}/" at)
 if(NOT at EQUAL 0)
   message(FATAL_ERROR "find_package(contactrb) found '${found_dir}', not the installed package under '${prefix}'")
 endif()
+# find_package(contactrb COMPONENTS online) looked for none of the offline side's libraries.
+file(STRINGS "${consumer_build}/CMakeCache.txt" offline_side REGEX "^(tomlplusplus_DIR|LAPACK_[A-Za-z_]*|GMSH_LIBRARY|UMFPACK_LIBRARY|CHOLMOD_LIBRARY):")
+if(offline_side)
+  message(FATAL_ERROR "find_package(contactrb COMPONENTS online) looked for the offline side: ${offline_side}")
+endif()
 run("consumer build" COMMAND "${CMAKE_COMMAND}" --build "${consumer_build}")
+# Without COMPONENTS: every module and its dependencies are found.
+run("consumer configure, all modules"
+    COMMAND "${CMAKE_COMMAND}" ${configure_args} -B "${consumer_build}-all" -DCONSUMER_ALL_MODULES=ON)
 
 # The installed executables: bin/contactrb answers `online` itself and hands `offline` to
 # libexec/contactrb/contactrb-full (apps/contactrb/CMakeLists.txt).
