@@ -460,7 +460,7 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
 
 OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& settings) {
   const auto t0 = Clock::now();
-  cases::check_mu(parameters_, mu, "reduced model online solve");
+  cases::check_mu(parameters_, mu, "the reduced model");
   const solve::KacanovSettings ks =
       settings.kacanov ? *settings.kacanov
                        : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};
