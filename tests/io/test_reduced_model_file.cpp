@@ -296,3 +296,17 @@ TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
 }
 
 }  // namespace
+
+// A negated pressure basis (a crafted file with a valid seal) is not a model of this method: the
+// dual cone's generators are pressures.
+TEST(ReducedModelFile, ANegativePressureBasisIsRefused) {
+  ReducedModel m = built().model;
+  ASSERT_NO_THROW(contactrb::online::check_model(m));
+  m.Xi = -m.Xi;
+  try {
+    contactrb::online::check_model(m);
+    ADD_FAILURE() << "a negated Xi was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the pressure basis Xi has a negative entry"), std::string::npos) << e.what();
+  }
+}

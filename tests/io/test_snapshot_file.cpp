@@ -528,3 +528,20 @@ TEST(SnapshotFile, EveryByteFlipIsRefusedOrHarmless) {
   // bytes HDF5 never reads back). Far fewer would mean the reader stopped looking.
   EXPECT_GT(refused, 50);
 }
+
+// A crafted file can carry a valid seal and checksum over wrong contents: the reader's semantic
+// checks still refuse pressures that are not pressures (a negated lambda) and negative weights.
+TEST(SnapshotFile, NegativePressuresAreRefused) {
+  SnapshotSet s = synthetic_set();
+  ASSERT_TRUE(s.snapshots[0].converged);
+  ASSERT_GT(s.snapshots[0].lambda.maxCoeff(), 0.0);
+  s.snapshots[0].lambda = -s.snapshots[0].lambda;
+  EXPECT_NE(check_error(s).find("/snapshots/000000/lambda: a contact pressure is negative"), std::string::npos)
+      << check_error(s);
+  s = synthetic_set();
+  s.snapshots[0].lambda(0) = -1e-14 * s.snapshots[0].lambda.maxCoeff();  // round-off of a solver: accepted
+  EXPECT_EQ(check_error(s), "");
+  s = synthetic_set();
+  s.snapshots[0].weight(0) = -s.snapshots[0].weight(0);
+  EXPECT_NE(check_error(s).find("a weight |I_r| is negative"), std::string::npos) << check_error(s);
+}

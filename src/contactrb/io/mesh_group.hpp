@@ -38,6 +38,10 @@ void visit_mesh(V& v, const Loc& root, M& m) {
          {"num_triangles x 3: row t is the node indices of triangle t, counter-clockwise", "index (0-based)"}, 3);
   v.ints(loc, "body", m.body, {"num_triangles: body of triangle t, 0 slave body, 1 master body", "index (0-based)"});
   if constexpr (!V::kWriting) {
+    if (nodes.cols() != 2) {
+      throw Failure{"dataset '" + loc.field("nodes") + "' has " + std::to_string(nodes.cols()) +
+                    " columns, expected 2 (x, y)"};
+    }
     m.nodes.resize(static_cast<std::size_t>(nodes.rows()));
     for (std::size_t i = 0; i < m.nodes.size(); ++i) m.nodes[i] = nodes.row(static_cast<Eigen::Index>(i)).transpose();
     m.triangles.resize(triangles.size() / 3);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
 #include "contactrb/io/mesh_group.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 
@@ -155,6 +156,9 @@ void check_reference_mesh(const SnapshotSet& set) {
 
 // Snapshot i's point (in the stored domains), record (times, iterations, status) and array
 // sizes; a converged one's arrays present and finite.
+// A negative pressure below this fraction of the largest one is not round-off.
+constexpr double kPressureRoundOff = 1e-10;
+
 void check_snapshot(const SnapshotSet& set, std::size_t i) {
   const Snapshot& s = set.snapshots[i];
   const std::string where = "/snapshots/" + list_entry_name(i);
@@ -205,6 +209,13 @@ void check_snapshot(const SnapshotSet& set, std::size_t i) {
   check_finite(s.g, where + "/g");
   check_finite(s.weight, where + "/weight");
   check_finite(s.gap_pointwise, where + "/gap_pointwise");
+  // Contact pressures (lambda >= 0, paper (26)), to the round-off of the solvers' last step.
+  const double scale = s.lambda.cwiseAbs().maxCoeff();
+  if (s.lambda.minCoeff() < -kPressureRoundOff * scale) {
+    invalid(where + "/lambda: a contact pressure is negative (" + number_text(s.lambda.minCoeff()) +
+            "): a pressure is >= 0");
+  }
+  if ((s.weight.array() < 0.0).any()) invalid(where + "/weight: a weight |I_r| is negative");
 }
 
 }  // namespace

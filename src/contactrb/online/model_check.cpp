@@ -5,6 +5,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/online/error_estimator.hpp"
+#include "contactrb/common/number_text.hpp"
 
 namespace contactrb::online {
 
@@ -77,6 +78,13 @@ void check_model(const ReducedModel& m) {
   const int R_kept = m.R_kept();
   expect_indices(m.kept_rows, m.kept_rows.size(), s.num_constraints, "kept_rows");
   expect_shape(m.Xi, R_kept, m.R_max, "Xi");
+  // The dual cone's generators are pressures (>= 0: CPG and angle-greedy keep scaled snapshots,
+  // NMF non-negative factors); a negative entry beyond round-off is not a model of this method.
+  if (m.Xi.size() > 0) {
+    require(m.Xi.minCoeff() >= -1e-10 * m.Xi.cwiseAbs().maxCoeff(),
+            "reduced model: the pressure basis Xi has a negative entry (" + number_text(m.Xi.minCoeff()) +
+                "): its generators are contact pressures, >= 0");
+  }
   expect_indices(m.kappa_row, static_cast<std::size_t>(m.Mk_max), R_kept, "kappa_row");
   expect_indices(m.kappa_dof, static_cast<std::size_t>(m.Mk_max), n_c, "kappa_dof");
   expect_shape(m.B_kappa, m.Mk_max, m.Mk_max, "B_kappa");
