@@ -21,6 +21,7 @@
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/model_check.hpp"
+#include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 
 namespace {
@@ -309,4 +310,22 @@ TEST(ReducedModelFile, ANegativePressureBasisIsRefused) {
   } catch (const contactrb::Error& e) {
     EXPECT_NE(std::string(e.what()).find("the pressure basis Xi has a negative entry"), std::string::npos) << e.what();
   }
+}
+
+// A stored mesh scaled by 2 (a crafted file with a valid seal) would give fields on the doubled
+// mesh: the model's contact nodes are nodes of the mesh it was built on, bit for bit.
+TEST(ReducedModelFile, AStoredMeshOtherThanTheModelsIsRefused) {
+  contactrb::model::ReducedReconstruction rec = built().reconstruction;
+  ASSERT_FALSE(rec.mesh.nodes.empty());
+  ASSERT_NO_THROW(contactrb::online::check_reconstruction(built().model, rec));
+  for (Eigen::Vector2d& x : rec.mesh.nodes) x *= 2.0;
+  try {
+    contactrb::online::check_reconstruction(built().model, rec);
+    ADD_FAILURE() << "a scaled mesh was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a node of the stored mesh"), std::string::npos) << e.what();
+  }
+  rec = built().reconstruction;
+  rec.mesh.nodes.pop_back();
+  EXPECT_THROW(contactrb::online::check_reconstruction(built().model, rec), contactrb::Error);
 }

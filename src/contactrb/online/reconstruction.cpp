@@ -1,6 +1,10 @@
 #include "contactrb/online/reconstruction.hpp"
 
+#include <bit>
+#include <cstdint>
+#include <set>
 #include <string>
+#include <utility>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
@@ -36,6 +40,30 @@ Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const 
   return lambda;
 }
 
+namespace {
+
+// The stored mesh is the one the model was built on: its size is num_dofs / 2 and every
+// contact-surface node of the model is one of its nodes, bit for bit (the surface was copied
+// from it). A mesh scaled, moved or from another level would give fields on the wrong mesh.
+void check_stored_mesh(const ReducedModel& model, const ReducedReconstruction& rec, const std::string& where) {
+  if (rec.mesh.nodes.empty()) return;  // no stored mesh: the case's is regenerated and checked
+  require(2 * static_cast<long long>(rec.mesh.nodes.size()) == rec.num_dofs,
+          where + "the stored mesh has " + str(ix(rec.mesh.nodes.size())) + " nodes for " + str(rec.num_dofs) +
+              " DOFs");
+  const auto key = [](const Eigen::Vector2d& x) {
+    return std::make_pair(std::bit_cast<std::uint64_t>(x.x()), std::bit_cast<std::uint64_t>(x.y()));
+  };
+  std::set<std::pair<std::uint64_t, std::uint64_t>> nodes;
+  for (const Eigen::Vector2d& x : rec.mesh.nodes) nodes.insert(key(x));
+  for (std::size_t i = 0; i < model.surface.reference_nodes.size(); ++i) {
+    require(nodes.count(key(model.surface.reference_nodes[i])) == 1,
+            where + "contact node " + str(ix(i)) + " of the model is not a node of the stored mesh (a mesh of another "
+                    "size, position or level)");
+  }
+}
+
+}  // namespace
+
 void check_reconstruction(const ReducedModel& model, const ReducedReconstruction& rec) {
   const std::string where = "reconstruction data: ";
   require(rec.num_dofs > 0, where + "no DOF");
@@ -60,6 +88,7 @@ void check_reconstruction(const ReducedModel& model, const ReducedReconstruction
   differs("constraint count", rec.num_constraints, model.surface.num_constraints);
   differs("lift term count", ix(rec.lift.size()), model.J_lift());
   require(rec.kept_rows == model.kept_rows, where + "the kept constraint rows do not match the model's");
+  check_stored_mesh(model, rec, where);
 }
 
 }  // namespace contactrb::online
