@@ -1,6 +1,6 @@
 // Damaged and degenerate inputs through the command line: damaged snapshot files, a file of one kind
 // given for the other, physically degenerate or overflowing case data (the fixtures in
-// tests/data/numerics/ are the reproducers), empty and underflowing parameter values,
+// tests/data/numerics/ reproduce each kind), empty and underflowing parameter values,
 // and repeated training values. Each ends in exit code 1 and one line `contactrb: error: ...`.
 #include <gtest/gtest.h>
 #include <hdf5.h>

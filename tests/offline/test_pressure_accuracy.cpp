@@ -8,7 +8,7 @@
 //  - Without supremizers the reduced saddle point is not inf-sup stable (R > N on hertz-a:
 //    Q = D A_hat^-1 D' is singular) and e_press is far above the cone's best (0.30 on hertz-a).
 //  - With them (the default) e_press stays within a small factor of the cone's best, and
-//    hertz-b and ring-block meet the target (1e-2 pressure, 1e-3 force). hertz-a does not
+//    hertz-b and ring-block reach 1e-2 on the pressure and 1e-3 on the force. hertz-a does not
 //    where the cone itself cannot (a slave node enters the contact between two training values:
 //    e_press_cone = 2.2e-2 at mu = 0.175), see docs/offline-online.md.
 #include <gtest/gtest.h>

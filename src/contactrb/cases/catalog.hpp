@@ -1,6 +1,6 @@
 #pragma once
-// The built-in cases (paper Section 6) by name. The full case specification (parameter
-// domain, training sets, affine decompositions) grows here with issue [3/5].
+// The built-in cases (paper Section 6) by name; their full specifications (parameter domains,
+// training sets, affine decompositions) are in case_spec.hpp.
 #include <string>
 #include <vector>
 
