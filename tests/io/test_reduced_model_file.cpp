@@ -329,3 +329,15 @@ TEST(ReducedModelFile, AStoredMeshOtherThanTheModelsIsRefused) {
   rec.mesh.nodes.pop_back();
   EXPECT_THROW(contactrb::online::check_reconstruction(built().model, rec), contactrb::Error);
 }
+
+// A level above the finest built-in one (a crafted file: level 40 over a level-0 mesh) is refused.
+TEST(ReducedModelFile, ALevelAboveTheFinestIsRefused) {
+  ReducedModel m = built().model;
+  m.level = 40;
+  try {
+    contactrb::online::check_model(m);
+    ADD_FAILURE() << "level 40 was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("reduced model: level 40 (expected 0 to 16"), std::string::npos) << e.what();
+  }
+}

@@ -545,3 +545,9 @@ TEST(SnapshotFile, NegativePressuresAreRefused) {
   s.snapshots[0].weight(0) = -s.snapshots[0].weight(0);
   EXPECT_NE(check_error(s).find("a weight |I_r| is negative"), std::string::npos) << check_error(s);
 }
+
+TEST(SnapshotFile, ALevelAboveTheFinestIsRefused) {
+  SnapshotSet s = synthetic_set();
+  s.level = 40;
+  EXPECT_NE(check_error(s).find("/case/level is 40 (expected 0 to 16"), std::string::npos) << check_error(s);
+}

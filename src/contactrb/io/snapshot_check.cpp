@@ -82,7 +82,10 @@ void check_header(const SnapshotSet& set) {
   if (set.case_kind != "builtin" && set.case_kind != "toml") {
     invalid("/case/kind is '" + set.case_kind + "' (expected builtin or toml)");
   }
-  if (set.level < 0) invalid("/case/level is " + std::to_string(set.level) + " (expected >= 0)");
+  if (set.level < 0 || set.level > mesh::kMaxMeshLevel) {
+    invalid("/case/level is " + std::to_string(set.level) + " (expected 0 to " + std::to_string(mesh::kMaxMeshLevel) +
+            ", the finest built-in level)");
+  }
   if (set.parameters.empty()) invalid("/parameter holds no parameter");
   for (std::size_t k = 0; k < set.parameters.size(); ++k) {
     const SnapshotParameter& q = set.parameters[k];

@@ -45,7 +45,8 @@ detail::HalfDiskSizing whole_mesh_sizing(int slave_arc_nodes) {
 
 int hertz_arc_nodes_for_level(int level) {
   require(level >= 0, "Hertz mesh level must be >= 0 (got " + std::to_string(level) + ")");
-  require(level <= 16, "Hertz mesh level must be <= 16 (got " + std::to_string(level) + ")");
+  require(level <= kMaxMeshLevel,
+          "Hertz mesh level must be <= " + std::to_string(kMaxMeshLevel) + " (got " + std::to_string(level) + ")");
   if (level == 0) return 51;
   if (level == 1) return 61;
   return 120 * (1 << (level - 2)) + 1;

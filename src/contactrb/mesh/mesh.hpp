@@ -25,6 +25,9 @@ struct Edge {
 
 inline constexpr int kSlaveBody = 0;
 inline constexpr int kMasterBody = 1;
+// The finest refinement level of the built-in geometries (--level; the Hertz slave arc has
+// 120 * 2^14 + 1 nodes there): a file recording a level above it is damaged or crafted.
+inline constexpr int kMaxMeshLevel = 16;
 inline constexpr const char* kSlaveBoundary = "slave";
 inline constexpr const char* kMasterBoundary = "master";
 

@@ -4,8 +4,9 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
-#include "contactrb/online/error_estimator.hpp"
 #include "contactrb/common/number_text.hpp"
+#include "contactrb/mesh/mesh.hpp"
+#include "contactrb/online/error_estimator.hpp"
 
 namespace contactrb::online {
 
@@ -37,6 +38,9 @@ void check_model(const ReducedModel& m) {
   require(m.format_version == kReducedModelFormatVersion,
           "reduced model: format version " + std::to_string(m.format_version) + ", this build reads version " +
               std::to_string(kReducedModelFormatVersion));
+  require(m.level >= 0 && m.level <= mesh::kMaxMeshLevel,
+          "reduced model: level " + std::to_string(m.level) + " (expected 0 to " + std::to_string(mesh::kMaxMeshLevel) +
+              ", the finest built-in level)");
   require(m.N_max >= 1 && m.R_max >= 0 && m.Mk_max >= 0 && m.Mg_max >= 0,
           "reduced model: invalid maxima N_max = " + std::to_string(m.N_max) + ", R_max = " + std::to_string(m.R_max) +
               ", Mk_max = " + std::to_string(m.Mk_max) + ", Mg_max = " + std::to_string(m.Mg_max));
