@@ -14,11 +14,9 @@
 
 namespace contactrb::hf {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
-}  // namespace
+using newton_detail::Clock;
+using newton_detail::seconds_since;
+using newton_detail::sz;
 
 // |F|^2 at the full step (u_0 + du, lambda of the step), out: its iterate; infinite when the
 // geometry cannot be evaluated there.

@@ -11,11 +11,9 @@
 
 namespace contactrb::hf {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
-}  // namespace
+using newton_detail::Clock;
+using newton_detail::seconds_since;
+using newton_detail::sz;
 
 NewtonSolve::NewtonSolve(const NewtonProblem& p, const NewtonSettings& s)
     : p_(p),

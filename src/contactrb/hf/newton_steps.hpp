@@ -6,6 +6,7 @@
 // Internal to the hf module.
 #include <Eigen/Core>
 #include <chrono>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,13 @@
 #include "contactrb/solve/blas_threads.hpp"
 
 namespace contactrb::hf {
+
+// Shared by the step files (newton_steps.cpp, newton_globalization.cpp).
+namespace newton_detail {
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+}  // namespace newton_detail
 
 // Each step returning bool returns false when the solve has ended there (status and message in
 // result()).
