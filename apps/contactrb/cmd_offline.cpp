@@ -228,12 +228,14 @@ int run_greedy(const OfflineOptions& opt) {
     j["times_s"]["total"] = seconds(t0, Clock::now());
     io::write_json(j, json_path);
   }
-  const offline::GreedyStep& last = g.steps.back();
+  const offline::GreedyStep& last = g.steps[static_cast<std::size_t>(g.model_step - 1)];  // the model written
   std::cout << "case " << spec.name << ", greedy over " << request.mu.size() << " points (set " << request.set_name
             << "), tolerance " << gs.tolerance << ", budget " << gs.max_hf << " HF solves\n"
             << "status: " << to_string(g.status) << " after " << g.steps.size() << " steps, " << g.hf_solves
             << " HF solves" << (g.excluded.empty() ? "" : " (" + std::to_string(g.excluded.size()) + " failed)")
-            << "\nmax relative estimate: " << last.max_estimate
+            << "\nmodel: step " << last.step << " of " << g.steps.size() << " (" << last.snapshots << " of "
+            << g.snapshots.snapshots.size() << " snapshots, the best model built)\nmax relative estimate: " << last.max_estimate
+            << (last.online_failures > 0 ? ", " + std::to_string(last.online_failures) + " online failures" : "")
             << (g.status == offline::GreedyOfflineStatus::ToleranceReached ? "" : " (tolerance NOT reached)") << "\n"
             << "sizes: N " << last.N << ", R " << last.R << ", Mk " << last.Mk << ", Mg " << last.Mg << "\n"
             << std::fixed << std::setprecision(3) << "time: " << seconds(t0, Clock::now()) << " s (greedy "

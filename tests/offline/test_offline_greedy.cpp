@@ -182,6 +182,34 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
   EXPECT_EQ(std::vector<int>(greedy().selected.begin(), greedy().selected.begin() + 3), a.selected);
 }
 
+// The returned model is the best step's: no step has fewer online failures, or as many and a
+// smaller max estimate; its sizes and snapshots are that step's.
+void expect_best_model_returned(const GreedyOfflineResult& g) {
+  ASSERT_GE(g.model_step, 1);
+  ASSERT_LE(g.model_step, static_cast<int>(g.steps.size()));
+  const auto& best = g.steps[static_cast<std::size_t>(g.model_step - 1)];
+  for (const auto& r : g.steps) {
+    EXPECT_GE(r.online_failures, best.online_failures) << "step " << r.step;
+    if (r.online_failures == best.online_failures) {
+      EXPECT_GE(r.max_estimate, best.max_estimate) << "step " << r.step;
+    }
+    EXPECT_TRUE(r.online_failures > 0 || std::isfinite(r.max_estimate)) << "step " << r.step;
+  }
+  EXPECT_EQ(g.offline.model.N_max, best.N);
+  EXPECT_EQ(g.offline.model.R_max, best.R);
+  EXPECT_EQ(g.offline.model.training_mu.cols(), best.snapshots);
+}
+
+TEST(OfflineGreedy, ReturnsTheBestModelItBuilt) {
+  expect_best_model_returned(greedy());
+  GreedyOfflineSettings s;
+  s.tolerance = 1e-6;
+  s.max_hf = 8;
+  const GreedyOfflineResult budget = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  EXPECT_EQ(budget.status, GreedyOfflineStatus::Budget);
+  expect_best_model_returned(budget);
+}
+
 TEST(OfflineGreedy, BatchSolvesTheLargestEstimatesWithinTheBudgetWhateverTheThreads) {
   // Batch 3, budget 6: the start, a step of 3 solves, a step capped at 2, then a stop (Budget).
   GreedyOfflineSettings s;

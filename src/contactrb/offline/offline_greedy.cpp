@@ -9,6 +9,7 @@
 #include <exception>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -154,6 +155,15 @@ class GreedyProgress {
     os << std::defaultfloat << std::setprecision(6);
     if (stop_reason != nullptr) os << "; stop: " << stop_reason;
     os << "\n" << std::flush;
+  }
+  // The model returned: the best step's, which is the last one unless a later model did worse.
+  void model(const GreedyStep& best, int steps) {
+    if (!on_ || best.step == steps) return;
+    *stream_ << "greedy: returning the model of step " << best.step << " (" << best.snapshots
+             << " snapshots, max estimate " << std::setprecision(3) << best.max_estimate << std::setprecision(6)
+             << (best.online_failures > 0 ? ", " + std::to_string(best.online_failures) + " online failures" : "")
+             << "): the later models did worse\n"
+             << std::flush;
   }
 
  private:
@@ -315,17 +325,24 @@ std::vector<int> evaluate(const Greedy& g, GreedyStep& row) {
   const int P = static_cast<int>(g.training.size());
   const Sweep sweep = sweep_all(g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution);
   row.sweep_s = seconds_since(t0);
-  row.online_failures = sweep.failures;
+  // A point where the online solve fails (or gives no finite estimate) is a point to enrich
+  // first (+inf in the order below), not a maximum: max_estimate is over the points answered,
+  // and argmax is the first failing point when there is one.
+  row.online_failures = 0;
   row.max_estimate = -kInf;
+  int argmax_answered = -1;
   std::vector<int> candidates;
   for (int i = 0; i < P; ++i) {
     if (g.excluded[sz(i)]) continue;
-    if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
-      row.max_estimate = sweep.criterion[sz(i)];
-      row.argmax = i;
-    }
     if (!g.selected[sz(i)]) candidates.push_back(i);
+    if (sweep.failed[sz(i)] != 0.0 || !std::isfinite(sweep.criterion[sz(i)])) {
+      if (row.online_failures++ == 0) row.argmax = i;
+    } else if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
+      row.max_estimate = sweep.criterion[sz(i)];
+      argmax_answered = i;
+    }
   }
+  if (row.online_failures == 0) row.argmax = argmax_answered;
   std::stable_sort(candidates.begin(), candidates.end(),  // stable: ties to the smallest index
                    [&](int a, int b) { return sweep.criterion[sz(a)] > sweep.criterion[sz(b)]; });
   row.argmax_mu = g.training[sz(row.argmax)];
@@ -334,7 +351,7 @@ std::vector<int> evaluate(const Greedy& g, GreedyStep& row) {
 
 // The stopping test, in this order: the tolerance, the HF budget, no point left. nullptr: go on.
 const char* stop_reason(Greedy& g, const GreedyStep& row, const std::vector<int>& candidates) {
-  if (row.max_estimate <= g.settings.tolerance) {
+  if (row.online_failures == 0 && row.max_estimate <= g.settings.tolerance) {
     g.out.status = GreedyOfflineStatus::ToleranceReached;
     return "tolerance reached";
   }
@@ -413,6 +430,13 @@ void extend(Greedy& g, const std::vector<int>& candidates, GreedyStep& row) {
   add_snapshots(g, s, row);
 }
 
+// A model answering at more training points is better; among equals, the smaller maximum
+// estimate (a later step wins ties: it holds more snapshots).
+bool at_least_as_good(const GreedyStep& a, const GreedyStep& b) {
+  if (a.online_failures != b.online_failures) return a.online_failures < b.online_failures;
+  return a.max_estimate <= b.max_estimate;
+}
+
 }  // namespace
 
 // The weak greedy as pyMOR's two-step protocol: each step builds the model of the selected
@@ -432,6 +456,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   GreedyProgress progress(settings.progress, settings.progress_stream);
 
   start(g, progress);
+  std::optional<OfflineResult> best;  // the best model so far (at_least_as_good), returned
   for (int step = 1;; ++step) {
     const auto t_step = Clock::now();
     GreedyStep row;
@@ -440,6 +465,10 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     row.hf_solves = g.out.hf_solves;
     build_model(g, row);
     const std::vector<int> candidates = evaluate(g, row);
+    if (!best || at_least_as_good(row, g.out.steps[sz(g.out.model_step - 1)])) {
+      best = g.out.offline;
+      g.out.model_step = step;
+    }
     const char* stop = stop_reason(g, row, candidates);
     if (stop == nullptr) extend(g, candidates, row);
     row.step_s = seconds_since(t_step);
@@ -447,6 +476,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     g.out.steps.push_back(row);
     if (stop != nullptr) break;
   }
+  g.out.offline = std::move(*best);
+  progress.model(g.out.steps[sz(g.out.model_step - 1)], static_cast<int>(g.out.steps.size()));
   g.out.total_s = seconds_since(t_total);
   return std::move(g.out);
 }

@@ -31,7 +31,7 @@ namespace contactrb::offline {
 using GreedyMu = cases::Mu;
 
 enum class GreedyOfflineStatus {
-  ToleranceReached,  // max relative estimate over the (usable) training set <= tolerance
+  ToleranceReached,  // no online failure and max relative estimate over the (usable) training set <= tolerance
   Budget,            // max_hf HF solves spent, tolerance not reached
   Stagnated,         // every usable training point is selected: nothing left to add
 };
@@ -102,10 +102,13 @@ struct GreedyStep {
   int snapshots = 0;  // snapshots of this step's model
   int hf_solves = 0;  // HF solves spent before this step's own one (failed ones included)
   int N = 0, R = 0, Mk = 0, Mg = 0;
-  double max_estimate = 0.0;  // max over the usable training points of relative_estimate (+inf: some online failure)
-  int argmax = -1;            // training index of the max
+  // Max of relative_estimate over the usable training points where the online solve converged
+  // with a finite estimate (-inf when there is none); the others are counted in online_failures
+  // and are the first points the step enriches.
+  double max_estimate = 0.0;
+  int argmax = -1;            // training index of the max, or of the first online failure when there is one
   GreedyMu argmax_mu;
-  int online_failures = 0;    // training points whose online solve did not converge (counted as +inf)
+  int online_failures = 0;    // usable training points without a converged online answer and finite estimate
   // The HF solve of this step at the largest estimate (-1 / NaN when the greedy stopped at this
   // step); with batch > 1 the step's other solves are in `batch_points`.
   int chosen = -1;
@@ -132,7 +135,11 @@ struct GreedyOfflineResult {
   int start = -1;             // the start index (selected[0])
   int hf_solves = 0;
   io::SnapshotSet snapshots;  // the selected HF snapshots, in selection order, set name "greedy"
-  OfflineResult offline;      // the last step's model (the one whose sweep is steps.back())
+  // The best step's model: fewest online failures, then the smallest max_estimate (a later step
+  // wins ties), so a greedy never returns a model worse on its training set than one it built.
+  // It holds the first steps[model_step - 1].snapshots snapshots of `snapshots`.
+  OfflineResult offline;
+  int model_step = 0;  // 1-based step whose model is `offline`
   std::vector<GreedyStep> steps;
   double start_hf_s = 0.0;
   double total_s = 0.0;

@@ -65,6 +65,9 @@ nlohmann::json greedy_json(const GreedyOfflineResult& g, const SnapshotRequest& 
   j["selected"] = points_json(request, g.selected);
   j["excluded"] = points_json(request, g.excluded);
   j["sizes"] = sizes_json(g.offline.model);
+  const GreedyStep& model = g.steps[static_cast<std::size_t>(g.model_step - 1)];
+  j["model"] = {{"step", model.step}, {"snapshots", model.snapshots}, {"max_estimate", finite_or_null(model.max_estimate)},
+                {"online_failures", model.online_failures}};
   nlohmann::json steps = nlohmann::json::array();
   for (const GreedyStep& step : g.steps) steps.push_back(to_json(step, request));
   j["steps"] = steps;
