@@ -377,7 +377,7 @@ Command add_offline_command(CLI::App& app) {
   CLI::Option* n = sub->add_option("--n", opt->n, "POD: a fixed N instead of --eps-pod (capped at the rank)");
   eps_pod->excludes(n);
   sub->add_option("--inner-product", opt->inner_product, "POD inner product: energy | h1")->capture_default_str();
-  sub->add_option("--dual", opt->dual, "Dual cone: cpg | angle | nmf")->capture_default_str();
+  sub->add_option("--dual", opt->dual, "Dual cone: cpg | angle | nmf | rows")->capture_default_str();
   sub->add_option("--eps-du", opt->eps_du,
                   "Dual cone: tolerance eps_DU on the L2(Gamma^c) error (58), relative (each mu's error divided by "
                   "|lambda(mu)|) unless absolute")

@@ -43,6 +43,10 @@ struct ContactSurface {
   int num_dofs() const { return 2 * static_cast<int>(reference_nodes.size()); }  // n_c
 };
 
+// ReducedModel::dual_method of the row cone (offline/row_cone.hpp): its generators are HF rows,
+// so the online stage evaluates them exactly (online::ContactRows).
+inline constexpr const char* kRowCone = "rows";
+
 struct ReducedModel {
   int format_version = kReducedModelFormatVersion;
 
@@ -56,7 +60,7 @@ struct ReducedModel {
 
   // Settings the model was built with (recorded, not used online except the Kacanov ones).
   std::string inner_product;  // "energy" | "h1"
-  std::string dual_method;    // "cpg" | "angle" | "nmf"
+  std::string dual_method;    // "cpg" | "angle" | "nmf" | "rows" (kRowCone)
   // The offline tolerances and whether each was relative (offline::OfflineSettings; format 3 for
   // the POD and EIM modes).
   double eps_pod = 0.0;

@@ -1,5 +1,7 @@
 #include "contactrb/offline/cpg.hpp"
 
+#include "contactrb/model/reduced_model.hpp"
+
 #include <chrono>
 #include <string>
 
@@ -14,13 +16,14 @@ const char* to_string(DualConeMethod method) {
     case DualConeMethod::CPG: return "cpg";
     case DualConeMethod::AngleGreedy: return "angle";
     case DualConeMethod::NMF: return "nmf";
+    case DualConeMethod::Rows: return model::kRowCone;
   }
   return "unknown";
 }
 
 DualConeMethod dual_cone_method_from_string(const std::string& name) {
   using enum DualConeMethod;
-  return enum_from_string(name, "dual cone method", std::array{CPG, AngleGreedy, NMF});
+  return enum_from_string(name, "dual cone method", std::array{CPG, AngleGreedy, NMF, Rows});
 }
 
 void check_dual_snapshots(const char* who, const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights) {

@@ -11,7 +11,9 @@
 
 namespace contactrb::offline {
 
-enum class DualConeMethod { CPG, AngleGreedy, NMF };
+// Rows: one generator per kept constraint row (the unit vectors: every non-negative pressure on
+// the rows active in training is in the cone; the rows' HF constraints hold exactly online).
+enum class DualConeMethod { CPG, AngleGreedy, NMF, Rows };
 const char* to_string(DualConeMethod method);
 DualConeMethod dual_cone_method_from_string(const std::string& name);  // throws contactrb::Error
 

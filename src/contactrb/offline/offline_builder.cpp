@@ -26,6 +26,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/model_check.hpp"
 #include "contactrb/offline/pod.hpp"
+#include "contactrb/offline/row_cone.hpp"
 #include "contactrb/common/number_text.hpp"
 
 namespace contactrb::offline {
@@ -319,6 +320,7 @@ DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const Offline
     case DualConeMethod::CPG: dual = build_cpg(dual_snapshots.Lambda, ds); break;
     case DualConeMethod::AngleGreedy: dual = build_angle_greedy(dual_snapshots.Lambda, ds); break;
     case DualConeMethod::NMF: dual = build_nmf_cone(dual_snapshots.Lambda, ds); break;
+    case DualConeMethod::Rows: dual = build_row_cone(dual_snapshots.Lambda, ds); break;
   }
   require(dual.generators.cols() >= 1, "offline: the dual cone is empty");
   report.R = static_cast<int>(dual.generators.cols());

@@ -61,6 +61,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   N_max_ = model.N_max;
   N_supremizers_ = model.N_supremizers;
   check_inf_sup_ = model.N_supremizers > 0 && R_ > 0 && N_ < model.N_max;
+  row_cone_ = model.dual_method == model::kRowCone;
   parameters_ = model.parameters;
   {
     // p = 1: sorted values (linear interpolation); p > 1: the points scaled to [0, 1] per
@@ -197,7 +198,7 @@ OnlineSolver::SurfaceGap OnlineSolver::surface_gap(const cases::Mu& mu, const On
   return {gap.maxCoeff(), gap.minCoeff()};
 }
 
-bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& message) {
+bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows, std::string& message) {
   prepared_ = false;
   // Omega(mu) on the contact surface: h_body(mu) applied to the reference chain nodes.
   const std::array<cases::AffineMap, 2> maps = cases::geometric_maps(parameters_, mu);
@@ -219,6 +220,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& me
           "OnlineSolver: the contact surface gives " + std::to_string(quadrature_.W.rows()) +
               " constraints, the model " + std::to_string(surface_.num_constraints));
   restricted_ = restricted;
+  exact_rows_ = exact_rows;
   // Collocation and LAC-Simpson rows: the allocation-free evaluator (online_magic.hpp).
   pointwise_magic_ = restricted && surface_.discretization != contact::Discretization::LAC;
   // (49)
@@ -253,15 +255,51 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, std::string& me
   } else {
     lift_mu_.setZero();
   }
-  if (pointwise_magic_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  if (pointwise_magic_ && !exact_rows_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
   warm_.clear();
   prepared_mu_ = mu;
   prepared_ = true;
   return true;
 }
 
+bool OnlineSolver::exact_rows(ContactRows choice) const {
+  return choice == ContactRows::Exact || (choice == ContactRows::Automatic && row_cone_);
+}
+
+void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
+  w_ = lift_mu_;
+  w_.noalias() += Theta_c_ * u_hat;
+  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
+  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
+  const Eigen::Index kept = static_cast<Eigen::Index>(kept_rows_.size());
+  KTheta_.setZero(kept, N_);
+  gamma_kept_.resize(kept);
+  for (Eigen::Index i = 0; i < kept; ++i) {
+    const int r = kept_rows_[sz(static_cast<int>(i))];
+    double kl = 0.0;
+    for (RowSparse::InnerIterator it(rows.K, r); it; ++it) {
+      KTheta_.row(i) += it.value() * Theta_c_.row(it.col());
+      kl += it.value() * lift_mu_(it.col());
+    }
+    gamma_kept_(i) = rows.g(r) - kl;
+  }
+  Dt_.noalias() = KTheta_.transpose() * Xi_;
+  dg_.noalias() = Xi_.transpose() * gamma_kept_;
+  // The EIM coefficients still feed the estimate's EIM terms.
+  kappa_hat_.resize(Mk_);
+  for (int i = 0; i < Mk_; ++i) kappa_hat_(i) = rows.K.coeff(kappa_row_[sz(i)], kappa_dof_[sz(i)]);
+  gamma_hat_.resize(Mg_);
+  for (int i = 0; i < Mg_; ++i) gamma_hat_(i) = rows.g(gamma_row_[sz(i)]) - row_dot(rows.K, gamma_row_[sz(i)], lift_mu_);
+  if (Mk_ > 0) phi_ = B_kappa_lu_.solve(kappa_hat_);
+  if (Mg_ > 0) phi_gamma_ = B_gamma_lu_.solve(gamma_hat_);
+}
+
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                         std::string& message) {
+  if (exact_rows_) {
+    exact_operators(u_hat);
+    return solve_reduced_qp(u_bar, lambda_bar, inner, message);
+  }
   if (pointwise_magic_) {
     magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
   } else {
@@ -294,6 +332,11 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   } else {
     dg_.setZero();
   }
+  return solve_reduced_qp(u_bar, lambda_bar, inner, message);
+}
+
+bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
+                                    std::string& message) {
   // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y symmetrized,
   // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
   // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
@@ -472,7 +515,7 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   qp_.set_settings(settings.qp);
 
   OnlineSolution sol;
-  if (!prepare(mu, settings.restricted_rows, sol.message)) {
+  if (!prepare(mu, settings.restricted_rows, exact_rows(settings.contact_rows), sol.message)) {
     sol.u_hat = Eigen::VectorXd::Zero(N_);
     sol.lambda_hat = Eigen::VectorXd::Zero(R_);
     sol.energy = E_D_;  // of u_hat = 0 (prepare sets E_D_ before the factorization)

@@ -79,6 +79,13 @@ enum class InitialGuess {
 const char* to_string(InitialGuess value);  // "interpolated" | "zero"
 InitialGuess initial_guess_from_string(const std::string& name);  // throws contactrb::Error
 
+// How each step evaluates the reduced contact operator D = Xi' K(w) Theta_c and Xi' gamma(w):
+// Eim, the paper's (54)-(55) from the magic points; Exact, from the HF contact rows of the
+// whole contact surface at the reduced displacement w = u_D + Theta_c u_hat (no EIM error: a
+// cost of n_c N per step). Automatic: Exact for a model whose dual cone is the row cone
+// (dual_method "rows": its constraints are HF rows, exactly), Eim otherwise.
+enum class ContactRows { Automatic, Eim, Exact };
+
 struct OnlineSettings {
   // Empty: the tolerance and iteration cap of the HF snapshots the model was built from (and
   // their alpha, for the Relaxed iteration).
@@ -87,6 +94,7 @@ struct OnlineSettings {
   // false: recompute every row of the contact-surface mesh (the reference path of the tests).
   // true: only the magic rows (from the slave nodes under them).
   bool restricted_rows = true;
+  ContactRows contact_rows = ContactRows::Automatic;
   OnlineIteration iteration = OnlineIteration::Automatic;
   // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
   int anderson_depth = 3;
@@ -148,7 +156,12 @@ class OnlineSolver {
  private:
   // Per mu: A_hat(mu) (49) and its Cholesky factor, z = A_hat^-1 f_hat(mu), the lift on the contact
   // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
-  bool prepare(const cases::Mu& mu, bool restricted, std::string& message);
+  bool prepare(const cases::Mu& mu, bool restricted, bool exact_rows, std::string& message);
+  // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
+  void exact_operators(const Eigen::VectorXd& u_hat);
+  bool exact_rows(ContactRows choice) const;
+  // The reduced dual QP of the step's D and Xi'gamma, and u_bar = A^-1 (f - D' lambda).
+  bool solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner, std::string& message);
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
@@ -212,6 +225,10 @@ class OnlineSolver {
   Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
   double E_D_ = 0.0;
   bool restricted_ = true;
+  bool exact_rows_ = false;              // this solve's ContactRows, resolved
+  bool row_cone_ = false;                // the model's dual cone is the row cone
+  Eigen::MatrixXd KTheta_;               // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_)
+  Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_)
   cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
   bool prepared_ = false;
   bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
