@@ -19,6 +19,7 @@
 
 #include "commands.hpp"
 #include "contactrb/cases/case_record.hpp"
+#include "contactrb/cases/recorded_mesh.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
@@ -143,6 +144,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   const cases::CaseSpec spec = cases::case_from_record(
       model.case_kind, model.case_spec, opt.model,
       rec.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
+  cases::recorded_reference_mesh(spec, {model.level, rec.num_dofs, &rec.mesh}, opt.model);
   const std::vector<cases::Mu> mus = parameter_values(spec, opt.set);
   {
     const std::filesystem::path d(opt.out);

@@ -24,6 +24,7 @@
 #include "mpi_greedy.hpp"
 #include "mpi_world.hpp"
 #include "contactrb/cases/case_record.hpp"
+#include "contactrb/cases/recorded_mesh.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
@@ -162,10 +163,13 @@ offline::OfflineSettings settings_from(const OfflineOptions& opt) {
   return s;
 }
 
+// The case the set records, checked against the set's mesh (cases/recorded_mesh.hpp).
 cases::CaseSpec spec_of(const io::SnapshotSet& set, const std::string& path) {
   // A set that stores its mesh needs no .msh file (it may have been moved since).
-  return cases::case_from_record(set.case_kind, set.case_spec, path,
-                                 set.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
+  cases::CaseSpec spec = cases::case_from_record(set.case_kind, set.case_spec, path,
+                                                 set.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
+  cases::recorded_reference_mesh(spec, {set.level, set.num_dofs, &set.mesh}, path);
+  return spec;
 }
 
 // --greedy: the weak greedy over the set's points (or --values), then the same model file as
@@ -220,13 +224,16 @@ int run_greedy(const OfflineOptions& opt) {
   const auto t1 = Clock::now();
   if (world && world->rank() != 0) return 0;  // rank 0 holds the same result and writes it
   {
-    const OutputLock lock(std::filesystem::path(opt.out).parent_path());  // one run's files together
+    // The four files appear together or not at all (common/output_file.hpp, OutputSet).
+    const OutputLock lock(std::filesystem::path(opt.out).parent_path());
+    OutputSet outputs;
     io::write_snapshot_file(g.snapshots, snapshots_path);
     io::write_reduced_model_file(g.offline.model, g.offline.reconstruction, opt.out);
     offline::write_greedy_csv(g, csv_path);
     nlohmann::json j = offline::greedy_json(g, request, gs);
     j["times_s"]["total"] = seconds(t0, Clock::now());
     io::write_json(j, json_path);
+    outputs.commit();
   }
   const offline::GreedyStep& last = g.steps[static_cast<std::size_t>(g.model_step - 1)];  // the model written
   std::cout << "case " << spec.name << ", greedy over " << request.mu.size() << " points (set " << request.set_name
@@ -272,24 +279,36 @@ int run_offline(const OfflineOptions& opt) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";
     return kExitSolveFailed;
   }
-  const cases::CaseSpec spec = spec_of(set, snapshots_path);
   const auto t1 = Clock::now();
-  const offline::OfflineResult result = offline::build_reduced_model(set, spec, settings);
-  const auto t2 = Clock::now();
-  if (!lock) lock.emplace(std::filesystem::path(opt.out).parent_path());
-  io::write_reduced_model_file(result.model, result.reconstruction, opt.out);
-  const auto t3 = Clock::now();
+  // The model and offline.json appear together or not at all (OutputSet). The snapshots
+  // computed here are already in their own complete, sealed file: a failure from here on keeps
+  // them and says so (docs/cli.md, "`contactrb offline`").
+  offline::OfflineResult result;
+  Clock::time_point t2, t3;
+  try {
+    const cases::CaseSpec spec = spec_of(set, snapshots_path);
+    result = offline::build_reduced_model(set, spec, settings);
+    t2 = Clock::now();
+    if (!lock) lock.emplace(std::filesystem::path(opt.out).parent_path());
+    OutputSet outputs;
+    io::write_reduced_model_file(result.model, result.reconstruction, opt.out);
+    t3 = Clock::now();
+    nlohmann::json j = offline::offline_json(set, settings, result);
+    j["snapshots"] = snapshots_path;
+    j["snapshots_computed"] = compute;
+    j["model"] = opt.out;
+    j["times_s"][compute ? "snapshots" : "read"] = seconds(t0, t1);
+    j["times_s"]["write"] = seconds(t2, t3);
+    j["times_s"]["total"] = seconds(t0, Clock::now());
+    io::write_json(j, json_path);
+    outputs.commit();
+  } catch (const Error& e) {
+    if (!compute) throw;
+    throw Error(std::string(e.what()) + "; no model written; the snapshots of this run are kept in " + snapshots_path +
+                " (complete: `contactrb offline --snapshots " + snapshots_path + "` resumes from them)");
+  }
   const offline::OfflineReport& rep = result.report;
   const model::ReducedModel& m = result.model;
-
-  nlohmann::json j = offline::offline_json(set, settings, result);
-  j["snapshots"] = snapshots_path;
-  j["snapshots_computed"] = compute;
-  j["model"] = opt.out;
-  j["times_s"][compute ? "snapshots" : "read"] = seconds(t0, t1);
-  j["times_s"]["write"] = seconds(t2, t3);
-  j["times_s"]["total"] = seconds(t0, Clock::now());
-  io::write_json(j, json_path);
 
   const auto last = [](const std::vector<double>& v) { return v.empty() ? 0.0 : v.back(); };
   // The dual error of the cone kept (an exhausted NMF keeps its best rank, not its last).

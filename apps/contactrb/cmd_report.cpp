@@ -7,6 +7,7 @@
 // The plotting script and its interpreter: plot_script.hpp (as `sample`'s).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +26,7 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/common/output_file.hpp"
 #include "contactrb/io/atomic_file.hpp"
 #include "contactrb/study/study.hpp"
 
@@ -65,6 +67,56 @@ std::string g3(double v) {
   return os.str();
 }
 
+// Every figure the plotting script can write (PNG, and a PDF of the same stem).
+const std::vector<std::string>& all_figures() {
+  static const std::vector<std::string> names{"pod_singular_values.png", "dual_cone_error.png", "eim_error.png",
+                                              "errors_training.png",     "errors_verification.png",
+                                              "multipliers.png",         "deformed_configuration.png",
+                                              "constraint_comparison.png"};
+  return names;
+}
+
+std::string pdf_of(const std::string& png) { return png.substr(0, png.size() - 4) + ".pdf"; }
+
+// Runs scripts/plot_report.py on the staging directory and returns the figures it must have
+// written there (each as PNG and PDF); throws contactrb::Error when one is missing.
+std::vector<std::string> plot_figures(const std::string& script, const fs::path& staging, const study::StudyResult& r,
+                                      const std::string& out, bool quiet) {
+  run_python_script(script, {staging.string()},
+                    "use --no-plots to skip the figures; the CSV files and report.md (without figures) are in " + out,
+                    quiet);
+  std::vector<std::string> figures{"pod_singular_values.png", "dual_cone_error.png", "eim_error.png",
+                                   "errors_training.png"};
+  if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");
+  figures.push_back("multipliers.png");
+  if (!r.configurations.empty()) figures.push_back("deformed_configuration.png");
+  if (!r.comparisons.empty()) figures.push_back("constraint_comparison.png");
+  for (const std::string& f : figures) {
+    require(fs::is_regular_file(staging / f), "the plotting script did not write " + f);
+    require(fs::is_regular_file(staging / pdf_of(f)), "the plotting script did not write " + pdf_of(f));
+  }
+  return figures;
+}
+
+// Renames the staged `files` and `figures` (PNG and PDF) into `out` together (OutputSet), then
+// removes the figures of an earlier run that this one did not draw.
+void commit_report(const fs::path& staging, const std::string& out, const std::vector<std::string>& files,
+                   const std::vector<std::string>& figures) {
+  OutputSet outputs;
+  for (const std::string& f : files) outputs.add(staging / f, fs::path(out) / f);
+  for (const std::string& f : figures) {
+    outputs.add(staging / f, fs::path(out) / f);
+    outputs.add(staging / pdf_of(f), fs::path(out) / pdf_of(f));
+  }
+  outputs.commit();
+  for (const std::string& f : all_figures()) {
+    if (std::find(figures.begin(), figures.end(), f) != figures.end()) continue;
+    std::error_code ignored;
+    fs::remove(fs::path(out) / f, ignored);
+    fs::remove(fs::path(out) / pdf_of(f), ignored);
+  }
+}
+
 int run_report(const ReportOptions& opt) {
   const cases::CaseSpec spec =
       opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
@@ -103,11 +155,28 @@ int run_report(const ReportOptions& opt) {
   if (!opt.no_plots) script = find_script("plot_report.py", "use --no-plots");
 
   const study::StudyResult r = study::run_study(spec, s);
-  // Held to the end (figures included): one run's files, never mixed with another's.
+  // Held to the end (figures included): one run's files, never mixed with another's. Every file
+  // is written in a staging directory inside `out`, the plotting script included, and renamed
+  // into `out` at the end (common/output_file.hpp, OutputSet).
   const OutputLock lock(out);
-  const std::vector<std::string> files = study::write_study_files(r, out);
-  const std::string report_md = (fs::path(out) / "report.md").string();
-  write_text(report_md, study::study_markdown(r, {}));  // without figures until they exist
+  const StagingDirectory staging(fs::path(out) / "report");
+  std::vector<std::string> files = study::write_study_files(r, staging.path().string());
+  write_text((staging.path() / "report.md").string(), study::study_markdown(r, {}));  // without figures
+  files.push_back("report.md");
+
+  std::vector<std::string> figures;
+  if (!opt.no_plots) {
+    try {
+      figures = plot_figures(script, staging.path(), r, out, opt.quiet);
+    } catch (const Error&) {
+      // The tables are kept (the message says where); no figure of this run is written, and
+      // those of an earlier run would be taken for this run's.
+      commit_report(staging.path(), out, files, {});
+      throw;
+    }
+    write_text((staging.path() / "report.md").string(), study::study_markdown(r, figures));
+  }
+  commit_report(staging.path(), out, files, figures);
 
   std::cout << "case " << r.case_name << ": " << r.training_mus.size() << " training values, "
             << r.verification_mus.size() << " verification values, " << r.constraint << "\n"
@@ -120,29 +189,10 @@ int run_report(const ReportOptions& opt) {
               << (m.verification ? g3(m.verification->summary.max_e_displ) : std::string("-")) << " | "
               << g3(t.median_speedup) << " |\n";
   }
-  for (const std::string& f : files) std::cout << "wrote " << (fs::path(out) / f).string() << "\n";
+  for (const std::string& f : files) {
+    std::cout << "wrote " << (fs::path(out) / f).string() << (f == "report.md" && opt.no_plots ? " (no figures: --no-plots)" : "") << "\n";
+  }
   for (const std::string& w : study::study_warnings(r)) std::cerr << "contactrb: warning: " << w << "\n";
-
-  if (opt.no_plots) {
-    std::cout << "wrote " << report_md << " (no figures: --no-plots)\n";
-    return 0;
-  }
-  run_python_script(script, {out},
-                    "use --no-plots to skip the figures; the CSV files and report.md (without figures) are in " + out,
-                    opt.quiet);
-  std::vector<std::string> figures{"pod_singular_values.png", "dual_cone_error.png", "eim_error.png",
-                                   "errors_training.png"};
-  if (!r.verification_mus.empty()) figures.push_back("errors_verification.png");
-  figures.push_back("multipliers.png");
-  if (!r.configurations.empty()) figures.push_back("deformed_configuration.png");
-  if (!r.comparisons.empty()) figures.push_back("constraint_comparison.png");
-  for (const std::string& f : figures) {
-    require(fs::is_regular_file(fs::path(out) / f), "the plotting script did not write " + f);
-    const std::string pdf = f.substr(0, f.size() - 4) + ".pdf";  // each figure also as PDF
-    require(fs::is_regular_file(fs::path(out) / pdf), "the plotting script did not write " + pdf);
-  }
-  write_text(report_md, study::study_markdown(r, figures));
-  std::cout << "wrote " << report_md << "\n";
   return 0;
 }
 

@@ -46,12 +46,14 @@ class FieldOutput final : public OnlineFields {
 std::unique_ptr<OnlineFields> read_field_output(const contactrb::model::ReducedModel& model,
                                                 const std::string& model_path) {
   contactrb::model::ReducedReconstruction rec = io::read_reconstruction(model_path);
-  online::check_reconstruction(model, rec);
   // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
   cases::CaseSpec spec = cases::case_from_record(
       model.case_kind, model.case_spec, model_path,
       rec.mesh.nodes.empty() ? cases::MeshFile::Required : cases::MeshFile::Optional);
-  mesh::Mesh reference = study::model_reference_mesh(spec, model, rec);
+  // The case against the file first (its message names the level or mesh that disagrees), then
+  // the reconstruction data against the mesh.
+  mesh::Mesh reference = study::model_reference_mesh(spec, model, rec, model_path);
+  online::check_reconstruction(model, rec);
   return std::make_unique<FieldOutput>(std::move(rec), std::move(spec), std::move(reference));
 }
 

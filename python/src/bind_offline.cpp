@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "contactrb/cases/recorded_mesh.hpp"
 
 namespace contactrb::python {
 
@@ -137,6 +138,7 @@ std::shared_ptr<PyModel> offline_from_set(const io::SnapshotSet& set, const std:
                                           const contactrb::offline::OfflineSettings& settings) {
   require(set.num_failed() == 0, failure_report(set, origin));
   const cases::CaseSpec spec = cases::case_from_record(set.case_kind, set.case_spec, origin);
+  cases::recorded_reference_mesh(spec, {set.level, set.num_dofs, &set.mesh}, origin.empty() ? "snapshot set" : origin);
   std::optional<contactrb::offline::OfflineResult> result;
   {
     py::gil_scoped_release release;

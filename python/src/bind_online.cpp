@@ -415,7 +415,7 @@ const mesh::Mesh& PyModel::reference_mesh() {
     const cases::CaseSpec s = spec();
     const contactrb::model::ReducedReconstruction& rec = reconstruction_data();
     py::gil_scoped_release release;
-    reference = std::make_shared<const mesh::Mesh>(study::model_reference_mesh(s, model, rec));
+    reference = std::make_shared<const mesh::Mesh>(study::model_reference_mesh(s, model, rec, path.empty() ? "reduced model" : path));
   }
   return *reference;
 }

@@ -182,6 +182,55 @@ TEST(OutputFile, StaleTemporariesOfDeadProcessesOnly) {
   EXPECT_EQ(tmp.rfind(target.string() + ".contactrb-tmp." + std::to_string(::getpid()) + ".", 0), 0u) << tmp;
 }
 
+// A set whose last target became a directory while it was written (another program): no file
+// of it is renamed (the first target keeps its earlier content), and every temporary is removed.
+TEST(OutputFile, SetWithOneBadTargetRenamesNothing) {
+  const contactrb::test::TempDir dir("set_bad_target");
+  const fs::path first = dir.path() / "a.txt";
+  const fs::path last = dir.path() / "b.txt";
+  write_bytes(first, "earlier");
+  const auto write = [](const fs::path& p) {
+    contactrb::write_file_atomically(p.string(), [](std::ostream& out) { out << "new"; });
+  };
+  const std::string e = error_of([&] {
+    contactrb::OutputSet outputs;
+    write(first);
+    write(last);
+    fs::create_directory(last);
+    outputs.commit();
+  });
+  EXPECT_NE(e.find("b.txt' is a directory"), std::string::npos) << e;
+  EXPECT_EQ(read_bytes(first), "earlier");
+  EXPECT_TRUE(fs::is_directory(last));
+  int files = 0;
+  for (const auto& f : fs::directory_iterator(dir.path())) {
+    ++files;
+    EXPECT_EQ(f.path().filename().string().find("contactrb-tmp"), std::string::npos) << f.path();
+  }
+  EXPECT_EQ(files, 2);
+}
+
+// A staging directory is created next to its target, removed with its content at the end; one of
+// a dead process is removed by the next one of the same target.
+TEST(OutputFile, StagingDirectoryIsRemovedWithItsContent) {
+  const contactrb::test::TempDir dir("staging");
+  const fs::path target = dir.path() / "report";
+  const fs::path dead = dir.path() / "report.contactrb-tmp.999999999.1";
+  fs::create_directories(dead / "sub");
+  write_bytes(dead / "sub" / "x.csv", "partial");
+  fs::path seen;
+  {
+    const contactrb::StagingDirectory staging(target);
+    seen = staging.path();
+    EXPECT_TRUE(fs::is_directory(seen));
+    EXPECT_EQ(seen.parent_path(), dir.path());
+    EXPECT_FALSE(fs::exists(dead));
+    write_bytes(seen / "left.csv", "left over");
+  }
+  EXPECT_FALSE(fs::exists(seen));
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
 TEST(OutputFile, LockIsExclusiveAndWaitsAtMostItsLimit) {
   const contactrb::test::TempDir dir("lock");
   auto held = std::make_unique<contactrb::OutputLock>(dir.path());

@@ -100,7 +100,15 @@ void remove_stale_temporaries(const fs::path& target) {
     if (!digits) continue;
     const auto pid = static_cast<pid_t>(std::stol(rest.substr(0, dot)));
     // ESRCH: no such process. EPERM means it exists (another user's): leave its file alone.
-    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) remove_quietly(entry.path());
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      // A StagingDirectory is removed with its content; a link is removed, never followed.
+      if (entry.symlink_status(ignored).type() == fs::file_type::directory) {
+        fs::remove_all(entry.path(), ignored);
+      } else {
+        remove_quietly(entry.path());
+      }
+    }
   }
 }
 
@@ -130,6 +138,14 @@ void OutputSet::commit() {
   if (current_set == this) current_set = outer_;
   std::vector<Staged> pending;
   pending.swap(staged_);
+  // Every target checked before the first rename: a directory or link at one of them must not
+  // leave the files before it renamed and those after it lost.
+  try {
+    for (const Staged& s : pending) check_output_target(s.target);
+  } catch (...) {
+    for (const Staged& s : pending) remove_quietly(s.tmp);
+    throw;
+  }
   for (std::size_t i = 0; i < pending.size(); ++i) {
     try {
       commit_temporary(pending[i].tmp, pending[i].target);
@@ -194,6 +210,24 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     }
   }
   commit_temporary(tmp, target);
+}
+
+StagingDirectory::StagingDirectory(const fs::path& target) {
+  remove_stale_temporaries(target);
+  path_ = temporary_path(target);
+  std::error_code ec;
+  // create_directory is false when the name exists: never a directory of another process.
+  if (!fs::create_directory(path_, ec) || ec) {
+    const std::string reason = ec ? ec.message() : "it exists";
+    path_.clear();
+    throw Error("cannot create the staging directory for " + quoted(target) + ": " + reason);
+  }
+}
+
+StagingDirectory::~StagingDirectory() {
+  if (path_.empty()) return;
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
 }
 
 OutputLock::OutputLock(const fs::path& directory, double wait_seconds) {

@@ -29,8 +29,8 @@ void check_output_target(const std::filesystem::path& path);
 // A fresh temporary name next to `target`: "<target>.contactrb-tmp.<pid>.<counter>".
 std::filesystem::path temporary_path(const std::filesystem::path& target);
 
-// Removes the temporary files of `target` (temporary_path's form) whose process is gone.
-// Files of a running process are left alone; errors are ignored (a cleanup, not a step).
+// Removes the temporary files (and staging directories, with their content) of `target`
+// (temporary_path's form) whose process is gone. Files of a running process are left alone; errors are ignored (a cleanup, not a step).
 void remove_stale_temporaries(const std::filesystem::path& target);
 
 // Renames the complete temporary file `tmp` to `target` after check_output_target(target);
@@ -57,8 +57,9 @@ class OutputSet {
   std::filesystem::path staged(const std::filesystem::path& target) const;
   // Adds a temporary file written by other means (a script) to commit as `target`.
   void add(const std::filesystem::path& tmp, const std::filesystem::path& target);
-  // Renames every staged file to its target. Throws contactrb::Error naming the first target
-  // that cannot be replaced; the files not yet renamed are removed.
+  // Renames every staged file to its target, after checking every target (check_output_target).
+  // Throws contactrb::Error naming the first target that cannot be replaced; when a check fails
+  // no file is renamed, and the files not renamed are removed.
   void commit();
 
  private:
@@ -68,6 +69,23 @@ class OutputSet {
   std::vector<Staged> staged_;
   OutputSet* outer_ = nullptr;
   friend void commit_temporary(const std::filesystem::path&, const std::filesystem::path&);
+};
+
+// A new, empty directory next to `target` (temporary_path's name), for a program that writes the
+// files of an output set itself (a plotting script); OutputSet::add then commits its files.
+// Removed with whatever is left in it when destroyed; one left by a killed process is removed by
+// the next StagingDirectory of the same target (remove_stale_temporaries). Throws
+// contactrb::Error when it cannot be created.
+class StagingDirectory {
+ public:
+  explicit StagingDirectory(const std::filesystem::path& target);
+  ~StagingDirectory();
+  StagingDirectory(const StagingDirectory&) = delete;
+  StagingDirectory& operator=(const StagingDirectory&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
 };
 
 // Calls write(stream) on a new temporary file next to `path`, then renames it to `path`.

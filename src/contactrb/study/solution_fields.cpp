@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/recorded_mesh.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
 #include "contactrb/io/csv_writer.hpp"
@@ -16,15 +17,8 @@ using model::ReducedModel;
 using model::ReducedReconstruction;
 
 mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const ReducedModel& model,
-                                const ReducedReconstruction& reconstruction) {
-  // The mesh stored in the model file (format 5) when there is one: no .msh file needed.
-  mesh::Mesh reference = reconstruction.mesh.nodes.empty() ? cases::reference_mesh(spec, model.level) : reconstruction.mesh;
-  require(reference.num_dofs() == reconstruction.num_dofs,
-          "the mesh of case '" + spec.name + "' at level " + std::to_string(model.level) + " has " +
-              std::to_string(reference.num_nodes()) + " nodes (" + std::to_string(reference.num_dofs()) +
-              " DOFs), the model's reconstruction data " + std::to_string(reconstruction.num_dofs) +
-              " DOFs: the case's mesh changed since the model was built (rebuild the snapshots and the model)");
-  return reference;
+                                const ReducedReconstruction& reconstruction, const std::string& origin) {
+  return cases::recorded_reference_mesh(spec, {model.level, reconstruction.num_dofs, &reconstruction.mesh}, origin);
 }
 
 CellStress cell_stress(const mesh::Mesh& mesh, const std::vector<fem::Material>& materials, const Eigen::VectorXd& u) {

@@ -18,11 +18,13 @@
 
 namespace contactrb::study {
 
-// reconstruction.mesh, or cases::reference_mesh(spec, model.level) when it is empty. Throws contactrb::Error when its DOF count is not
-// the reconstruction's (the case changed since the model was built, e.g. another Gmsh version
-// or an edited .msh file).
+// reconstruction.mesh, or cases::reference_mesh(spec, model.level) when it is empty, checked against
+// the case at the model's level by cases::recorded_reference_mesh (`origin`: the model file).
+// Throws contactrb::Error when they disagree (a damaged or crafted file, or the case changed
+// since the model was built, e.g. an edited .msh file).
 mesh::Mesh model_reference_mesh(const cases::CaseSpec& spec, const contactrb::model::ReducedModel& model,
-                                const contactrb::model::ReducedReconstruction& reconstruction);
+                                const contactrb::model::ReducedReconstruction& reconstruction,
+                                const std::string& origin);
 
 // The stress of a P1 displacement, constant per triangle: xx, yy, xy from fem::element_stress;
 // plane strain adds zz = nu (xx + yy) (nu of the triangle's body); von Mises
