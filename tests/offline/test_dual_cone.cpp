@@ -8,6 +8,7 @@
 #include "contactrb/offline/angle_greedy.hpp"
 #include "contactrb/offline/cone_projection.hpp"
 #include "contactrb/offline/cpg.hpp"
+#include "contactrb/offline/row_cone.hpp"
 #include "offline/offline_fixtures.hpp"
 
 using namespace contactrb::offline;
@@ -231,4 +232,34 @@ TEST(CPG, RelativeModeStartsAtTheLargestSnapshot) {
   const DualConeResult angle = build_angle_greedy(S, s);
   ASSERT_FALSE(angle.selected.empty());
   EXPECT_EQ(angle.selected[0], largest);
+}
+
+TEST(RowCone, GeneratorsAreTheRowsAndErrorsAreThoseOfTheConeProjection) {
+  // The generators are the unit vectors of the kept rows; errors[k] is the max over the snapshots
+  // of the distance to the cone of the first k of them, checked against the QP projection.
+  const MatrixXd S = offline_fixtures::hertz_like_snapshots(21, 9);
+  const VectorXd w = offline_fixtures::collocation_weights(21);
+  DualConeSettings settings;
+  settings.weights = w;
+  const DualConeResult cone = build_row_cone(S, settings);
+  EXPECT_EQ(cone.method, DualConeMethod::Rows);
+  ASSERT_EQ(cone.generators.rows(), 21);
+  ASSERT_EQ(cone.generators.cols(), 21);
+  EXPECT_TRUE(cone.generators.isIdentity(0.0));
+  ASSERT_EQ(cone.errors.size(), 22u);
+  EXPECT_EQ(cone.errors.back(), 0.0);
+  for (int k : {1, 5, 10, 20}) {
+    double worst = 0.0, worst_relative = 0.0;
+    for (Eigen::Index p = 0; p < S.cols(); ++p) {
+      const ConeProjection pr = project_onto_cone(cone.generators.leftCols(k), S.col(p), w);
+      const double e = weighted_norm(S.col(p) - cone.generators.leftCols(k) * pr.coefficients, w);
+      worst = std::max(worst, e);
+      worst_relative = std::max(worst_relative, e / weighted_norm(S.col(p), w));
+    }
+    EXPECT_NEAR(cone.errors[static_cast<std::size_t>(k)], worst, 1e-12 * (1.0 + worst)) << k;
+    EXPECT_NEAR(cone.relative_errors[static_cast<std::size_t>(k)], worst_relative, 1e-12) << k;
+  }
+  double largest = 0.0;
+  for (Eigen::Index p = 0; p < S.cols(); ++p) largest = std::max(largest, weighted_norm(S.col(p), w));
+  EXPECT_NEAR(cone.errors.front(), largest, 1e-14 * largest);
 }

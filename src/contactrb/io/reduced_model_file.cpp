@@ -237,6 +237,12 @@ void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
     v.mat(es, "Q_gamma", e.Q_gamma, {"R_kept x Mg_max: EIM basis of gamma on the kept rows", "length"});
     v.vec(es, "eim_residual", e.eim_residual, {"Mk_max + 1: the EIM residual bound at each M", "1"});
     v.mat(es, "eim_slack", e.eim_slack, {"(Mk_max + 1) x (Mg_max + 1): the EIM slack at each (M, M')", "length"});
+    v.mat(es, "residual_exact", e.residual_exact,
+          {"rho' x d_exact: ||r||_X' = |residual_exact y| with the exact contact rows (columns: f_j | "
+           "(A_j lift_k)_0 | A_j,00 Theta_n | E_c' e_a for a in exact_dofs)",
+           "force x length / energy norm"});
+    v.ints(es, "exact_dofs", e.exact_dofs,
+           {"the contact-surface DOFs (indices into the n_c contact DOFs) of the exact load columns", "index (0-based)"});
   }
 }
 

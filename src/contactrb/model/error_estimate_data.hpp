@@ -41,6 +41,24 @@ struct EstimateData {
   // delta s_p = (gamma_p - I_M' gamma_p) - (K_p - I_M K_p) u_0,c(mu_p).
   Eigen::VectorXd eim_residual;  // Mk_max + 1
   Eigen::MatrixXd eim_slack;     // (Mk_max + 1) x (Mg_max + 1)
+
+  // The estimate with the exact contact rows (online::ContactRows::Exact): the contact term of
+  // the residual is -E_c' K(w)' Xi lambda_hat, a load on the contact-surface DOFs, so its columns
+  // are the unit loads E_c' e_a on the contact DOFs a of exact_dofs: rho' x d_exact with
+  // d_exact = J^f + J^a J^D + J^a N_max + |exact_dofs| columns [ affine terms as above | e_a ],
+  // coefficients [ as above | -(K' Xi lambda_hat)_a ]. exact_dofs: the free contact-surface DOFs
+  // (indices into the n_c contact DOFs, increasing) that the kept rows touch in training, with a
+  // margin of kExactDofMargin chain nodes each side; a load outside them makes the estimate
+  // unavailable (not silently smaller).
+  Eigen::MatrixXd residual_exact;
+  std::vector<int> exact_dofs;
 };
+
+// Contact-chain nodes added on each side of the nodes the kept rows touch in training.
+inline constexpr int kExactDofMargin = 2;
+
+inline Eigen::Index exact_residual_columns(int Jf, int Ja, int JD, int N, int n_exact) {
+  return static_cast<Eigen::Index>(Jf + Ja * JD + Ja * N) + n_exact;
+}
 
 }  // namespace contactrb::model

@@ -97,10 +97,51 @@ void calibrate_eim(const EstimateInputs& in, const Eigen::SimplicialLLT<Eigen::S
   }
 }
 
+// The free contact-surface DOFs the kept rows touch in training, with kExactDofMargin chain
+// nodes each side (EstimateData::exact_dofs).
+std::vector<int> exact_contact_dofs(const EstimateInputs& in, const std::vector<Index>& global_to_free) {
+  const model::ContactSurface& surface = *in.surface;
+  const Index n_c = ix(in.contact_dofs->size());
+  std::vector<char> node_touched(surface.reference_nodes.size(), 0);
+  for (const io::Snapshot& snap : in.set->snapshots) {
+    for (int row : *in.kept_rows) {
+      for (Index a = 0; a < n_c; ++a) {
+        if (snap.K(row, a) != 0.0) node_touched[sz(static_cast<int>(a / 2))] = 1;
+      }
+    }
+  }
+  std::vector<char> node_kept = node_touched;
+  for (const std::vector<int>* chain : {&surface.slave, &surface.master}) {
+    const int n = static_cast<int>(chain->size());
+    for (int k = 0; k < n; ++k) {
+      if (!node_touched[sz((*chain)[sz(k)])]) continue;
+      for (int d = -model::kExactDofMargin; d <= model::kExactDofMargin; ++d) {
+        if (k + d >= 0 && k + d < n) node_kept[sz((*chain)[sz(k + d)])] = 1;
+      }
+    }
+  }
+  std::vector<int> dofs;
+  for (Index a = 0; a < n_c; ++a) {
+    if (node_kept[sz(static_cast<int>(a / 2))] && global_to_free[sz((*in.contact_dofs)[sz(a)])] >= 0) {
+      dofs.push_back(static_cast<int>(a));
+    }
+  }
+  return dofs;
+}
+
+// |S y| = |R P' y| for every y: the rank-truncated R factor of S's column-pivoted QR.
+Eigen::MatrixXd residual_factor(const Eigen::MatrixXd& S) {
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(S);
+  qr.setThreshold(kEstimateRankTolerance);
+  const Index rank = std::max<Index>(1, std::min<Index>(qr.rank(), S.cols()));
+  const Eigen::MatrixXd Rtop = qr.matrixQR().topRows(rank).triangularView<Eigen::Upper>();
+  return Rtop * qr.colsPermutation().transpose();
+}
+
 EstimateData build_estimate_data(const EstimateInputs& in) {
   require(in.terms && in.thetas && in.free_dofs && in.contact_dofs && in.Theta && in.Theta_c && in.Xi && in.Q_kappa &&
               in.Q_gamma && in.set && in.kept_rows && in.lift_c && in.weights_kept && in.kappa_magic &&
-              in.B_kappa && in.gamma_magic && in.B_gamma,
+              in.B_kappa && in.gamma_magic && in.B_gamma && in.surface,
           "build_estimate_data: a required input is missing");
   const cases::AffineTerms& terms = *in.terms;
   const std::vector<int>& free = *in.free_dofs;
@@ -187,14 +228,16 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
   Eigen::MatrixXd T0(k0, d);
   T0.leftCols(d0) = S.leftCols(d0);
   T0.rightCols(d - d0) = S.rightCols(n_c) * C;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(T0);
-  qr.setThreshold(kEstimateRankTolerance);
-  const Index rank = std::max<Index>(1, std::min<Index>(qr.rank(), d));
 
   EstimateData e;
   e.theta_a_reference = cases::evaluate(in.thetas->a, in.reference_mu);
-  const Eigen::MatrixXd Rtop = qr.matrixQR().topRows(rank).triangularView<Eigen::Upper>();
-  e.residual_T = Rtop * qr.colsPermutation().transpose();  // W = Q R P': |W y| = |R P' y|
+  e.residual_T = residual_factor(T0);  // W = Q R P': |W y| = |R P' y|
+  // The exact contact rows' residual: the unit loads on exact_dofs are columns of S itself.
+  e.exact_dofs = exact_contact_dofs(in, global_to_free);
+  Eigen::MatrixXd T1(k0, d0 + ix(e.exact_dofs.size()));
+  T1.leftCols(d0) = S.leftCols(d0);
+  for (std::size_t k = 0; k < e.exact_dofs.size(); ++k) T1.col(d0 + ix(k)) = S.col(d0 + e.exact_dofs[k]);
+  e.residual_exact = residual_factor(T1);
   for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
   e.Q_gamma = *in.Q_gamma;
   calibrate_eim(in, llt, global_to_free, e);

@@ -49,6 +49,7 @@ struct EstimateInputs {
   const Eigen::MatrixXd* B_kappa = nullptr;
   const std::vector<int>* gamma_magic = nullptr;   // Mg_max
   const Eigen::MatrixXd* B_gamma = nullptr;
+  const model::ContactSurface* surface = nullptr;  // its chains give the margin of exact_dofs
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.

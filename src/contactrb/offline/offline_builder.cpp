@@ -524,7 +524,7 @@ EstimateData estimate_data_step(const io::SnapshotSet& set, const cases::CaseSpe
   return build_estimate_data({&ref.terms, &ref.thetas, cases::reference_mu(spec.parameters), &set.free_dofs,
                               &set.contact_dofs, &Theta, &m.Theta_c, &m.Xi, &eim_k.Q, &eim_g.Q, &set,
                               &dual_snapshots.kept, &ref.lift_c, &dual_snapshots.weights, &eim_k.magic_points,
-                              &eim_k.B, &eim_g.magic_points, &eim_g.B});
+                              &eim_k.B, &eim_g.magic_points, &eim_g.B, &m.surface});
 }
 
 // The training points and their coordinates. Theta is M-orthonormal, so Theta' M u_0 are the

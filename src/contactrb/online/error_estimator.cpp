@@ -36,6 +36,68 @@ void check_estimate_data(const ReducedModel& m) {
   if (e.eim_residual.size() != m.Mk_max + 1) fail("eim_residual has the wrong size");
   if (e.eim_slack.rows() != m.Mk_max + 1 || e.eim_slack.cols() != m.Mg_max + 1) fail("eim_slack has the wrong shape");
   if (!e.residual_T.allFinite()) fail("residual_T is not finite");
+  if (e.residual_exact.size() == 0 && e.exact_dofs.empty()) return;  // no exact-rows estimate
+  int previous = -1;
+  for (int a : e.exact_dofs) {
+    if (a <= previous || a >= m.surface.num_dofs()) fail("exact_dofs is not increasing within the contact DOFs");
+    previous = a;
+  }
+  const Index d_exact =
+      model::exact_residual_columns(m.J_f(), m.J_a(), m.J_lift(), m.N_max, static_cast<int>(e.exact_dofs.size()));
+  if (e.residual_exact.cols() != d_exact || e.residual_exact.rows() < 1 || e.residual_exact.rows() > d_exact) {
+    fail("residual_exact is " + std::to_string(e.residual_exact.rows()) + " x " +
+         std::to_string(e.residual_exact.cols()) + ", expected at most " + std::to_string(d_exact) + " x " +
+         std::to_string(d_exact));
+  }
+  if (!e.residual_exact.allFinite()) fail("residual_exact is not finite");
+}
+
+namespace {
+// |T_sel y| = |R P' y| with T_sel (the columns `sel` of T) P = Q R (column pivoting): only the rows
+// of the numerical rank of the selected terms are kept (the same tolerance as offline), so the
+// online product is rank x d.
+void factor_columns(const Eigen::MatrixXd& T, const std::vector<Index>& sel, Eigen::MatrixXd& R,
+                    std::vector<Index>& perm) {
+  const Index d = ix(sel.size());
+  Eigen::MatrixXd Tsel(T.rows(), d);
+  for (Index k = 0; k < d; ++k) Tsel.col(k) = T.col(sel[sz(k)]);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Tsel);
+  qr.setThreshold(kEstimateRankTolerance);
+  const Index rows = std::max<Index>(1, std::min<Index>(qr.rank(), d));
+  R = qr.matrixQR().topRows(rows).triangularView<Eigen::Upper>();
+  perm.resize(sz(d));
+  for (Index k = 0; k < d; ++k) perm[sz(k)] = qr.colsPermutation().indices()(k);
+}
+
+// |R P' y| for R upper trapezoidal, over the non-zero coefficients of y only.
+double pivoted_norm(const Eigen::MatrixXd& R, const std::vector<Index>& perm, const Eigen::VectorXd& y,
+                    Eigen::VectorXd& v) {
+  v.setZero(R.rows());
+  const Index rows = R.rows();
+  for (Index c = 0; c < y.size(); ++c) {
+    const double yc = y(perm[sz(c)]);
+    if (yc == 0.0) continue;
+    const Index n = std::min(c + 1, rows);
+    v.head(n).noalias() += yc * R.col(c).head(n);
+  }
+  return v.norm();
+}
+}  // namespace
+
+void ErrorEstimator::setup_exact(const ReducedModel& m, const std::vector<Index>& affine) {
+  const EstimateData& e = m.estimate;
+  exact_dofs_ = e.exact_dofs;
+  is_exact_dof_.assign(sz(m.surface.num_dofs()), 0);
+  for (int a : exact_dofs_) is_exact_dof_[sz(a)] = 1;
+  exact_available_ = e.residual_exact.size() > 0;
+  if (!exact_available_) return;
+  // Columns: the affine ones of the leading N (their positions in residual_exact are those of
+  // residual_T, whose affine block has the same layout), then every exact load column.
+  std::vector<Index> sel = affine;
+  const Index first_load = ix(m.J_f() + m.J_a() * m.J_lift() + m.J_a() * m.N_max);
+  for (std::size_t k = 0; k < exact_dofs_.size(); ++k) sel.push_back(first_load + ix(k));
+  factor_columns(e.residual_exact, sel, T_exact_, perm_exact_);
+  y_exact_.resize(ix(sel.size()));
 }
 
 void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) {
@@ -60,17 +122,11 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   for (int i = 0; i < Mk; ++i) {
     for (int r = 0; r < R; ++r) sel.push_back(c0 + static_cast<Index>(i) * m.R_max + r);
   }
+  const std::vector<Index> affine(sel.begin(), sel.begin() + (u0 + static_cast<Index>(Ja) * N));
+  factor_columns(e.residual_T, sel, T_, perm_);
   const Index d = ix(sel.size());
-  Eigen::MatrixXd Tsel(e.residual_T.rows(), d);
-  for (Index k = 0; k < d; ++k) Tsel.col(k) = e.residual_T.col(sel[sz(k)]);
-  // |Tsel y| = |R P' y| with Tsel P = Q R (column pivoting): only the rows of the numerical rank of
-  // the selected terms are kept (the same tolerance as offline), so the online product is rank x d.
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Tsel);
-  qr.setThreshold(kEstimateRankTolerance);
-  const Index rows = std::max<Index>(1, std::min<Index>(qr.rank(), d));
-  T_ = qr.matrixQR().topRows(rows).triangularView<Eigen::Upper>();
-  perm_.resize(sz(d));
-  for (Index k = 0; k < d; ++k) perm_[sz(k)] = qr.colsPermutation().indices()(k);
+  const Index rows = T_.rows();
+  setup_exact(m, affine);
   QTheta_.resize(m.R_kept(), static_cast<Index>(Mk) * N);
   for (int i = 0; i < Mk; ++i) QTheta_.middleCols(static_cast<Index>(i) * N, N) = e.QTheta_kappa[sz(i)].leftCols(N);
   Q_gamma_ = e.Q_gamma.leftCols(Mg);
@@ -84,6 +140,41 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   lam_.resize(m.R_kept());
 }
 
+Index ErrorEstimator::fill_affine(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, Eigen::VectorXd& y,
+                                  double& alpha) const {
+  const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
+  const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
+  const Eigen::VectorXd tl = cases::evaluate(thetas_.lift, mu);
+  const Index Jf = tf.size(), Ja = ta.size(), JD = tl.size();
+  // Coefficients of the residual terms (model/error_estimate_data.hpp).
+  Index k = 0;
+  for (Index j = 0; j < Jf; ++j) y(k++) = tf(j);
+  for (Index j = 0; j < Ja; ++j) {
+    for (Index l = 0; l < JD; ++l) y(k++) = ta(j) * tl(l);
+  }
+  for (Index j = 0; j < Ja; ++j) {
+    y.segment(k, N_) = ta(j) * u_hat;
+    k += N_;
+  }
+  // alpha(mu) = min_j theta^a_j(mu) / theta^a_j(mu_ref): with A_j symmetric positive semi-definite
+  // and positive thetas, v'A(mu)v = sum_j theta_j(mu) v'A_j v >= alpha sum_j theta_j(ref) v'A_j v.
+  alpha = std::numeric_limits<double>::infinity();
+  for (Index j = 0; j < Ja; ++j) {
+    const double ratio = theta_ref_(j) > 0.0 ? ta(j) / theta_ref_(j) : -1.0;
+    alpha = std::min(alpha, ratio);
+  }
+  return k;
+}
+
+void ErrorEstimator::combine(ErrorEstimate& est) {
+  // |e|_A^2 <= (|r|_X' / sqrt(alpha)) |e|_A + violation |lambda|_Lambda + complementarity, with
+  // |lambda|_Lambda estimated by |lambda_rb|_Lambda: the positive root of the quadratic, as in HSW12.
+  const double c1 = 0.5 * (est.residual + est.eim_residual) / std::sqrt(est.coercivity);
+  const double c2 = (est.violation + est.eim_slack) * est.multiplier_norm + std::max(0.0, est.complementarity);
+  est.energy = c1 + std::sqrt(c1 * c1 + c2);
+  est.available = true;
+}
+
 ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat,
                                        const Eigen::VectorXd& phi, const Eigen::VectorXd& phi_gamma,
                                        const Eigen::VectorXd& weight_kept) {
@@ -92,43 +183,15 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   require(u_hat.size() == N_ && lambda_hat.size() == R_ && phi.size() == Mk_ && phi_gamma.size() == Mg_ &&
               weight_kept.size() == s_.size(),
           "ErrorEstimator::evaluate: sizes disagree with the setup");
-  const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
-  const Eigen::VectorXd tf = cases::evaluate(thetas_.f, mu);
-  const Eigen::VectorXd tl = cases::evaluate(thetas_.lift, mu);
-  const Index Jf = tf.size(), Ja = ta.size(), JD = tl.size();
-  // Coefficients of the residual terms (model/error_estimate_data.hpp).
-  Index k = 0;
-  for (Index j = 0; j < Jf; ++j) y_(k++) = tf(j);
-  for (Index j = 0; j < Ja; ++j) {
-    for (Index l = 0; l < JD; ++l) y_(k++) = ta(j) * tl(l);
-  }
-  for (Index j = 0; j < Ja; ++j) {
-    y_.segment(k, N_) = ta(j) * u_hat;
-    k += N_;
-  }
+  double alpha = 0.0;
+  Index k = fill_affine(mu, u_hat, y_, alpha);
   for (Index i = 0; i < Mk_; ++i) {
     y_.segment(k, R_) = phi(i) * lambda_hat;
     k += R_;
   }
-  // v = R P' y, column by column over the non-zero coefficients: the contact coefficients
-  // phi_i lambda_hat_r vanish for every inactive generator r (lambda_hat >= 0 is usually sparse).
-  v_.setZero();
-  const Index rows = T_.rows();
-  for (Index c = 0; c < y_.size(); ++c) {
-    const double yc = y_(perm_[sz(c)]);
-    if (yc == 0.0) continue;
-    const Index n = std::min(c + 1, rows);  // R is upper trapezoidal
-    v_.head(n).noalias() += yc * T_.col(c).head(n);
-  }
-  est.residual = v_.norm();
-
-  // alpha(mu) = min_j theta^a_j(mu) / theta^a_j(mu_ref): with A_j symmetric positive semi-definite
-  // and positive thetas, v'A(mu)v = sum_j theta_j(mu) v'A_j v >= alpha sum_j theta_j(ref) v'A_j v.
-  double alpha = std::numeric_limits<double>::infinity();
-  for (Index j = 0; j < Ja; ++j) {
-    const double ratio = theta_ref_(j) > 0.0 ? ta(j) / theta_ref_(j) : -1.0;
-    alpha = std::min(alpha, ratio);
-  }
+  // The contact coefficients phi_i lambda_hat_r vanish for every inactive generator r
+  // (lambda_hat >= 0 is usually sparse): pivoted_norm skips them.
+  est.residual = pivoted_norm(T_, perm_, y_, v_);
   if (!(alpha > 0.0)) return est;  // the bound does not apply: no estimate (available stays false)
   est.coercivity = alpha;
 
@@ -151,12 +214,31 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   // differs by E_c' (K - I K)' lambda, the slack by (gamma - I gamma) - (K - I K) u_0,c.
   est.eim_residual = eim_residual_ * est.multiplier_norm;
   est.eim_slack = eim_slack_;
-  // |e|_A^2 <= (|r|_X' / sqrt(alpha)) |e|_A + violation |lambda|_Lambda + complementarity, with
-  // |lambda|_Lambda estimated by |lambda_rb|_Lambda: the positive root of the quadratic, as in HSW12.
-  const double c1 = 0.5 * (est.residual + est.eim_residual) / std::sqrt(alpha);
-  const double c2 = (est.violation + est.eim_slack) * est.multiplier_norm + std::max(0.0, est.complementarity);
-  est.energy = c1 + std::sqrt(c1 * c1 + c2);
-  est.available = true;
+  combine(est);
+  return est;
+}
+
+ErrorEstimate ErrorEstimator::evaluate_exact(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat,
+                                             const ExactContact& contact) {
+  ErrorEstimate est;
+  est.exact = true;
+  if (!available_ || !exact_available_) return est;
+  require(u_hat.size() == N_ && contact.load.size() == ix(is_exact_dof_.size()),
+          "ErrorEstimator::evaluate_exact: sizes disagree with the setup");
+  for (Index a = 0; a < contact.load.size(); ++a) {
+    if (contact.load(a) != 0.0 && !is_exact_dof_[sz(a)]) return est;  // a load the model cannot measure
+  }
+  double alpha = 0.0;
+  const Index k = fill_affine(mu, u_hat, y_exact_, alpha);
+  // The residual's contact term is -E_c' K' Xi lambda_hat: coefficient -load_a on column e_a.
+  for (std::size_t i = 0; i < exact_dofs_.size(); ++i) y_exact_(k + ix(i)) = -contact.load(exact_dofs_[i]);
+  est.residual = pivoted_norm(T_exact_, perm_exact_, y_exact_, v_exact_);
+  if (!(alpha > 0.0)) return est;
+  est.coercivity = alpha;
+  est.violation = contact.violation;
+  est.complementarity = contact.complementarity;
+  est.multiplier_norm = contact.multiplier_norm;
+  combine(est);
   return est;
 }
 

@@ -24,6 +24,8 @@ struct ErrorEstimate {
   double multiplier_norm = 0.0;  // ||Xi lambda_hat||_Lambda, Lambda = L2(Gamma^c)
   double eim_residual = 0.0;     // eim_residual(Mk) ||Xi lambda_hat||_Lambda (estimated EIM part of the residual)
   double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
+  bool exact = false;            // from the HF contact rows (ContactRows::Exact): violation and
+                                 // complementarity over every row, no EIM part
   double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
 };
 
@@ -47,7 +49,28 @@ class ErrorEstimator {
                          const Eigen::VectorXd& phi, const Eigen::VectorXd& phi_gamma,
                          const Eigen::VectorXd& weight_kept);
 
+  // The HF contact rows at the returned displacement w = u_D + Theta_c u_hat (ContactRows::Exact):
+  // the contact load K(w)' Xi lambda_hat on the n_c contact DOFs and, over every row r with
+  // s = g(w) - K(w) w and lambda = Xi lambda_hat (0 on the dropped rows), the violation
+  // sqrt(sum (s_r^-)^2 / |I_r|), the complementarity lambda's and |lambda|_Lambda.
+  struct ExactContact {
+    Eigen::VectorXd load;
+    double violation = 0.0;
+    double complementarity = 0.0;
+    double multiplier_norm = 0.0;
+  };
+  // The estimate with the exact contact term (EstimateData::residual_exact): no EIM part.
+  // Unavailable when the model holds no exact data or the load reaches a DOF outside exact_dofs.
+  ErrorEstimate evaluate_exact(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const ExactContact& contact);
+
  private:
+  // y's affine part (theta^f; theta^a theta^lift; theta^a u_hat) and the coercivity bound.
+  Eigen::Index fill_affine(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, Eigen::VectorXd& y,
+                           double& alpha) const;
+  // Delta_u = c1 + sqrt(c1^2 + c2) of the parts of `est` (HSW12).
+  static void combine(ErrorEstimate& est);
+  void setup_exact(const contactrb::model::ReducedModel& model, const std::vector<Eigen::Index>& affine);
+
   bool available_ = false;
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::AffineThetas thetas_;
@@ -59,6 +82,12 @@ class ErrorEstimator {
   Eigen::MatrixXd Xi_;       // R_kept x R
   double eim_residual_ = 0.0, eim_slack_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
   Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
+  bool exact_available_ = false;
+  Eigen::MatrixXd T_exact_;                // rank x d_exact: R factor of the selected residual_exact columns
+  std::vector<Eigen::Index> perm_exact_;
+  std::vector<int> exact_dofs_;            // contact DOF of each exact load column
+  std::vector<char> is_exact_dof_;         // n_c flags
+  Eigen::VectorXd y_exact_, v_exact_;
 };
 
 }  // namespace contactrb::online

@@ -294,6 +294,31 @@ void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   if (Mg_ > 0) phi_gamma_ = B_gamma_lu_.solve(gamma_hat_);
 }
 
+ErrorEstimator::ExactContact OnlineSolver::exact_contact(const Eigen::VectorXd& u_hat,
+                                                         const Eigen::VectorXd& lambda_hat) {
+  w_ = lift_mu_;
+  w_.noalias() += Theta_c_ * u_hat;
+  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
+  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rows.K.rows());
+  const Eigen::VectorXd lambda_kept = Xi_ * lambda_hat;
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i) lambda(kept_rows_[i]) = lambda_kept(static_cast<Eigen::Index>(i));
+  ErrorEstimator::ExactContact c;
+  c.load = rows.K.transpose() * lambda;
+  const Eigen::VectorXd slack = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
+  double viol2 = 0.0, lam2 = 0.0;
+  for (Eigen::Index r = 0; r < slack.size(); ++r) {
+    const double weight = quadrature_.weight(static_cast<int>(r));
+    const double neg = std::max(0.0, -slack(r));
+    if (weight > 0.0) viol2 += neg * neg / weight;  // rows weighted by |I_r|: the L2(Gamma^c) dual norm
+    lam2 += weight * lambda(r) * lambda(r);
+  }
+  c.violation = std::sqrt(viol2);
+  c.multiplier_norm = std::sqrt(lam2);
+  c.complementarity = lambda.dot(slack);
+  return c;
+}
+
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                         std::string& message) {
   if (exact_rows_) {
@@ -576,7 +601,8 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   // The estimate at the last linearization (phi_, phi_gamma_ of the last step), as the returned
   // pair is that linearization's solution.
   if (settings.error_estimate && sol.converged()) {
-    sol.estimate = estimator_.evaluate(mu, sol.u_hat, sol.lambda_hat, phi_, phi_gamma_, weight_kept_);
+    sol.estimate = exact_rows_ ? estimator_.evaluate_exact(mu, sol.u_hat, exact_contact(sol.u_hat, sol.lambda_hat))
+                               : estimator_.evaluate(mu, sol.u_hat, sol.lambda_hat, phi_, phi_gamma_, weight_kept_);
   }
   sol.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   return sol;

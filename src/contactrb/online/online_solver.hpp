@@ -160,6 +160,8 @@ class OnlineSolver {
   // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
   void exact_operators(const Eigen::VectorXd& u_hat);
   bool exact_rows(ContactRows choice) const;
+  // The HF contact rows at the returned solution, for ErrorEstimator::evaluate_exact.
+  ErrorEstimator::ExactContact exact_contact(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat);
   // The reduced dual QP of the step's D and Xi'gamma, and u_bar = A^-1 (f - D' lambda).
   bool solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner, std::string& message);
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
