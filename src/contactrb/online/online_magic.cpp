@@ -178,8 +178,7 @@ double MagicPointEvaluator::k_entry(const Projection& p, int slave_node, int dof
   return v;
 }
 
-void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat,
-                                   Eigen::VectorXd& gamma_hat) {
+void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
   w_r_ = lift_r_;
   w_r_.noalias() += Theta_r_ * u_hat;
   if (!w_r_.allFinite()) throw Error("OnlineSolver: the contact-surface displacement is not finite");
@@ -244,6 +243,45 @@ void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd
     // (28): g = (X_s - rho) . n2; a non-candidate: its distance (never binds).
     p.g = p.candidate ? (X - rho).dot(p.normal) : std::sqrt(best.d2);
   }
+}
+
+double MagicPointEvaluator::gamma_term(const Term& term) const {
+  const Projection& p = projection_[sz(term.slave)];
+  double k_lift = 0.0;
+  if (p.candidate) {
+    const auto lift = [&](int node) { return lift_r_.segment<2>(2 * node_slot_[sz(node)]); };
+    k_lift = p.normal.dot((1.0 - p.xi) * lift(p.a) + p.xi * lift(p.b) - lift(slave_node_[sz(term.slave)]));
+  }
+  return term.weight * (p.g - k_lift);
+}
+
+void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, Eigen::MatrixXd& K_Theta, Eigen::VectorXd& gamma) {
+  project(u_hat);
+  K_Theta.setZero();
+  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
+    double v = 0.0;
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+      const Term& term = gamma_terms_[sz(t)];
+      const Projection& p = projection_[sz(term.slave)];
+      v += gamma_term(term);
+      if (!p.candidate) continue;
+      // (27): the row k(w; .)_s = ((1 - xi) e_a + xi e_b - e_s) . n2, applied to Theta.
+      const auto add = [&](int node, double c) {
+        const int slot = node_slot_[sz(node)];
+        K_Theta.row(static_cast<Eigen::Index>(i)).noalias() +=
+            (c * p.normal.x()) * Theta_r_.row(2 * slot) + (c * p.normal.y()) * Theta_r_.row(2 * slot + 1);
+      };
+      add(p.a, term.weight * (1.0 - p.xi));
+      add(p.b, term.weight * p.xi);
+      add(slave_node_[sz(term.slave)], -term.weight);
+    }
+    gamma(static_cast<Eigen::Index>(i)) = v;
+  }
+}
+
+void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat,
+                                   Eigen::VectorXd& gamma_hat) {
+  project(u_hat);
   for (std::size_t i = 0; i < kappa_row_.size(); ++i) {
     double v = 0.0;
     for (int t = kappa_start_[i]; t < kappa_start_[i + 1]; ++t) {
@@ -255,16 +293,7 @@ void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd
   // gamma = g - K u_D(mu) (the lift's contact term moved into the gap).
   for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
     double v = 0.0;
-    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
-      const Term& term = gamma_terms_[sz(t)];
-      const Projection& p = projection_[sz(term.slave)];
-      double k_lift = 0.0;
-      if (p.candidate) {
-        const auto lift = [&](int node) { return lift_r_.segment<2>(2 * node_slot_[sz(node)]); };
-        k_lift = p.normal.dot((1.0 - p.xi) * lift(p.a) + p.xi * lift(p.b) - lift(slave_node_[sz(term.slave)]));
-      }
-      v += term.weight * (p.g - k_lift);
-    }
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) v += gamma_term(gamma_terms_[sz(t)]);
     gamma_hat(static_cast<Eigen::Index>(i)) = v;
   }
 }

@@ -39,6 +39,11 @@ class MagicPointEvaluator {
   // Per step: kappa_hat (Mk) and gamma_hat (Mg) at u_hat (N), sized by the caller.
   void evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat);
 
+  // Per step, whole rows instead of magic entries: for each gamma row i, row i of K(w) Theta_c
+  // (K_Theta, gamma rows x N, sized by the caller) and gamma_i (the exact contact rows of
+  // ContactRows::Exact on the kept rows; setup with those as gamma rows and no kappa pair).
+  void evaluate_rows(const Eigen::VectorXd& u_hat, Eigen::MatrixXd& K_Theta, Eigen::VectorXd& gamma);
+
   int num_slave_nodes() const { return static_cast<int>(slave_node_.size()); }  // restricted slave nodes
 
  private:
@@ -54,6 +59,9 @@ class MagicPointEvaluator {
     bool candidate = false;
   };
   void rebuild(const contact::ContactQuadrature& quadrature);
+  // The projections of the restricted slave nodes at w = u_D,c + Theta_c u_hat.
+  void project(const Eigen::VectorXd& u_hat);
+  double gamma_term(const Term& term) const;  // weight (g_pt - K_pt u_D) of one slave under a gamma row
   Eigen::Vector2d segment_normal(int k) const;
   Eigen::Vector2d vertex_normal(int j) const;
   double k_entry(const Projection& p, int slave_node, int dof) const;  // K_pt[s, dof]

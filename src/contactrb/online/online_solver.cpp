@@ -132,6 +132,9 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   pair_.slave = surface_.slave;
   pair_.master = surface_.master;
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
+  kept_.setup(surface_, {}, {}, kept_rows_, Theta_c_);
+  KTheta_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
+  gamma_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
   lac_rows_ = kappa_row_;
   lac_rows_.insert(lac_rows_.end(), gamma_row_.begin(), gamma_row_.end());
   std::sort(lac_rows_.begin(), lac_rows_.end());
@@ -255,7 +258,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
   } else {
     lift_mu_.setZero();
   }
-  if (pointwise_magic_ && !exact_rows_) magic_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+  if (pointwise_magic_) (exact_rows_ ? kept_ : magic_).prepare(mesh_.nodes, quadrature_, lift_mu_);
   warm_.clear();
   prepared_mu_ = mu;
   prepared_ = true;
@@ -267,6 +270,12 @@ bool OnlineSolver::exact_rows(ContactRows choice) const {
 }
 
 void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
+  if (pointwise_magic_) {  // collocation and LAC-Simpson rows: from the slaves under the kept rows only
+    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_);
+    Dt_.noalias() = KTheta_.transpose() * Xi_;
+    dg_.noalias() = Xi_.transpose() * gamma_kept_;
+    return;
+  }
   w_ = lift_mu_;
   w_.noalias() += Theta_c_ * u_hat;
   const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
@@ -285,13 +294,6 @@ void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   }
   Dt_.noalias() = KTheta_.transpose() * Xi_;
   dg_.noalias() = Xi_.transpose() * gamma_kept_;
-  // The EIM coefficients still feed the estimate's EIM terms.
-  kappa_hat_.resize(Mk_);
-  for (int i = 0; i < Mk_; ++i) kappa_hat_(i) = rows.K.coeff(kappa_row_[sz(i)], kappa_dof_[sz(i)]);
-  gamma_hat_.resize(Mg_);
-  for (int i = 0; i < Mg_; ++i) gamma_hat_(i) = rows.g(gamma_row_[sz(i)]) - row_dot(rows.K, gamma_row_[sz(i)], lift_mu_);
-  if (Mk_ > 0) phi_ = B_kappa_lu_.solve(kappa_hat_);
-  if (Mg_ > 0) phi_gamma_ = B_gamma_lu_.solve(gamma_hat_);
 }
 
 ErrorEstimator::ExactContact OnlineSolver::exact_contact(const Eigen::VectorXd& u_hat,

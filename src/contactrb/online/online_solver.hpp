@@ -218,6 +218,7 @@ class OnlineSolver {
   contact::ContactQuadrature quadrature_;
   std::vector<Eigen::Vector2d> quadrature_slave_;  // the slave node positions quadrature_ was built at
   MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
+  MagicPointEvaluator kept_;              // the kept rows whole (ContactRows::Exact, pointwise rows)
   solve::NonnegativeQPSolver qp_;
 
   // Workspaces, sized in the constructor: a query allocates nothing of size N, R per step
