@@ -1,6 +1,9 @@
-// .msh 4.1 import of 3D meshes (read_msh3): a small file written here by hand, its groups,
-// orientations and volumes checked against values computed by hand, and one test per bad file.
+// .msh 4.1 import of 3D meshes (read_msh3): a small file written here by hand and a file written
+// by Gmsh, their groups, orientations, volumes and areas checked against values computed by hand,
+// and one test per bad file.
 #include <gtest/gtest.h>
+
+#include <gmsh.h>
 
 #include <filesystem>
 #include <fstream>
@@ -143,3 +146,73 @@ TEST(Msh3, BoundaryTriangleNotOnAFace) {
             std::string::npos) << msg;
   std::filesystem::remove(path);
 }
+
+namespace {
+
+// Two boxes meshed by Gmsh (OpenCASCADE kernel), written as .msh 4.1: the master [0, 1]^2 x
+// [0, 0.5] and the slave [0, 1]^2 x [0.6, 1.1], with different mesh sizes (non-matching), groups
+// body1 / body2 (3D) and slave / master (2D: the slave bottom face, the master top face).
+void write_gmsh_blocks(const std::string& path) {
+  gmsh::initialize();
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::model::add("blocks");
+  const int master = gmsh::model::occ::addBox(0, 0, 0, 1, 1, 0.5);
+  const int slave = gmsh::model::occ::addBox(0, 0, 0.6, 1, 1, 0.5);
+  gmsh::model::occ::synchronize();
+  auto face_at = [](double z) {
+    gmsh::vectorpair faces;
+    gmsh::model::getEntitiesInBoundingBox(-0.1, -0.1, z - 1e-6, 1.1, 1.1, z + 1e-6, faces, 2);
+    return faces.at(0).second;
+  };
+  auto group = [](int dim, int entity, const std::string& name) {
+    gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, {entity}), name);
+  };
+  group(3, slave, "body1");
+  group(3, master, "body2");
+  group(2, face_at(0.6), "slave");
+  group(2, face_at(0.5), "master");
+  gmsh::vectorpair slave_points, master_points;
+  gmsh::model::getEntitiesInBoundingBox(-0.1, -0.1, 0.55, 1.1, 1.1, 1.2, slave_points, 0);
+  gmsh::model::getEntitiesInBoundingBox(-0.1, -0.1, -0.1, 1.1, 1.1, 0.55, master_points, 0);
+  gmsh::model::mesh::setSize(slave_points, 0.2);
+  gmsh::model::mesh::setSize(master_points, 0.3);
+  gmsh::model::mesh::generate(3);
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::write(path);
+  gmsh::finalize();
+}
+
+double total_volume(const Mesh3& m, int body) {
+  double v = 0.0;
+  for (int t = 0; t < m.num_cells(); ++t) {
+    if (m.body[static_cast<std::size_t>(t)] == body) v += signed_volume(m, t);
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST(Msh3, ReadsAGmshFile) {
+  const std::string path = temp_path("gmsh_blocks.msh");
+  write_gmsh_blocks(path);
+  EXPECT_EQ(msh_dimension(path), 3);
+  const Mesh3 m = read_msh3(path);
+  ASSERT_NO_THROW(validate(m));
+  EXPECT_EQ(m.num_bodies(), 2);
+  for (int t = 0; t < m.num_cells(); ++t) ASSERT_GT(signed_volume(m, t), 0.0) << t;
+  EXPECT_NEAR(total_volume(m, kSlaveBody), 0.5, 1e-12);
+  EXPECT_NEAR(total_volume(m, kMasterBody), 0.5, 1e-12);
+  Eigen::Vector3d slave = Eigen::Vector3d::Zero(), master = Eigen::Vector3d::Zero();
+  for (const Face& f : m.boundary("slave")) {
+    const Eigen::Vector3d n = facet_area_normal(m, f);
+    EXPECT_LT(n.z(), 0.0);  // every slave triangle faces down, out of the slave block
+    slave += n;
+  }
+  for (const Face& f : m.boundary("master")) master += facet_area_normal(m, f);
+  EXPECT_LT((slave - Eigen::Vector3d(0, 0, -1)).norm(), 1e-12);
+  EXPECT_LT((master - Eigen::Vector3d(0, 0, 1)).norm(), 1e-12);
+  for (int v : boundary_nodes(m, "slave")) EXPECT_NEAR(m.nodes[static_cast<std::size_t>(v)].z(), 0.6, 1e-12);
+  EXPECT_NE(m.boundary("slave").size(), m.boundary("master").size());  // different sizes: non-matching
+  std::filesystem::remove(path);
+}
+
