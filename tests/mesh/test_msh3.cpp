@@ -11,6 +11,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/msh_io.hpp"
+#include "contactrb/mesh/structured.hpp"
 
 using namespace contactrb::mesh;
 
@@ -213,6 +214,29 @@ TEST(Msh3, ReadsAGmshFile) {
   EXPECT_LT((master - Eigen::Vector3d(0, 0, 1)).norm(), 1e-12);
   for (int v : boundary_nodes(m, "slave")) EXPECT_NEAR(m.nodes[static_cast<std::size_t>(v)].z(), 0.6, 1e-12);
   EXPECT_NE(m.boundary("slave").size(), m.boundary("master").size());  // different sizes: non-matching
+  std::filesystem::remove(path);
+}
+
+TEST(Msh3, RoundTripStackedBlocks) {
+  const Mesh3 m = stacked_blocks(1, 0.05);
+  const std::string path = temp_path("stacked.msh");
+  write_msh(m, path);
+  EXPECT_EQ(msh_dimension(path), 3);
+  MshGroups groups;
+  groups.required_boundaries = {"slave", "master", "top", "bottom", "slave_sides", "master_sides"};
+  const Mesh3 r = read_msh3(path, groups);
+  ASSERT_EQ(r.num_nodes(), m.num_nodes());
+  for (int v = 0; v < m.num_nodes(); ++v) ASSERT_EQ(r.nodes[static_cast<std::size_t>(v)], m.nodes[static_cast<std::size_t>(v)]) << v;
+  EXPECT_EQ(r.tetrahedra, m.tetrahedra);
+  EXPECT_EQ(r.body, m.body);
+  ASSERT_EQ(r.boundaries.size(), m.boundaries.size());
+  for (const auto& [name, faces] : m.boundaries) {
+    const auto& other = r.boundary(name);
+    ASSERT_EQ(other.size(), faces.size()) << name;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      EXPECT_EQ(other[k].vertices(), faces[k].vertices()) << name << " " << k;
+    }
+  }
   std::filesystem::remove(path);
 }
 

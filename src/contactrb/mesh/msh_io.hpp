@@ -51,5 +51,8 @@ int msh_dimension(const std::string& path);
 // Writes format 4.1 ASCII with physical groups "body1", "body2" and one 1D group per
 // boundary group, so that read_msh(write_msh(m)) == m up to node order.
 void write_msh(const Mesh& mesh, const std::string& path);
+// The same for a 3D mesh: 3D groups "body1", "body2", one 2D group per boundary group, so that
+// read_msh3(write_msh(m)) == m up to node order.
+void write_msh(const Mesh3& mesh, const std::string& path);
 
 }  // namespace contactrb::mesh
