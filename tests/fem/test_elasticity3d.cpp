@@ -254,6 +254,40 @@ TEST(Elasticity3d, DirichletPerComponent) {
   EXPECT_THROW(DofMap(m2, {{"bottom", 0.0, 0.0, 0.0}}), contactrb::Error);  // uz on a 2D mesh
 }
 
+namespace {
+
+// The largest |A - B| over the entries, relative to the largest |B|.
+double relative_difference(const SparseMatrix& A, const SparseMatrix& B) {
+  return Eigen::MatrixXd(A - B).cwiseAbs().maxCoeff() / Eigen::MatrixXd(B).cwiseAbs().maxCoeff();
+}
+
+// x -> s x on every body: the stiffness scales with s^(Dim - 2), the mass and body loads with
+// s^Dim, the boundary mass and tractions with s^(Dim - 1) (grad ~ 1/s, measures ~ s^Dim).
+template <int Dim>
+void check_scaling(mesh::SimplexMesh<Dim> m, const std::string& group) {
+  const double s = 1.7;
+  const mesh::SimplexMesh<Dim> original = m;
+  mesh::map_body(m, 0, s * Eigen::Matrix<double, Dim, Dim>::Identity(), Eigen::Matrix<double, Dim, 1>::Zero());
+  const std::vector<Material> mat{Material{5.0, 0.3}};
+  EXPECT_LT(relative_difference(stiffness(m, mat), std::pow(s, Dim - 2) * stiffness(original, mat)), 1e-14);
+  EXPECT_LT(relative_difference(mass(m), std::pow(s, Dim) * mass(original)), 1e-14);
+  EXPECT_LT(relative_difference(boundary_mass(m, group), std::pow(s, Dim - 1) * boundary_mass(original, group)),
+            1e-14);
+  const Eigen::Matrix<double, Dim, 1> g = Eigen::Matrix<double, Dim, 1>::Ones();
+  EXPECT_LT((body_load(m, 0, g) - std::pow(s, Dim) * body_load(original, 0, g)).norm(),
+            1e-14 * body_load(m, 0, g).norm());
+  const SurfaceLoad<Dim> p{group, true, Eigen::Matrix<double, Dim, 1>::Zero(), 2.0};
+  EXPECT_LT((traction_load(m, p) - std::pow(s, Dim - 1) * traction_load(original, p)).norm(),
+            1e-14 * traction_load(m, p).norm());
+}
+
+}  // namespace
+
+TEST(Elasticity3d, UniformScalingOfABody) {
+  check_scaling(mesh::box({0, 0, 0}, {1, 0.5, 0.8}, 3, 2, 2), "top");
+  check_scaling(mesh::rectangle(0, 0, 1, 0.5, 4, 3), "top");
+}
+
 TEST(Quadrature, TetrahedronRulesExactForMonomials) {
   // int_T l0^a l1^b l2^c l3^d / |T| = 3! a! b! c! d! / (3 + a + b + c + d)!.
   auto fact = [](int n) { return std::tgamma(n + 1.0); };
