@@ -1,11 +1,13 @@
 // FEM assembly and sparse Cholesky factorization against the number of DOFs, on the
-// structured unit square mesh::rectangle (n x n cells, 2 (n + 1)^2 DOFs), bottom edge clamped.
+// structured unit square mesh::rectangle (n x n cells, 2 (n + 1)^2 DOFs), bottom edge clamped;
+// the assembly also on the Hertz meshes and on the unit cube (tetrahedra).
 // Figures: docs/performance.md, "FEM assembly and factorization".
 #include <benchmark/benchmark.h>
 
 #include "contactrb/fem/cholesky.hpp"
 #include "contactrb/fem/dirichlet.hpp"
 #include "contactrb/fem/elasticity.hpp"
+#include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/structured.hpp"
 
 using namespace contactrb;
@@ -37,6 +39,37 @@ void BM_AssembleStiffness(benchmark::State& state) {
   set_counters(state, m);
 }
 BENCHMARK(BM_AssembleStiffness)->Apply(add_sizes);
+
+// The stiffness of the Hertz meshes (two bodies, unstructured) at mesh levels 0, 3, 5.
+void BM_AssembleHertz(benchmark::State& state) {
+  mesh::HertzGeometry geometry;
+  geometry.slave_arc_nodes = mesh::hertz_arc_nodes_for_level(static_cast<int>(state.range(0)));
+  const mesh::Mesh m = mesh::generate_hertz(geometry);
+  const std::vector<fem::Material> materials(2, fem::Material{15.0, 0.35});
+  for (auto _ : state) {
+    fem::SparseMatrix K = fem::stiffness(m, materials);
+    benchmark::DoNotOptimize(K.valuePtr());
+  }
+  set_counters(state, m);
+}
+BENCHMARK(BM_AssembleHertz)->Arg(0)->Arg(3)->Arg(5)->Unit(benchmark::kMillisecond);
+
+// 3D: the stiffness of the unit cube mesh::box, n^3 cells of six tetrahedra each,
+// 3 (n + 1)^3 DOFs: n = 31 and 68 for about 1e5 and 1e6 DOFs.
+void BM_AssembleStiffness3d(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const mesh::Mesh3 m = mesh::box({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, n, n, n);
+  Eigen::Index nnz = 0;
+  for (auto _ : state) {
+    fem::SparseMatrix K = fem::stiffness(m, kMaterial);
+    nnz = K.nonZeros();
+    benchmark::DoNotOptimize(K.valuePtr());
+  }
+  state.counters["dofs"] = m.num_dofs();
+  state.counters["tetrahedra"] = m.num_tetrahedra();
+  state.counters["nnz_per_dof"] = static_cast<double>(nnz) / m.num_dofs();
+}
+BENCHMARK(BM_AssembleStiffness3d)->Arg(31)->Arg(68)->Unit(benchmark::kMillisecond);
 
 void BM_AssembleH1(benchmark::State& state) {
   const mesh::Mesh m = square(static_cast<int>(state.range(0)));

@@ -7,9 +7,9 @@
 namespace contactrb::fem {
 namespace {
 
-std::string dof_name(int dof) {
+std::string dof_name(int dof, int dim) {
   std::ostringstream s;
-  s << "DOF " << dof << " (node " << dof / 2 << ", " << (dof % 2 == 0 ? "x" : "y") << ")";
+  s << "DOF " << dof << " (node " << dof / dim << ", " << "xyz"[dof % dim] << ")";
   return s.str();
 }
 
@@ -20,8 +20,9 @@ void check_size(Eigen::Index actual, int expected, const char* who, const char* 
 
 }  // namespace
 
-DofMap::DofMap(const mesh::Mesh& mesh, const std::vector<DirichletCondition>& conditions)
-    : num_dofs_(mesh.num_dofs()) {
+template <int Dim>
+DofMap::DofMap(const mesh::SimplexMesh<Dim>& mesh, const std::vector<DirichletCondition>& conditions)
+    : num_dofs_(mesh.num_dofs()), dim_(Dim) {
   const auto n = static_cast<std::size_t>(num_dofs_);
   std::vector<int> source(n, -1);  // condition that prescribed each DOF
   lift_ = Eigen::VectorXd::Zero(num_dofs_);
@@ -33,20 +34,21 @@ DofMap::DofMap(const mesh::Mesh& mesh, const std::vector<DirichletCondition>& co
       throw Error("DofMap: Dirichlet group '" + condition.group + "' is not a boundary group of the mesh (groups: " +
                   (present.empty() ? std::string("none") : present) + ")");
     }
-    const std::optional<double> value[2] = {condition.ux, condition.uy};
+    require(Dim == 3 || !condition.uz, "DofMap: group '" + condition.group + "' prescribes uz on a 2D mesh");
+    const std::optional<double> value[3] = {condition.ux, condition.uy, condition.uz};
     for (int node : mesh::boundary_nodes(mesh, condition.group)) {
-      for (int c = 0; c < 2; ++c) {
+      for (int c = 0; c < Dim; ++c) {
         if (!value[c]) continue;
-        const int dof = 2 * node + c;
+        const int dof = Dim * node + c;
         if (dof < 0 || dof >= num_dofs_) {
           throw Error("DofMap: group '" + condition.group + "' has node " + std::to_string(node) +
-                      " out of range (mesh has " + std::to_string(num_dofs_ / 2) + " nodes)");
+                      " out of range (mesh has " + std::to_string(num_dofs_ / Dim) + " nodes)");
         }
         int& prev = source[static_cast<std::size_t>(dof)];
         if (prev >= 0 && lift_(dof) != *value[c]) {
           std::ostringstream s;
           s.precision(17);
-          s << "DofMap: " << dof_name(dof) << " prescribed twice with different values: " << lift_(dof)
+          s << "DofMap: " << dof_name(dof, Dim) << " prescribed twice with different values: " << lift_(dof)
             << " by group '" << conditions[static_cast<std::size_t>(prev)].group << "' and " << *value[c]
             << " by group '" << condition.group << "'";
           throw Error(s.str());
@@ -66,6 +68,9 @@ DofMap::DofMap(const mesh::Mesh& mesh, const std::vector<DirichletCondition>& co
     }
   }
 }
+
+template DofMap::DofMap(const mesh::Mesh&, const std::vector<DirichletCondition>&);
+template DofMap::DofMap(const mesh::Mesh3&, const std::vector<DirichletCondition>&);
 
 int DofMap::num_dofs() const { return num_dofs_; }
 int DofMap::num_free() const { return static_cast<int>(free_.size()); }

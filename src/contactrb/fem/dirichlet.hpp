@@ -12,21 +12,25 @@
 
 namespace contactrb::fem {
 
-// Prescribed displacement on the nodes of a boundary group; a component left empty is free.
+// Prescribed displacement on the nodes of a boundary group; a component left empty is free
+// (uz: 3D meshes only).
 struct DirichletCondition {
   std::string group;
   std::optional<double> ux;
   std::optional<double> uy;
+  std::optional<double> uz = std::nullopt;  // an initializer: 2D call sites may omit it
 };
 
 class DofMap {
  public:
   DofMap() = default;
-  // Throws contactrb::Error naming a missing group or a DOF prescribed twice with
-  // different values.
-  DofMap(const mesh::Mesh& mesh, const std::vector<DirichletCondition>& conditions);
+  // Throws contactrb::Error naming a missing group, a DOF prescribed twice with different
+  // values, or uz given on a 2D mesh. Dim = 2, 3.
+  template <int Dim>
+  DofMap(const mesh::SimplexMesh<Dim>& mesh, const std::vector<DirichletCondition>& conditions);
 
   int num_dofs() const;
+  int dim() const { return dim_; }  // of the mesh
   int num_free() const;
   const std::vector<int>& free_dofs() const;        // global index of each free DOF
   const std::vector<int>& constrained_dofs() const;  // sorted
@@ -45,6 +49,7 @@ class DofMap {
 
  private:
   int num_dofs_ = 0;
+  int dim_ = 2;  // DOF d is component d % dim_ of node d / dim_
   std::vector<int> free_;
   std::vector<int> constrained_;
   std::vector<int> free_index_;  // global -> free index or -1

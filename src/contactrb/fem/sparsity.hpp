@@ -1,7 +1,7 @@
 #pragma once
-// Sparsity pattern of the P1 vector matrices on a set of triangles, computed once in
-// O(number of triangles); element matrices are then added in place (no triplets).
-// Column 2*j + c holds rows 2*i and 2*i + 1 for every node i adjacent to node j
+// Sparsity pattern of the P1 vector matrices on a set of cells (triangles, tetrahedra), computed
+// once in O(number of cells); element matrices are then added in place (no triplets).
+// Column Dim*j + c holds rows Dim*i, ..., Dim*i + Dim - 1 for every node i adjacent to node j
 // (including j), in increasing order, so the matrix is compressed column-major.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -13,20 +13,22 @@
 
 namespace contactrb::fem {
 
-class NodalSparsity {
+template <int Dim>
+class SimplexSparsity {
  public:
-  // Pattern of the triangles listed in `triangles` (indices into mesh.triangles).
-  NodalSparsity(const mesh::Mesh& mesh, const std::vector<int>& triangles);
+  // Pattern of the cells listed in `cells` (indices into mesh.cells()).
+  SimplexSparsity(const mesh::SimplexMesh<Dim>& mesh, const std::vector<int>& cells);
 
-  int num_dofs() const { return 2 * num_nodes_; }
-  Eigen::Index num_nonzeros() const { return 4 * static_cast<Eigen::Index>(neighbours_.size()); }
+  int num_dofs() const { return Dim * num_nodes_; }
+  Eigen::Index num_nonzeros() const { return Dim * Dim * static_cast<Eigen::Index>(neighbours_.size()); }
   // Zero values in pattern order, to accumulate into.
   std::vector<double> zero_values() const;
-  // Adds an element matrix (local DOF 2*i + c) of triangle `tri` into `values`, an array of
+  // Adds an element matrix (local DOF Dim*i + c) of cell `cell` into `values`, an array of
   // num_nonzeros() entries in pattern order (a std::vector or a matrix's valuePtr()).
-  void add(const std::array<int, 3>& tri, const ElementMatrix& element, double* values) const;
-  void add(const std::array<int, 3>& tri, const ElementMatrix& element, std::vector<double>& values) const {
-    add(tri, element, values.data());
+  void add(const std::array<int, Dim + 1>& cell, const SimplexElementMatrix<Dim>& element, double* values) const;
+  void add(const std::array<int, Dim + 1>& cell, const SimplexElementMatrix<Dim>& element,
+           std::vector<double>& values) const {
+    add(cell, element, values.data());
   }
   // The compressed matrix with this pattern and zero values, to accumulate into in place.
   Eigen::SparseMatrix<double> zero_matrix() const;
@@ -44,7 +46,15 @@ class NodalSparsity {
   std::vector<int> neighbours_;  // sorted unique adjacent nodes, node by node
 };
 
-// Triangle indices of one body (all triangles when body < 0).
+using NodalSparsity = SimplexSparsity<2>;
+using NodalSparsity3 = SimplexSparsity<3>;
+extern template class SimplexSparsity<2>;
+extern template class SimplexSparsity<3>;
+
+// Cell indices of one body (all cells when body < 0).
+template <int Dim>
+std::vector<int> cells_of_body(const mesh::SimplexMesh<Dim>& mesh, int body);
+// The 2D name of cells_of_body.
 std::vector<int> triangles_of_body(const mesh::Mesh& mesh, int body);
 
 }  // namespace contactrb::fem

@@ -1,41 +1,52 @@
 #include "contactrb/fem/traction.hpp"
 
-#include <map>
 #include <utility>
 
 #include "contactrb/common/error.hpp"
 
 namespace contactrb::fem {
 
-Eigen::VectorXd traction_load(const mesh::Mesh& mesh, const TractionLoad& load) {
+template <int Dim>
+Eigen::VectorXd traction_load(const mesh::SimplexMesh<Dim>& mesh, const SurfaceLoad<Dim>& load) {
+  using Vector = Eigen::Matrix<double, Dim, 1>;
   require(load.group != mesh::kSlaveBoundary && load.group != mesh::kMasterBoundary,
           "a traction load on the contact group '" + load.group + "' is not allowed");
-  const std::vector<mesh::Edge>& edges = mesh.boundary(load.group);
+  const auto& facets = mesh.boundary(load.group);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(mesh.num_dofs());
-  for (const mesh::Edge& e : edges) {
-    require(e.a >= 0 && e.a < mesh.num_nodes() && e.b >= 0 && e.b < mesh.num_nodes(),
-            "traction_load: an edge of group '" + load.group + "' has a node index out of range");
-    const Eigen::Vector2d d = mesh.nodes[static_cast<std::size_t>(e.b)] - mesh.nodes[static_cast<std::size_t>(e.a)];
-    // Edges run with their body on the left (mesh.hpp): the outward normal is (dy, -dx) / |e|,
-    // so -p n |e| = -p (dy, -dx).
-    const Eigen::Vector2d t_len = load.is_pressure ? Eigen::Vector2d(-load.pressure * d.y(), load.pressure * d.x())
-                                                   : Eigen::Vector2d(load.vector * d.norm());
-    for (int node : {e.a, e.b}) f.segment<2>(2 * node) += 0.5 * t_len;
+  for (const auto& facet : facets) {
+    for (int v : facet.vertices()) {
+      require(v >= 0 && v < mesh.num_nodes(), "traction_load: " + std::string(mesh::SimplexNames<Dim>::facet) +
+                                                  " of group '" + load.group + "' has a node index out of range");
+    }
+    // Facets are oriented with the outward normal (mesh.hpp): -p n |F| = -p (area normal).
+    Vector t_measure;
+    if (load.is_pressure) {
+      t_measure = -load.pressure * mesh::facet_area_normal(mesh, facet);
+    } else if constexpr (Dim == 2) {
+      t_measure = load.vector * (mesh.nodes[static_cast<std::size_t>(facet.b)] -
+                                 mesh.nodes[static_cast<std::size_t>(facet.a)]).norm();
+    } else {
+      t_measure = load.vector * mesh::facet_area_normal(mesh, facet).norm();
+    }
+    for (int node : facet.vertices()) f.template segment<Dim>(Dim * node) += (1.0 / Dim) * t_measure;
   }
   return f;
 }
 
-int traction_body(const mesh::Mesh& mesh, const std::string& group) {
-  const std::vector<mesh::Edge>& edges = mesh.boundary(group);
-  require(!edges.empty(), "boundary group '" + group + "' has no edge");
-  // The body of each node, from the triangles (bodies are disjoint: mesh.hpp).
+template <int Dim>
+int traction_body(const mesh::SimplexMesh<Dim>& mesh, const std::string& group) {
+  const auto& facets = mesh.boundary(group);
+  require(!facets.empty(), "boundary group '" + group + "' has no " + mesh::SimplexNames<Dim>::facet);
+  // The body of each node, from the cells (bodies are disjoint: mesh.hpp).
   std::vector<int> body(static_cast<std::size_t>(mesh.num_nodes()), -1);
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    for (int n : mesh.triangles[static_cast<std::size_t>(t)]) body[static_cast<std::size_t>(n)] = mesh.body[static_cast<std::size_t>(t)];
+  for (int t = 0; t < mesh.num_cells(); ++t) {
+    for (int n : mesh.cells()[static_cast<std::size_t>(t)]) {
+      body[static_cast<std::size_t>(n)] = mesh.body[static_cast<std::size_t>(t)];
+    }
   }
   int found = -1;
-  for (const mesh::Edge& e : edges) {
-    for (int n : {e.a, e.b}) {
+  for (const auto& facet : facets) {
+    for (int n : facet.vertices()) {
       require(n >= 0 && n < mesh.num_nodes(), "boundary group '" + group + "' has a node index out of range");
       const int b = body[static_cast<std::size_t>(n)];
       require(found == -1 || b == found, "boundary group '" + group + "' touches both bodies");
@@ -44,5 +55,10 @@ int traction_body(const mesh::Mesh& mesh, const std::string& group) {
   }
   return found;
 }
+
+template Eigen::VectorXd traction_load<2>(const mesh::Mesh&, const SurfaceLoad<2>&);
+template Eigen::VectorXd traction_load<3>(const mesh::Mesh3&, const SurfaceLoad<3>&);
+template int traction_body<2>(const mesh::Mesh&, const std::string&);
+template int traction_body<3>(const mesh::Mesh3&, const std::string&);
 
 }  // namespace contactrb::fem

@@ -22,15 +22,15 @@ namespace {
 // Gmsh element type codes and their node counts.
 constexpr int kLine2 = 1;
 constexpr int kTriangle3 = 2;
+constexpr int kTetrahedron4 = 4;
 constexpr int kPoint = 15;
-// A triangle is degenerate when |area| <= kZeroAreaTolerance * (longest edge)^2, the test
+// A cell is degenerate when |measure| <= kZeroAreaTolerance * (longest edge)^Dim, the test
 // of mesh::validate().
 constexpr double kZeroAreaTolerance = 1e-12;
 
 std::string element_type_name(int type) {
   switch (type) {
     case 3: return "4-node quadrangle";
-    case 4: return "4-node tetrahedron";
     case 5: return "8-node hexahedron";
     case 6: return "6-node prism";
     case 7: return "5-node pyramid";
@@ -228,9 +228,10 @@ void read_elements(Tokens& in, MshContent& c) {
       case kPoint: nodes = 1; break;
       case kLine2: nodes = 2; break;
       case kTriangle3: nodes = 3; break;
+      case kTetrahedron4: nodes = 4; break;
       default:
         in.fail("element " + element_type_name(type) +
-                " is not supported (contactrb reads 3-node triangles, 2-node lines and points)");
+                " is not supported (contactrb reads 4-node tetrahedra, 3-node triangles, 2-node lines and points)");
     }
     for (int k = 0; k < n; ++k) {
       Element e{in.integer("element tag"), type, dim, entity, {}};
@@ -295,12 +296,6 @@ int find_group(const MshContent& c, const std::string& path, int dim, const std:
               role + "); groups present: " + list_groups(c));
 }
 
-double triangle_area(const std::array<Eigen::Vector2d, 3>& p, double& longest2) {
-  longest2 = 0.0;
-  for (std::size_t k = 0; k < 3; ++k) longest2 = std::max(longest2, (p[k] - p[(k + 1) % 3]).squaredNorm());
-  return 0.5 * ((p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[2].x() - p[0].x()) * (p[1].y() - p[0].y()));
-}
-
 // The physical groups of an element's entity (none: an empty list).
 const std::vector<int>& element_physicals(const MshContent& c, const Element& e) {
   static const std::vector<int> none;
@@ -308,13 +303,54 @@ const std::vector<int>& element_physicals(const MshContent& c, const Element& e)
   return it == c.entity_physicals.end() ? none : it->second;
 }
 
-// The mesh nodes: the nodes of the triangles, in the order of the $Nodes section, on one plane
-// z = const. Returns node tag -> mesh node.
-std::unordered_map<long long, int> read_nodes(const MshContent& c, const std::string& where, Mesh& mesh) {
+// Gmsh element types of the cells and boundary facets of a Dim-dimensional mesh, and the words
+// of the messages.
+template <int Dim>
+struct MshSimplex;
+template <>
+struct MshSimplex<2> {
+  static constexpr int cell_type = kTriangle3;
+  static constexpr int facet_type = kLine2;
+  static constexpr const char* cells = "triangles";
+  static constexpr const char* facet_element = "line";
+  static constexpr const char* facet_of = "an edge of any triangle";
+  static constexpr const char* interior = "an interior edge";
+  static constexpr const char* entity = "surface";
+  static constexpr const char* negative = "clockwise";
+  static constexpr const char* positive = "counter-clockwise";
+};
+template <>
+struct MshSimplex<3> {
+  static constexpr int cell_type = kTetrahedron4;
+  static constexpr int facet_type = kTriangle3;
+  static constexpr const char* cells = "tetrahedra";
+  static constexpr const char* facet_element = "triangle";
+  static constexpr const char* facet_of = "a face of any tetrahedron";
+  static constexpr const char* interior = "an interior face";
+  static constexpr const char* entity = "volume";
+  static constexpr const char* negative = "negative-volume";
+  static constexpr const char* positive = "positive-volume";
+};
+
+// A 2D mesh holds no tetrahedra: a 3D file is refused with one message.
+void refuse_cells_of_other_dimension(const MshContent& c, int dim, const std::string& where) {
+  for (const Element& e : c.elements) {
+    if (dim == 2 && e.type == kTetrahedron4) {
+      throw Error(where + "element " + std::to_string(e.tag) +
+                  " is a 4-node tetrahedron: this is a 3D mesh, and a 2D mesh (3-node triangles) is expected here");
+    }
+  }
+}
+
+// The mesh nodes: the nodes of the cells, in the order of the $Nodes section (2D: on one plane
+// z = const). Returns node tag -> mesh node.
+template <int Dim>
+std::unordered_map<long long, int> read_nodes(const MshContent& c, const std::string& where, SimplexMesh<Dim>& mesh) {
+  using Words = MshSimplex<Dim>;
   std::unordered_map<long long, int> index;
   std::set<long long> used;
   for (const Element& e : c.elements) {
-    if (e.type != kTriangle3) continue;
+    if (e.type != Words::cell_type) continue;
     for (long long v : e.nodes) {
       if (c.node_coords.count(v) == 0) {
         throw Error(where + "element " + std::to_string(e.tag) + " references undefined node " + std::to_string(v));
@@ -325,34 +361,37 @@ std::unordered_map<long long, int> read_nodes(const MshContent& c, const std::st
   for (long long tag : c.node_tags) {
     if (used.count(tag) != 0) {
       index[tag] = mesh.num_nodes();
-      const Eigen::Vector3d& x = c.node_coords.at(tag);
-      mesh.nodes.emplace_back(x.x(), x.y());
-    } else if (c.node_entity_dim.at(tag) >= 2) {
-      // Nodes of surfaces (or volumes) must belong to a triangle; nodes of geometry points
-      // and curves that no triangle uses (e.g. Gmsh's point nodes) are dropped.
+      mesh.nodes.push_back(c.node_coords.at(tag).template head<Dim>());
+    } else if (c.node_entity_dim.at(tag) >= Dim) {
+      // Nodes inside the bodies' entities must belong to a cell; nodes of lower-dimensional
+      // entities that no cell uses (e.g. Gmsh's point nodes) are dropped.
       throw Error(where + "node " + std::to_string(tag) + " (on a " + std::to_string(c.node_entity_dim.at(tag)) +
-                  "D entity) is not referenced by any triangle (unreferenced node)");
+                  "D entity) is not referenced by any " + SimplexNames<Dim>::cell + " (unreferenced node)");
     }
   }
-  const double z0 = c.node_coords.empty() ? 0.0 : c.node_coords.begin()->second.z();
-  for (const auto& [tag, x] : c.node_coords) {
-    if (used.count(tag) != 0 && std::abs(x.z() - z0) > 1e-12 * (1.0 + std::abs(x.x()) + std::abs(x.y()))) {
-      throw Error(where + "node " + std::to_string(tag) + " is off the plane z = " + number_text(z0) +
-                  " (a 2D mesh is required)");
+  if constexpr (Dim == 2) {
+    const double z0 = c.node_coords.empty() ? 0.0 : c.node_coords.begin()->second.z();
+    for (const auto& [tag, x] : c.node_coords) {
+      if (used.count(tag) != 0 && std::abs(x.z() - z0) > 1e-12 * (1.0 + std::abs(x.x()) + std::abs(x.y()))) {
+        throw Error(where + "node " + std::to_string(tag) + " is off the plane z = " + number_text(z0) +
+                    " (a 2D mesh is required)");
+      }
     }
   }
   return index;
 }
 
-// The body of a triangle: the one body group among its physicals (throws for none or both).
-int triangle_body(const MshContent& c, const Element& e, const std::vector<int>& body_tag, const MshGroups& groups,
-                  const std::string& where) {
+// The body of a cell: the one body group among its physicals (throws for none or both).
+template <int Dim>
+int cell_body(const MshContent& c, const Element& e, const std::vector<int>& body_tag, const MshGroups& groups,
+              const std::string& where) {
+  const std::string cell = SimplexNames<Dim>::cell;
   int body = -1;
   for (int p : element_physicals(c, e)) {
     for (std::size_t b = 0; b < body_tag.size(); ++b) {
-      if (e.entity_dim == 2 && p == body_tag[b]) {
+      if (e.entity_dim == Dim && p == body_tag[b]) {
         if (body != -1 && body != static_cast<int>(b)) {
-          throw Error(where + "triangle " + std::to_string(e.tag) + " belongs to both body groups");
+          throw Error(where + cell + " " + std::to_string(e.tag) + " belongs to both body groups");
         }
         body = static_cast<int>(b);
       }
@@ -361,129 +400,172 @@ int triangle_body(const MshContent& c, const Element& e, const std::vector<int>&
   if (body == -1) {
     std::string names;
     for (const std::string& n : groups.body_groups) names += (names.empty() ? "'" : " or '") + n + "'";
-    throw Error(where + "triangle " + std::to_string(e.tag) + " (surface " + std::to_string(e.entity_tag) +
-                ") is in no body group " + names);
+    throw Error(where + cell + " " + std::to_string(e.tag) + " (" + MshSimplex<Dim>::entity + " " +
+                std::to_string(e.entity_tag) + ") is in no body group " + names);
   }
   return body;
 }
 
-// The triangles and their bodies (disjoint: no node shared). Returns their element tags.
-std::vector<long long> read_triangles(const MshContent& c, const std::vector<int>& body_tag, const MshGroups& groups,
-                                      const std::unordered_map<long long, int>& index, const std::string& where,
-                                      Mesh& mesh) {
+// The cells and their bodies (disjoint: no node shared). Returns their element tags.
+template <int Dim>
+std::vector<long long> read_cells(const MshContent& c, const std::vector<int>& body_tag, const MshGroups& groups,
+                                  const std::unordered_map<long long, int>& index, const std::string& where,
+                                  SimplexMesh<Dim>& mesh) {
   std::unordered_map<long long, int> node_owner;  // node tag -> body
-  std::vector<long long> triangle_tags;
+  std::vector<long long> cell_tags;
   for (const Element& e : c.elements) {
-    if (e.type != kTriangle3) continue;
-    const int body = triangle_body(c, e, body_tag, groups, where);
-    std::array<int, 3> tri{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      tri[k] = index.at(e.nodes[k]);
+    if (e.type != MshSimplex<Dim>::cell_type) continue;
+    const int body = cell_body<Dim>(c, e, body_tag, groups, where);
+    typename SimplexMesh<Dim>::Cell cell{};
+    for (std::size_t k = 0; k < cell.size(); ++k) {
+      cell[k] = index.at(e.nodes[k]);
       auto [it, inserted] = node_owner.emplace(e.nodes[k], body);
       if (!inserted && it->second != body) {
         throw Error(where + "node " + std::to_string(e.nodes[k]) + " is shared by both bodies (bodies must be disjoint)");
       }
     }
-    mesh.triangles.push_back(tri);
+    mesh.cells().push_back(cell);
     mesh.body.push_back(body);
-    triangle_tags.push_back(e.tag);
+    cell_tags.push_back(e.tag);
   }
-  if (mesh.triangles.empty()) throw Error(where + "contains no triangles");
-  return triangle_tags;
+  if (mesh.cells().empty()) throw Error(where + "contains no " + MshSimplex<Dim>::cells);
+  return cell_tags;
 }
 
-// Zero-area triangles, then orientation per body (all clockwise: flip; mixed: error).
-void orient_triangles(const std::vector<long long>& triangle_tags, const MshGroups& groups, const std::string& where,
-                      Mesh& mesh) {
+// Longest squared edge of cell `cell`, the scale of the zero-measure test.
+template <int Dim>
+double longest_edge2(const SimplexMesh<Dim>& mesh, const typename SimplexMesh<Dim>::Cell& cell) {
+  double longest2 = 0.0;
+  for (std::size_t i = 0; i < cell.size(); ++i) {
+    for (std::size_t j = i + 1; j < cell.size(); ++j) {
+      longest2 = std::max(longest2, (mesh.nodes[static_cast<std::size_t>(cell[i])] -
+                                     mesh.nodes[static_cast<std::size_t>(cell[j])]).squaredNorm());
+    }
+  }
+  return longest2;
+}
+
+// Zero-measure cells, then orientation per body (all negative: flip; mixed: error).
+template <int Dim>
+void orient_cells(const std::vector<long long>& cell_tags, const MshGroups& groups, const std::string& where,
+                  SimplexMesh<Dim>& mesh) {
+  using Words = MshSimplex<Dim>;
   const std::size_t bodies = groups.body_groups.size();
-  std::vector<int> clockwise(bodies, 0);
-  std::vector<int> counter(bodies, 0);
-  std::vector<long long> first_clockwise(bodies, -1);
-  std::vector<long long> first_counter(bodies, -1);
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
-    std::array<Eigen::Vector2d, 3> p;
-    for (std::size_t k = 0; k < 3; ++k) p[k] = mesh.nodes[static_cast<std::size_t>(tri[k])];
-    double longest2 = 0.0;
-    const double area = triangle_area(p, longest2);
-    const long long tag = triangle_tags[static_cast<std::size_t>(t)];
-    if (std::abs(area) <= kZeroAreaTolerance * longest2) {
-      throw Error(where + "triangle " + std::to_string(tag) + " has zero area (degenerate triangle)");
+  std::vector<int> negative(bodies, 0);
+  std::vector<int> positive(bodies, 0);
+  std::vector<long long> first_negative(bodies, -1);
+  std::vector<long long> first_positive(bodies, -1);
+  for (int t = 0; t < mesh.num_cells(); ++t) {
+    const double longest2 = longest_edge2(mesh, mesh.cells()[static_cast<std::size_t>(t)]);
+    const double scale = Dim == 2 ? longest2 : longest2 * std::sqrt(longest2);
+    const double measure = signed_volume(mesh, t);
+    const long long tag = cell_tags[static_cast<std::size_t>(t)];
+    if (std::abs(measure) <= kZeroAreaTolerance * scale) {
+      throw Error(where + SimplexNames<Dim>::cell + " " + std::to_string(tag) + " has zero " +
+                  SimplexNames<Dim>::measure + " (degenerate " + SimplexNames<Dim>::cell + ")");
     }
     const auto b = static_cast<std::size_t>(mesh.body[static_cast<std::size_t>(t)]);
-    if (area < 0) {
-      if (clockwise[b]++ == 0) first_clockwise[b] = tag;
+    if (measure < 0) {
+      if (negative[b]++ == 0) first_negative[b] = tag;
     } else {
-      if (counter[b]++ == 0) first_counter[b] = tag;
+      if (positive[b]++ == 0) first_positive[b] = tag;
     }
   }
   for (std::size_t b = 0; b < bodies; ++b) {
-    if (clockwise[b] > 0 && counter[b] > 0) {
-      const bool minority_cw = clockwise[b] <= counter[b];
-      throw Error(where + "body '" + groups.body_groups[b] + "' has inverted triangles: " +
-                  std::to_string(clockwise[b]) + " clockwise and " + std::to_string(counter[b]) +
-                  " counter-clockwise (mixed orientation; e.g. triangle " +
-                  std::to_string(minority_cw ? first_clockwise[b] : first_counter[b]) + ")");
+    if (negative[b] > 0 && positive[b] > 0) {
+      const bool minority_negative = negative[b] <= positive[b];
+      throw Error(where + "body '" + groups.body_groups[b] + "' has inverted " + Words::cells + ": " +
+                  std::to_string(negative[b]) + " " + Words::negative + " and " + std::to_string(positive[b]) + " " +
+                  Words::positive + " (mixed orientation; e.g. " + SimplexNames<Dim>::cell + " " +
+                  std::to_string(minority_negative ? first_negative[b] : first_positive[b]) + ")");
     }
-    if (clockwise[b] > 0) {  // a consistently mirrored body: reorient
-      for (int t = 0; t < mesh.num_triangles(); ++t) {
+    if (negative[b] > 0) {  // a consistently mirrored body: reorient
+      for (int t = 0; t < mesh.num_cells(); ++t) {
         if (mesh.body[static_cast<std::size_t>(t)] == static_cast<int>(b)) {
-          std::swap(mesh.triangles[static_cast<std::size_t>(t)][1], mesh.triangles[static_cast<std::size_t>(t)][2]);
+          std::swap(mesh.cells()[static_cast<std::size_t>(t)][1], mesh.cells()[static_cast<std::size_t>(t)][2]);
         }
       }
     }
   }
 }
 
-// Boundary groups: every named 1D physical group; edges oriented with the body on the left.
-void read_boundaries(const MshContent& c, const std::unordered_map<long long, int>& index, const std::string& where,
-                     Mesh& mesh) {
-  std::map<std::pair<int, int>, int> directed;  // counter-clockwise triangle edge -> count
-  for (const auto& tri : mesh.triangles) {
-    for (std::size_t k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+// Facets of the cells by their sorted node set: how many cells hold each, and its outward
+// orientation (mesh.hpp) in the last of them.
+template <int Dim>
+std::map<std::array<int, Dim>, std::pair<int, std::array<int, Dim>>> cell_facets(const SimplexMesh<Dim>& mesh) {
+  std::map<std::array<int, Dim>, std::pair<int, std::array<int, Dim>>> facets;
+  for (const auto& cell : mesh.cells()) {
+    for (const auto& local : kCellFacets<Dim>) {
+      std::array<int, Dim> f{};
+      for (std::size_t k = 0; k < f.size(); ++k) f[k] = cell[static_cast<std::size_t>(local[k])];
+      std::array<int, Dim> key = f;
+      std::sort(key.begin(), key.end());
+      auto& entry = facets[key];
+      ++entry.first;
+      entry.second = f;
+    }
   }
+  return facets;
+}
+
+// Boundary groups: every named (Dim-1)-dimensional physical group; facets oriented with the
+// outward normal of their body (2D: the body on the left).
+template <int Dim>
+void read_boundaries(const MshContent& c, const std::unordered_map<long long, int>& index, const std::string& where,
+                     SimplexMesh<Dim>& mesh) {
+  using Words = MshSimplex<Dim>;
+  const auto facets = cell_facets(mesh);
   for (const auto& [key, name] : c.physical_names) {
-    if (key.first == 1) mesh.boundaries[name];  // present even if empty
+    if (key.first == Dim - 1) mesh.boundaries[name];  // present even if empty
   }
   for (const Element& e : c.elements) {
-    if (e.type != kLine2) continue;
+    if (e.type != Words::facet_type) continue;
     for (int p : element_physicals(c, e)) {
-      auto name = c.physical_names.find({1, p});
-      if (e.entity_dim != 1 || name == c.physical_names.end()) continue;
-      const std::string edge_name = "boundary group '" + name->second + "' line " + std::to_string(e.tag) +
-                                    " (nodes " + std::to_string(e.nodes[0]) + ", " + std::to_string(e.nodes[1]) + ")";
-      auto ia = index.find(e.nodes[0]);
-      auto ib = index.find(e.nodes[1]);
-      if (ia == index.end() || ib == index.end()) throw Error(where + edge_name + " is not an edge of any triangle");
-      const int a = ia->second;
-      const int b = ib->second;
-      const int forward = directed.count({a, b}) ? directed.at({a, b}) : 0;
-      const int backward = directed.count({b, a}) ? directed.at({b, a}) : 0;
-      if (forward + backward == 0) throw Error(where + edge_name + " is not an edge of any triangle");
-      if (forward + backward > 1) throw Error(where + edge_name + " is an interior edge, not on the boundary");
-      mesh.boundaries[name->second].push_back(forward ? Edge{a, b} : Edge{b, a});
+      auto name = c.physical_names.find({Dim - 1, p});
+      if (e.entity_dim != Dim - 1 || name == c.physical_names.end()) continue;
+      std::string facet_name = "boundary group '" + name->second + "' " + Words::facet_element + " " +
+                               std::to_string(e.tag) + " (nodes ";
+      for (std::size_t k = 0; k < e.nodes.size(); ++k) facet_name += (k ? ", " : "") + std::to_string(e.nodes[k]);
+      facet_name += ")";
+      std::array<int, Dim> f{};
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        auto it = index.find(e.nodes[k]);
+        if (it == index.end()) throw Error(where + facet_name + " is not " + Words::facet_of);
+        f[k] = it->second;
+      }
+      std::array<int, Dim> sorted = f;
+      std::sort(sorted.begin(), sorted.end());
+      auto found = facets.find(sorted);
+      if (found == facets.end()) throw Error(where + facet_name + " is not " + Words::facet_of);
+      if (found->second.first > 1) throw Error(where + facet_name + " is " + Words::interior + ", not on the boundary");
+      if (oriented_key<Dim>(f) != oriented_key<Dim>(found->second.second)) std::swap(f[Dim - 2], f[Dim - 1]);
+      if constexpr (Dim == 2) {
+        mesh.boundaries[name->second].push_back(Edge{f[0], f[1]});
+      } else {
+        mesh.boundaries[name->second].push_back(Face{f[0], f[1], f[2]});
+      }
     }
   }
 }
 
-}  // namespace
-
-Mesh read_msh(const std::string& path, const MshGroups& groups) {
+template <int Dim>
+SimplexMesh<Dim> read_simplex_msh(const std::string& path, const MshGroups& groups) {
   require(groups.body_groups.size() == 1 || groups.body_groups.size() == 2,
           "read_msh: body_groups must name 1 or 2 physical groups (got " +
               std::to_string(groups.body_groups.size()) + ")");
   const MshContent c = parse(path);
   const std::string where = "mesh file '" + path + "': ";
+  refuse_cells_of_other_dimension(c, Dim, where);
   std::vector<int> body_tag;
   for (std::size_t b = 0; b < groups.body_groups.size(); ++b) {
-    body_tag.push_back(find_group(c, path, 2, groups.body_groups[b], b == 0 ? "the slave body" : "the master body"));
+    body_tag.push_back(find_group(c, path, Dim, groups.body_groups[b], b == 0 ? "the slave body" : "the master body"));
   }
-  for (const std::string& name : groups.required_boundaries) find_group(c, path, 1, name, "a required boundary");
+  for (const std::string& name : groups.required_boundaries) find_group(c, path, Dim - 1, name, "a required boundary");
 
-  Mesh mesh;
+  SimplexMesh<Dim> mesh;
   const std::unordered_map<long long, int> index = read_nodes(c, where, mesh);
-  const std::vector<long long> triangle_tags = read_triangles(c, body_tag, groups, index, where, mesh);
-  orient_triangles(triangle_tags, groups, where, mesh);
+  const std::vector<long long> cell_tags = read_cells(c, body_tag, groups, index, where, mesh);
+  orient_cells(cell_tags, groups, where, mesh);
   read_boundaries(c, index, where, mesh);
   try {
     validate(mesh);
@@ -491,6 +573,20 @@ Mesh read_msh(const std::string& path, const MshGroups& groups) {
     throw Error(where + e.what());
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh read_msh(const std::string& path, const MshGroups& groups) { return read_simplex_msh<2>(path, groups); }
+
+Mesh3 read_msh3(const std::string& path, const MshGroups& groups) { return read_simplex_msh<3>(path, groups); }
+
+int msh_dimension(const std::string& path) {
+  const MshContent c = parse(path);
+  for (const Element& e : c.elements) {
+    if (e.type == kTetrahedron4) return 3;
+  }
+  return 2;
 }
 
 }  // namespace contactrb::mesh

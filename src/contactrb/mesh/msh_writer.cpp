@@ -1,6 +1,7 @@
-// write_msh (msh_io.hpp): Gmsh ASCII format 4.1. One surface entity per body (physical
-// groups "body1", "body2"), one curve entity per boundary group (a 1D physical group of the
-// same name). Node tag = node index + 1; nodes are listed in index order, grouped by body.
+// write_msh (msh_io.hpp): Gmsh ASCII format 4.1. One entity of the mesh's dimension per body
+// (physical groups "body1", "body2"), one entity of one dimension less per boundary group (a
+// physical group of the same name). Node tag = node index + 1; nodes are listed in index
+// order, grouped by body.
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -13,22 +14,45 @@ namespace contactrb::mesh {
 
 namespace {
 
+// A point as x y z (z = 0 in 2D).
+template <int Dim>
+std::ostream& write_point(std::ostream& os, const Eigen::Matrix<double, Dim, 1>& p) {
+  os << p.x() << ' ' << p.y();
+  if constexpr (Dim == 2) {
+    return os << " 0";
+  } else {
+    return os << ' ' << p.z();
+  }
+}
+
+template <int Dim>
 struct Box {
-  Eigen::Vector2d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  Eigen::Vector2d hi{std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
-  void add(const Eigen::Vector2d& p) {
+  using Point = Eigen::Matrix<double, Dim, 1>;
+  Point lo = Point::Constant(std::numeric_limits<double>::max());
+  Point hi = Point::Constant(std::numeric_limits<double>::lowest());
+  void add(const Point& p) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
 };
 
-std::ostream& operator<<(std::ostream& os, const Box& b) {
-  return os << b.lo.x() << ' ' << b.lo.y() << " 0 " << b.hi.x() << ' ' << b.hi.y() << " 0";
+template <int Dim>
+std::ostream& operator<<(std::ostream& os, const Box<Dim>& b) {
+  write_point<Dim>(os, b.lo) << ' ';
+  return write_point<Dim>(os, b.hi);
 }
 
-}  // namespace
+template <std::size_t N>
+void write_indices(std::ostream& out, std::size_t tag, const std::array<int, N>& v) {
+  out << tag;
+  for (int i : v) out << ' ' << i + 1;
+  out << '\n';
+}
 
-void write_msh(const Mesh& mesh, const std::string& path) {
+template <int Dim>
+void write_simplex_msh(const SimplexMesh<Dim>& mesh, const std::string& path) {
+  constexpr int cell_type = Dim == 2 ? 2 : 4;   // 3-node triangle, 4-node tetrahedron
+  constexpr int facet_type = Dim == 2 ? 1 : 2;  // 2-node line, 3-node triangle
   validate(mesh);
   for (const auto& [name, edges] : mesh.boundaries) {
     require(!name.empty() && name.find('"') == std::string::npos && name.find('\n') == std::string::npos,
@@ -36,10 +60,10 @@ void write_msh(const Mesh& mesh, const std::string& path) {
   }
   const int bodies = mesh.num_bodies();
   std::vector<int> owner(mesh.nodes.size(), 0);
-  std::vector<Box> body_box(static_cast<std::size_t>(bodies));
+  std::vector<Box<Dim>> body_box(static_cast<std::size_t>(bodies));
   std::vector<std::vector<int>> body_nodes(static_cast<std::size_t>(bodies));
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    for (int v : mesh.triangles[static_cast<std::size_t>(t)]) owner[static_cast<std::size_t>(v)] = mesh.body[static_cast<std::size_t>(t)];
+  for (int t = 0; t < mesh.num_cells(); ++t) {
+    for (int v : mesh.cells()[static_cast<std::size_t>(t)]) owner[static_cast<std::size_t>(v)] = mesh.body[static_cast<std::size_t>(t)];
   }
   for (int v = 0; v < mesh.num_nodes(); ++v) {
     const auto b = static_cast<std::size_t>(owner[static_cast<std::size_t>(v)]);
@@ -57,21 +81,20 @@ void write_msh(const Mesh& mesh, const std::string& path) {
     out << "$PhysicalNames\n" << bodies + groups << '\n';
     {
       int tag = 1;
-      for (const auto& [name, edges] : mesh.boundaries) out << "1 " << tag++ << " \"" << name << "\"\n";
-      for (int b = 0; b < bodies; ++b) out << "2 " << b + 1 << " \"body" << b + 1 << "\"\n";
+      for (const auto& [name, edges] : mesh.boundaries) out << Dim - 1 << ' ' << tag++ << " \"" << name << "\"\n";
+      for (int b = 0; b < bodies; ++b) out << Dim << ' ' << b + 1 << " \"body" << b + 1 << "\"\n";
     }
     out << "$EndPhysicalNames\n";
 
-    out << "$Entities\n0 " << groups << ' ' << bodies << " 0\n";
+    out << "$Entities\n" << (Dim == 2 ? "0 " : "0 0 ") << groups << ' ' << bodies << (Dim == 2 ? " 0\n" : "\n");
     {
       int tag = 1;
       for (const auto& [name, edges] : mesh.boundaries) {
-        Box box;
-        for (const Edge& e : edges) {
-          box.add(mesh.nodes[static_cast<std::size_t>(e.a)]);
-          box.add(mesh.nodes[static_cast<std::size_t>(e.b)]);
+        Box<Dim> box;
+        for (const auto& e : edges) {
+          for (int v : e.vertices()) box.add(mesh.nodes[static_cast<std::size_t>(v)]);
         }
-        if (edges.empty()) box = Box{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+        if (edges.empty()) box = Box<Dim>{Box<Dim>::Point::Zero(), Box<Dim>::Point::Zero()};
         out << tag << ' ' << box << " 1 " << tag << " 0\n";
         ++tag;
       }
@@ -82,38 +105,40 @@ void write_msh(const Mesh& mesh, const std::string& path) {
     out << "$Nodes\n" << bodies << ' ' << mesh.num_nodes() << " 1 " << mesh.num_nodes() << '\n';
     for (int b = 0; b < bodies; ++b) {
       const auto& nodes = body_nodes[static_cast<std::size_t>(b)];
-      out << "2 " << b + 1 << " 0 " << nodes.size() << '\n';
+      out << Dim << ' ' << b + 1 << " 0 " << nodes.size() << '\n';
       for (int v : nodes) out << v + 1 << '\n';
-      for (int v : nodes) {
-        const auto& p = mesh.nodes[static_cast<std::size_t>(v)];
-        out << p.x() << ' ' << p.y() << " 0\n";
-      }
+      for (int v : nodes) write_point<Dim>(out, mesh.nodes[static_cast<std::size_t>(v)]) << '\n';
     }
     out << "$EndNodes\n";
 
     std::size_t edge_count = 0;
     for (const auto& [name, edges] : mesh.boundaries) edge_count += edges.size();
-    const std::size_t elements = edge_count + mesh.triangles.size();
+    const std::size_t elements = edge_count + mesh.cells().size();
     out << "$Elements\n" << groups + bodies << ' ' << elements << " 1 " << elements << '\n';
     std::size_t element = 1;
     {
       int tag = 1;
       for (const auto& [name, edges] : mesh.boundaries) {
-        out << "1 " << tag++ << " 1 " << edges.size() << '\n';
-        for (const Edge& e : edges) out << element++ << ' ' << e.a + 1 << ' ' << e.b + 1 << '\n';
+        out << Dim - 1 << ' ' << tag++ << ' ' << facet_type << ' ' << edges.size() << '\n';
+        for (const auto& e : edges) write_indices(out, element++, e.vertices());
       }
     }
     for (int b = 0; b < bodies; ++b) {
       const auto count = std::count(mesh.body.begin(), mesh.body.end(), b);
-      out << "2 " << b + 1 << " 2 " << count << '\n';
-      for (int t = 0; t < mesh.num_triangles(); ++t) {
+      out << Dim << ' ' << b + 1 << ' ' << cell_type << ' ' << count << '\n';
+      for (int t = 0; t < mesh.num_cells(); ++t) {
         if (mesh.body[static_cast<std::size_t>(t)] != b) continue;
-        const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
-        out << element++ << ' ' << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << '\n';
+        write_indices(out, element++, mesh.cells()[static_cast<std::size_t>(t)]);
       }
     }
     out << "$EndElements\n";
   });
 }
+
+}  // namespace
+
+void write_msh(const Mesh& mesh, const std::string& path) { write_simplex_msh(mesh, path); }
+
+void write_msh(const Mesh3& mesh, const std::string& path) { write_simplex_msh(mesh, path); }
 
 }  // namespace contactrb::mesh

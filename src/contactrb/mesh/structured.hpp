@@ -1,5 +1,5 @@
 #pragma once
-// Small structured meshes for tests and examples (no Gmsh needed).
+// Small structured meshes for tests, examples and benchmarks (no Gmsh needed).
 #include <string>
 
 #include "contactrb/mesh/mesh.hpp"
@@ -11,15 +11,35 @@ namespace contactrb::mesh {
 // "bottom", "right", "top", "left" (edges oriented counter-clockwise).
 Mesh rectangle(double x0, double y0, double x1, double y1, int nx, int ny, int body = kSlaveBody);
 
+// Box [lo, hi] of nx by ny by nz cells, each cut into six positive tetrahedra around its
+// diagonal from the lowest to the highest corner (a conforming mesh: neighbouring cubes cut
+// their shared face along the same diagonal). All tetrahedra get body id `body`. Boundary
+// groups (triangles oriented with the outward normal): "bottom" (z = lo.z), "top" (z = hi.z),
+// "left" (x = lo.x), "right" (x = hi.x), "front" (y = lo.y), "back" (y = hi.y).
+Mesh3 box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz, int body = kSlaveBody);
+
+// Two stacked boxes with non-matching meshes on their common plane, a 3D two-block patch
+// geometry (docs/meshes.md, "Three-dimensional meshes"): the master block (body 1)
+// [0, 1]^2 x [-h, 0] of n = 4 * 2^level cubes across and n / 2 high, the slave block (body 0)
+// [0, 1]^2 x [gap, gap + h] of m = 3 n / 2 + 1 cubes across (odd: no slave node inside the
+// contact face lies on a master node) and (m + 1) / 2 high, h = 0.5. Groups: "slave" (slave
+// bottom face), "master" (master top face), "top" (slave top), "bottom" (master bottom),
+// "slave_sides" and "master_sides" (the four vertical faces of each block). level in [0, 4].
+Mesh3 stacked_blocks(int level, double gap = 0.0);
+
 // Disjoint union: b's nodes are appended after a's. Boundary group names must differ.
-Mesh merge(const Mesh& a, const Mesh& b);
+template <int Dim>
+SimplexMesh<Dim> merge(const SimplexMesh<Dim>& a, const SimplexMesh<Dim>& b);
 
 // Renames boundary group `from` to `to` (throws if `from` is missing or `to` exists).
-void rename_boundary(Mesh& mesh, const std::string& from, const std::string& to);
+template <int Dim>
+void rename_boundary(SimplexMesh<Dim>& mesh, const std::string& from, const std::string& to);
 
-// Moves the interior nodes (not on any triangle's boundary edge) by a deterministic
+// Moves the interior nodes (not on any cell's boundary facet) by a deterministic
 // pseudo-random offset of at most `fraction` times the local edge length, to make a
-// structured mesh unstructured for patch tests. Keeps triangles counter-clockwise.
-void perturb_interior(Mesh& mesh, double fraction, unsigned seed = 1);
+// structured mesh unstructured for patch tests. Keeps the cells positive for small fractions
+// (about 0.3 in 2D, 0.15 in 3D on the structured meshes above).
+template <int Dim>
+void perturb_interior(SimplexMesh<Dim>& mesh, double fraction, unsigned seed = 1);
 
 }  // namespace contactrb::mesh
