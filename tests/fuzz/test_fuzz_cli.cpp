@@ -1,5 +1,6 @@
 // The CLI fuzz suite (docs/testing.md): mutated .msh, TOML, snapshot and
-// model HDF5 files and batch lines, each run through the contactrb executable. Every case
+// model HDF5 files (damaged, and damaged then sealed again) and batch lines, each run through
+// the contactrb executable. Every case
 // must end with exit code 0, or 1 or 3 with exactly one "contactrb: error:" line on stderr;
 // never a signal, never the time limit, never a sanitizer report, never an internal error.
 // A failing case is written to the failures directory with its seed and index, which
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/file_seal.hpp"
 #include "fuzz/mutator.hpp"
 #include "fuzz/process.hpp"
 #include "fuzz_options.hpp"
@@ -175,7 +177,9 @@ class FuzzCli : public ::testing::Test {
     const fs::path input_path = fs::absolute(opt.failures_dir / (stem + target.extension));
     write_bytes(input_path, input);
     std::ostringstream report;
-    report << "why: " << why << "\nreproduce: test_fuzz --gtest_filter=*" << target.name << "* --fuzz-seed " << opt.seed
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    report << "why: " << why << "\nreproduce: test_fuzz --gtest_filter=" << test->test_suite_name() << "."
+           << test->name() << " --fuzz-seed " << opt.seed
            << " --fuzz-case " << k << "\ncommand (input at the case's path):";
     for (const std::string& a : args) report << " " << a;
     report << "\nexit code: " << r.exit_code << ", signal: " << r.signal << ", timed out: " << r.timed_out
@@ -243,6 +247,70 @@ TEST_F(FuzzCli, SnapshotFiles) {
   run_target(t);
 }
 
+// Where HDF5 keeps the metadata of a file: its signatures (superblock, object headers and their
+// continuations, B-trees, local and global heaps, symbol-table nodes) and the names of the
+// attributes our files write (each inside an attribute message with its datatype, dataspace and
+// value). Random damage mostly lands in array data, which the field checksums refuse; damage
+// here reaches HDF5's parsing of types, sizes and heaps. One list of offsets per key.
+std::vector<std::vector<std::size_t>> hdf5_metadata_offsets(const std::string& file) {
+  static const std::vector<std::string> kKeys{"\x89" "HDF", "OHDR", "OCHK", "TREE", "HEAP", "GCOL", "SNOD",
+                                              "BTHD", "BTLF", "FRHP", "FHDB", "description", "shape_meaning",
+                                              "units", "format", "name", "status", "message", "spec"};
+  std::vector<std::vector<std::size_t>> groups;
+  for (const std::string& key : kKeys) {
+    std::vector<std::size_t> offsets;
+    for (std::size_t at = file.find(key, contactrb::kSealBlock); at != std::string::npos; at = file.find(key, at + 1)) {
+      offsets.push_back(at >= 16 ? at - 16 : at);  // from a little before: the message's header
+    }
+    if (!offsets.empty()) groups.push_back(std::move(offsets));
+  }
+  return groups;
+}
+
+// A window of damage inside one metadata structure: a key drawn uniformly (a rare one, such as a
+// global heap, as often as attribute names), one of its places, and an offset into the
+// structure (up to the next place of any key, at most 4 KiB: a heap holds many objects).
+std::string damage_metadata(contactrb::fuzz::Mutator& m, const std::string& file) {
+  static constexpr std::size_t kWindow = 32, kLongestStructure = 4096;
+  const std::vector<std::vector<std::size_t>> groups = hdf5_metadata_offsets(file);
+  if (groups.empty()) return m.mutate_after(file, contactrb::kSealBlock);
+  const std::vector<std::size_t>& places = groups[m.below(groups.size())];
+  const std::size_t at = places[m.below(places.size())];
+  std::size_t next = file.size();
+  for (const std::vector<std::size_t>& g : groups) {
+    for (std::size_t p : g) next = p > at ? std::min(next, p) : next;
+  }
+  return m.mutate_window(file, at + m.below(std::min(next - at, kLongestStructure)), kWindow);
+}
+
+// A snapshot or model file damaged after its seal and sealed again (contactrb::seal_file, as
+// anyone can: the seal is an unkeyed hash), so that the reader passes the seal check and HDF5
+// parses the damaged bytes: every other case inside HDF5 metadata, the others anywhere. The
+// user block (the seal) itself is left to the resealing.
+std::string damaged_and_resealed(contactrb::fuzz::Mutator& m, std::uint64_t k, const std::string& file,
+                                 const fs::path& scratch) {
+  const std::string damaged = k % 2 == 0 ? damage_metadata(m, file) : m.mutate_after(file, contactrb::kSealBlock);
+  write_bytes(scratch, damaged);
+  contactrb::seal_file(scratch.string());
+  return contactrb::fuzz::slurp(scratch);
+}
+
+// Snapshot files damaged then resealed: `offline --snapshots`, as SnapshotFiles.
+TEST_F(FuzzCli, ResealedSnapshotFiles) {
+  Target t;
+  t.name = "snapshot-resealed";
+  t.extension = ".h5";
+  t.default_cases = 60;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
+    return damaged_and_resealed(m, k, snapshots_, dir_->path() / "resealed-snapshot.h5");
+  };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t) -> std::vector<std::string> {
+    write_bytes(d / "s.h5", input);
+    return {"offline", "--snapshots", (d / "s.h5").string(), "--out", (d / "model.h5").string()};
+  };
+  run_target(t);
+}
+
 // Model files: `online --model` (one case in four also reconstructs the fields with --out).
 TEST_F(FuzzCli, ModelFiles) {
   Target t;
@@ -250,6 +318,24 @@ TEST_F(FuzzCli, ModelFiles) {
   t.extension = ".h5";
   t.default_cases = 150;
   t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) { return m.mutate(model_, false); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
+    write_bytes(d / "model.h5", input);
+    std::vector<std::string> args{"online", "--model", (d / "model.h5").string(), "--mu", "0.015"};
+    if (k % 4 == 0) args.insert(args.end(), {"--out", (d / "out").string()});
+    return args;
+  };
+  run_target(t);
+}
+
+// Model files damaged then resealed: `online --model`, as ModelFiles.
+TEST_F(FuzzCli, ResealedModelFiles) {
+  Target t;
+  t.name = "model-resealed";
+  t.extension = ".h5";
+  t.default_cases = 60;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
+    return damaged_and_resealed(m, k, model_, dir_->path() / "resealed-model.h5");
+  };
   t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
     write_bytes(d / "model.h5", input);
     std::vector<std::string> args{"online", "--model", (d / "model.h5").string(), "--mu", "0.015"};
