@@ -247,40 +247,51 @@ TEST_F(FuzzCli, SnapshotFiles) {
   run_target(t);
 }
 
-// Where HDF5 keeps the metadata of a file: its signatures (superblock, object headers and their
-// continuations, B-trees, local and global heaps, symbol-table nodes) and the names of the
-// attributes our files write (each inside an attribute message with its datatype, dataspace and
-// value). Random damage mostly lands in array data, which the field checksums refuse; damage
-// here reaches HDF5's parsing of types, sizes and heaps. One list of offsets per key.
-std::vector<std::vector<std::size_t>> hdf5_metadata_offsets(const std::string& file) {
-  static const std::vector<std::string> kKeys{"\x89" "HDF", "OHDR", "OCHK", "TREE", "HEAP", "GCOL", "SNOD",
-                                              "BTHD", "BTLF", "FRHP", "FHDB", "description", "shape_meaning",
-                                              "units", "format", "name", "status", "message", "spec"};
-  std::vector<std::vector<std::size_t>> groups;
-  for (const std::string& key : kKeys) {
+// Where HDF5 keeps the metadata of a file, one list of offsets per key: the signatures of its
+// structures (superblock, object headers and their continuations, B-trees, local and global
+// heaps, symbol-table nodes), and the names of the attributes our files write, each inside an
+// attribute message with its datatype, dataspace and value. Random damage mostly lands in array
+// data, which the field checksums refuse; damage here reaches HDF5's parsing of types, sizes and
+// heaps.
+struct MetadataPlaces {
+  std::vector<std::vector<std::size_t>> structures;  // from a signature on
+  std::vector<std::vector<std::size_t>> messages;    // 16 bytes before an attribute name
+};
+
+MetadataPlaces hdf5_metadata_places(const std::string& file) {
+  static const std::vector<std::string> kSignatures{"\x89" "HDF", "OHDR", "OCHK", "TREE", "HEAP", "GCOL",
+                                                    "SNOD", "BTHD", "BTLF", "FRHP", "FHDB"};
+  static const std::vector<std::string> kNames{"description", "shape_meaning", "units", "format",
+                                               "name", "status", "message", "spec", "kind", "set"};
+  const auto find_all = [&](const std::string& key, std::size_t before) {
     std::vector<std::size_t> offsets;
     for (std::size_t at = file.find(key, contactrb::kSealBlock); at != std::string::npos; at = file.find(key, at + 1)) {
-      offsets.push_back(at >= 16 ? at - 16 : at);  // from a little before: the message's header
+      offsets.push_back(at >= before ? at - before : at);
     }
-    if (!offsets.empty()) groups.push_back(std::move(offsets));
+    return offsets;
+  };
+  MetadataPlaces places;
+  for (const std::string& key : kSignatures) {
+    if (auto o = find_all(key, 0); !o.empty()) places.structures.push_back(std::move(o));
   }
-  return groups;
+  for (const std::string& key : kNames) {
+    if (auto o = find_all(key, 16); !o.empty()) places.messages.push_back(std::move(o));
+  }
+  return places;
 }
 
-// A window of damage inside one metadata structure: a key drawn uniformly (a rare one, such as a
-// global heap, as often as attribute names), one of its places, and an offset into the
-// structure (up to the next place of any key, at most 4 KiB: a heap holds many objects).
+// A window of damage inside HDF5 metadata: a structure (a kind drawn uniformly, so that a rare
+// one such as a global heap comes as often as an object header; then a place of it and an
+// offset into its first 4 KiB: a heap holds many objects), or an attribute message.
 std::string damage_metadata(contactrb::fuzz::Mutator& m, const std::string& file) {
-  static constexpr std::size_t kWindow = 32, kLongestStructure = 4096;
-  const std::vector<std::vector<std::size_t>> groups = hdf5_metadata_offsets(file);
-  if (groups.empty()) return m.mutate_after(file, contactrb::kSealBlock);
-  const std::vector<std::size_t>& places = groups[m.below(groups.size())];
-  const std::size_t at = places[m.below(places.size())];
-  std::size_t next = file.size();
-  for (const std::vector<std::size_t>& g : groups) {
-    for (std::size_t p : g) next = p > at ? std::min(next, p) : next;
-  }
-  return m.mutate_window(file, at + m.below(std::min(next - at, kLongestStructure)), kWindow);
+  static constexpr std::size_t kWindow = 32, kStructureSpan = 4096, kMessageSpan = 16;
+  const MetadataPlaces places = hdf5_metadata_places(file);
+  const bool structure = m.below(2) == 0 ? !places.structures.empty() : places.messages.empty();
+  const auto& kinds = structure ? places.structures : places.messages;
+  if (kinds.empty()) return m.mutate_after(file, contactrb::kSealBlock);
+  const std::vector<std::size_t>& at = kinds[m.below(kinds.size())];
+  const std::size_t start = at[m.below(at.size())] + m.below(structure ? kStructureSpan : kMessageSpan);
+  return m.mutate_window(file, start, kWindow);
 }
 
 // A snapshot or model file damaged after its seal and sealed again (contactrb::seal_file, as
@@ -300,7 +311,7 @@ TEST_F(FuzzCli, ResealedSnapshotFiles) {
   Target t;
   t.name = "snapshot-resealed";
   t.extension = ".h5";
-  t.default_cases = 60;
+  t.default_cases = 120;
   t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
     return damaged_and_resealed(m, k, snapshots_, dir_->path() / "resealed-snapshot.h5");
   };
@@ -332,7 +343,7 @@ TEST_F(FuzzCli, ResealedModelFiles) {
   Target t;
   t.name = "model-resealed";
   t.extension = ".h5";
-  t.default_cases = 60;
+  t.default_cases = 150;
   t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
     return damaged_and_resealed(m, k, model_, dir_->path() / "resealed-model.h5");
   };
