@@ -291,7 +291,7 @@ std::string damage_metadata(contactrb::fuzz::Mutator& m, const std::string& file
   if (kinds.empty()) return m.mutate_after(file, contactrb::kSealBlock);
   const std::vector<std::size_t>& at = kinds[m.below(kinds.size())];
   const std::size_t start = at[m.below(at.size())] + m.below(structure ? kStructureSpan : kMessageSpan);
-  return m.mutate_window(file, start, kWindow);
+  return m.mutate_window(file, std::max(start, contactrb::kSealBlock), kWindow);
 }
 
 // A snapshot or model file damaged after its seal and sealed again (contactrb::seal_file, as
