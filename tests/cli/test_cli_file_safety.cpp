@@ -391,8 +391,8 @@ TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
   // The fuzz suite's original file: an older format version, refused as such.
   const CliResult old = run_cli("offline --snapshots " + shell_quote(data("h5/snapshot_huge_dataset.h5")) +
                                 " --out " + shell_quote(dir.file("old.h5")));
-  expect_user_error_words(old, {"snapshot file", "snapshot_huge_dataset.h5", "has snapshot format version 1",
-                          "this contactrb reads version"});
+  expect_user_error_words(old, {"snapshot file", "snapshot_huge_dataset.h5", "snapshot format 1 is no longer read",
+                                "`contactrb snapshots`"});
   EXPECT_EQ(old.err.find("internal error"), std::string::npos) << old.err;
   EXPECT_FALSE(fs::exists(dir.path() / "old.h5"));
 }

@@ -39,6 +39,20 @@ class Mutator {
     return input;
   }
 
+  // 1 to 4 binary mutations of the bytes after the first `keep` (a header the caller rewrites
+  // afterwards, e.g. a file seal recomputed over the damaged bytes).
+  std::string mutate_after(const std::string& input, std::size_t keep) {
+    const std::size_t n = std::min(keep, input.size());
+    return input.substr(0, n) + mutate(input.substr(n), false);
+  }
+
+  // 1 to 4 binary mutations of the `width` bytes of `input` from offset `at`, the rest unchanged.
+  std::string mutate_window(const std::string& input, std::size_t at, std::size_t width) {
+    at = std::min(at, input.size());
+    const std::size_t n = std::min(width, input.size() - at);
+    return input.substr(0, at) + mutate(input.substr(at, n), false) + input.substr(at + n);
+  }
+
   // One line of a batch file: a valid value mutated, or bytes of any kind.
   std::string batch_line() {
     static const std::vector<std::string> kValues{"0.3", "0.15", "0.45", " 0.2 ", "3e-1", "0.45000000000000001"};

@@ -1,5 +1,6 @@
 // The CLI fuzz suite (docs/testing.md): mutated .msh, TOML, snapshot and
-// model HDF5 files and batch lines, each run through the contactrb executable. Every case
+// model HDF5 files (damaged, and damaged then sealed again) and batch lines, each run through
+// the contactrb executable. Every case
 // must end with exit code 0, or 1 or 3 with exactly one "contactrb: error:" line on stderr;
 // never a signal, never the time limit, never a sanitizer report, never an internal error.
 // A failing case is written to the failures directory with its seed and index, which
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "contactrb/common/file_seal.hpp"
 #include "fuzz/mutator.hpp"
 #include "fuzz/process.hpp"
 #include "fuzz_options.hpp"
@@ -175,7 +177,9 @@ class FuzzCli : public ::testing::Test {
     const fs::path input_path = fs::absolute(opt.failures_dir / (stem + target.extension));
     write_bytes(input_path, input);
     std::ostringstream report;
-    report << "why: " << why << "\nreproduce: test_fuzz --gtest_filter=*" << target.name << "* --fuzz-seed " << opt.seed
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    report << "why: " << why << "\nreproduce: test_fuzz --gtest_filter=" << test->test_suite_name() << "."
+           << test->name() << " --fuzz-seed " << opt.seed
            << " --fuzz-case " << k << "\ncommand (input at the case's path):";
     for (const std::string& a : args) report << " " << a;
     report << "\nexit code: " << r.exit_code << ", signal: " << r.signal << ", timed out: " << r.timed_out
@@ -243,6 +247,81 @@ TEST_F(FuzzCli, SnapshotFiles) {
   run_target(t);
 }
 
+// Where HDF5 keeps the metadata of a file, one list of offsets per key: the signatures of its
+// structures (superblock, object headers and their continuations, B-trees, local and global
+// heaps, symbol-table nodes), and the names of the attributes our files write, each inside an
+// attribute message with its datatype, dataspace and value. Random damage mostly lands in array
+// data, which the field checksums refuse; damage here reaches HDF5's parsing of types, sizes and
+// heaps.
+struct MetadataPlaces {
+  std::vector<std::vector<std::size_t>> structures;  // from a signature on
+  std::vector<std::vector<std::size_t>> messages;    // 16 bytes before an attribute name
+};
+
+MetadataPlaces hdf5_metadata_places(const std::string& file) {
+  static const std::vector<std::string> kSignatures{"\x89" "HDF", "OHDR", "OCHK", "TREE", "HEAP", "GCOL",
+                                                    "SNOD", "BTHD", "BTLF", "FRHP", "FHDB"};
+  static const std::vector<std::string> kNames{"description", "shape_meaning", "units", "format",
+                                               "name", "status", "message", "spec", "kind", "set"};
+  const auto find_all = [&](const std::string& key, std::size_t before) {
+    std::vector<std::size_t> offsets;
+    for (std::size_t at = file.find(key, contactrb::kSealBlock); at != std::string::npos; at = file.find(key, at + 1)) {
+      offsets.push_back(at >= before ? at - before : at);
+    }
+    return offsets;
+  };
+  MetadataPlaces places;
+  for (const std::string& key : kSignatures) {
+    if (auto o = find_all(key, 0); !o.empty()) places.structures.push_back(std::move(o));
+  }
+  for (const std::string& key : kNames) {
+    if (auto o = find_all(key, 16); !o.empty()) places.messages.push_back(std::move(o));
+  }
+  return places;
+}
+
+// A window of damage inside HDF5 metadata: a structure (a kind drawn uniformly, so that a rare
+// one such as a global heap comes as often as an object header; then a place of it and an
+// offset into its first 4 KiB: a heap holds many objects), or an attribute message.
+std::string damage_metadata(contactrb::fuzz::Mutator& m, const std::string& file) {
+  static constexpr std::size_t kWindow = 32, kStructureSpan = 4096, kMessageSpan = 16;
+  const MetadataPlaces places = hdf5_metadata_places(file);
+  const bool structure = m.below(2) == 0 ? !places.structures.empty() : places.messages.empty();
+  const auto& kinds = structure ? places.structures : places.messages;
+  if (kinds.empty()) return m.mutate_after(file, contactrb::kSealBlock);
+  const std::vector<std::size_t>& at = kinds[m.below(kinds.size())];
+  const std::size_t start = at[m.below(at.size())] + m.below(structure ? kStructureSpan : kMessageSpan);
+  return m.mutate_window(file, std::max(start, contactrb::kSealBlock), kWindow);
+}
+
+// A snapshot or model file damaged after its seal and sealed again (contactrb::seal_file, as
+// anyone can: the seal is an unkeyed hash), so that the reader passes the seal check and HDF5
+// parses the damaged bytes: every other case inside HDF5 metadata, the others anywhere. The
+// user block (the seal) itself is left to the resealing.
+std::string damaged_and_resealed(contactrb::fuzz::Mutator& m, std::uint64_t k, const std::string& file,
+                                 const fs::path& scratch) {
+  const std::string damaged = k % 2 == 0 ? damage_metadata(m, file) : m.mutate_after(file, contactrb::kSealBlock);
+  write_bytes(scratch, damaged);
+  contactrb::seal_file(scratch.string());
+  return contactrb::fuzz::slurp(scratch);
+}
+
+// Snapshot files damaged then resealed: `offline --snapshots`, as SnapshotFiles.
+TEST_F(FuzzCli, ResealedSnapshotFiles) {
+  Target t;
+  t.name = "snapshot-resealed";
+  t.extension = ".h5";
+  t.default_cases = 120;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
+    return damaged_and_resealed(m, k, snapshots_, dir_->path() / "resealed-snapshot.h5");
+  };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t) -> std::vector<std::string> {
+    write_bytes(d / "s.h5", input);
+    return {"offline", "--snapshots", (d / "s.h5").string(), "--out", (d / "model.h5").string()};
+  };
+  run_target(t);
+}
+
 // Model files: `online --model` (one case in four also reconstructs the fields with --out).
 TEST_F(FuzzCli, ModelFiles) {
   Target t;
@@ -250,6 +329,24 @@ TEST_F(FuzzCli, ModelFiles) {
   t.extension = ".h5";
   t.default_cases = 150;
   t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t) { return m.mutate(model_, false); };
+  t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
+    write_bytes(d / "model.h5", input);
+    std::vector<std::string> args{"online", "--model", (d / "model.h5").string(), "--mu", "0.015"};
+    if (k % 4 == 0) args.insert(args.end(), {"--out", (d / "out").string()});
+    return args;
+  };
+  run_target(t);
+}
+
+// Model files damaged then resealed: `online --model`, as ModelFiles.
+TEST_F(FuzzCli, ResealedModelFiles) {
+  Target t;
+  t.name = "model-resealed";
+  t.extension = ".h5";
+  t.default_cases = 150;
+  t.make_input = [](contactrb::fuzz::Mutator& m, std::uint64_t k) {
+    return damaged_and_resealed(m, k, model_, dir_->path() / "resealed-model.h5");
+  };
   t.command = [](const std::string& input, const fs::path& d, std::uint64_t k) -> std::vector<std::string> {
     write_bytes(d / "model.h5", input);
     std::vector<std::string> args{"online", "--model", (d / "model.h5").string(), "--mu", "0.015"};

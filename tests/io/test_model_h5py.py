@@ -1,8 +1,10 @@
 """Model and snapshot files read by an independent reader (h5py + numpy only), against the
 C++ code (docs/file-formats.md):
 
-1. Every group has a `description`, every dataset `shape_meaning` and `units`, and every string
-   attribute decodes as str (variable-length UTF-8).
+1. Every group has a `description`, every dataset `shape_meaning` and `units`; every string
+   attribute is a fixed-length UTF-8 string (h5py: numpy.bytes_, `.decode("utf-8")` is the text)
+   and nothing in the files is variable-length; the strings hold what the CLI wrote (the case
+   name and kind, the version, a converged status, the model's copy of the snapshot strings).
 2. The reconstruction u = sum_k theta^lift_k(mu) lift_k + P Theta[:, :N] u_hat, computed here from
    the model file's datasets alone (u_hat from `online --json`), equals the displacement the C++
    reconstruction wrote to solution.vtu (raw appended Float64, parsed here) to 1e-12 relative;
@@ -80,31 +82,75 @@ def theta(group, mu):
     return out
 
 
+def string_text(obj, key, bad, where):
+    """The text of string attribute `key` of `obj`: fixed-length UTF-8, read as numpy.bytes_."""
+    info = h5py.check_string_dtype(obj.attrs.get_id(key).dtype)
+    if info is None:
+        return None
+    if info.length is None:
+        bad.append(f"{where} attribute {key} is a variable-length string")
+    if info.encoding != "utf-8":
+        bad.append(f"{where} attribute {key} is not UTF-8 ({info.encoding})")
+    value = obj.attrs[key]
+    if not isinstance(value, np.bytes_):
+        bad.append(f"{where} attribute {key} reads as {type(value).__name__}, not numpy.bytes_")
+        return None
+    try:
+        return value.decode("utf-8")
+    except UnicodeDecodeError:
+        bad.append(f"{where} attribute {key} is not valid UTF-8")
+        return None
+
+
 def check_descriptions(path):
     bad = []
     with h5py.File(path, "r") as f:
-        for key, value in f.attrs.items():
-            if isinstance(value, (bytes, np.bytes_)):
-                bad.append(f"/ attribute {key} reads as bytes")
+        for key in f.attrs:
+            string_text(f, key, bad, "/")
 
         def visit(name, obj):
-            for key, value in obj.attrs.items():
-                if isinstance(value, (bytes, np.bytes_)):
-                    bad.append(f"{name} attribute {key} reads as bytes")
+            text = {key: string_text(obj, key, bad, name) for key in obj.attrs}
             if isinstance(obj, h5py.Dataset):
+                if h5py.check_vlen_dtype(obj.dtype) is not None or obj.dtype.kind in ("O", "S", "U"):
+                    bad.append(f"dataset {name} holds strings or variable-length data ({obj.dtype})")
                 for key in ("shape_meaning", "units"):
-                    if not isinstance(obj.attrs.get(key), str):
-                        bad.append(f"{name} has no str attribute {key}")
-            elif not isinstance(obj.attrs.get("description"), str):
-                bad.append(f"group {name} has no str description")
+                    if not text.get(key):
+                        bad.append(f"{name} has no {key} text")
+            elif not text.get("description"):
+                bad.append(f"group {name} has no description text")
 
         f.visititems(visit)
         for key in ("format", "contactrb_version", "description"):
-            if not isinstance(f.attrs.get(key), str):
-                bad.append(f"root attribute {key} is not str")
+            if not string_text(f, key, bad, "/"):
+                bad.append(f"root attribute {key} has no text")
     for b in bad[:10]:
         print("     " + b)
     return not bad
+
+
+def text(obj, key):
+    return obj.attrs[key].decode("utf-8")
+
+
+def check_strings(cli, work):
+    """The string attributes read by h5py alone hold what the CLI wrote."""
+    version = run(cli, ["--version"], work).split()[-1]
+    with h5py.File(os.path.join(work, "s.h5"), "r") as s, h5py.File(os.path.join(work, "m.h5"), "r") as m:
+        check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 5,
+              "snapshot format attributes (bytes decoded)")
+        check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 6,
+              "model format attributes (bytes decoded)")
+        check(text(s, "contactrb_version") == version and text(m, "contactrb_version") == version,
+              f"contactrb_version is `contactrb --version` ({version})")
+        check(text(s["case"], "name") == "two-block-patch" and text(s["case"], "kind") == "toml",
+              "snapshot /case name and kind")
+        spec = text(s["case"], "spec")
+        check('name = "two-block-patch"' in spec and "[mesh]" in spec, "snapshot /case spec is the TOML text")
+        check(text(m["meta"], "case_name") == "two-block-patch" and text(m["meta"], "case_spec") == spec,
+              "model /meta case_name and case_spec are the snapshot file's")
+        check(s["snapshots/000000"].attrs["status"] == b"converged", "a converged snapshot's status")
+        check(text(s["parameter/000000"], "name") == text(m["parameters/000000"], "name") != "",
+              "the parameter's name, in both files")
 
 
 def main():
@@ -121,16 +167,15 @@ def main():
               "--out", "s.h5"], work)
     run(cli, ["offline", "--snapshots", "s.h5", "--out", "m.h5"], work)
 
-    check(check_descriptions(os.path.join(work, "m.h5")), "model file: descriptions, shape_meaning, units as str")
-    check(check_descriptions(os.path.join(work, "s.h5")), "snapshot file: descriptions, shape_meaning, units as str")
+    check(check_descriptions(os.path.join(work, "m.h5")), "model file: fixed-length UTF-8 strings, descriptions, shape_meaning, units")
+    check(check_descriptions(os.path.join(work, "s.h5")), "snapshot file: fixed-length UTF-8 strings, descriptions, shape_meaning, units")
+    check_strings(cli, work)
 
     mu = np.array([0.0175])
     answer = json.loads(run(cli, ["online", "--model", "m.h5", "--mu", "0.0175", "--out", "o1"], work))
     u_hat = np.array(answer["u_hat"])
     lambda_hat = np.array(answer["lambda_hat"])
     with h5py.File(os.path.join(work, "m.h5"), "r") as f:
-        check(f.attrs["format"] == "contactrb-reduced-model" and int(f.attrs["format_version"]) == 5,
-              "model format attributes")
         rec = f["reconstruction"]
         Theta = rec["Theta"][()]
         free = rec["free_dofs"][()]

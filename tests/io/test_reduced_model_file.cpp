@@ -188,7 +188,10 @@ TEST(ReducedModelFile, DamagedOrForeignFilesGiveClearErrors) {
   future.format_version = contactrb::model::kReducedModelFormatVersion + 1;
   const std::string newer = dir.file("newer.h5");
   contactrb::io::write_reduced_model_file(future, newer);
-  EXPECT_NE(read_error(newer).find("format version"), std::string::npos) << read_error(newer);
+  EXPECT_NE(read_error(newer).find("model format " + std::to_string(future.format_version) +
+                                   " is newer than this build reads"),
+            std::string::npos)
+      << read_error(newer);
 
   // Change one stored double (the first entry of Theta_c that is not 0) in the file's bytes.
   double target = 0.0;
@@ -282,9 +285,9 @@ TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
   H5Sclose(s2);
   H5Fclose(file);
   const std::string e = read_error(path);
-  EXPECT_NE(e.find("format version 4, this build reads version " +
+  EXPECT_NE(e.find("model format 4 is no longer read (this build reads format " +
                    std::to_string(contactrb::model::kReducedModelFormatVersion) +
-                   " (rebuild the model with `contactrb offline`)"),
+                   "): rebuild it with `contactrb offline`"),
             std::string::npos)
       << e;
   std::string r;
@@ -293,7 +296,7 @@ TEST(ReducedModelFile, TheFlatLayoutOfVersionFourAsksForARebuild) {
   } catch (const contactrb::Error& x) {
     r = x.what();
   }
-  EXPECT_NE(r.find("rebuild the model"), std::string::npos) << r;
+  EXPECT_NE(r.find("rebuild it with `contactrb offline`"), std::string::npos) << r;
 }
 
 }  // namespace

@@ -219,7 +219,10 @@ TEST(SnapshotFile, WrongVersionIsRejected) {
     ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
     H5Aclose(attr);
   });
-  expect_error_naming(dir.file("v.h5"), "format version " + std::to_string(contactrb::io::kSnapshotFormatVersion + 1));
+  expect_error_naming(dir.file("v.h5"), "snapshot format " + std::to_string(contactrb::io::kSnapshotFormatVersion + 1) +
+                                            " is newer than this build reads (format " +
+                                            std::to_string(contactrb::io::kSnapshotFormatVersion) +
+                                            "): generate the snapshots again with `contactrb snapshots`");
 }
 
 TEST(SnapshotFile, IncompleteFileIsRejected) {
@@ -550,4 +553,101 @@ TEST(SnapshotFile, ALevelAboveTheFinestIsRefused) {
   SnapshotSet s = synthetic_set();
   s.level = 40;
   EXPECT_NE(check_error(s).find("/case/level is 40 (expected 0 to 16"), std::string::npos) << check_error(s);
+}
+
+namespace {
+
+// Every attribute of every object of a file: "object@attribute" and its datatype.
+struct AttributeTypes {
+  std::vector<std::pair<std::string, hid_t>> list;
+  ~AttributeTypes() {
+    for (auto& [name, type] : list) H5Tclose(type);
+  }
+};
+
+herr_t collect_attribute(hid_t loc, const char* name, const H5A_info_t*, void* data) {
+  auto& out = *static_cast<std::pair<std::string, AttributeTypes*>*>(data);
+  const hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
+  out.second->list.emplace_back(out.first + "@" + name, H5Aget_type(attr));
+  H5Aclose(attr);
+  return 0;
+}
+
+herr_t collect_object(hid_t root, const char* name, const H5O_info_t*, void* data) {
+  const hid_t obj = H5Oopen(root, name, H5P_DEFAULT);
+  std::pair<std::string, AttributeTypes*> where{name, static_cast<AttributeTypes*>(data)};
+  H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_attribute, &where);
+  H5Oclose(obj);
+  return 0;
+}
+
+// The stored bytes of a scalar string attribute, read with its own (fixed-length) type.
+std::string raw_string_attribute(hid_t file, const char* object, const char* name) {
+  const hid_t attr = H5Aopen_by_name(file, object, name, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t type = H5Aget_type(attr);
+  std::string bytes(H5Tget_size(type), '?');
+  EXPECT_GE(H5Aread(attr, type, bytes.data()), 0) << object << " " << name;
+  H5Tclose(type);
+  H5Aclose(attr);
+  return bytes;
+}
+
+}  // namespace
+
+// Every string is a fixed-length UTF-8 string of its byte length (at least 1, NUL-padded): no
+// variable-length data, which HDF5 1.10 cannot read safely from a damaged file. Checked with
+// the HDF5 API, independently of the reader.
+TEST(SnapshotFile, StringsAreFixedLengthUtf8OfTheirByteLength) {
+  TempDir dir("strings");
+  const SnapshotSet s = synthetic_set();
+  ASSERT_EQ(s.parameters[0].units, "");  // the empty string: one NUL byte
+  write_snapshot_file(s, dir.file("s.h5"));
+  const hid_t file = H5Fopen(dir.file("s.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  AttributeTypes types;
+  std::pair<std::string, AttributeTypes*> root{"", &types};
+  H5Aiterate2(file, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_attribute, &root);
+  H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_INC, collect_object, &types, H5O_INFO_BASIC);
+  int strings = 0;
+  for (const auto& [name, type] : types.list) {
+    if (H5Tget_class(type) != H5T_STRING) continue;
+    ++strings;
+    EXPECT_EQ(H5Tis_variable_str(type), 0) << name;
+    EXPECT_EQ(H5Tget_cset(type), H5T_CSET_UTF8) << name;
+    EXPECT_EQ(H5Tget_strpad(type), H5T_STR_NULLPAD) << name;
+    EXPECT_GE(H5Tget_size(type), 1u) << name;
+  }
+  // format, description, contactrb_version, 5 in /case, 4 in /parameter, 3 per snapshot, and
+  // shape_meaning and units of every dataset: well above 30.
+  EXPECT_GT(strings, 30);
+  EXPECT_EQ(raw_string_attribute(file, "/", "format"), std::string(contactrb::io::kSnapshotFormatName));
+  EXPECT_EQ(raw_string_attribute(file, "/case", "spec"), s.case_spec);  // UTF-8 bytes as written
+  EXPECT_EQ(raw_string_attribute(file, "/parameter/000000", "units"), std::string(1, '\0'));
+  EXPECT_EQ(raw_string_attribute(file, "/snapshots/000001", "status"), s.snapshots[1].status);
+  H5Fclose(file);
+  const SnapshotSet r = read_snapshot_file(dir.file("s.h5"));
+  EXPECT_EQ(r.case_spec, s.case_spec);
+  EXPECT_EQ(r.parameters[0].units, "");
+}
+
+// A variable-length string planted in a file of this format (sealed again) is refused without
+// being read, naming the attribute.
+TEST(SnapshotFile, AVariableLengthStringIsRefusedUnread) {
+  TempDir dir("vlen");
+  write_snapshot_file(synthetic_set(), dir.file("s.h5"));
+  edit_file(dir.file("s.h5"), [](hid_t f) {
+    const hid_t group = H5Gopen2(f, "/case", H5P_DEFAULT);
+    ASSERT_GE(H5Adelete(group, "constraint"), 0);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t attr = H5Acreate2(group, "constraint", type, space, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = "lac";
+    ASSERT_GE(H5Awrite(attr, type, &text), 0);
+    H5Aclose(attr);
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Gclose(group);
+  });
+  expect_error_naming(dir.file("s.h5"), "attribute 'constraint' is a variable-length string");
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Self-describing HDF5 fields shared by the snapshot and reduced-model files
-// (docs/file-formats.md): strings as variable-length UTF-8 string attributes (h5py reads them
-// as str), numbers as scalar attributes, arrays as contiguous datasets whose HDF5 shape is the
-// documented one (C order: a rows x cols matrix is stored rows x cols), each with the
+// (docs/file-formats.md): strings as fixed-length UTF-8 string attributes (h5py reads them as
+// numpy.bytes_), numbers as scalar attributes, arrays as contiguous datasets whose HDF5 shape
+// is the documented one (C order: a rows x cols matrix is stored rows x cols), each with the
 // descriptive attributes `shape_meaning` and `units`.
 // Internal to io/: include only from io/*.cpp (io links HDF5 privately).
 #include <hdf5.h>
@@ -14,22 +14,30 @@
 
 namespace contactrb::io::hdf5 {
 
-// A variable-length UTF-8 string type (for writing and for reading).
-inline Handle vlen_string_type() {
+// A fixed-length UTF-8 string type of `size` bytes, padded with NUL bytes (no terminator).
+// Strings are never variable-length: HDF5 1.10 crashes reading a variable-length string whose
+// global-heap entry or length is damaged, and a file can be damaged and sealed again
+// (docs/file-formats.md, "What the seal protects against").
+inline Handle fixed_string_type(std::size_t size) {
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
-  check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot size a string type");
+  check(H5Tset_size(type.get(), size), "cannot size a string type");
+  check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "cannot set string padding");
   check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot set string encoding");
   return type;
 }
 
-// Attribute `name` of `loc` (a group or dataset), a scalar variable-length string.
+// Attribute `name` of `loc` (a group or dataset), a scalar fixed-length string of the value's
+// byte length (1 for the empty string, stored as one NUL byte).
 inline void write_string_attribute(hid_t loc, const std::string& name, const std::string& value) {
-  Handle type = vlen_string_type();
+  if (value.find('\0') != std::string::npos) throw Failure{"attribute '" + name + "' contains a NUL byte"};
+  const std::size_t size = value.empty() ? 1 : value.size();
+  Handle type = fixed_string_type(size);
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
   Handle attr(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               "cannot create attribute '" + name + "'");
-  const char* data = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &data), "cannot write attribute '" + name + "'");
+  std::string data = value;
+  data.resize(size, '\0');
+  check(H5Awrite(attr.get(), type.get(), data.data()), "cannot write attribute '" + name + "'");
 }
 
 // A scalar number attribute.
@@ -58,24 +66,24 @@ inline Handle sealed_file_properties() {
   return fcpl;
 }
 
-// A scalar string attribute, variable-length (this format) or fixed-length (the `format` of
-// older snapshot files, read to name their version). `vlen_allowed` false: a variable-length
-// one is refused, not read (a file without a valid seal: HDF5 1.10.8 crashes reading a
-// variable-length string whose stored length is damaged).
-inline std::string read_string_attribute(hid_t loc, const std::string& name, bool vlen_allowed = true) {
+// True when attribute `name` of `loc` exists and is a variable-length string: told from its
+// type alone, its value is never read (the files of older formats; see fixed_string_type).
+inline bool is_vlen_string_attribute(hid_t loc, const std::string& name) {
+  if (H5Aexists(loc, name.c_str()) <= 0) return false;
+  Handle attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + name + "'");
+  Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
+  return H5Tget_class(type.get()) == H5T_STRING && H5Tis_variable_str(type.get()) > 0;
+}
+
+// A scalar fixed-length string attribute (any padding and character set; trailing NUL bytes
+// dropped). A variable-length one is refused, not read (see fixed_string_type).
+inline std::string read_string_attribute(hid_t loc, const std::string& name) {
   Handle attr = open_attribute(loc, name);
   Handle type(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of attribute '" + name + "'");
   if (H5Tget_class(type.get()) != H5T_STRING) throw Failure{"attribute '" + name + "' is not a string"};
-  if (H5Tis_variable_str(type.get()) > 0) {
-    if (!vlen_allowed) throw Failure{"attribute '" + name + "' cannot be read safely: the file has no valid seal"};
-    Handle mem = vlen_string_type();
-    char* data = nullptr;
-    check(H5Aread(attr.get(), mem.get(), &data), "cannot read attribute '" + name + "'");
-    std::string value = data == nullptr ? std::string() : std::string(data);
-    if (data != nullptr) H5free_memory(data);
-    return value;
+  if (H5Tis_variable_str(type.get()) != 0) {
+    throw Failure{"attribute '" + name + "' is a variable-length string, which this format never stores (not read)"};
   }
-  // Fixed length: read with the stored type itself (any padding and character set).
   const std::size_t size = H5Tget_size(type.get());
   if (size == 0 || size > (1u << 24)) throw Failure{"attribute '" + name + "' has an invalid string size"};
   std::string value(size, '\0');

@@ -356,32 +356,47 @@ int old_layout_version(hid_t file) {
 }
 
 std::string rebuild_message(int version) {
-  return "format version " + std::to_string(version) + ", this build reads version " +
-         std::to_string(contactrb::model::kReducedModelFormatVersion) + " (rebuild the model with `contactrb offline`)";
+  const int current = contactrb::model::kReducedModelFormatVersion;
+  const std::string state = version > current ? " is newer than this build reads" : " is no longer read";
+  return "model format " + std::to_string(version) + state + " (this build reads format " + std::to_string(current) +
+         "): rebuild it with `contactrb offline`";
+}
+
+constexpr const char* kSnapshotNotModel =
+    "a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline --snapshots`)";
+
+// A file whose `format` is a variable-length string (model format 5, snapshot format 4),
+// told from the attribute's type alone: its strings are never read (hdf5_fields.hpp,
+// fixed_string_type). The integer `format_version` names the version.
+[[noreturn]] void refuse_variable_length_file(hid_t file) {
+  if (H5Lexists(file, "snapshots", H5P_DEFAULT) > 0 && H5Lexists(file, "meta", H5P_DEFAULT) <= 0) {
+    throw H5Failure{kSnapshotNotModel};
+  }
+  const int version = hdf5::read_number_attribute<int>(file, "format_version", H5T_NATIVE_INT, H5T_INTEGER);
+  if (version == contactrb::model::kReducedModelFormatVersion) {
+    throw H5Failure{"damaged: its 'format' is a variable-length string, which format " + std::to_string(version) +
+                    " never stores (not read)"};
+  }
+  throw H5Failure{rebuild_message(version)};
 }
 
 // Format, version and completeness of an open model file; throws H5Failure with the reason.
 void check_header(hid_t file, const std::string& path, bool sealed) {
   if (H5Aexists(file, "format") <= 0) {
-    if (is_snapshot_file(path)) {
-      throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
-                      "--snapshots`)"};
-    }
+    if (is_snapshot_file(path)) throw H5Failure{kSnapshotNotModel};
     const int old = old_layout_version(file);
     if (old >= 0) throw H5Failure{rebuild_message(old)};
     throw H5Failure{"not a contactrb reduced model (no 'format' attribute)"};
   }
+  if (hdf5::is_vlen_string_attribute(file, "format")) refuse_variable_length_file(file);
   std::string format;
   try {
-    format = hdf5::read_string_attribute(file, "format", sealed);
+    format = hdf5::read_string_attribute(file, "format");
   } catch (const H5Failure& e) {
     if (!sealed) throw H5Failure{"damaged or not written by contactrb (" + e.what + ")"};
     format = "(unreadable)";
   }
-  if (format == kSnapshotFormatName) {
-    throw H5Failure{"a contactrb snapshot file, not a reduced model (build a model from it with `contactrb offline "
-                    "--snapshots`)"};
-  }
+  if (format == kSnapshotFormatName) throw H5Failure{kSnapshotNotModel};
   if (format != kReducedModelFormatName) throw H5Failure{"not a contactrb reduced model (format '" + format + "')"};
   const int version = hdf5::read_number_attribute<int>(file, "format_version", H5T_NATIVE_INT, H5T_INTEGER);
   if (version != contactrb::model::kReducedModelFormatVersion) throw H5Failure{rebuild_message(version)};

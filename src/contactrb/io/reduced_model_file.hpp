@@ -38,7 +38,7 @@ void write_reduced_model_file(const contactrb::model::ReducedModel& model,
 // checksum mismatch.
 contactrb::model::ReducedModel read_reduced_model_file(const std::string& path);
 
-inline constexpr int kReconstructionFormatVersion = 2;  // 2: the layout of model format 5, /mesh
+inline constexpr int kReconstructionFormatVersion = 2;  // 2: the layout of model formats 5 and 6, /mesh
 
 // Whether the model file holds the group "reconstruction". Throws contactrb::Error naming
 // `path` for a missing file or a file that is not HDF5 (same messages as the reader).

@@ -150,7 +150,7 @@ void visit_discretization(V& v, const Loc& root, Set& set) {
          {"the master chain, mesh node indices in order (closed: the first repeated at the end)", "index (0-based)"});
 }
 
-// The reference mesh (format 4): no .msh file is needed to use the snapshots.
+// The reference mesh (format 4 and later): no .msh file is needed to use the snapshots.
 template <typename V, typename Set>
 void visit_reference_mesh(V& v, const Loc& root, Set& set) {
   int has_mesh = set.mesh.nodes.empty() ? 0 : 1;
@@ -325,15 +325,50 @@ Handle open_file(const std::string& path, const std::string& name) {
   }
 }
 
+// What a file of another snapshot format version gets: its version and the command that
+// writes the current one.
+std::string version_message(int version) {
+  const std::string current = std::to_string(kSnapshotFormatVersion);
+  const std::string again = ": generate the snapshots again with `contactrb snapshots`";
+  if (version > kSnapshotFormatVersion) {
+    return "snapshot format " + std::to_string(version) + " is newer than this build reads (format " + current + ")" +
+           again;
+  }
+  return "snapshot format " + std::to_string(version) + " is no longer read (this build reads format " + current + ")" +
+         again;
+}
+
+// A file whose `format` is a variable-length string (snapshot format 4 and model format 5 and
+// before), told from the attribute's type alone: its strings are never read (hdf5_fields.hpp,
+// fixed_string_type). The integer `format_version` names the version.
+[[noreturn]] void refuse_variable_length_file(hid_t file, const std::string& name) {
+  if (H5Lexists(file, "meta", H5P_DEFAULT) > 0) refuse_model_file(name);
+  if (H5Lexists(file, "snapshots", H5P_DEFAULT) <= 0) {
+    throw Error(name + " is an HDF5 file but not a contactrb snapshot file of a format this build reads");
+  }
+  int version = -1;
+  try {
+    version = read_int_attribute(file, "format_version");
+  } catch (const H5Failure& f) {
+    throw Error(name + " is a snapshot file of an older format without a valid format version: " + f.what);
+  }
+  if (version == kSnapshotFormatVersion) {
+    throw Error(name + " is damaged: its 'format' is a variable-length string, which format " +
+                std::to_string(version) + " never stores (not read)");
+  }
+  throw Error(name + ": " + version_message(version));
+}
+
 // The format, its version, the seal and the `complete` mark of an open file.
 void check_header(hid_t file, const std::string& name, bool sealed) {
   if (H5Aexists(file, "format") <= 0) {
     if (has_model_format(file)) refuse_model_file(name);
     throw Error(name + " is an HDF5 file but not a contactrb snapshot file (no 'format' attribute)");
   }
+  if (hdf5::is_vlen_string_attribute(file, "format")) refuse_variable_length_file(file, name);
   std::string format;
   try {
-    format = hdf5::read_string_attribute(file, "format", sealed);
+    format = hdf5::read_string_attribute(file, "format");
   } catch (const H5Failure& f) {
     if (!sealed) throw Error(name + " is damaged or not written by contactrb (" + f.what + ")");
     format = "(unreadable)";
@@ -348,10 +383,7 @@ void check_header(hid_t file, const std::string& name, bool sealed) {
   } catch (const H5Failure& f) {
     throw Error(name + " has no valid format version: " + f.what);
   }
-  if (version != kSnapshotFormatVersion) {
-    throw Error(name + " has snapshot format version " + std::to_string(version) + "; this contactrb reads version " +
-                std::to_string(kSnapshotFormatVersion) + " (generate the snapshots again with `contactrb snapshots`)");
-  }
+  if (version != kSnapshotFormatVersion) throw Error(name + ": " + version_message(version));
   // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
   if (!sealed) throw Error(name + " is damaged: its seal (the first bytes of the file) is missing");
   // `complete` = 1 is written last; any other value (0, a damaged one) is not a finished write.
@@ -382,9 +414,12 @@ bool is_snapshot_file(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec) || H5Fis_hdf5(path.c_str()) <= 0) return false;
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open");
-    return H5Aexists(file.get(), "format") > 0 &&
-           hdf5::read_string_attribute(file.get(), "format", check_seal(path) == SealState::Valid) ==
-               kSnapshotFormatName;
+    if (H5Aexists(file.get(), "format") <= 0) return false;
+    // An older snapshot file (a variable-length `format`, never read): told by its groups.
+    if (hdf5::is_vlen_string_attribute(file.get(), "format")) {
+      return H5Lexists(file.get(), "snapshots", H5P_DEFAULT) > 0 && H5Lexists(file.get(), "meta", H5P_DEFAULT) <= 0;
+    }
+    return hdf5::read_string_attribute(file.get(), "format") == kSnapshotFormatName;
   } catch (const H5Failure&) {
     return false;
   }

@@ -19,8 +19,10 @@ inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
 // Version 3: p parameters (a point mu in R^p per snapshot; each parameter's name, kind, units
 // and domain). Version 4: the self-describing layout (strings as variable-length UTF-8
 // attributes, `shape_meaning` and `units` on every dataset) and the reference mesh in /mesh
-// (docs/file-formats.md). Older versions are refused: generate them again.
-inline constexpr int kSnapshotFormatVersion = 4;
+// (docs/file-formats.md). Version 5: every string a fixed-length UTF-8 attribute (no
+// variable-length data, which HDF5 1.10 cannot read safely from a damaged file). Older versions
+// are refused with their version named: generate them again.
+inline constexpr int kSnapshotFormatVersion = 5;
 
 // What a snapshot file records of each parameter (cases::ParameterSpec, without the case).
 struct SnapshotParameter {

@@ -27,8 +27,10 @@ namespace contactrb::model {
 
 // 3: N_supremizers, tolerance modes, the error estimate's arrays; 4: p parameters (the list, the
 // training points p x P, theta monomials with one factor per parameter); 5: the self-describing
-// layout (groups, attributes, matrices in their documented shape, docs/file-formats.md).
-inline constexpr int kReducedModelFormatVersion = 5;
+// layout (groups, attributes, matrices in their documented shape, docs/file-formats.md); 6: every
+// string a fixed-length UTF-8 attribute (no variable-length data, which HDF5 1.10 cannot read
+// safely from a damaged file).
+inline constexpr int kReducedModelFormatVersion = 6;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
