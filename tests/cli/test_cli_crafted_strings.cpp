@@ -18,36 +18,20 @@
 #include <utility>
 #include <vector>
 
+#include "support/file_bytes.hpp"
 #include "cli_runner.hpp"
 #include "contactrb/common/file_seal.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::read_bytes;
+using contactrb::test::write_bytes;
+using contactrb::test::count_lines_starting;
 using contactrb::test::CliResult;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
 namespace {
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write_bytes(const fs::path& p, const std::string& bytes) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << bytes;
-}
-
-int count_lines_starting(const std::string& text, const std::string& prefix) {
-  std::istringstream in(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
-  return n;
-}
 
 // Exit 1 (not a signal: the shell reports one as 128 + its number) and exactly one
 // "contactrb: error:" line holding every word of `words`.

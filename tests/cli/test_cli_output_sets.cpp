@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/file_bytes.hpp"
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
 #include "contactrb/common/file_seal.hpp"
@@ -24,23 +25,13 @@
 #include "contactrb/io/snapshot_file.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::read_bytes;
+using contactrb::test::write_bytes;
 using contactrb::test::CliResult;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
 namespace {
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write_bytes(const fs::path& p, const std::string& bytes) {
-  std::ofstream out(p, std::ios::binary);
-  out << bytes;
-}
 
 std::vector<std::string> entries(const fs::path& dir) {
   std::vector<std::string> names;

@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "support/file_bytes.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/input_file.hpp"
 #include "contactrb/common/output_file.hpp"
@@ -22,6 +23,8 @@
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::read_bytes;
+using contactrb::test::write_bytes;
 using contactrb::Error;
 
 namespace {
@@ -33,18 +36,6 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "";
-}
-
-void write_bytes(const fs::path& p, const std::string& bytes) {
-  std::ofstream out(p, std::ios::binary);
-  out << bytes;
-}
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // Sets an environment variable for one scope.

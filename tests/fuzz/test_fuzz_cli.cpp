@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "support/file_bytes.hpp"
 #include "contactrb/common/file_seal.hpp"
 #include "fuzz/mutator.hpp"
 #include "fuzz/process.hpp"
@@ -30,24 +31,13 @@
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::write_bytes;
+using contactrb::test::count_lines_starting;
 using contactrb::fuzz::RunResult;
 
 namespace {
 
 std::string source(const std::string& path) { return std::string(CONTACTRB_SOURCE_DIR) + "/" + path; }
-
-void write_bytes(const fs::path& p, const std::string& bytes) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << bytes;
-}
-
-int count_lines_starting(const std::string& text, const std::string& prefix) {
-  std::istringstream in(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
-  return n;
-}
 
 // Why a run breaks the contract, or "" when it keeps it.
 std::string verdict(const RunResult& r, double timeout_s) {

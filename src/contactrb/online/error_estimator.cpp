@@ -84,6 +84,18 @@ double pivoted_norm(const Eigen::MatrixXd& R, const std::vector<Index>& perm, co
 }
 }  // namespace
 
+ConstraintMeasures constraint_measures(const Eigen::VectorXd& slack, const Eigen::VectorXd& lambda,
+                                       const Eigen::VectorXd& weight) {
+  double viol2 = 0.0, lam2 = 0.0;
+  for (Index r = 0; r < slack.size(); ++r) {
+    const double w = weight(r);
+    const double neg = std::max(0.0, -slack(r));
+    if (w > 0.0) viol2 += neg * neg / w;  // the L2(Gamma^c) dual norm of the violation
+    lam2 += w * lambda(r) * lambda(r);
+  }
+  return {std::sqrt(viol2), std::sqrt(lam2), lambda.dot(slack)};
+}
+
 void ErrorEstimator::setup_exact(const ReducedModel& m, const std::vector<Index>& affine) {
   const EstimateData& e = m.estimate;
   exact_dofs_ = e.exact_dofs;
@@ -200,16 +212,10 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   s_.noalias() = Q_gamma_ * phi_gamma;
   s_.noalias() -= QTheta_ * phi_u_;
   lam_.noalias() = Xi_ * lambda_hat;
-  double viol2 = 0.0, lam2 = 0.0;
-  for (Index r = 0; r < s_.size(); ++r) {
-    const double w = weight_kept(r);
-    const double neg = std::max(0.0, -s_(r));
-    if (w > 0.0) viol2 += neg * neg / w;  // rows weighted by |I_r|: the L2(Gamma^c) dual norm
-    lam2 += w * lam_(r) * lam_(r);
-  }
-  est.violation = std::sqrt(viol2);
-  est.multiplier_norm = std::sqrt(lam2);
-  est.complementarity = lam_.dot(s_);
+  const ConstraintMeasures c = constraint_measures(s_, lam_, weight_kept);
+  est.violation = c.violation;
+  est.multiplier_norm = c.multiplier_norm;
+  est.complementarity = c.complementarity;
   // The EIM's share (calibrated on the training snapshots): the residual with the HF contact map
   // differs by E_c' (K - I K)' lambda, the slack by (gamma - I gamma) - (K - I K) u_0,c.
   est.eim_residual = eim_residual_ * est.multiplier_norm;

@@ -29,6 +29,17 @@ struct ErrorEstimate {
   double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
 };
 
+// Rows weighted by |I_r| (the L2(Gamma^c) norms, docs/offline-online.md, "Error estimate"):
+// violation sqrt(sum_r (s_r^-)^2 / w_r), multiplier_norm sqrt(sum_r w_r lambda_r^2) and the
+// complementarity lambda's, over the rows of `slack`, `lambda` and `weight`.
+struct ConstraintMeasures {
+  double violation = 0.0;
+  double multiplier_norm = 0.0;
+  double complementarity = 0.0;
+};
+ConstraintMeasures constraint_measures(const Eigen::VectorXd& slack, const Eigen::VectorXd& lambda,
+                                       const Eigen::VectorXd& weight);
+
 // Throws contactrb::Error naming the first array of model.estimate whose shape disagrees with the
 // model (an empty estimate is accepted: available() is then false).
 void check_estimate_data(const contactrb::model::ReducedModel& model);

@@ -308,16 +308,10 @@ ErrorEstimator::ExactContact OnlineSolver::exact_contact(const Eigen::VectorXd& 
   ErrorEstimator::ExactContact c;
   c.load = rows.K.transpose() * lambda;
   const Eigen::VectorXd slack = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
-  double viol2 = 0.0, lam2 = 0.0;
-  for (Eigen::Index r = 0; r < slack.size(); ++r) {
-    const double weight = quadrature_.weight(static_cast<int>(r));
-    const double neg = std::max(0.0, -slack(r));
-    if (weight > 0.0) viol2 += neg * neg / weight;  // rows weighted by |I_r|: the L2(Gamma^c) dual norm
-    lam2 += weight * lambda(r) * lambda(r);
-  }
-  c.violation = std::sqrt(viol2);
-  c.multiplier_norm = std::sqrt(lam2);
-  c.complementarity = lambda.dot(slack);
+  const ConstraintMeasures m = constraint_measures(slack, lambda, quadrature_.weight);
+  c.violation = m.violation;
+  c.multiplier_norm = m.multiplier_norm;
+  c.complementarity = m.complementarity;
   return c;
 }
 
