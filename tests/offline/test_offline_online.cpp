@@ -18,6 +18,7 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/offline/dual_cone.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
@@ -234,6 +235,41 @@ TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
       EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
       EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
     }
+  }
+}
+
+// The row cone solved with the exact contact rows: the restricted evaluation (the slaves under
+// the kept rows, MagicPointEvaluator::evaluate_rows) gives the answer of the full contact-surface
+// rows; and with every POD mode the reduced problem holds each training snapshot, so at a
+// training value the reduced pressure is the HF pressure on the kept rows (0 elsewhere) and the
+// displacement the HF one, to the solvers' tolerance.
+TEST_P(OfflineOnline, RowConeWithExactRowsReproducesTheTrainingSnapshots) {
+  const SnapshotSet& set = snapshots(GetParam());
+  OfflineSettings s = untruncated(true);
+  s.dual_method = contactrb::offline::DualConeMethod::Rows;
+  const OfflineResult off =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
+  ASSERT_EQ(off.model.dual_method, "rows");
+  ASSERT_EQ(off.model.R_max, off.model.R_kept());
+  OnlineSolver solver(off.model);
+  OnlineSettings exact = tight_online();
+  OnlineSettings full = exact;
+  full.restricted_rows = false;
+  for (const auto& snap : set.snapshots) {
+    const auto a = solver.solve(snap.mu, exact);
+    ASSERT_TRUE(a.converged()) << a.message;
+    const auto b = solver.solve(snap.mu, full);
+    ASSERT_EQ(a.status, b.status);
+    EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
+    EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+    const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, a.lambda_hat);
+    EXPECT_LT((lambda - snap.lambda).norm(), 1e-6 * snap.lambda.norm()) << "mu = " << snap.mu(0);
+    const Eigen::VectorXd u =
+        contactrb::online::reconstruct_displacement(off.reconstruction, snap.mu, a.u_hat);
+    EXPECT_LT((u - snap.u).norm(), 1e-6 * snap.u.norm()) << "mu = " << snap.mu(0);
+    // The estimate from the exact rows is available and small there.
+    ASSERT_TRUE(a.estimate.available);
+    EXPECT_TRUE(a.estimate.exact);
   }
 }
 
