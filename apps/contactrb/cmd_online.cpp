@@ -55,6 +55,7 @@ struct OnlineOptions {
   std::optional<double> alpha;
   std::optional<double> tolerance;
   std::string start = "interpolated";  // --start: the initial guess of the reduced iteration
+  std::string iteration = "automatic";  // --iteration: the reduced iteration
   std::string out;  // --out DIR: reconstructed fields
   std::string format = "json";  // --format: of the --batch answers (json | csv | npy)
   int jobs = 1;                 // --batch: threads (batch_lines.hpp)
@@ -252,6 +253,10 @@ int run_online(const OnlineOptions& opt) {
   check_sizes_against(sizes, model, opt.model);
   online::OnlineSettings settings;
   settings.initial_guess = option_enum("--start", opt.start, online::initial_guess_from_string);
+  settings.iteration = option_enum("--iteration", opt.iteration, online::online_iteration_from_string);
+  require(settings.iteration != online::OnlineIteration::Newton || model.dual_method == contactrb::model::kRowCone,
+          "--iteration newton needs a model built with `contactrb offline --dual rows` (its dual cone is '" +
+              model.dual_method + "')");
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (opt.alpha) k.alpha = *opt.alpha;
@@ -321,6 +326,10 @@ Command add_online_command(CLI::App& app, const OnlineFieldHooks* fields) {
   sub->add_option("--mg", opt->sizes.mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1] (default: the snapshots')");
   sub->add_option("--tol", opt->tolerance, "Kacanov tolerance eps_KA, > 0 (default: the snapshots')");
+  sub->add_option("--iteration", opt->iteration,
+                  "Reduced iteration: automatic | relaxed (the paper's) | accelerated | newton (row-cone models: "
+                  "the exact contact rows)")
+      ->capture_default_str();
   sub->add_option("--start", opt->start,
                   "Initial guess: interpolated (the reduced solutions at the training values, linear in mu) | "
                   "zero (the paper's)")

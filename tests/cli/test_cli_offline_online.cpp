@@ -243,6 +243,25 @@ TEST_F(CliOfflineOnline, OnlineAtATrainingValueMatchesTheHFSolve) {
   EXPECT_EQ(json::parse(small.out).at("lambda_hat").size(), 1u);
 }
 
+TEST_F(CliOfflineOnline, RowConeModelAnswersWithTheReducedNewton) {
+  // `--dual rows`, then `online --iteration newton`: at a training value the contact force of the
+  // HF solve, in a few Newton steps, and the same answer as the accelerated iteration.
+  const std::string rows = dir_->file("rows.h5");
+  const CliResult off = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual rows --out " + shell_quote(rows));
+  ASSERT_EQ(off.exit_code, 0) << off.out << off.err;
+  EXPECT_NE(off.out.find("dual: rows"), std::string::npos) << off.out;
+  const double hf = hf_contact_force(0.3, kTight);
+  const CliResult n = run_cli("online --model " + shell_quote(rows) + " --mu 0.3 --iteration newton --tol 1e-10");
+  ASSERT_EQ(n.exit_code, 0) << n.out << n.err;
+  const json jn = json::parse(n.out);
+  EXPECT_TRUE(jn.at("converged").get<bool>());
+  EXPECT_LE(jn.at("iterations").get<int>(), 10);
+  EXPECT_NEAR(jn.at("contact_force").get<double>(), hf, 1e-6 * std::abs(hf));
+  const CliResult a = run_cli("online --model " + shell_quote(rows) + " --mu 0.3 --iteration accelerated --tol 1e-10");
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  EXPECT_NEAR(json::parse(a.out).at("contact_force").get<double>(), jn.at("contact_force").get<double>(), 1e-8 * std::abs(hf));
+}
+
 TEST_F(CliOfflineOnline, OfflineFromACaseEqualsSnapshotsThenOffline) {
   // The same values and settings through `offline --case`: the snapshots are deterministic, so
   // the model answers exactly as the one built from the snapshot file.
@@ -323,6 +342,9 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("online" + m + " --mu 0.3 --start warm"),
                     "--start: unknown initial guess 'warm' (expected interpolated or zero)");
   expect_user_error(run_cli("online" + m + " --mu 0.3 --alpha 2"), "alpha");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --iteration quick"), "--iteration: unknown online iteration 'quick'");
+  expect_user_error(run_cli("online" + m + " --mu 0.3 --iteration newton"),
+                    "--iteration newton needs a model built with `contactrb offline --dual rows` (its dual cone is 'cpg')");
   expect_user_error(run_cli("online" + m + " --batch " + shell_quote(dir_->file("none.txt"))), "none.txt");
   expect_user_error(run_cli("online" + m + " --batch ''"), "--batch needs a file name");
   // Usage errors (CLI11): neither or both of --mu and --batch.

@@ -554,7 +554,10 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   }
   solve::KacanovResult kr;
   try {
-    if (accelerated) {
+    if (settings.iteration == OnlineIteration::Newton) {
+      require(exact_rows_, "OnlineSolver: the Newton iteration needs the exact contact rows (ContactRows::Exact)");
+      kr = iterate_newton(ks, u_start, lambda_start);
+    } else if (accelerated) {
       kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start);
     } else {
       const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
@@ -609,13 +612,14 @@ const char* to_string(OnlineIteration value) {
     case OnlineIteration::Automatic: return "automatic";
     case OnlineIteration::Relaxed: return "relaxed";
     case OnlineIteration::Accelerated: return "accelerated";
+    case OnlineIteration::Newton: return "newton";
   }
   return "unknown";
 }
 
 OnlineIteration online_iteration_from_string(const std::string& name) {
   using enum OnlineIteration;
-  return enum_from_string(name, "online iteration", std::array{Automatic, Relaxed, Accelerated});
+  return enum_from_string(name, "online iteration", std::array{Automatic, Relaxed, Accelerated, Newton});
 }
 
 const char* to_string(InitialGuess value) {

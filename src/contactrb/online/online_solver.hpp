@@ -62,8 +62,15 @@ enum class OnlineIteration {
   // 4-8 steps against 18-42 for the relaxed iteration at alpha = 0.3 (docs/performance.md, "Why the defaults are what they are",
   // "Online: accelerated iteration").
   Accelerated,
+  // Semi-smooth Newton on the reduced equilibrium and complementarity with the exact contact rows
+  // and their consistent linearization (contact::linearize_contact: the motion of the projection
+  // and of the normal, and the geometric stiffness of the contact forces), as the HF Newton
+  // (docs/solvers.md) on the reduced unknowns (u_hat, lambda_hat). Needs ContactRows::Exact.
+  // Stops when the relative increments of u_hat and lambda_hat are below the tolerance with an
+  // unchanged active set: the returned pair satisfies the equilibrium at its own rows.
+  Newton,
 };
-const char* to_string(OnlineIteration value);  // "automatic" | "relaxed" | "accelerated"
+const char* to_string(OnlineIteration value);  // "automatic" | "relaxed" | "accelerated" | "newton"
 OnlineIteration online_iteration_from_string(const std::string& name);  // throws contactrb::Error
 
 // Where the reduced Kacanov iteration starts. The fixed point and the stopping test are the same;
@@ -168,6 +175,11 @@ class OnlineSolver {
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
   // The Accelerated iteration from u_start (see OnlineIteration).
+  solve::KacanovResult iterate_newton(const solve::KacanovSettings& ks, const Eigen::VectorXd& u_start,
+                                      const Eigen::VectorXd& lambda_start);
+  // One Newton linearization at u_hat, lambda_hat (online_newton.cpp).
+  struct NewtonSystem;
+  void newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys);
   solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
                                            const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no

@@ -1,0 +1,139 @@
+// The reduced semi-smooth Newton iteration (OnlineIteration::Newton, docs/offline-online.md,
+// "Online"): the HF Newton's equations (docs/solvers.md, "Semi-smooth Newton") on the reduced
+// unknowns, with the exact contact rows of the kept rows and their consistent linearization.
+//
+//   F(u_hat, lambda_hat) = A_hat u_hat + Theta_c' K(w)' Xi lambda_hat - f_hat = 0,
+//   min(lambda_hat_k, c_k s_k) = 0,   s = Xi' d(w),  d(w) = g(w) - K(w) w on the kept rows,
+//
+// with w = u_D(mu) + Theta_c u_hat. Active generators (lambda_hat_k - c_k s_k > 0) keep s_k = 0,
+// the others lambda_hat_k = 0; the step solves
+//
+//   [ A_hat + Theta_c' H Theta_c   B' ] [du]   = - [ F   ]      B = Xi' K Theta_c,
+//   [ G_A                          0  ] [dl_A]     [ s_A ]      G = Xi' d'(w) Theta_c,
+//
+// H the geometric stiffness of the contact forces (contact_linearization.hpp), dl = -lambda_hat
+// on the inactive generators. c_k = 1 / Q_kk with Q = B A_hat^-1 B' (a pressure per gap).
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/common/number_text.hpp"
+#include "contactrb/contact/contact_linearization.hpp"
+#include "contactrb/online/online_solver.hpp"
+
+namespace contactrb::online {
+
+namespace {
+inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+}  // namespace
+
+struct OnlineSolver::NewtonSystem {
+  Eigen::MatrixXd J;   // N x N: A_hat + Theta_c' H Theta_c
+  Eigen::MatrixXd B;   // R x N: Xi' K Theta_c (the force rows)
+  Eigen::MatrixXd G;   // R x N: Xi' d' Theta_c (the gap rows' derivative)
+  Eigen::VectorXd F;   // N: the equilibrium residual
+  Eigen::VectorXd s;   // R: Xi' d on the kept rows
+};
+
+void OnlineSolver::newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys) {
+  w_ = lift_mu_;
+  w_.noalias() += Theta_c_ * u_hat;
+  const Eigen::VectorXd lambda_kept = Xi_ * lambda_hat;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(surface_.num_constraints);
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i) lambda(kept_rows_[i]) = lambda_kept(static_cast<Eigen::Index>(i));
+  // Every contact-surface DOF moves with u_hat (through Theta_c; its zero rows do not).
+  const std::vector<char> movable(sz(static_cast<int>(w_.size())), 1);
+  const contact::ContactLinearization lin = contact::linearize_contact(mesh_, pair_, quadrature_, w_, lambda, movable);
+  const Eigen::Index kept = static_cast<Eigen::Index>(kept_rows_.size());
+  Eigen::MatrixXd K_Theta(kept, N_), D_Theta(kept, N_);
+  Eigen::VectorXd d(kept);
+  for (Eigen::Index i = 0; i < kept; ++i) {
+    const int r = kept_rows_[sz(static_cast<int>(i))];
+    K_Theta.row(i) = lin.maps.rows.K.row(r) * Theta_c_;
+    D_Theta.row(i) = lin.D.row(r) * Theta_c_;
+    d(i) = lin.maps.d(r);
+  }
+  sys.B.noalias() = Xi_.transpose() * K_Theta;
+  sys.G.noalias() = Xi_.transpose() * D_Theta;
+  sys.s.noalias() = Xi_.transpose() * d;
+  sys.J = A_;
+  sys.J.noalias() += Theta_c_.transpose() * (lin.H * Theta_c_);
+  sys.F = A_ * u_hat - f_;
+  sys.F.noalias() += sys.B.transpose() * lambda_hat;
+}
+
+solve::KacanovResult OnlineSolver::iterate_newton(const solve::KacanovSettings& ks, const Eigen::VectorXd& u_start,
+                                                  const Eigen::VectorXd& lambda_start) {
+  solve::KacanovResult result;
+  Eigen::VectorXd u = u_start, lambda = lambda_start.cwiseMax(0.0);
+  result.u_bar.setZero(N_);
+  result.lambda_bar.setZero(R_);
+  NewtonSystem sys;
+  std::vector<char> active(sz(R_), 0), previous(sz(R_), 2);
+  Eigen::VectorXd c(R_);
+  for (int k = 1; k <= ks.max_iterations; ++k) {
+    newton_system(u, lambda, sys);
+    if (k == 1) {  // c_k = 1 / Q_kk, Q = B A_hat^-1 B': a pressure per unit gap
+      const Eigen::MatrixXd Y = llt_.solve(sys.B.transpose());
+      for (int i = 0; i < R_; ++i) {
+        const double q = sys.B.row(i).dot(Y.col(i));
+        c(i) = q > 0.0 ? 1.0 / q : 1.0;
+      }
+    }
+    for (int i = 0; i < R_; ++i) active[sz(i)] = lambda(i) - c(i) * sys.s(i) > 0.0 ? 1 : 0;
+    // The step: [J B'; rows of the generators] [du; dl] = -[F; r], r_i = s_i (active) or lambda_i.
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(N_ + R_, N_ + R_);
+    Eigen::VectorXd rhs(N_ + R_);
+    M.topLeftCorner(N_, N_) = sys.J;
+    M.topRightCorner(N_, R_) = sys.B.transpose();
+    rhs.head(N_) = -sys.F;
+    for (int i = 0; i < R_; ++i) {
+      if (active[sz(i)]) {
+        M.block(N_ + i, 0, 1, N_) = sys.G.row(i);
+        rhs(N_ + i) = -sys.s(i);
+      } else {
+        M(N_ + i, N_ + i) = 1.0;
+        rhs(N_ + i) = -lambda(i);
+      }
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    const Eigen::VectorXd step = lu.solve(rhs);
+    if (!step.allFinite()) {
+      result.status = solve::KacanovStatus::StepFailed;
+      result.iterations = k;
+      result.message = "Newton iteration " + std::to_string(k) + ": the reduced Newton system is singular";
+      return result;
+    }
+    const Eigen::VectorXd u_next = u + step.head(N_);
+    const Eigen::VectorXd lambda_next = lambda + step.tail(R_);
+    solve::KacanovIteration it;
+    it.du = solve::relative_increment(u_next, u);
+    it.dlambda = solve::relative_increment(lambda_next, lambda);
+    result.history.push_back(it);
+    const bool same_set = active == previous;
+    previous = active;
+    u = u_next;
+    lambda = lambda_next;
+    if (same_set && std::max(it.du, it.dlambda) <= ks.tolerance && lambda.minCoeff() >= 0.0) {
+      result.status = solve::KacanovStatus::Converged;
+      result.iterations = k;
+      result.u = result.u_bar = u;
+      result.lambda = result.lambda_bar = lambda;
+      return result;
+    }
+  }
+  result.status = solve::KacanovStatus::MaxIterations;
+  result.iterations = ks.max_iterations;
+  result.u_bar = u;
+  result.lambda_bar = lambda.cwiseMax(0.0);
+  const solve::KacanovIteration& last = result.history.back();
+  result.message = "the reduced Newton iteration did not converge in " + std::to_string(ks.max_iterations) +
+                   " iterations (last relative increments: displacement " + number_text(last.du) + ", multipliers " +
+                   number_text(last.dlambda) + ", tolerance " + number_text(ks.tolerance) + ")";
+  return result;
+}
+
+}  // namespace contactrb::online
