@@ -38,6 +38,32 @@ struct OnlineSolver::NewtonSystem {
   Eigen::VectorXd s;   // R: Xi' d on the kept rows
 };
 
+// J += Theta_c' H Theta_c over the contact DOFs H touches only (the nodes of the active rows and
+// their master segments: a few of the n_c).
+void OnlineSolver::add_geometric_stiffness(const Eigen::SparseMatrix<double>& H, Eigen::MatrixXd& J) const {
+  std::vector<int> slot(sz(static_cast<int>(H.cols())), -1), dofs;
+  for (Eigen::Index k = 0; k < H.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, k); it; ++it) {
+      for (const Eigen::Index d : {it.row(), it.col()}) {
+        if (slot[sz(static_cast<int>(d))] < 0) {
+          slot[sz(static_cast<int>(d))] = static_cast<int>(dofs.size());
+          dofs.push_back(static_cast<int>(d));
+        }
+      }
+    }
+  }
+  if (dofs.empty()) return;
+  const Eigen::Index m = static_cast<Eigen::Index>(dofs.size());
+  Eigen::MatrixXd Hs = Eigen::MatrixXd::Zero(m, m), Ts(m, N_);
+  for (Eigen::Index k = 0; k < H.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, k); it; ++it) {
+      Hs(slot[sz(static_cast<int>(it.row()))], slot[sz(static_cast<int>(it.col()))]) += it.value();
+    }
+  }
+  for (Eigen::Index i = 0; i < m; ++i) Ts.row(i) = Theta_c_.row(dofs[sz(static_cast<int>(i))]);
+  J.noalias() += Ts.transpose() * (Hs * Ts);
+}
+
 void OnlineSolver::newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys) {
   w_ = lift_mu_;
   w_.noalias() += Theta_c_ * u_hat;
@@ -60,7 +86,7 @@ void OnlineSolver::newton_system(const Eigen::VectorXd& u_hat, const Eigen::Vect
   sys.G.noalias() = Xi_.transpose() * D_Theta;
   sys.s.noalias() = Xi_.transpose() * d;
   sys.J = A_;
-  sys.J.noalias() += Theta_c_.transpose() * (lin.H * Theta_c_);
+  add_geometric_stiffness(lin.H, sys.J);
   sys.F = A_ * u_hat - f_;
   sys.F.noalias() += sys.B.transpose() * lambda_hat;
 }

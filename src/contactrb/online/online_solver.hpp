@@ -180,6 +180,7 @@ class OnlineSolver {
   // One Newton linearization at u_hat, lambda_hat (online_newton.cpp).
   struct NewtonSystem;
   void newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys);
+  void add_geometric_stiffness(const Eigen::SparseMatrix<double>& H, Eigen::MatrixXd& J) const;
   solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
                                            const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
