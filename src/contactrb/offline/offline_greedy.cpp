@@ -453,6 +453,13 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
            cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), {}};
   g.online.error_estimate = true;
+  if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
+      !g.online.kacanov) {
+    // The row cone's estimate has no floor but the last step's lag: the sweep solves to
+    // kRowConeSweepTolerance with the reduced Newton (docs/offline-online.md, "Greedy sampling").
+    g.online.iteration = online::OnlineIteration::Newton;
+    g.online.kacanov = solve::KacanovSettings{1.0, kRowConeSweepTolerance, kRowConeSweepIterations};
+  }
   GreedyProgress progress(settings.progress, settings.progress_stream);
 
   start(g, progress);

@@ -61,6 +61,11 @@ struct GreedyDistribution {
   bool active() const { return static_cast<bool>(gather); }
 };
 
+// The sweep of a row-cone greedy (OfflineSettings::dual_method Rows) with the default online
+// settings: the reduced Newton to this relative increment, at most this many steps.
+inline constexpr double kRowConeSweepTolerance = 1e-10;
+inline constexpr int kRowConeSweepIterations = 30;
+
 struct GreedyOfflineSettings {
   // Stop when max_mu Delta_u(mu) / |u_rb(mu)|_A(mu) <= tolerance (unit-free; relative_estimate()).
   // 1e-2: the estimate overestimates the relative energy-norm error 5-20 times on the built-in
@@ -85,7 +90,9 @@ struct GreedyOfflineSettings {
   // every row and the models missed their own snapshots on hertz-3p (e_displ 0.17 at a selected
   // point, 5e-4 with compression) and were 100 times less accurate on ring-block.
   OfflineSettings offline;
-  contactrb::online::OnlineSettings online;    // of the sweep (error_estimate is forced on)
+  // Of the sweep (error_estimate is forced on; a row-cone greedy with the default iteration and
+  // no Kacanov settings sweeps with the reduced Newton, kRowConeSweepTolerance).
+  contactrb::online::OnlineSettings online;
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
   GreedyDistribution distribution;             // empty: one process
