@@ -48,13 +48,19 @@ bool better(const SegmentHit& h, const SegmentHit& best) {
   return h.d2 < best.d2 || (h.d2 == best.d2 && h.segment < best.segment);
 }
 
+// Increasing k: the lowest index wins a tie. Only (d2, k) is carried through the loop (the
+// hit is recomputed once at the end) so that it stays in registers.
 SegmentHit search_all_pairs(const MasterPolyline& m, const Vec2& x) {
-  SegmentHit best;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  int best = -1;
   for (int k = 0; k < m.num_segments(); ++k) {
-    const SegmentHit h = closest_on_segment(m, k, x);
-    if (better(h, best)) best = h;
+    const double d2 = closest_on_segment(m, k, x).d2;
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = k;
+    }
   }
-  return best;
+  return best < 0 ? SegmentHit{} : closest_on_segment(m, best, x);
 }
 
 double point_segment_distance2(const Vec2& x, const Vec2& a, const Vec2& b) {
@@ -252,12 +258,17 @@ class MasterSearch<3> {
   Hit nearest(const Vec3& x) {
     const auto closest = [this](int f, const Vec3& p) { return closest_on(f, p); };
     if (tree_) return tree_->nearest<Hit>(x, closest, &MasterSearch::facet, stack_);
-    Hit best;
+    // As search_all_pairs in 2D: increasing f, only (d2, f) carried through the loop.
+    double best_d2 = std::numeric_limits<double>::infinity();
+    int best = -1;
     for (int f = 0; f < m_.num_facets(); ++f) {
-      const Hit h = closest_on(f, x);
-      if (h.d2 < best.d2) best = h;  // increasing f: the lowest index wins a tie
+      const double d2 = closest_on(f, x).d2;
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best = f;
+      }
     }
-    return best;
+    return best < 0 ? Hit{} : closest_on(best, x);
   }
 
   // Fills the triangle, phi, n2, rho and the candidate flag (rim rule, docs/contact.md).
