@@ -241,15 +241,10 @@ class MasterSearch<3> {
     const bool use_tree = options.search == SearchMethod::Tree ||
                           (options.search == SearchMethod::Automatic && m_.num_facets() >= options.tree_min_segments);
     if (use_tree) {
-      std::vector<Vec3> lo, hi;
-      lo.reserve(m_.face.size());
-      hi.reserve(m_.face.size());
-      for (const auto& t : m_.face) {
-        const Vec3 &a = y(t[0]), &b = y(t[1]), &c = y(t[2]);
-        lo.push_back(a.cwiseMin(b).cwiseMin(c));
-        hi.push_back(a.cwiseMax(b).cwiseMax(c));
-      }
-      tree_ = std::make_unique<FacetTree<3>>(std::move(lo), std::move(hi));
+      std::vector<FacetTree<3>::Facet> facets;
+      facets.reserve(m_.face.size());
+      for (const auto& t : m_.face) facets.push_back({y(t[0]), y(t[1]), y(t[2])});
+      tree_ = std::make_unique<FacetTree<3>>(std::move(facets));
     }
   }
 
