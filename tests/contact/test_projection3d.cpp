@@ -364,3 +364,25 @@ TEST(Projection3, RejectsBadInput) {
   missing.boundaries.erase("master");
   EXPECT_THROW(make_contact_pair(missing), Error);
 }
+
+TEST(Projection3, RestrictedPositionsGiveTheRowsOfTheFullProjection) {
+  const Mesh3 m = mesh::stacked_blocks(1, 0.05);
+  const ContactPair3 pair = make_contact_pair(m);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(m.num_dofs());
+  for (int v : pair.slave) set(w, v, Vector3d(0.01 * X(m, v).y(), 0.0, -0.02 * X(m, v).x()));
+  const PointwiseContact3 full = project_slave_nodes(m, pair, w);
+  const std::vector<int> positions{3, 17, 17, 100};
+  const PointwiseContact3 some = project_slave_nodes(m, pair, w, positions);
+  for (int s = 0; s < static_cast<int>(pair.slave.size()); ++s) {
+    const bool listed = std::find(positions.begin(), positions.end(), s) != positions.end();
+    const Eigen::RowVectorXd a = Eigen::MatrixXd(full.K.row(s)), b = Eigen::MatrixXd(some.K.row(s));
+    if (listed) {
+      EXPECT_EQ(a, b);
+      EXPECT_EQ(full.g(s), some.g(s));
+      EXPECT_EQ(full.projection[static_cast<std::size_t>(s)].facet, some.projection[static_cast<std::size_t>(s)].facet);
+    } else {
+      EXPECT_EQ(some.K.row(s).nonZeros(), 0);
+      EXPECT_EQ(some.projection[static_cast<std::size_t>(s)].facet, -1);
+    }
+  }
+}

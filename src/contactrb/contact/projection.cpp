@@ -309,7 +309,7 @@ class MasterSearch<3> {
     }
     if (zeros == 2) {
       int i = 0;
-      while (h.phi(i) != 1.0) ++i;
+      h.phi.maxCoeff(&i);  // the vertex (its coordinate is 1)
       const int v = t[static_cast<std::size_t>(i)];
       for (int r = m_.vertex_rim_start[static_cast<std::size_t>(v)]; r < m_.vertex_rim_start[static_cast<std::size_t>(v + 1)];
            ++r) {
