@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "contactrb/common/enum_names.hpp"
@@ -30,11 +31,12 @@ Discretization discretization_from_string(const std::string& name) {
 namespace {
 
 // Body id of every node: -1 unreferenced, 0 / 1 the body, 2 referenced by both bodies.
-std::vector<int> node_bodies(const mesh::Mesh& mesh) {
+template <int Dim>
+std::vector<int> node_bodies(const mesh::SimplexMesh<Dim>& mesh) {
   std::vector<int> owner(mesh.nodes.size(), -1);
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
+  for (int t = 0; t < mesh.num_cells(); ++t) {
     const int b = mesh.body[static_cast<std::size_t>(t)];
-    for (int v : mesh.triangles[static_cast<std::size_t>(t)]) {
+    for (int v : mesh.cells()[static_cast<std::size_t>(t)]) {
       if (v < 0 || v >= mesh.num_nodes()) continue;  // mesh::validate reports these
       int& o = owner[static_cast<std::size_t>(v)];
       o = (o == -1 || o == b) ? b : 2;
@@ -43,12 +45,11 @@ std::vector<int> node_bodies(const mesh::Mesh& mesh) {
   return owner;
 }
 
-std::vector<int> checked_chain(const mesh::Mesh& mesh, const std::vector<int>& owner, const char* group,
-                               int body, const char* role) {
-  std::vector<int> chain = mesh::ordered_chain(mesh, group);
-  require(chain.size() >= 2, std::string(role) + " boundary '" + group + "' has " +
-                                 std::to_string(chain.size()) + " node(s); at least 2 are needed");
-  for (int v : chain) {
+// Every node of a contact group lies on the group's body only.
+template <int Dim>
+void check_bodies(const mesh::SimplexMesh<Dim>& mesh, const std::vector<int>& owner, const std::vector<int>& nodes,
+                  const char* group, int body, const char* role) {
+  for (int v : nodes) {
     if (v < 0 || v >= mesh.num_nodes()) {
       throw Error(std::string(role) + " boundary '" + group + "' references node " + std::to_string(v) +
                   " outside [0, " + std::to_string(mesh.num_nodes()) + ")");
@@ -62,7 +63,51 @@ std::vector<int> checked_chain(const mesh::Mesh& mesh, const std::vector<int>& o
                   " (the " + role + " boundary must lie on body " + std::to_string(body) + ")");
     }
   }
+}
+
+std::vector<int> checked_chain(const mesh::Mesh& mesh, const std::vector<int>& owner, const char* group,
+                               int body, const char* role) {
+  std::vector<int> chain = mesh::ordered_chain(mesh, group);
+  require(chain.size() >= 2, std::string(role) + " boundary '" + group + "' has " +
+                                 std::to_string(chain.size()) + " node(s); at least 2 are needed");
+  check_bodies(mesh, owner, chain, group, body, role);
   return chain;
+}
+
+// The nodes of a 3D contact group, after checking that it is non-empty and on its body.
+std::vector<int> checked_surface(const mesh::Mesh3& mesh, const std::vector<int>& owner, const char* group,
+                                 int body, const char* role) {
+  require(!mesh.boundary(group).empty(), std::string(role) + " boundary '" + group + "' has no triangle");
+  std::vector<int> nodes = mesh::boundary_nodes(mesh, group);
+  check_bodies(mesh, owner, nodes, group, body, role);
+  return nodes;
+}
+
+// The edges of exactly one master triangle, as (face, opposite vertex), in face order.
+std::vector<std::array<int, 2>> surface_rim(const std::vector<std::array<int, 3>>& faces) {
+  struct EdgeUse {
+    int lo, hi, face, opposite;
+  };
+  std::vector<EdgeUse> edges;
+  edges.reserve(3 * faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = faces[f][static_cast<std::size_t>((i + 1) % 3)], b = faces[f][static_cast<std::size_t>((i + 2) % 3)];
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), i});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const EdgeUse& x, const EdgeUse& y) {
+    return std::tie(x.lo, x.hi, x.face, x.opposite) < std::tie(y.lo, y.hi, y.face, y.opposite);
+  });
+  std::vector<std::array<int, 2>> rim;
+  for (std::size_t e = 0; e < edges.size();) {
+    std::size_t next = e + 1;
+    while (next < edges.size() && edges[next].lo == edges[e].lo && edges[next].hi == edges[e].hi) ++next;
+    if (next == e + 1) rim.push_back({edges[e].face, edges[e].opposite});
+    e = next;
+  }
+  std::sort(rim.begin(), rim.end());
+  return rim;
 }
 
 }  // namespace
@@ -82,6 +127,25 @@ ContactPair make_contact_pair(const mesh::Mesh& mesh) {
   require(!closed(mesh::kSlaveBoundary, pair.slave.size()),
           "slave boundary 'slave' is a closed loop; it must be an open polyline");
   if (closed(mesh::kMasterBoundary, pair.master.size())) pair.master.push_back(pair.master.front());
+  return pair;
+}
+
+ContactPair3 make_contact_pair(const mesh::Mesh3& mesh) {
+  require(mesh.body.size() == mesh.tetrahedra.size(),
+          "make_contact_pair: mesh has " + std::to_string(mesh.tetrahedra.size()) + " tetrahedra but " +
+              std::to_string(mesh.body.size()) + " body ids");
+  const std::vector<int> owner = node_bodies(mesh);
+  ContactPair3 pair;
+  pair.slave = checked_surface(mesh, owner, mesh::kSlaveBoundary, mesh::kSlaveBody, "slave");
+  pair.master = checked_surface(mesh, owner, mesh::kMasterBoundary, mesh::kMasterBody, "master");
+  pair.slave_faces = mesh.boundary(mesh::kSlaveBoundary);
+  const auto local = [&pair](int v) {
+    return static_cast<int>(std::lower_bound(pair.master.begin(), pair.master.end(), v) - pair.master.begin());
+  };
+  for (const mesh::Face& f : mesh.boundary(mesh::kMasterBoundary)) {
+    pair.master_faces.push_back({local(f.a), local(f.b), local(f.c)});
+  }
+  pair.master_rim = surface_rim(pair.master_faces);
   return pair;
 }
 
@@ -157,6 +221,38 @@ ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pai
   for (int r = 0; r < rows; ++r) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(q.W, r); it; ++it) q.weight(r) += it.value();
   }
+  return q;
+}
+
+ContactQuadrature make_quadrature(const mesh::Mesh3& mesh, const ContactPair3& pair, Discretization d) {
+  require(d == Discretization::Collocation, std::string("make_quadrature: the '") + to_string(d) +
+                                                "' discretization is not available in 3D (use 'collocation')");
+  const int S = static_cast<int>(pair.slave.size());
+  require(S >= 1, "make_quadrature: the slave surface has no node");
+  // (60)-(61) with I_r the nodal area: a third of each adjacent slave triangle.
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(S);
+  const auto position = [&pair](int v) {
+    const auto it = std::lower_bound(pair.slave.begin(), pair.slave.end(), v);
+    require(it != pair.slave.end() && *it == v,
+            "make_quadrature: slave triangle node " + std::to_string(v) + " is not a slave node");
+    return static_cast<int>(it - pair.slave.begin());
+  };
+  for (const mesh::Face& f : pair.slave_faces) {
+    for (int v : f.vertices()) {
+      require(v >= 0 && v < mesh.num_nodes(), "make_quadrature: slave node " + std::to_string(v) + " outside [0, " +
+                                                  std::to_string(mesh.num_nodes()) + ")");
+    }
+    const double third = mesh::facet_area_normal(mesh, f).norm() / 3.0;
+    for (int v : f.vertices()) area(position(v)) += third;
+  }
+  ContactQuadrature q;
+  q.discretization = d;
+  q.W.resize(S, S);
+  q.W.reserve(Eigen::VectorXi::Constant(S, 1));
+  for (int r = 0; r < S; ++r) q.W.insert(r, r) = area(r);
+  q.W.makeCompressed();
+  q.weight = area;
+  q.center_node = pair.slave;
   return q;
 }
 

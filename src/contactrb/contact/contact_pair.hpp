@@ -3,7 +3,9 @@
 // turns pointwise constraints at slave nodes into the rows of K(w), g(w) (paper (10)-(11)).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "contactrb/mesh/mesh.hpp"
@@ -30,6 +32,25 @@ struct ContactPair {
 // nodes, or lies on the wrong body, or if the slave chain is a closed loop.
 ContactPair make_contact_pair(const mesh::Mesh& mesh);
 
+// 3D: the slave surface Gamma_1^c (body 0) and the master surface Gamma_2^c (body 1) as the
+// boundary triangles of the groups "slave" and "master" (outward oriented, mesh/mesh.hpp).
+struct ContactPair3 {
+  std::vector<int> slave;                        // slave nodes, sorted (one constraint each)
+  std::vector<mesh::Face> slave_faces;           // group "slave" (mesh node indices)
+  std::vector<int> master;                       // master nodes, sorted
+  std::vector<std::array<int, 3>> master_faces;  // group "master", as positions in `master`
+  // The rim of the master surface: the edges of exactly one master triangle, as (face, i)
+  // with i the face vertex opposite the edge. A slave node whose closest point lies on the
+  // rim, outside the master surface, is no candidate (docs/contact.md, "Three dimensions").
+  std::vector<std::array<int, 2>> master_rim;
+};
+// Throws contactrb::Error if a group is missing or empty, or a node lies on the wrong body.
+ContactPair3 make_contact_pair(const mesh::Mesh3& mesh);
+
+// The contact pair of a dimension: ContactPair (node chains) in 2D, ContactPair3 in 3D.
+template <int Dim>
+using ContactPairOf = std::conditional_t<Dim == 2, ContactPair, ContactPair3>;
+
 // Row r of K and g is int_{I_r} (pointwise value) psi_r. W (R x S) is a quadrature over
 // the slave nodes; multipliers are then contact pressures.
 //  Collocation (6.1.1): one row per slave node, W = diag(|I_r|), |I_r| = half the two
@@ -52,5 +73,9 @@ struct ContactQuadrature {
 };
 // Built on the undeformed configuration of `mesh` (i.e. Omega(mu), not Omega(mu) + w).
 ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pair, Discretization d);
+// 3D: Collocation only, one row per slave node with |I_r| = its nodal area (one third of the
+// area of each adjacent slave triangle); the weights sum to the area of Gamma_1^c. LAC and
+// LACSimpson throw contactrb::Error (not available in 3D).
+ContactQuadrature make_quadrature(const mesh::Mesh3& mesh, const ContactPair3& pair, Discretization d);
 
 }  // namespace contactrb::contact

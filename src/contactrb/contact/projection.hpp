@@ -38,7 +38,13 @@
 
 namespace contactrb::contact {
 
-struct SlaveProjection {
+// Where a slave node projects: in 2D a segment and xi, in 3D a triangle and its barycentric
+// coordinates (docs/contact.md, "Three dimensions").
+template <int Dim>
+struct NodeProjection;
+
+template <>
+struct NodeProjection<2> {
   int segment = -1;         // index k of master segment (master[k], master[k+1])
   double xi = 0.0;          // in [0, 1]
   Eigen::Vector2d normal{0.0, 0.0};  // n2, unit, outward of the master body (interpolated)
@@ -47,31 +53,50 @@ struct SlaveProjection {
   bool candidate = false;
 };
 
-struct PointwiseContact {
-  std::vector<SlaveProjection> projection;         // one per slave node
+template <>
+struct NodeProjection<3> {
+  int facet = -1;                         // index f of master triangle pair.master_faces[f]
+  Eigen::Vector3d phi{0.0, 0.0, 0.0};     // barycentric coordinates of the closest point
+  Eigen::Vector3d normal{0.0, 0.0, 0.0};  // n2, unit, outward of the master body (interpolated)
+  Eigen::Vector3d rho{0.0, 0.0, 0.0};     // sum_i phi_i X_{t_i} (undeformed)
+  double distance = 0.0;                  // |x_s - closest deformed master point|
+  bool candidate = false;
+};
+
+using SlaveProjection = NodeProjection<2>;
+using SlaveProjection3 = NodeProjection<3>;
+
+template <int Dim>
+struct PointwiseContactOf {
+  std::vector<NodeProjection<Dim>> projection;     // one per slave node
   Eigen::SparseMatrix<double, Eigen::RowMajor> K;  // S x num_dofs, rows k(w; .)_s
   Eigen::VectorXd g;                               // S, g(w)_s
 };
+using PointwiseContact = PointwiseContactOf<2>;
+using PointwiseContact3 = PointwiseContactOf<3>;
 
 // How the closest master segment is found. Both methods return exactly the same result:
 // the segment minimizing (squared distance, segment index) lexicographically.
 enum class SearchMethod {
   Automatic,  // AllPairs below ProjectionOptions::tree_min_segments segments, Tree from there
   AllPairs,   // O(S M): every slave node against every master segment
-  Tree,       // bounding-volume tree over the master chain (O(M log M) build, ~O(log M) per node)
+  Tree,       // bounding-volume tree over the master facets (O(M log M) build, ~O(log M) per node)
 };
 const char* to_string(SearchMethod value);  // "automatic" | "all-pairs" | "tree"
 SearchMethod search_method_from_string(const std::string& name);  // throws contactrb::Error
 
 struct ProjectionOptions {
   SearchMethod search = SearchMethod::Automatic;
-  // Master segment count from which Automatic uses the tree (bench_contact: the tree
-  // already wins at 100 segments; below 32, all-pairs is as fast and simplest).
+  // Master facet count (segments in 2D, triangles in 3D) from which Automatic uses the tree
+  // (bench_contact: the tree already wins at 100 segments; below 32, all-pairs is as fast
+  // and simplest).
   int tree_min_segments = 32;
   // A slave node is "beyond" an end of an open master chain when its projection parameter on
   // the end segment is < -end_tolerance or > 1 + end_tolerance (relative to the segment
   // length). The tolerance keeps a slave node aligned with the master end (same-width
-  // bodies) a candidate despite round-off.
+  // bodies) a candidate despite round-off. 3D: beyond a rim edge of the master surface when
+  // (x_s - p) . m > end_tolerance |e|, with p the closest point on the edge, m the edge's
+  // outward conormal and |e| its length.
   double end_tolerance = 1e-10;
 };
 
@@ -88,6 +113,19 @@ PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& 
 PointwiseContact project_slave_nodes(const mesh::Mesh& mesh, const ContactPair& pair, const Eigen::VectorXd& w,
                                      std::span<const int> positions, const ProjectionOptions& options = {});
 
+// 3D: the same maps over the master triangles (docs/contact.md, "Three dimensions"): the
+// closest point of x_s on the deformed master surface lies on triangle f = (t_0, t_1, t_2)
+// with barycentric coordinates phi, rho = sum_i phi_i X_{t_i}, and
+//   k(w; v)_s = (sum_i phi_i v_{t_i} - v_s) . n2   (27),    g(w)_s = (X_s - rho) . n2   (28),
+// n2 = normalize(sum_i phi_i n_{t_i}) with n_j the angle-weighted vertex normals. Ties go to
+// the lowest triangle index. A slave node whose closest point lies on the rim of the master
+// surface with x_s beyond it (ProjectionOptions::end_tolerance) is no candidate. DOF 3i + c.
+// Throws as the 2D version, and on a deformed master triangle of zero area.
+PointwiseContact3 project_slave_nodes(const mesh::Mesh3& mesh, const ContactPair3& pair, const Eigen::VectorXd& w,
+                                      const ProjectionOptions& options = {});
+PointwiseContact3 project_slave_nodes(const mesh::Mesh3& mesh, const ContactPair3& pair, const Eigen::VectorXd& w,
+                                      std::span<const int> positions, const ProjectionOptions& options = {});
+
 // The constraint rows of a discretization (paper (10)-(11)): row r = int_{I_r} k(w; .) psi_r
 // and int_{I_r} g(w) psi_r.
 //  Collocation and LACSimpson: K = W K_pt, g = W g_pt (the quadrature on the slave nodes).
@@ -99,5 +137,8 @@ struct ConstraintRows {
 };
 ConstraintRows constraint_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                                const PointwiseContact& pointwise, const Eigen::VectorXd& w);
+// 3D: Collocation, K = W K_pt, g = W g_pt with W the nodal areas (make_quadrature).
+ConstraintRows constraint_rows(const mesh::Mesh3& mesh, const ContactPair3& pair, const ContactQuadrature& quadrature,
+                               const PointwiseContact3& pointwise, const Eigen::VectorXd& w);
 
 }  // namespace contactrb::contact
