@@ -597,8 +597,8 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
       sol.message = undetermined_message(beta);
     }
   }
-  // The estimate at the last linearization (phi_, phi_gamma_ of the last step), as the returned
-  // pair is that linearization's solution.
+  // The EIM estimate at the last linearization (phi_, phi_gamma_ of the last step), as the
+  // returned pair is that linearization's solution; the exact one at the returned u_hat's rows.
   if (settings.error_estimate && sol.converged()) {
     sol.estimate = exact_rows_ ? estimator_.evaluate_exact(mu, sol.u_hat, exact_contact(sol.u_hat, sol.lambda_hat))
                                : estimator_.evaluate(mu, sol.u_hat, sol.lambda_hat, phi_, phi_gamma_, weight_kept_);
