@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "support/file_bytes.hpp"
+#include "cli_fixtures.hpp"
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
 #include "contactrb/common/file_seal.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::SmallDisk;
 using contactrb::test::read_bytes;
 using contactrb::test::write_bytes;
 using contactrb::test::count_lines_starting;
@@ -51,11 +53,7 @@ class CliFileSafety : public ::testing::Test {
     dir_ = std::make_unique<contactrb::test::TempDir>("file_safety");
     snapshots_ = dir_->file("s.h5");
     model_ = dir_->file("model.h5");
-    const CliResult s =
-        run_cli("snapshots --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(snapshots_));
-    ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
-    const CliResult o = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(model_));
-    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+    contactrb::test::make_small_hertz_model(snapshots_, model_);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
@@ -384,35 +382,6 @@ TEST(CliInputBounds, DatasetLargerThanItsFileIsADamagedFile) {
 }  // namespace
 
 namespace {
-
-// A 64 KiB tmpfs mounted on a fresh directory for the lifetime of the object, when this process
-// may mount (root); `mounted()` false otherwise (the test then skips, saying why).
-class SmallDisk {
- public:
-  explicit SmallDisk(const fs::path& dir) : dir_(dir) {
-    fs::create_directories(dir_);
-    if (::geteuid() != 0) return;
-    mounted_ = contactrb::test::run_shell("mount -t tmpfs -o size=64k contactrb-full-disk " +
-                                          shell_quote(dir_.string()))
-                   .exit_code == 0;
-  }
-  ~SmallDisk() {
-    if (mounted_) contactrb::test::run_shell("umount " + shell_quote(dir_.string()));
-  }
-  SmallDisk(const SmallDisk&) = delete;
-  SmallDisk& operator=(const SmallDisk&) = delete;
-  bool mounted() const { return mounted_; }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-
- private:
-  fs::path dir_;
-  bool mounted_ = false;
-};
 
 // One "contactrb: error:" line naming the full disk, exit 1, never a signal.
 void expect_no_space(const CliResult& r) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_fixtures.hpp"
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
 
@@ -38,10 +39,7 @@ class CliIntegrity : public ::testing::Test {
     dir_ = std::make_unique<contactrb::test::TempDir>("cli_integrity");
     snapshots_ = dir_->file("s.h5");
     model_ = dir_->file("model.h5");
-    const CliResult s = run_cli("snapshots --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(snapshots_));
-    ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
-    const CliResult o = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(model_));
-    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+    contactrb::test::make_small_hertz_model(snapshots_, model_);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 

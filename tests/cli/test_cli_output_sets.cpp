@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "support/file_bytes.hpp"
+#include "cli_fixtures.hpp"
 #include "cli_runner.hpp"
 #include "support/temp_dir.hpp"
 #include "contactrb/common/file_seal.hpp"
@@ -25,6 +26,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 
 namespace fs = std::filesystem;
+using contactrb::test::SmallDisk;
 using contactrb::test::read_bytes;
 using contactrb::test::write_bytes;
 using contactrb::test::CliResult;
@@ -55,28 +57,6 @@ void expect_one_error(const CliResult& r, const std::string& words) {
   EXPECT_NE(r.err.find(words), std::string::npos) << "missing '" << words << "' in " << r.err;
 }
 
-// A tmpfs of `kib` KiB at `dir` (root only; unmounted at destruction).
-class SmallDisk {
- public:
-  SmallDisk(const fs::path& dir, long kib) : dir_(dir) {
-    fs::create_directories(dir_);
-    if (::geteuid() != 0) return;
-    mounted_ = contactrb::test::run_shell("mount -t tmpfs -o size=" + std::to_string(kib) +
-                                          "k contactrb-full-disk " + shell_quote(dir_.string()))
-                   .exit_code == 0;
-  }
-  ~SmallDisk() {
-    if (mounted_) contactrb::test::run_shell("umount " + shell_quote(dir_.string()));
-  }
-  SmallDisk(const SmallDisk&) = delete;
-  SmallDisk& operator=(const SmallDisk&) = delete;
-  bool mounted() const { return mounted_; }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
- private:
-  fs::path dir_;
-  bool mounted_ = false;
-};
 
 // A small hertz-a snapshot file (stores its level-0 mesh) and its model, made once.
 class CliOutputSets : public ::testing::Test {
@@ -85,10 +65,7 @@ class CliOutputSets : public ::testing::Test {
     dir_ = std::make_unique<contactrb::test::TempDir>("output_sets");
     snapshots_ = dir_->file("s.h5");
     model_ = dir_->file("model.h5");
-    const CliResult s = run_cli("snapshots --case hertz-a --values 0.15,0.3,0.45 -q --out " + shell_quote(snapshots_));
-    ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
-    const CliResult o = run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(model_));
-    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+    contactrb::test::make_small_hertz_model(snapshots_, model_);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
