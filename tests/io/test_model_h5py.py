@@ -138,7 +138,7 @@ def check_strings(cli, work):
     with h5py.File(os.path.join(work, "s.h5"), "r") as s, h5py.File(os.path.join(work, "m.h5"), "r") as m:
         check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 5,
               "snapshot format attributes (bytes decoded)")
-        check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 6,
+        check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 7,
               "model format attributes (bytes decoded)")
         check(text(s, "contactrb_version") == version and text(m, "contactrb_version") == version,
               f"contactrb_version is `contactrb --version` ({version})")

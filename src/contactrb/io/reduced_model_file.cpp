@@ -243,6 +243,7 @@ void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
            "force x length / energy norm"});
     v.ints(es, "exact_dofs", e.exact_dofs,
            {"the contact-surface DOFs (indices into the n_c contact DOFs) of the exact load columns", "index (0-based)"});
+    v.num(es, "geometric_ratio", e.geometric_ratio);
   }
 }
 

@@ -52,6 +52,10 @@ struct EstimateData {
   // unavailable (not silently smaller).
   Eigen::MatrixXd residual_exact;
   std::vector<int> exact_dofs;
+  // eta: the geometric term of the exact-rows estimate, max over the training snapshots of
+  // -v'Hv / v'A(mu)v on the directions that keep the active rows closed
+  // (offline/geometric_term.hpp); 0 when not computed (models without the row cone).
+  double geometric_ratio = 0.0;
 };
 
 // Contact-chain nodes added on each side of the nodes the kept rows touch in training.

@@ -30,7 +30,7 @@ namespace contactrb::model {
 // layout (groups, attributes, matrices in their documented shape, docs/file-formats.md); 6: every
 // string a fixed-length UTF-8 attribute (no variable-length data, which HDF5 1.10 cannot read
 // safely from a damaged file).
-inline constexpr int kReducedModelFormatVersion = 6;
+inline constexpr int kReducedModelFormatVersion = 7;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so

@@ -22,6 +22,7 @@
 #include "contactrb/offline/eim.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
 #include "contactrb/offline/error_estimate.hpp"
+#include "contactrb/offline/geometric_term.hpp"
 #include "contactrb/offline/nmf.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/model_check.hpp"
@@ -617,6 +618,10 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.surface = contact_surface(set, ref.mesh);
   contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g);
+  if (settings.dual_method == DualConeMethod::Rows) {  // its online default: the exact rows' estimate
+    m.estimate.geometric_ratio =
+        max_geometric_ratio(set, spec, ref.mesh, contact::discretization_from_string(set.constraint));
+  }
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);
   solve_at_training_values(m);

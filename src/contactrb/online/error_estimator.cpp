@@ -145,6 +145,7 @@ void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) 
   Xi_ = m.Xi.leftCols(R);
   eim_residual_ = e.eim_residual(Mk);
   eim_slack_ = e.eim_slack(Mk, Mg);
+  geometric_ratio_ = e.geometric_ratio;
   y_.resize(d);
   v_.resize(rows);
   phi_u_.resize(static_cast<Index>(Mk) * N);
@@ -181,9 +182,12 @@ Index ErrorEstimator::fill_affine(const Eigen::VectorXd& mu, const Eigen::Vector
 void ErrorEstimator::combine(ErrorEstimate& est) {
   // |e|_A^2 <= (|r|_X' / sqrt(alpha)) |e|_A + violation |lambda|_Lambda + complementarity, with
   // |lambda|_Lambda estimated by |lambda_rb|_Lambda: the positive root of the quadratic, as in HSW12.
+  // With the geometric term (offline/geometric_term.hpp) the left side is (1 - eta)|e|_A^2.
   const double c1 = 0.5 * (est.residual + est.eim_residual) / std::sqrt(est.coercivity);
   const double c2 = (est.violation + est.eim_slack) * est.multiplier_norm + std::max(0.0, est.complementarity);
-  est.energy = c1 + std::sqrt(c1 * c1 + c2);
+  const double keep = 1.0 - est.geometric;
+  if (!(keep > 0.0)) return;  // the elastic energy does not bound the contact forces' work: no estimate
+  est.energy = (c1 + std::sqrt(c1 * c1 + keep * c2)) / keep;
   est.available = true;
 }
 
@@ -244,6 +248,7 @@ ErrorEstimate ErrorEstimator::evaluate_exact(const Eigen::VectorXd& mu, const Ei
   est.violation = contact.violation;
   est.complementarity = contact.complementarity;
   est.multiplier_norm = contact.multiplier_norm;
+  est.geometric = geometric_ratio_;
   combine(est);
   return est;
 }

@@ -26,7 +26,8 @@ struct ErrorEstimate {
   double eim_slack = 0.0;        // eim_slack(Mk, Mg) (estimated EIM part of the violation, ~ violation)
   bool exact = false;            // from the HF contact rows (ContactRows::Exact): violation and
                                  // complementarity over every row, no EIM part
-  double energy = 0.0;           // Delta_u = c1 + sqrt(c1^2 + c2): estimate of |u_hf - u_rb|_A(mu)
+  double geometric = 0.0;        // eta, the geometric term (exact rows; EstimateData::geometric_ratio)
+  double energy = 0.0;           // Delta_u = (c1 + sqrt(c1^2 + (1 - eta) c2)) / (1 - eta): estimate of |u_hf - u_rb|_A(mu)
 };
 
 // Rows weighted by |I_r| (the L2(Gamma^c) norms, docs/offline-online.md, "Error estimate"):
@@ -91,7 +92,8 @@ class ErrorEstimator {
   Eigen::MatrixXd QTheta_;   // R_kept x (Mk N): column i N + n = (Q_i Theta_c)[:, n]
   Eigen::MatrixXd Q_gamma_;  // R_kept x Mg
   Eigen::MatrixXd Xi_;       // R_kept x R
-  double eim_residual_ = 0.0, eim_slack_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
+  double eim_residual_ = 0.0, eim_slack_ = 0.0;
+  double geometric_ratio_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
   Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
   bool exact_available_ = false;
   Eigen::MatrixXd T_exact_;                // rank x d_exact: R factor of the selected residual_exact columns

@@ -25,7 +25,8 @@ nlohmann::json to_json(const ErrorEstimate& e) {
           {"complementarity", e.complementarity},
           {"multiplier_norm", e.multiplier_norm},
           {"eim_residual", e.eim_residual},
-          {"eim_slack", e.eim_slack}};
+          {"eim_slack", e.eim_slack},
+          {"geometric", e.geometric}};
 }
 
 nlohmann::json to_json(const OnlineSolution& s) {

@@ -527,7 +527,10 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   cases::check_mu(parameters_, mu, "the reduced model");
   const solve::KacanovSettings ks =
       settings.kacanov ? *settings.kacanov
-                       : solve::KacanovSettings{kacanov_alpha_, kacanov_tolerance_, kacanov_max_iterations_};
+                       : solve::KacanovSettings{kacanov_alpha_,
+                                                exact_rows(settings.contact_rows) ? kExactRowsTolerance
+                                                                                  : kacanov_tolerance_,
+                                                kacanov_max_iterations_};
   solve::check_settings(ks);
   require(settings.anderson_depth >= 0 && settings.anderson_depth <= 8,
           "OnlineSettings::anderson_depth must be in [0, 8] (got " + std::to_string(settings.anderson_depth) + ")");

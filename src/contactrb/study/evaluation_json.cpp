@@ -84,6 +84,7 @@ nlohmann::json evaluation_json(const Evaluation& e, const ReducedModel& model, c
                   {"max_iterations", model.kacanov_max_iterations}};
   j["online_repeats"] = options.online_repeats;
   j["jobs"] = options.jobs;
+  j["hf_solver"] = hf::to_string(options.hf_method);
   j["summary"] = to_json(e.summary);
   return j;
 }

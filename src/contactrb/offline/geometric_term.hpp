@@ -1,0 +1,30 @@
+#pragma once
+// The geometric term of the error estimate with the exact contact rows (docs/offline-online.md,
+// "Error estimate"). With u the HF and u_rb the reduced displacement, e = u - u_rb and r the
+// residual of u_rb,
+//   e'A(mu)e = r'e + [linear contact terms] - e'H e + O(|e|^3),
+// H = (K(u)' lambda)' the geometric stiffness of the contact forces (contact_linearization.hpp):
+// the rows K(w) turn with the deformed master surface, so the contact forces do work on e that
+// the elastic energy alone does not bound. eta bounds -e'He / e'A(mu)e over the displacements that
+// keep the active rows closed (D_A e = 0, D = d'(u)), the directions an error between two solutions
+// with the same contact zone takes:
+//   eta_p = max { v'(-H)v / v'A(mu_p)v : D_A v = 0 },
+// reduced exactly to the DOFs H and D_A touch by the Schur complement of A_00(mu_p) there (the
+// minimum energy of every extension). The estimate then solves (1 - eta)|e|^2 <= 2 c1 |e| + c2.
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/mesh/mesh.hpp"
+
+namespace contactrb::offline {
+
+// eta_p at one converged snapshot (its mu, u and lambda), on the case's problem at mu_p.
+double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
+                       const io::Snapshot& snapshot);
+
+// max_p eta_p over the converged snapshots of `set` (0 without contact). Its value at the training
+// points is calibrated, not bounded, for other parameter values.
+double max_geometric_ratio(const io::SnapshotSet& set, const cases::CaseSpec& spec, const mesh::Mesh& reference,
+                           contact::Discretization d);
+
+}  // namespace contactrb::offline
