@@ -1,0 +1,167 @@
+// The estimate with the exact contact rows on row-cone models (docs/offline-online.md, "Error
+// estimate", "The geometric term"):
+//  - eta_p bounds -v'Hv / v'A(mu)v over random directions that keep the active rows closed, and
+//    is positive on a curved contact (an independent check of the reduced eigenproblem);
+//  - at uniform random points of each shipped two-dimensional case the estimate is an upper
+//    bound of |u_hf - u_rb|_A(mu) (HF reference: the semi-smooth Newton, KKT residual 1e-10)
+//    and at most kMaxEffectivity times it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/parameter_sets.hpp"
+#include "contactrb/contact/contact_linearization.hpp"
+#include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/offline/geometric_term.hpp"
+#include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/offline/snapshot_generation.hpp"
+#include "contactrb/online/online_solver.hpp"
+#include "contactrb/online/reconstruction.hpp"
+
+namespace {
+
+namespace cases = contactrb::cases;
+namespace offline = contactrb::offline;
+using Index = Eigen::Index;
+
+constexpr double kMaxEffectivity = 10.0;
+
+cases::ParameterBox box_of(const cases::CaseSpec& spec) {
+  cases::ParameterBox box;
+  const Index p = static_cast<Index>(spec.parameters.size());
+  box.min.resize(p);
+  box.max.resize(p);
+  for (Index i = 0; i < p; ++i) {
+    const auto& q = spec.parameters[static_cast<std::size_t>(i)];
+    box.names.push_back(q.name);
+    box.min(i) = q.min;
+    box.max(i) = q.max;
+  }
+  return box;
+}
+
+// Snapshots at `points` (the case's own settings), solved on two threads.
+contactrb::io::SnapshotSet snapshots_at(const cases::CaseSpec& spec, const std::vector<cases::Mu>& points) {
+  offline::SnapshotRequest r = offline::make_snapshot_request(spec, "training", 0, std::nullopt, points);
+  offline::SnapshotRunOptions options;
+  options.jobs = 2;
+  return offline::generate_snapshots(r, options);
+}
+
+struct EstimateCase {
+  std::string name;
+  double eps_pod;
+  int training;  // 0: the case's training set; else this many Latin-hypercube points
+};
+
+class ExactEstimate : public ::testing::TestWithParam<EstimateCase> {};
+
+TEST_P(ExactEstimate, IsAnUpperBoundAtRandomPoints) {
+  const EstimateCase c = GetParam();
+  const cases::CaseSpec spec = cases::builtin_case_spec(c.name);
+  const cases::ParameterBox box = box_of(spec);
+  const contactrb::io::SnapshotSet set =
+      c.training > 0 ? snapshots_at(spec, cases::latin_hypercube(box, c.training, 5))
+                     : offline::generate_snapshots(offline::make_snapshot_request(spec, "training"), {});
+  offline::OfflineSettings s;
+  s.dual_method = offline::DualConeMethod::Rows;
+  s.eps_pod = c.eps_pod;
+  const offline::OfflineResult off = offline::build_reduced_model(set, spec, s);
+  const double eta = off.model.estimate.geometric_ratio;
+  EXPECT_GT(eta, 0.0);  // curved contact surfaces: the contact forces have a geometric stiffness
+  EXPECT_LT(eta, 1.0);
+
+  contactrb::online::OnlineSolver solver(off.model);
+  const auto reference = cases::reference_mesh(spec, 0);
+  contactrb::hf::HFSettings newton;
+  newton.method = contactrb::hf::HFMethod::Newton;
+  std::vector<double> effectivity;
+  for (const cases::Mu& mu : cases::uniform_random(box, 8, 17)) {
+    const auto rb = solver.solve(mu);
+    ASSERT_TRUE(rb.converged()) << rb.message;
+    ASSERT_TRUE(rb.estimate.available && rb.estimate.exact);
+    const contactrb::hf::HFSolver hf_solver(cases::make_problem(spec, reference, mu, off.model.surface.discretization));
+    const auto hf = hf_solver.solve(newton);
+    ASSERT_TRUE(hf.converged) << hf.message;
+    const Eigen::VectorXd e = hf.u - contactrb::online::reconstruct_displacement(off.reconstruction, mu, rb.u_hat);
+    const double error = std::sqrt(e.dot(hf_solver.stiffness() * e));
+    const double ratio = rb.estimate.energy / error;
+    std::printf("[ %s ] |e|_A %.3e estimate %.3e effectivity %.2f (eta %.3f)\n", c.name.c_str(), error,
+                rb.estimate.energy, ratio, eta);
+    EXPECT_GE(ratio, 1.0) << "mu = " << mu.transpose();
+    EXPECT_LE(ratio, kMaxEffectivity) << "mu = " << mu.transpose();
+    effectivity.push_back(ratio);
+  }
+  std::sort(effectivity.begin(), effectivity.end());
+  std::printf("[ %s ] effectivity min %.2f median %.2f max %.2f\n", c.name.c_str(), effectivity.front(),
+              effectivity[effectivity.size() / 2], effectivity.back());
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, ExactEstimate,
+                         ::testing::Values(EstimateCase{"hertz-a", 3e-5, 0}, EstimateCase{"hertz-b", 3e-5, 0},
+                                           EstimateCase{"ring-block", 1e-6, 0},
+                                           EstimateCase{"hertz-3p", 1e-7, 40}),
+                         [](const auto& info) {
+                           std::string n;
+                           for (char ch : info.param.name) n += ch == '-' ? '_' : ch;
+                           return n;
+                         });
+
+// eta_p against its definition: -v'Hv / v'A v <= eta_p for directions v with D_A v = 0 (random,
+// projected), over every free DOF rather than the Schur-reduced few.
+TEST(GeometricRatio, BoundsRandomDirectionsThatKeepTheActiveRowsClosed) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");
+  const cases::Mu mu = cases::Mu::Constant(1, 0.4);
+  const contactrb::io::SnapshotSet set = snapshots_at(spec, {mu});
+  const contactrb::io::Snapshot& snap = set.snapshots.front();
+  const auto reference = cases::reference_mesh(spec, 0);
+  const auto d = contactrb::contact::discretization_from_string(set.constraint);
+  const double eta = offline::geometric_ratio(spec, reference, d, snap);
+  ASSERT_GT(eta, 0.0);
+
+  const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
+  const auto& dofs = solver.dofs();
+  std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
+  for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
+  const auto lin = contactrb::contact::linearize_contact(solver.problem().mesh, solver.pair(), solver.quadrature(),
+                                                         snap.u, snap.lambda, movable);
+  std::vector<Index> active;
+  for (Index r = 0; r < snap.lambda.size(); ++r) {
+    if (snap.lambda(r) > 0.0) active.push_back(r);
+  }
+  ASSERT_GE(active.size(), 2u);
+  Eigen::MatrixXd DA(static_cast<Index>(active.size()), dofs.num_dofs());
+  for (std::size_t a = 0; a < active.size(); ++a) DA.row(static_cast<Index>(a)) = lin.D.row(active[a]);
+  const Eigen::MatrixXd gram = DA * DA.transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> gram_ldlt(gram);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  double largest = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(dofs.num_dofs());
+    // Random values on the contact DOFs H touches (elsewhere the ratio only falls), then on
+    // every free DOF, projected on D_A v = 0 and zero on the prescribed DOFs.
+    for (Index i = 0; i < v.size(); ++i) {
+      if (movable[static_cast<std::size_t>(i)] && (k % 2 == 1 || lin.H.col(i).norm() > 0.0)) v(i) = normal(rng);
+    }
+    v -= DA.transpose() * gram_ldlt.solve(DA * v);
+    for (Index i = 0; i < v.size(); ++i) {
+      if (!movable[static_cast<std::size_t>(i)]) v(i) = 0.0;
+    }
+    ASSERT_LT((DA * v).norm(), 1e-8 * DA.norm() * v.norm());
+    const double ratio = -v.dot(lin.H * v) / v.dot(solver.stiffness() * v);
+    EXPECT_LE(ratio, eta * (1.0 + 1e-8)) << "direction " << k;
+    largest = std::max(largest, ratio);
+  }
+  std::printf("[ hertz-a mu 0.4 ] eta_p %.4f, largest random ratio %.4f\n", eta, largest);
+}
+
+}  // namespace
