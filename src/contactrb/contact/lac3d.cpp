@@ -153,10 +153,18 @@ class Segmentation {
   // `cell` of slave triangle t.
   template <class Visit>
   void for_each_piece(int t, const TriangleView& v, const Polygon2& cell, Visit&& visit) const {
+    Vec2 lo = cell[0], hi = cell[0];
+    for (int i = 1; i < cell.n; ++i) {
+      lo = lo.cwiseMin(cell[i]);
+      hi = hi.cwiseMax(cell[i]);
+    }
     for (int k = candidate_start_[sz(t)]; k < candidate_start_[sz(t + 1)]; ++k) {
       const int f = candidate_[sz(k)];
       const auto& face = master_.face[sz(f)];
       const std::array<Vec2, 3> q{v.project(y(face[0])), v.project(y(face[1])), v.project(y(face[2]))};
+      // Disjoint boxes: no piece (most candidates of a cell; the clipping below is the cost).
+      const Vec2 qlo = q[0].cwiseMin(q[1]).cwiseMin(q[2]), qhi = q[0].cwiseMax(q[1]).cwiseMax(q[2]);
+      if ((qlo.array() > hi.array()).any() || (lo.array() > qhi.array()).any()) continue;
       const std::array<Affine2, 3> mu = barycentric_functions(q);
       Polygon2 piece = cell;
       for (const Affine2& m : mu) piece = clip(piece, m);
