@@ -538,5 +538,9 @@ TEST(Lac3, RestrictedRowsAreTheFullRows) {
   const ContactQuadrature col = make_quadrature(c.m, l.pair, Discretization::Collocation);
   EXPECT_THROW(integrate_lac_rows(c.m, l.pair, col, l.pc, c.w), Error);
   EXPECT_THROW(integrate_lac_rows(c.m, l.pair, l.q, l.pc, Eigen::VectorXd::Zero(3)), Error);
+  Eigen::VectorXd bad = c.w;
+  bad(7) = std::nan("");
+  EXPECT_THROW(integrate_lac_rows(c.m, l.pair, l.q, l.pc, bad), Error);
+  EXPECT_THROW(lac_coverage(c.m, l.pair, l.pc, bad), Error);
   EXPECT_THROW(make_quadrature(c.m, l.pair, Discretization::LACSimpson), Error);
 }

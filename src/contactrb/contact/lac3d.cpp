@@ -329,6 +329,7 @@ void check_inputs(const mesh::Mesh3& mesh, const ContactPair3& pair, const Conta
               std::to_string(S) + " slave nodes");
   require(w.size() == mesh.num_dofs(), "integrate_lac_rows: displacement has size " + std::to_string(w.size()) +
                                            " but the mesh has " + std::to_string(mesh.num_dofs()) + " DOFs");
+  require(w.allFinite(), "integrate_lac_rows: the displacement has a non-finite entry");
   require(!pair.master_faces.empty(), "integrate_lac_rows: the master surface has no triangle");
 }
 
@@ -438,7 +439,7 @@ LacCoverage3 lac_coverage(const mesh::Mesh3& mesh, const ContactPair3& pair, con
                           const Eigen::VectorXd& w) {
   const auto S = static_cast<Eigen::Index>(pair.slave.size());
   require(static_cast<Eigen::Index>(pointwise.projection.size()) == S && w.size() == mesh.num_dofs() &&
-              !pair.master_faces.empty(),
+              w.allFinite() && !pair.master_faces.empty(),
           "lac_coverage: the projections, the displacement or the master surface do not match the pair");
   SlaveStar star = slave_star(mesh, pair);
   const std::vector<char> needed = needed_triangles(star, std::vector<char>(sz(static_cast<int>(S)), 1), pointwise);
