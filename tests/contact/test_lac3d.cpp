@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "contactrb/common/error.hpp"
@@ -83,37 +84,53 @@ Vector3d face_point(const Mesh3& m, const mesh::Face& f, const Vector3d& l) {
   return l(0) * X(m, f.a) + l(1) * X(m, f.b) + l(2) * X(m, f.c);
 }
 
+// A coarse slave block [0, 1]^2 x [gap, gap + 0.5] (5 x 5 squares) on a finer master block
+// [0, 1]^2 x [-0.5, 0] (11 x 11 squares): the other way round from stacked_blocks.
+Mesh3 fine_master_blocks(double gap) {
+  Mesh3 slave = mesh::box(Vector3d(0.0, 0.0, gap), Vector3d(1.0, 1.0, gap + 0.5), 5, 5, 2, mesh::kSlaveBody);
+  Mesh3 master = mesh::box(Vector3d(0.0, 0.0, -0.5), Vector3d(1.0, 1.0, 0.0), 11, 11, 3, mesh::kMasterBody);
+  for (const char* g : {"front", "back", "left", "right", "top"}) mesh::rename_boundary(slave, g, std::string("s_") + g);
+  for (const char* g : {"front", "back", "left", "right", "bottom"}) {
+    mesh::rename_boundary(master, g, std::string("m_") + g);
+  }
+  mesh::rename_boundary(slave, "bottom", mesh::kSlaveBoundary);
+  mesh::rename_boundary(master, "top", mesh::kMasterBoundary);
+  return mesh::merge(slave, master);
+}
+
 }  // namespace
 
 TEST(Lac3, UniformGapAndNormalTranslationAreReproduced) {
-  // Non-matching flat blocks (13 x 13 slave squares over 8 x 8 master squares), gap 0.05, w = 0
-  // and w = the master sliding in its plane (the segmentation changes, the gap does not).
+  // Non-matching flat blocks, gap 0.05: 13 x 13 slave squares over 8 x 8 master squares
+  // (stacked_blocks) and 5 x 5 over 11 x 11; w = 0 and w = the master sliding in its plane (the
+  // segmentation changes, the gap does not).
   const double gap = 0.05, t = 0.01;
-  const Mesh3 m = mesh::stacked_blocks(1, gap);
-  const ContactPair3 pair = make_contact_pair(m);
-  Eigen::VectorXd slide = Eigen::VectorXd::Zero(m.num_dofs());
-  for (int v : pair.master) set(slide, v, sliding(X(m, v)));
-  for (const Eigen::VectorXd& w : {Eigen::VectorXd(Eigen::VectorXd::Zero(m.num_dofs())), slide}) {
-    const Lac l = lac_rows(m, w);
-    ASSERT_EQ(l.rows.g.size(), static_cast<Eigen::Index>(pair.slave.size()));
-    const Eigen::VectorXd& I = l.q.weight;
-    EXPECT_NEAR((l.rows.g - gap * I).cwiseAbs().maxCoeff(), 0.0, 1e-16);
-    // A rigid normal translation of the slave block (toward the master) and of the master block.
-    const Eigen::VectorXd down = l.rows.K * body_field(m, mesh::kSlaveBody, Vector3d(0.0, 0.0, -t));
-    const Eigen::VectorXd up = l.rows.K * body_field(m, mesh::kMasterBody, Vector3d(0.0, 0.0, t));
-    EXPECT_NEAR((down - t * I).cwiseAbs().maxCoeff(), 0.0, 1e-17);
-    EXPECT_NEAR((up - t * I).cwiseAbs().maxCoeff(), 0.0, 1e-17);
-    // K' 1 is the consistent load of a unit pressure: the nodal areas of both surfaces (the
-    // master's deformed by the sliding), normal to the interface (the patch-test property).
-    const Eigen::VectorXd load = l.rows.K.transpose() * Eigen::VectorXd::Ones(l.rows.K.rows());
-    const Eigen::VectorXd slave_area = nodal_areas(m, mesh::kSlaveBoundary, w);
-    const Eigen::VectorXd master_area = nodal_areas(m, mesh::kMasterBoundary, w);
-    double worst = 0.0;
-    for (int v = 0; v < m.num_nodes(); ++v) {
-      worst = std::max(worst, std::abs(load(3 * v) ) + std::abs(load(3 * v + 1)));
-      worst = std::max(worst, std::abs(load(3 * v + 2) - (master_area(v) - slave_area(v))));
+  for (const Mesh3& m : {mesh::stacked_blocks(1, gap), fine_master_blocks(gap)}) {
+    const ContactPair3 pair = make_contact_pair(m);
+    Eigen::VectorXd slide = Eigen::VectorXd::Zero(m.num_dofs());
+    for (int v : pair.master) set(slide, v, sliding(X(m, v)));
+    for (const Eigen::VectorXd& w : {Eigen::VectorXd(Eigen::VectorXd::Zero(m.num_dofs())), slide}) {
+      const Lac l = lac_rows(m, w);
+      ASSERT_EQ(l.rows.g.size(), static_cast<Eigen::Index>(pair.slave.size()));
+      const Eigen::VectorXd& I = l.q.weight;
+      EXPECT_NEAR((l.rows.g - gap * I).cwiseAbs().maxCoeff(), 0.0, 1e-16);
+      // A rigid normal translation of the slave block (toward the master) and of the master block.
+      const Eigen::VectorXd down = l.rows.K * body_field(m, mesh::kSlaveBody, Vector3d(0.0, 0.0, -t));
+      const Eigen::VectorXd up = l.rows.K * body_field(m, mesh::kMasterBody, Vector3d(0.0, 0.0, t));
+      EXPECT_NEAR((down - t * I).cwiseAbs().maxCoeff(), 0.0, 1e-17);
+      EXPECT_NEAR((up - t * I).cwiseAbs().maxCoeff(), 0.0, 1e-17);
+      // K' 1 is the consistent load of a unit pressure: the nodal areas of both surfaces (the
+      // master's deformed by the sliding), normal to the interface (the patch-test property).
+      const Eigen::VectorXd load = l.rows.K.transpose() * Eigen::VectorXd::Ones(l.rows.K.rows());
+      const Eigen::VectorXd slave_area = nodal_areas(m, mesh::kSlaveBoundary, w);
+      const Eigen::VectorXd master_area = nodal_areas(m, mesh::kMasterBoundary, w);
+      double worst = 0.0;
+      for (int v = 0; v < m.num_nodes(); ++v) {
+        worst = std::max(worst, std::abs(load(3 * v)) + std::abs(load(3 * v + 1)));
+        worst = std::max(worst, std::abs(load(3 * v + 2) - (master_area(v) - slave_area(v))));
+      }
+      EXPECT_LT(worst, 1e-16);
     }
-    EXPECT_LT(worst, 1e-16);
   }
 }
 
