@@ -10,7 +10,12 @@
 // (n + 1)^2 slave nodes of the top face of an n^2 x 1 box are placed by the displacement on the
 // lower cap of the unit sphere centred at (0, 0, 2.1), again near and far nodes.
 //
+// BM_Lac3Rows (same 3D setup, slave nodes near the master: the lower cap touches the master
+// cap at the centre, so every slave triangle has master triangles below it): the rows of the
+// exactly integrated 3D LAC, constraint_rows from the projection (not timed) to K and g.
+//
 //   bench_contact --benchmark_filter=Project
+//   bench_contact --benchmark_filter=Lac3
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -80,7 +85,7 @@ Eigen::Vector3d on_sphere(double x, double y, const Eigen::Vector3d& centre, dou
   return centre + Eigen::Vector3d(x, y, z_sign).normalized();
 }
 
-Setup3 sphere_caps(int n) {
+Setup3 sphere_caps(int n, double centre_height = 2.1) {
   const Eigen::Vector3d lo(-0.7, -0.7, 0.0), hi(0.7, 0.7, 1.0);
   mesh::Mesh3 slave = mesh::box(lo, hi, n, n, 1, mesh::kSlaveBody);
   mesh::Mesh3 master = mesh::box(lo, hi, n - 1, n - 1, 1, mesh::kMasterBody);
@@ -95,7 +100,7 @@ Setup3 sphere_caps(int n) {
   s.w = Eigen::VectorXd::Zero(s.mesh.num_dofs());
   for (const int v : s.pair.slave) {
     const Eigen::Vector3d& X = s.mesh.nodes[static_cast<std::size_t>(v)];
-    s.w.segment<3>(3 * v) = on_sphere(X.x(), X.y(), Eigen::Vector3d(0.0, 0.0, 2.1), -1.0) - X;
+    s.w.segment<3>(3 * v) = on_sphere(X.x(), X.y(), Eigen::Vector3d(0.0, 0.0, centre_height), -1.0) - X;
   }
   return s;
 }
@@ -107,6 +112,22 @@ void run3(benchmark::State& state, contact::SearchMethod method) {
   for (auto _ : state) {
     contact::PointwiseContact3 pc = contact::project_slave_nodes(s.mesh, s.pair, s.w, options);
     benchmark::DoNotOptimize(pc.g.data());
+  }
+  const auto S = static_cast<std::int64_t>(s.pair.slave.size());
+  state.SetItemsProcessed(state.iterations() * S);
+  state.SetComplexityN(S);
+  state.counters["slave_nodes"] = static_cast<double>(S);
+  state.counters["master_triangles"] = static_cast<double>(s.pair.master_faces.size());
+}
+
+// The two caps touch at the centre (gap 0) and open to about 0.7 at the corners.
+void BM_Lac3Rows(benchmark::State& state) {
+  const Setup3 s = sphere_caps(static_cast<int>(state.range(0)), 2.0);
+  const contact::ContactQuadrature q = contact::make_quadrature(s.mesh, s.pair, contact::Discretization::LAC);
+  const contact::PointwiseContact3 pc = contact::project_slave_nodes(s.mesh, s.pair, s.w);
+  for (auto _ : state) {
+    contact::ConstraintRows rows = contact::constraint_rows(s.mesh, s.pair, q, pc, s.w);
+    benchmark::DoNotOptimize(rows.g.data());
   }
   const auto S = static_cast<std::int64_t>(s.pair.slave.size());
   state.SetItemsProcessed(state.iterations() * S);
@@ -130,6 +151,7 @@ BENCHMARK(BM_ProjectAllPairs)->RangeMultiplier(10)->Range(100, 10000)->Unit(benc
 
 // 1e3, 1e4 and 1e5 slave nodes ((n + 1)^2 for n = 31, 99, 315).
 BENCHMARK(BM_Project3Tree)->Arg(31)->Arg(99)->Arg(315)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNLogN);
+BENCHMARK(BM_Lac3Rows)->Arg(31)->Arg(99)->Arg(315)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNLogN);
 BENCHMARK(BM_Project3AllPairs)->Arg(31)->Arg(99)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNSquared);
 
 BENCHMARK_MAIN();

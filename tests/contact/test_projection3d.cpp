@@ -181,7 +181,6 @@ TEST(Projection3, NodalAreasSumToTheSlaveFaceArea) {
   EXPECT_NEAR((rows.g - q.weight.cwiseProduct(pc.g)).cwiseAbs().maxCoeff(), 0.0, 1e-16);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> weighted = q.W * pc.K;
   EXPECT_NEAR((Eigen::MatrixXd(rows.K) - Eigen::MatrixXd(weighted)).cwiseAbs().maxCoeff(), 0.0, 1e-16);
-  EXPECT_THROW(make_quadrature(m, pair, Discretization::LAC), Error);
   EXPECT_THROW(make_quadrature(m, pair, Discretization::LACSimpson), Error);
 }
 

@@ -1,6 +1,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <string>
 #include <tuple>
@@ -225,33 +226,45 @@ ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pai
 }
 
 ContactQuadrature make_quadrature(const mesh::Mesh3& mesh, const ContactPair3& pair, Discretization d) {
-  require(d == Discretization::Collocation, std::string("make_quadrature: the '") + to_string(d) +
-                                                "' discretization is not available in 3D (use 'collocation')");
+  require(d != Discretization::LACSimpson,
+          "make_quadrature: the 'lac-simpson' discretization is not available in 3D (use 'lac' or 'collocation')");
   const int S = static_cast<int>(pair.slave.size());
   require(S >= 1, "make_quadrature: the slave surface has no node");
-  // (60)-(61) with I_r the nodal area: a third of each adjacent slave triangle.
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(S);
   const auto position = [&pair](int v) {
     const auto it = std::lower_bound(pair.slave.begin(), pair.slave.end(), v);
     require(it != pair.slave.end() && *it == v,
             "make_quadrature: slave triangle node " + std::to_string(v) + " is not a slave node");
     return static_cast<int>(it - pair.slave.begin());
   };
+  // Collocation (60)-(61): I_r is the nodal area, a third of each adjacent slave triangle.
+  // LAC: I_r is the median dual cell of the node, W_rs = int_{I_r} phi_s, per triangle of area
+  // A: 11 A / 54 for the cell's own vertex, 7 A / 108 for each other (docs/contact.md, "LAC in
+  // three dimensions"); the row sums are the same nodal areas.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(pair.slave_faces.size() * (d == Discretization::LAC ? 9 : 3));
   for (const mesh::Face& f : pair.slave_faces) {
     for (int v : f.vertices()) {
       require(v >= 0 && v < mesh.num_nodes(), "make_quadrature: slave node " + std::to_string(v) + " outside [0, " +
                                                   std::to_string(mesh.num_nodes()) + ")");
     }
-    const double third = mesh::facet_area_normal(mesh, f).norm() / 3.0;
-    for (int v : f.vertices()) area(position(v)) += third;
+    const double area = mesh::facet_area_normal(mesh, f).norm();
+    const std::array<int, 3> s{position(f.a), position(f.b), position(f.c)};
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (d == Discretization::Collocation) {
+        entries.emplace_back(s[a], s[a], area / 3.0);
+        continue;
+      }
+      for (std::size_t b = 0; b < 3; ++b) entries.emplace_back(s[a], s[b], a == b ? 11.0 * area / 54.0 : 7.0 * area / 108.0);
+    }
   }
   ContactQuadrature q;
   q.discretization = d;
   q.W.resize(S, S);
-  q.W.reserve(Eigen::VectorXi::Constant(S, 1));
-  for (int r = 0; r < S; ++r) q.W.insert(r, r) = area(r);
-  q.W.makeCompressed();
-  q.weight = area;
+  q.W.setFromTriplets(entries.begin(), entries.end());
+  q.weight = Eigen::VectorXd::Zero(S);
+  for (int r = 0; r < S; ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(q.W, r); it; ++it) q.weight(r) += it.value();
+  }
   q.center_node = pair.slave;
   return q;
 }

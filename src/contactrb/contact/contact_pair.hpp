@@ -73,9 +73,11 @@ struct ContactQuadrature {
 };
 // Built on the undeformed configuration of `mesh` (i.e. Omega(mu), not Omega(mu) + w).
 ContactQuadrature make_quadrature(const mesh::Mesh& mesh, const ContactPair& pair, Discretization d);
-// 3D: Collocation only, one row per slave node with |I_r| = its nodal area (one third of the
-// area of each adjacent slave triangle); the weights sum to the area of Gamma_1^c. LAC and
-// LACSimpson throw contactrb::Error (not available in 3D).
+// 3D: one row per slave node with |I_r| = its nodal area (one third of the area of each
+// adjacent slave triangle); the weights sum to the area of Gamma_1^c. Collocation: W = diag(|I_r|).
+// LAC: I_r is the median dual cell of the node and W_rs = int_{I_r} phi_s (exact for P1 on the
+// slave side); the rows are integrated exactly by constraint_rows (lac3d.hpp). LACSimpson throws
+// contactrb::Error (not available in 3D).
 ContactQuadrature make_quadrature(const mesh::Mesh3& mesh, const ContactPair3& pair, Discretization d);
 
 }  // namespace contactrb::contact

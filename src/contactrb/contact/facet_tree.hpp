@@ -81,6 +81,33 @@ class FacetTree {
     return best;
   }
 
+  // Appends to `out` the facets whose bounding box meets the box [lo, hi] (in tree order):
+  // the candidate master facets of a region (the 3D LAC, lac3d.cpp). stack: scratch space.
+  void overlapping(const Point& lo, const Point& hi, std::vector<int>& out, std::vector<int>& stack) const {
+    if (nodes_.empty()) return;
+    const auto meets = [&lo, &hi](const Point& mn, const Point& mx) {
+      return (mn.array() <= hi.array()).all() && (lo.array() <= mx.array()).all();
+    };
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (!meets(n.min, n.max)) continue;
+      if (n.left >= 0) {
+        stack.push_back(n.right);
+        stack.push_back(n.left);
+        continue;
+      }
+      for (int j = n.lo; j < n.hi; ++j) {
+        const std::size_t k = static_cast<std::size_t>(order_[static_cast<std::size_t>(j)]);
+        if (meets(lo_[k], hi_[k])) out.push_back(static_cast<int>(k));
+      }
+    }
+  }
+
+  int num_facets() const { return static_cast<int>(facets_.size()); }
+
  private:
   // Facets per leaf: small enough to prune well, large enough to keep the tree shallow.
   static constexpr int kLeafFacets = 8;

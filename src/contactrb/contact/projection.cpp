@@ -13,6 +13,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/contact/lac3d.hpp"
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/master_polyline.hpp"
 #include "contactrb/contact/facet_tree.hpp"
@@ -476,13 +477,14 @@ PointwiseContact3 project_slave_nodes(const mesh::Mesh3& mesh, const ContactPair
   return project<3>(mesh, pair, w, positions, options);
 }
 
-ConstraintRows constraint_rows(const mesh::Mesh3& /*mesh*/, const ContactPair3& pair,
+ConstraintRows constraint_rows(const mesh::Mesh3& mesh, const ContactPair3& pair,
                                const ContactQuadrature& quadrature, const PointwiseContact3& pointwise,
-                               const Eigen::VectorXd& /*w*/) {
+                               const Eigen::VectorXd& w) {
   check_rows(quadrature, pointwise.K.rows(), pointwise.g.size(), pair.slave.size());
-  require(quadrature.discretization == Discretization::Collocation,
-          std::string("constraint_rows: the '") + to_string(quadrature.discretization) +
-              "' discretization is not available in 3D (use 'collocation')");
+  require(quadrature.discretization != Discretization::LACSimpson,
+          "constraint_rows: the 'lac-simpson' discretization is not available in 3D (use 'lac' or 'collocation')");
+  // Exact integration over the median dual cells, segmented by the master triangles (lac3d.hpp).
+  if (quadrature.discretization == Discretization::LAC) return integrate_lac_rows(mesh, pair, quadrature, pointwise, w);
   return weighted_rows(quadrature, pointwise);
 }
 

@@ -137,7 +137,8 @@ struct ConstraintRows {
 };
 ConstraintRows constraint_rows(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                                const PointwiseContact& pointwise, const Eigen::VectorXd& w);
-// 3D: Collocation, K = W K_pt, g = W g_pt with W the nodal areas (make_quadrature).
+// 3D: Collocation, K = W K_pt, g = W g_pt with W the nodal areas (make_quadrature); LAC, exact
+// integration over the median dual cells of the slave nodes (lac3d.hpp).
 ConstraintRows constraint_rows(const mesh::Mesh3& mesh, const ContactPair3& pair, const ContactQuadrature& quadrature,
                                const PointwiseContact3& pointwise, const Eigen::VectorXd& w);
 
