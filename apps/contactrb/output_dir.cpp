@@ -26,7 +26,11 @@ void check_output_file(const std::string& path) {
   require(!p.filename().empty(), "--out '" + path + "' names a directory, not a file");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::error_code ec;
-  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' does not exist");
+  if (!fs::exists(dir, ec)) {  // created as `mkdir -p` would (every missing parent)
+    fs::create_directories(dir, ec);
+    if (ec) throw Error("cannot create the directory of --out '" + path + "': " + ec.message());
+  }
+  require(fs::is_directory(dir, ec), "the directory of --out '" + path + "' is not a directory");
   require(::access(dir.c_str(), W_OK) == 0, "the directory of --out '" + path + "' is not writable");
   require(!fs::is_directory(p, ec), "--out '" + path + "' is a directory");
   check_output_target(p);

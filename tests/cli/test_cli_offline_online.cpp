@@ -356,9 +356,14 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual svd" + out), "--dual");
   expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --inner-product l2" + out),
                     "--inner-product");
+  // A missing directory of --out is created (every missing parent); a file in its way is an error.
+  EXPECT_EQ(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(dir_->file("no/dir/m.h5")))
+                .exit_code,
+            0);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir_->file("no/dir/m.h5")));
   expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " +
-                            shell_quote(dir_->file("no/dir/m.h5"))),
-                    "does not exist");
+                            shell_quote(dir_->file("no/dir/m.h5/x.h5"))),
+                    "is not a directory");
   EXPECT_NE(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --n 3 --eps-pod 1e-3" + out).exit_code, 0);
   // Numbers in messages have six significant digits (a fixed-point 1e300 has 300 digits).
   expect_user_error(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --eps-eim-k 1e300" + out),

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -87,8 +88,11 @@ TEST(CliSnapshots, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("snapshots --case hertz-a --jobs 0" + out), "--jobs");
   expect_user_error(run_cli("snapshots --case hertz-a --set nope" + out), "nope");
   expect_user_error(run_cli("snapshots --case hertz-a --values 0.1" + out), "outside");
-  expect_user_error(run_cli("snapshots --case hertz-a --out " + shell_quote((dir.path() / "no/dir/s.h5").string())),
-                    "does not exist");
+  // A file where the directory of --out should be.
+  { std::ofstream((dir.path() / "plain").string()) << "x"; }
+  expect_user_error(run_cli("snapshots --case hertz-a --out " + shell_quote((dir.path() / "plain/dir/s.h5").string())),
+                    "cannot create the directory of --out");
+  std::filesystem::remove(dir.path() / "plain");
   expect_user_error(run_cli("snapshots --case-file " + shell_quote((dir.path() / "none.toml").string()) + out),
                     "none.toml");
   // Usage errors (CLI11): no case, two cases.
