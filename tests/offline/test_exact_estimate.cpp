@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -62,19 +64,48 @@ struct EstimateCase {
   int training;  // 0: the case's training set; else this many Latin-hypercube points
 };
 
+// The row-cone model of a case, built once per test binary run.
+const offline::OfflineResult& row_cone_model(const EstimateCase& c) {
+  static std::map<std::string, std::unique_ptr<offline::OfflineResult>> cache;
+  auto& slot = cache[c.name];
+  if (!slot) {
+    const cases::CaseSpec spec = cases::builtin_case_spec(c.name);
+    const contactrb::io::SnapshotSet set =
+        c.training > 0 ? snapshots_at(spec, cases::latin_hypercube(box_of(spec), c.training, 5))
+                       : offline::generate_snapshots(offline::make_snapshot_request(spec, "training"), {});
+    offline::OfflineSettings s;
+    s.dual_method = offline::DualConeMethod::Rows;
+    s.eps_pod = c.eps_pod;
+    slot = std::make_unique<offline::OfflineResult>(offline::build_reduced_model(set, spec, s));
+  }
+  return *slot;
+}
+
 class ExactEstimate : public ::testing::TestWithParam<EstimateCase> {};
+
+// The kept rows from their own slave nodes (restricted_rows; LAC: the kept macro-segments) give
+// the answer of the whole contact surface's rows.
+TEST_P(ExactEstimate, RestrictedRowsGiveTheWholeSurfaceAnswer) {
+  const EstimateCase c = GetParam();
+  const offline::OfflineResult& off = row_cone_model(c);
+  contactrb::online::OnlineSolver solver(off.model);
+  contactrb::online::OnlineSettings full;
+  full.restricted_rows = false;
+  for (const cases::Mu& mu : cases::uniform_random(box_of(cases::builtin_case_spec(c.name)), 3, 23)) {
+    const auto a = solver.solve(mu);
+    const auto b = solver.solve(mu, full);
+    ASSERT_TRUE(a.converged() && b.converged()) << a.message << b.message;
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
+    EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+  }
+}
 
 TEST_P(ExactEstimate, IsAnUpperBoundAtRandomPoints) {
   const EstimateCase c = GetParam();
   const cases::CaseSpec spec = cases::builtin_case_spec(c.name);
   const cases::ParameterBox box = box_of(spec);
-  const contactrb::io::SnapshotSet set =
-      c.training > 0 ? snapshots_at(spec, cases::latin_hypercube(box, c.training, 5))
-                     : offline::generate_snapshots(offline::make_snapshot_request(spec, "training"), {});
-  offline::OfflineSettings s;
-  s.dual_method = offline::DualConeMethod::Rows;
-  s.eps_pod = c.eps_pod;
-  const offline::OfflineResult off = offline::build_reduced_model(set, spec, s);
+  const offline::OfflineResult& off = row_cone_model(c);
   const double eta = off.model.estimate.geometric_ratio;
   EXPECT_GT(eta, 0.0);  // curved contact surfaces: the contact forces have a geometric stiffness
   EXPECT_LT(eta, 1.0);

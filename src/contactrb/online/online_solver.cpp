@@ -140,6 +140,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   std::sort(lac_rows_.begin(), lac_rows_.end());
   lac_rows_.erase(std::unique(lac_rows_.begin(), lac_rows_.end()), lac_rows_.end());
   lac_positions_ = contact::lac_slave_positions(lac_rows_, static_cast<int>(surface_.slave.size()));
+  lac_kept_positions_ = contact::lac_slave_positions(kept_rows_, static_cast<int>(surface_.slave.size()));
   // Upper bound of |D|_F without cancellation per unit |phi|_1: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
   d_bound_ = Xi_.norm() * Theta_c_.norm();
 
@@ -278,8 +279,13 @@ void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   }
   w_ = lift_mu_;
   w_.noalias() += Theta_c_ * u_hat;
-  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
-  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
+  // LAC rows: the kept macro-segments only, from their own slave nodes (restricted_rows).
+  const bool lac_subset = restricted_ && surface_.discretization == contact::Discretization::LAC;
+  const contact::PointwiseContact pw = lac_subset ? contact::project_slave_nodes(mesh_, pair_, w_, lac_kept_positions_)
+                                                  : contact::project_slave_nodes(mesh_, pair_, w_);
+  const contact::ConstraintRows rows =
+      lac_subset ? contact::integrate_lac_rows(mesh_, pair_, quadrature_, pw, w_, kept_rows_)
+                 : contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
   const Eigen::Index kept = static_cast<Eigen::Index>(kept_rows_.size());
   KTheta_.setZero(kept, N_);
   gamma_kept_.resize(kept);

@@ -231,6 +231,7 @@ class OnlineSolver {
   std::vector<int> kept_rows_;
   std::vector<int> kappa_row_, kappa_dof_, gamma_row_;  // constraint rows (R_hf numbering), DOFs
   std::vector<int> lac_rows_, lac_positions_;           // LAC: the magic rows, their slave chain positions
+  std::vector<int> lac_kept_positions_;                 // LAC: the slave chain positions of the kept rows
   contactrb::model::ContactSurface surface_;
   Eigen::MatrixXd Theta_c_;              // n_c x N
   Eigen::MatrixXd lift_c_;               // n_c x J^D
