@@ -42,6 +42,7 @@ struct EvaluateOptions {
   SizeFlags sizes;  // --n, --r, --mk, --mg
   int jobs = 1;
   int repeats = 5;
+  std::string iteration = "automatic";  // --iteration: the reduced iteration, as `online`'s
   std::vector<double> multipliers;
   bool quiet = false;
 };
@@ -139,6 +140,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
   const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
+  const online::OnlineIteration iteration = checked_iteration_flag(opt.iteration, model);
   const contactrb::model::ReducedReconstruction rec = io::read_reconstruction(opt.model);
   // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
   const cases::CaseSpec spec = cases::case_from_record(
@@ -156,6 +158,7 @@ int run_evaluate(const EvaluateOptions& opt) {
 
   study::EvaluationOptions options;
   options.sizes = sizes;
+  options.online.iteration = iteration;
   options.online_repeats = opt.repeats;
   options.jobs = opt.jobs;
   options.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
@@ -213,6 +216,10 @@ Command add_evaluate_command(CLI::App& app) {
   sub->add_option("--mg", opt->sizes.mg, "EIM size of gamma (default: Mg_max)");
   sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
   sub->add_option("--repeats", opt->repeats, "Online solves per value (the time is their median)")
+      ->capture_default_str();
+  sub->add_option("--iteration", opt->iteration,
+                  "Reduced iteration: automatic | relaxed (the paper's) | accelerated | newton (row-cone models: "
+                  "the exact contact rows)")
       ->capture_default_str();
   sub->add_option("--multipliers", opt->multipliers,
                   "Values of the set whose HF and RB multipliers are written (comma-separated)")
