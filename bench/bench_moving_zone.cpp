@@ -16,7 +16,7 @@
 // --hf-tol: the Kacanov tolerance eps_KA of the snapshots (default: `contactrb offline`'s), which
 // is also that of the HF solves the errors are measured against (at most 5000 iterations): the
 // true error of a reduced answer is only measured down to the HF solver's own error.
-// --quick (about a minute): hertz-3p greedy over the first 100 training points with a budget of
+// --quick (under a minute): hertz-3p greedy over the first 100 training points with a budget of
 // 10 HF solves and the first 20 verification points; level 2 instead of 4.
 #include <algorithm>
 #include <chrono>
