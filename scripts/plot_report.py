@@ -55,6 +55,7 @@ MODELS = [
     ("nmf", "NMF", "tab:red", "s", "-"),
     ("nmf-truncated", "truncated NMF", "tab:orange", "^", "--"),
     ("angle", "angle-greedy", "tab:green", "d", ":"),
+    ("rows", "row cone", "tab:purple", "v", "-."),
 ]
 
 

@@ -43,6 +43,7 @@ struct EvaluateOptions {
   int jobs = 1;
   int repeats = 5;
   std::string solver = "newton";
+  std::string iteration = "automatic";  // --iteration: the reduced iteration, as `online`'s
   std::vector<double> multipliers;
   bool quiet = false;
 };
@@ -140,6 +141,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
   const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
+  const online::OnlineIteration iteration = checked_iteration_flag(opt.iteration, model);
   const contactrb::model::ReducedReconstruction rec = io::read_reconstruction(opt.model);
   // The mesh stored in the model file (format 5) is used: the case's .msh file may be gone.
   const cases::CaseSpec spec = cases::case_from_record(
@@ -157,6 +159,7 @@ int run_evaluate(const EvaluateOptions& opt) {
 
   study::EvaluationOptions options;
   options.sizes = sizes;
+  options.online.iteration = iteration;
   options.online_repeats = opt.repeats;
   options.jobs = opt.jobs;
   options.hf_method = hf::hf_method_from_string(opt.solver);
@@ -218,6 +221,10 @@ Command add_evaluate_command(CLI::App& app) {
   sub->add_option("--solver", opt->solver, "HF reference solver: newton (KKT residual 1e-10) | kacanov (the snapshots' eps_KA)")
       ->capture_default_str();
   sub->add_option("--repeats", opt->repeats, "Online solves per value (the time is their median)")
+      ->capture_default_str();
+  sub->add_option("--iteration", opt->iteration,
+                  "Reduced iteration: automatic | relaxed (the paper's) | accelerated | newton (row-cone models: "
+                  "the exact contact rows)")
       ->capture_default_str();
   sub->add_option("--multipliers", opt->multipliers,
                   "Values of the set whose HF and RB multipliers are written (comma-separated)")

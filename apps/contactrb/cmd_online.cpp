@@ -253,10 +253,7 @@ int run_online(const OnlineOptions& opt) {
   check_sizes_against(sizes, model, opt.model);
   online::OnlineSettings settings;
   settings.initial_guess = option_enum("--start", opt.start, online::initial_guess_from_string);
-  settings.iteration = option_enum("--iteration", opt.iteration, online::online_iteration_from_string);
-  require(settings.iteration != online::OnlineIteration::Newton || model.dual_method == contactrb::model::kRowCone,
-          "--iteration newton needs a model built with `contactrb offline --dual rows` (its dual cone is '" +
-              model.dual_method + "')");
+  settings.iteration = checked_iteration_flag(opt.iteration, model);
   if (opt.alpha || opt.tolerance) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (opt.alpha) k.alpha = *opt.alpha;

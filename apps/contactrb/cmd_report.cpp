@@ -201,8 +201,8 @@ int run_report(const ReportOptions& opt) {
 Command add_report_command(CLI::App& app) {
   auto opt = std::make_shared<ReportOptions>();
   CLI::App* sub = app.add_subcommand(
-      "report", "The paper's Section 6 study of one case: CPG / angle-greedy / NMF models, errors, speed-ups, "
-                "figures (PNG via scripts/plot_report.py) and report.md");
+      "report", "The paper's Section 6 study of one case: CPG / angle-greedy / NMF models and the row cone, errors, "
+                "speed-ups, figures (PNG via scripts/plot_report.py) and report.md");
   CLI::Option_group* input = sub->add_option_group("case", "Case (exactly one)");
   input->add_option("--case", opt->case_name, "Built-in case (see `contactrb cases`)");
   input->add_option("--case-file", opt->case_file, "TOML case file (docs/cases.md)");

@@ -22,6 +22,7 @@ struct ReducedModel;
 namespace contactrb::online {
 struct OnlineSizes;
 struct OnlineSolution;
+enum class OnlineIteration;
 }  // namespace contactrb::online
 
 namespace contactrb::app {
@@ -133,5 +134,8 @@ struct SizeFlags {
 online::OnlineSizes checked_size_flags(const SizeFlags& flags);
 void check_sizes_against(const online::OnlineSizes& sizes, const contactrb::model::ReducedModel& model,
                          const std::string& path);
+// --iteration of `online` and `evaluate`, read by online_iteration_from_string; newton only for a
+// row-cone model (it needs the exact contact rows). Throws contactrb::Error naming the flag.
+online::OnlineIteration checked_iteration_flag(const std::string& value, const contactrb::model::ReducedModel& model);
 
 }  // namespace contactrb::app

@@ -1,5 +1,6 @@
 // --n, --r, --mk, --mg of `online` and `evaluate`: checked before the model is read (signs),
-// then against the maxima the model stores (the online stage uses leading sub-blocks).
+// then against the maxima the model stores (the online stage uses leading sub-blocks); their
+// --iteration.
 #include <string>
 
 #include "commands.hpp"
@@ -31,6 +32,14 @@ void check_sizes_against(const online::OnlineSizes& s, const contactrb::model::R
   above("--r", s.R, model.R_max);
   above("--mk", s.Mk, model.Mk_max);
   above("--mg", s.Mg, model.Mg_max);
+}
+
+online::OnlineIteration checked_iteration_flag(const std::string& value, const contactrb::model::ReducedModel& model) {
+  const online::OnlineIteration iteration = option_enum("--iteration", value, online::online_iteration_from_string);
+  require(iteration != online::OnlineIteration::Newton || model.dual_method == contactrb::model::kRowCone,
+          "--iteration newton needs a model built with `contactrb offline --dual rows` (its dual cone is '" +
+              model.dual_method + "')");
+  return iteration;
 }
 
 }  // namespace contactrb::app

@@ -312,7 +312,7 @@ void bind_offline(py::module_& m) {
         "the set's points (greedy_tol, max_hf; greedy_batch HF solves per step, on `jobs` threads);\n"
         "model.greedy holds its table and selected snapshots.\n"
         "Offline settings (keywords, the CLI's defaults): eps_pod, N, inner_product ('energy'|'h1'),\n"
-        "dual ('cpg'|'angle'|'nmf'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
+        "dual ('cpg'|'angle'|'nmf'|'rows'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
         "compression, supremizers.");
 }
 

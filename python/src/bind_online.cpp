@@ -39,13 +39,24 @@ online::OnlineSizes online_sizes(const std::optional<int>& N, const std::optiona
   return {N.value_or(-1), R.value_or(-1), Mk.value_or(-1), Mg.value_or(-1)};
 }
 
-// The settings of `contactrb online` (--alpha, --tol, --start); max_iterations is ours. Any of
-// alpha, tol, max_iterations given: the relaxed iteration with them (as the CLI's --alpha, --tol).
+// --iteration of `contactrb online`: newton only for a row-cone model (it needs the exact rows).
+online::OnlineIteration checked_iteration(const contactrb::model::ReducedModel& model, const std::string& name) {
+  const online::OnlineIteration iteration = online::online_iteration_from_string(name);
+  require(iteration != online::OnlineIteration::Newton || model.dual_method == contactrb::model::kRowCone,
+          "iteration 'newton' needs a model built with dual 'rows' (`contactrb offline --dual rows`; its dual cone "
+          "is '" + model.dual_method + "')");
+  return iteration;
+}
+
+// The settings of `contactrb online` (--alpha, --tol, --iteration, --start); max_iterations is
+// ours. Any of alpha, tol, max_iterations given: the relaxed iteration with them (as the CLI's
+// --alpha, --tol) unless `iteration` names another.
 online::OnlineSettings online_settings(const contactrb::model::ReducedModel& model, const std::optional<double>& alpha,
                                        const std::optional<double>& tol, const std::optional<int>& max_iterations,
-                                       const std::string& start) {
+                                       const std::string& iteration, const std::string& start) {
   online::OnlineSettings settings;
   settings.initial_guess = online::initial_guess_from_string(start);
+  settings.iteration = checked_iteration(model, iteration);
   if (alpha || tol || max_iterations) {
     solve::KacanovSettings k{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
     if (alpha) k.alpha = *alpha;
@@ -60,9 +71,9 @@ online::OnlineSettings online_settings(const contactrb::model::ReducedModel& mod
 OnlineResult model_solve(PyModel& m, const py::object& mu_in, const std::optional<int>& N, const std::optional<int>& R,
                          const std::optional<int>& Mk, const std::optional<int>& Mg, const std::optional<double>& alpha,
                          const std::optional<double>& tol, const std::optional<int>& max_iterations,
-                         const std::string& start) {
+                         const std::string& iteration, const std::string& start) {
   const cases::Mu mu = mu_from_python(mu_in);
-  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
+  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, iteration, start);
   const online::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
   online::OnlineSolution s;
   int n_sizes[4] = {0, 0, 0, 0};
@@ -204,10 +215,11 @@ void solve_many_threads(const PyModel& m, const Eigen::MatrixXd& P, const online
 py::dict model_solve_many(PyModel& m, const py::object& points, const std::optional<int>& N, const std::optional<int>& R,
                           const std::optional<int>& Mk, const std::optional<int>& Mg,
                           const std::optional<double>& alpha, const std::optional<double>& tol,
-                          const std::optional<int>& max_iterations, const std::string& start, bool fields, int jobs) {
+                          const std::optional<int>& max_iterations, const std::string& iteration,
+                          const std::string& start, bool fields, int jobs) {
   require(jobs >= 0, "jobs must be >= 0 (0: every hardware thread), got " + std::to_string(jobs));
   const Eigen::MatrixXd P = points_from_python(points, static_cast<int>(m.model.parameters.size()));
-  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, start);
+  const online::OnlineSettings settings = online_settings(m.model, alpha, tol, max_iterations, iteration, start);
   const online::OnlineSizes sizes = online_sizes(N, R, Mk, Mg);
   const contactrb::model::ReducedReconstruction* rec =
       fields ? &m.reconstruction_data() : nullptr;  // may read the file
@@ -286,7 +298,8 @@ py::dict model_write_fields(PyModel& m, const OnlineResult& r, const std::string
 }
 
 py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N, const std::optional<int>& R,
-                  const std::optional<int>& Mk, const std::optional<int>& Mg, int jobs, int repeats, bool progress) {
+                  const std::optional<int>& Mk, const std::optional<int>& Mg, const std::string& iteration, int jobs,
+                  int repeats, bool progress) {
   require(jobs >= 1, "jobs must be >= 1 (got " + std::to_string(jobs) + ")");
   require(repeats >= 1, "repeats must be >= 1 (got " + std::to_string(repeats) + ")");
   const cases::CaseSpec spec = m.spec();
@@ -302,6 +315,7 @@ py::dict evaluate(PyModel& m, const py::object& set, const std::optional<int>& N
   const contactrb::model::ReducedReconstruction& rec = m.reconstruction_data();
   study::EvaluationOptions options;
   options.sizes = online_sizes(N, R, Mk, Mg);
+  options.online.iteration = checked_iteration(m.model, iteration);
   options.online_repeats = repeats;
   options.jobs = jobs;
   options.progress = progress ? offline::ProgressMode::Lines : offline::ProgressMode::None;
@@ -499,14 +513,17 @@ void bind_online(py::module_& m) {
                              "(P, p) training points")
       .def("solve", &model_solve, py::arg("mu"), py::kw_only(), py::arg("N") = py::none(), py::arg("R") = py::none(),
            py::arg("Mk") = py::none(), py::arg("Mg") = py::none(), py::arg("alpha") = py::none(),
-           py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(), py::arg("start") = "interpolated",
+           py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(), py::arg("iteration") = "automatic",
+           py::arg("start") = "interpolated",
            "Online solve at mu, as `contactrb online --mu`: returns an OnlineResult. N, R, Mk, Mg: sizes\n"
            "(default: the model's maxima). alpha, tol, max_iterations: the relaxed Kacanov iteration with\n"
-           "these (default: the model's, accelerated). start: 'interpolated' | 'zero'.")
+           "these (default: the model's, accelerated). iteration: 'automatic' | 'relaxed' | 'accelerated' |\n"
+           "'newton' (row-cone models), as `online --iteration`. start: 'interpolated' | 'zero'.")
       .def("solve_many", &model_solve_many, py::arg("mu"), py::kw_only(), py::arg("N") = py::none(),
            py::arg("R") = py::none(), py::arg("Mk") = py::none(), py::arg("Mg") = py::none(),
            py::arg("alpha") = py::none(), py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
-           py::arg("start") = "interpolated", py::arg("fields") = false, py::arg("jobs") = 1,
+           py::arg("iteration") = "automatic", py::arg("start") = "interpolated", py::arg("fields") = false,
+           py::arg("jobs") = 1,
            "Online solves at the rows of an (n, p) array (or n values for p = 1), looped in C++ with the GIL\n"
            "released; equal to a loop of solve(). jobs: threads, one solver each (0: every hardware\n"
            "thread); the rows are in input order and bitwise those of jobs=1 (time_s aside). Returns\n"
@@ -530,11 +547,11 @@ void bind_online(py::module_& m) {
 
   m.def("evaluate", &evaluate, py::arg("model"), py::arg("set") = "verification", py::kw_only(),
         py::arg("N") = py::none(), py::arg("R") = py::none(), py::arg("Mk") = py::none(), py::arg("Mg") = py::none(),
-        py::arg("jobs") = 1, py::arg("repeats") = 5, py::arg("progress") = false,
+        py::arg("iteration") = "automatic", py::arg("jobs") = 1, py::arg("repeats") = 5, py::arg("progress") = false,
         "Errors (64)-(66), estimates and speed-ups of a model against HF solves over a named set of its\n"
         "case, an (n, p) array of points or the points of a Snapshots (solved again), as `contactrb\n"
         "evaluate`. Returns evaluation.json's content (summary, sizes, values, ...) and one numpy array\n"
-        "per column of evaluation.csv (one row per point).");
+        "per column of evaluation.csv (one row per point). iteration: the reduced iteration, as solve().");
 }
 
 }  // namespace contactrb::python

@@ -108,7 +108,7 @@ TEST_F(CliReport, ReportMarkdownHasTheTablesAndLinks) {
   ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
   const std::string md = read_text(fs::path(out_) / "report.md");
   for (const char* s : {"# contactrb report: hertz-a", "## Sizes per method", "| CPG |", "| angle-greedy |",
-                        "| NMF |", "| NMF (R = R_CPG) |", "verification set", "median speed-up",
+                        "| NMF |", "| NMF (R = R_CPG) |", "| row cone |", "verification set", "median speed-up",
                         "## Offline step times", "| eps_DU | 0.1 | 0.01 | 0.005 |", "| CPG R |", "| NMF R |",
                         "| eps_POD |", "![dual_cone_error.png](dual_cone_error.png)",
                         "![errors_verification.png](errors_verification.png)", "![multipliers.png](multipliers.png)"}) {
@@ -126,7 +126,7 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   EXPECT_DOUBLE_EQ(j.at("training").front().get<double>(), 0.15);  // both ends of the set kept
   EXPECT_DOUBLE_EQ(j.at("training").back().get<double>(), 0.45);
   EXPECT_EQ(j.at("verification").size(), 3u);
-  ASSERT_EQ(j.at("models").size(), 4u);
+  ASSERT_EQ(j.at("models").size(), 5u);
   const json& cpg = j.at("models").at(0);
   EXPECT_EQ(cpg.at("key"), "cpg");
   EXPECT_GE(cpg.at("N").get<int>(), 1);
@@ -134,6 +134,16 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   EXPECT_LE(cpg.at("R").get<int>(), 6);
   // The truncated NMF has the CPG's R (unless the NMF ran out of ranks first).
   EXPECT_LE(j.at("models").at(3).at("R").get<int>(), cpg.at("R").get<int>());
+  // The row cone: one generator per kept row; every HF pressure of both sets lies in it, and its
+  // answers (exact contact rows) are within the cone of the HF pressure to 1e-2.
+  const json& row_cone = j.at("models").at(4);
+  EXPECT_EQ(row_cone.at("key"), "rows");
+  EXPECT_EQ(row_cone.at("R").get<int>(), j.at("constraints").at("kept").get<int>());
+  for (const char* set : {"training", "verification"}) {
+    EXPECT_LT(row_cone.at(set).at("max_e_press_cone").get<double>(), 1e-12) << set;
+    EXPECT_LT(row_cone.at(set).at("max_e_press").get<double>(), 1e-2) << set;
+    EXPECT_GT(cpg.at(set).at("max_e_press_cone").get<double>(), 0.0) << set;
+  }
   for (const json& m : j.at("models")) {
     for (const char* set : {"training", "verification"}) {
       const json& s = m.at(set);

@@ -80,6 +80,27 @@ string(JSON cli_energy GET "${cli_json}" energy)
 run("consumer" COMMAND "${consumer_build}/consumer" "${model}" "${MU}" "${cli_energy}" OUTPUT_VARIABLE consumer_out)
 message(STATUS "consumer: ${consumer_out}")
 
+# A row-cone model (`offline --dual rows`) answered with the reduced Newton: the installed CLI, the
+# build tree's and the consumer agree.
+set(rows_model "${WORK_DIR}/rows/model.h5")
+file(MAKE_DIRECTORY "${WORK_DIR}/rows")
+run("installed contactrb offline --dual rows" COMMAND "${installed_cli}" offline --case "${CASE}" --dual rows --out "${rows_model}")
+run("installed contactrb online --iteration newton"
+    COMMAND "${installed_cli}" online --model "${rows_model}" --mu "${MU}" --iteration newton OUTPUT_VARIABLE rows_json)
+run("build-tree contactrb online --iteration newton"
+    COMMAND "${CLI}" online --model "${rows_model}" --mu "${MU}" --iteration newton OUTPUT_VARIABLE rows_build_json)
+foreach(key energy contact_force u_hat lambda_hat iterations)
+  string(JSON installed_value GET "${rows_json}" ${key})
+  string(JSON build_value GET "${rows_build_json}" ${key})
+  if(NOT installed_value STREQUAL build_value)
+    message(FATAL_ERROR "row cone, ${key}: the installed contactrb answered ${installed_value}, the build tree's ${build_value}")
+  endif()
+endforeach()
+string(JSON rows_energy GET "${rows_json}" energy)
+run("consumer, row cone and Newton" COMMAND "${consumer_build}/consumer" "${rows_model}" "${MU}" "${rows_energy}" newton
+    OUTPUT_VARIABLE consumer_out)
+message(STATUS "consumer (row cone, newton): ${consumer_out}")
+
 # The installed Python module (docs/python.md, "Install"), when it was built (-DPYTHON=... and
 # -DPYTHON_DIR=<its directory under the prefix>): imported from the prefix, not from the build
 # tree, its online energy is the CLI's, to the last digit.
@@ -90,14 +111,20 @@ import contactrb
 prefix, model, mu, energy = sys.argv[1:5]
 if not contactrb.__file__.startswith(prefix):
     sys.exit(f"contactrb imported from {contactrb.__file__}, not from the prefix {prefix}")
-r = contactrb.Model.load(model).solve(float(mu))
+iteration = sys.argv[5] if len(sys.argv) > 5 else "automatic"
+r = contactrb.Model.load(model).solve(float(mu), iteration=iteration)
 if r.energy != float(energy):
-    sys.exit(f"installed module: energy {r.energy!r}, the CLI's {energy}")
-print(f"python: energy {r.energy!r} = the CLI's")
+    sys.exit(f"installed module: energy {r.energy!r}, the CLI's {energy} ({iteration})")
+print(f"python: energy {r.energy!r} = the CLI's ({iteration})")
 ]=])
   run("installed python module"
       COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/${PYTHON_DIR}" "${PYTHON}" -c "${check}"
               "${prefix}/${PYTHON_DIR}" "${model}" "${MU}" "${cli_energy}"
+      OUTPUT_VARIABLE python_out)
+  message(STATUS "${python_out}")
+  run("installed python module, row cone and Newton"
+      COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/${PYTHON_DIR}" "${PYTHON}" -c "${check}"
+              "${prefix}/${PYTHON_DIR}" "${rows_model}" "${MU}" "${rows_energy}" newton
       OUTPUT_VARIABLE python_out)
   message(STATUS "${python_out}")
 endif()

@@ -294,7 +294,7 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
     std::vector<double> times;
     for (int k = 0; k < options.online_repeats; ++k) {
       const auto t0 = Clock::now();
-      online[i].solution = online_solver.solve(mus[i]);
+      online[i].solution = online_solver.solve(mus[i], options.online);
       times.push_back(seconds_since(t0));
     }
     online[i].time_s = median(times);

@@ -22,6 +22,7 @@ namespace contactrb::study {
 
 struct EvaluationOptions {
   online::OnlineSizes sizes;          // -1: the model's maxima
+  online::OnlineSettings online;      // of every online solve (`contactrb online`'s defaults)
   int online_repeats = 5;     // the online time is the median over this many solves (>= 1)
   int jobs = 1;               // HF solves in parallel (online timings are taken serially)
   // The HF reference: the semi-smooth Newton (KKT residual 1e-10) by default, the fastest HF solver

@@ -82,6 +82,7 @@ nlohmann::json evaluation_json(const Evaluation& e, const ReducedModel& model, c
   j["kacanov"] = {{"alpha", model.kacanov_alpha},
                   {"tolerance", model.kacanov_tolerance},
                   {"max_iterations", model.kacanov_max_iterations}};
+  j["iteration"] = online::to_string(options.online.iteration);
   j["online_repeats"] = options.online_repeats;
   j["jobs"] = options.jobs;
   j["hf_solver"] = hf::to_string(options.hf_method);

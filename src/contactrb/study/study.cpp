@@ -438,12 +438,14 @@ StudyResult run_study(const cases::CaseSpec& spec, const StudySettings& s) {
   // CPG at eps_DU (Algorithm 2); angle-greedy at eps_DU (its linear error steers it); NMF with
   // the smallest R whose cone error reaches eps_DU a posteriori (Table 3: R prescribed, eps_DU
   // observed; all ranks up to min(R_kept, P) when it never does); truncated NMF with R = R_CPG
-  // (Figs. 10, 15, 21).
+  // (Figs. 10, 15, 21); then, beside the paper's cones, the row cone (one generator per kept row,
+  // docs/offline-online.md, "The row cone").
   run_stage(ctx, {"cpg", "CPG", DualConeMethod::CPG, s.tolerances.eps_du, -1}, r);
   const int R_cpg = r.models.back().R;
   run_stage(ctx, {"angle", "angle-greedy", DualConeMethod::AngleGreedy, s.tolerances.eps_du, -1}, r);
   run_stage(ctx, {"nmf", "NMF", DualConeMethod::NMF, s.tolerances.eps_du, -1}, r);
   run_stage(ctx, {"nmf-truncated", "NMF (R = R_CPG)", DualConeMethod::NMF, 0.0, R_cpg}, r);
+  run_stage(ctx, {"rows", "row cone", DualConeMethod::Rows, s.tolerances.eps_du, -1}, r);
 
   log.line("dual cone histories up to R = " + std::to_string(r.dual.R_max));
   dual_histories(history, P, r);

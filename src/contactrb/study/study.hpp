@@ -1,7 +1,7 @@
 #pragma once
 // One case, end to end, as in the paper's Sections 6.2.3-6.3: training snapshots (and the
 // case's verification set), offline stages with the three dual-cone builders (CPG,
-// angle-greedy, NMF; plus the truncated NMF with R = R_CPG), evaluation of every model on the
+// angle-greedy, NMF; plus the truncated NMF with R = R_CPG) and the row cone, evaluation of every model on the
 // training set (Figs. 10, 13, 15, 21) and on the verification set (Fig. 22), and the offline
 // histories behind Figs. 9, 11, 12, 19, 20 (POD singular values, dual cone error against R for
 // the three builders at a common maximal R, EIM error against M). `contactrb report` writes the
@@ -83,7 +83,7 @@ void check_settings(const StudySettings& settings);
 
 // One offline stage of the study and its evaluations.
 struct StudyModel {
-  std::string key;    // "cpg" | "angle" | "nmf" | "nmf-truncated" (CSV column values)
+  std::string key;    // "cpg" | "angle" | "nmf" | "nmf-truncated" | "rows" (CSV column values)
   std::string label;  // for tables and legends, e.g. "NMF (R = R_CPG)"
   offline::OfflineSettings settings;
   offline::OfflineReport report;
@@ -123,7 +123,7 @@ struct StudyResult {
   DualHistories dual;
   std::vector<double> eim_kappa;  // EIM l-infinity training error against M = 0 .. (Figs. 12, 20)
   std::vector<double> eim_gamma;
-  std::vector<StudyModel> models;  // cpg, angle, nmf, nmf-truncated
+  std::vector<StudyModel> models;  // cpg, angle, nmf, nmf-truncated, rows
   std::vector<MultiplierProfile> profiles;  // of the CPG model
   std::vector<double> profile_mus;
   std::string profile_set;  // "verification" | "training"
