@@ -123,3 +123,39 @@ training = [0.01, 0.02, 0.03]
   expect_one_line(r);
   EXPECT_NE(r.err.find("patch-file-3d"), std::string::npos) << r.err;
 }
+
+namespace {
+
+// Two tetrahedra (body1 above z = 1, body2 below z = 0) with the contact faces as groups, and
+// node 9 under the slave face; `elements` is the $Elements section.
+std::string two_tetrahedra(const std::string& elements) {
+  return "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+         "$PhysicalNames\n4\n2 1 \"slave\"\n2 2 \"master\"\n3 3 \"body1\"\n3 4 \"body2\"\n$EndPhysicalNames\n"
+         "$Entities\n0 0 2 2\n1 0 0 1 1 1 1 1 1 0\n2 0 0 0 1 1 0 1 2 0\n"
+         "1 0 0 1 1 1 2 1 3 0\n2 0 0 -1 1 1 0 1 4 0\n$EndEntities\n"
+         "$Nodes\n3 9 1 9\n3 1 0 4\n1\n2\n3\n4\n0 0 1\n1 0 1\n0 1 1\n0 0 2\n"
+         "3 2 0 4\n5\n6\n7\n8\n0 0 0\n1 0 0\n0 1 0\n0 0 -1\n3 1 0 1\n9\n0.25 0.25 0.5\n$EndNodes\n" +
+         elements;
+}
+
+}  // namespace
+
+TEST(Cli3d, BadThreeDimensionalMeshesGiveOneLine) {
+  contactrb::test::TempDir dir("cli3d_bad_msh");
+  const std::vector<std::pair<std::string, std::string>> cases{
+      // one of body1's two tetrahedra inverted
+      {"$Elements\n4 5 1 5\n2 1 2 1\n1 1 2 3\n2 2 2 1\n2 5 6 7\n3 1 4 2\n3 1 2 3 4\n4 1 2 3 9\n"
+       "3 2 4 1\n5 5 6 7 8\n$EndElements\n",
+       "inverted tetrahedra"},
+      // the slave group on the face shared by body1's two tetrahedra
+      {"$Elements\n4 5 1 5\n2 1 2 1\n1 1 2 3\n2 2 2 1\n2 5 6 7\n3 1 4 2\n3 1 2 3 4\n4 1 3 2 9\n"
+       "3 2 4 1\n5 5 6 7 8\n$EndElements\n",
+       "is an interior face, not on the boundary"}};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const fs::path msh = dir.path() / ("bad" + std::to_string(k) + ".msh");
+    std::ofstream(msh) << two_tetrahedra(cases[k].first);
+    const auto r = run_cli("mesh --msh " + shell_quote(msh.string()) + " --out " + shell_quote((dir.path() / "out").string()));
+    expect_user_error(r, cases[k].second);
+    expect_one_line(r);
+  }
+}
