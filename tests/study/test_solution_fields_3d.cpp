@@ -89,7 +89,7 @@ TEST(SolutionFields3d, FilesCarryTheFieldsAndTheRows) {
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "r,x,y,z,pressure,gap,weight");
+  EXPECT_EQ(line, "r,x,y,z,gap,pressure,weight");
   std::size_t count = 0;
   while (std::getline(in, line)) {
     std::istringstream row(line);
@@ -99,7 +99,8 @@ TEST(SolutionFields3d, FilesCarryTheFieldsAndTheRows) {
     const Eigen::Vector3d& X = m.nodes[static_cast<std::size_t>(c.nodes[count])];
     EXPECT_EQ(v[1], X.x());
     EXPECT_EQ(v[3], X.z());
-    EXPECT_EQ(v[4], c.pressure[static_cast<Eigen::Index>(count)]);
+    EXPECT_EQ(v[4], c.gap[static_cast<Eigen::Index>(count)]);
+    EXPECT_EQ(v[5], c.pressure[static_cast<Eigen::Index>(count)]);
     EXPECT_EQ(v[6], 1.0 / 16.0);
     ++count;
   }

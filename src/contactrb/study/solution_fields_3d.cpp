@@ -101,13 +101,13 @@ VtuFiles write_solution_vtus(const mesh::Mesh3& mesh, const std::vector<fem::Mat
   return files;
 }
 
-void write_multipliers_csv(const mesh::Mesh3& reference, const SlaveSurfaceFields& contact, const std::string& path) {
-  check_rows(contact, reference.num_nodes());
-  io::CsvWriter csv({"r", "x", "y", "z", "pressure", "gap", "weight"});
+void write_multipliers_csv(const mesh::Mesh3& mesh, const SlaveSurfaceFields& contact, const std::string& path) {
+  check_rows(contact, mesh.num_nodes());
+  io::CsvWriter csv({"r", "x", "y", "z", "gap", "pressure", "weight"});
   for (std::size_t r = 0; r < contact.nodes.size(); ++r) {
-    const Eigen::Vector3d& X = reference.nodes[static_cast<std::size_t>(contact.nodes[r])];
+    const Eigen::Vector3d& X = mesh.nodes[static_cast<std::size_t>(contact.nodes[r])];
     const auto i = static_cast<Eigen::Index>(r);
-    csv.add_row({static_cast<long long>(r), X.x(), X.y(), X.z(), contact.pressure(i), contact.gap(i), contact.weight(i)});
+    csv.add_row({static_cast<long long>(r), X.x(), X.y(), X.z(), contact.gap(i), contact.pressure(i), contact.weight(i)});
   }
   csv.write(path);
 }

@@ -46,9 +46,9 @@ VtuFiles write_solution_vtus(const mesh::Mesh3& mesh, const std::vector<fem::Mat
                              const std::vector<cases::ParameterSpec>& parameters, const cases::Mu& mu,
                              const Eigen::VectorXd& u, const SlaveSurfaceFields& contact, const std::string& dir);
 
-// multipliers.csv of a 3D solution: columns r, x, y, z (the row's slave node in `reference`),
-// pressure, gap, weight; one line per row. Throws contactrb::Error for inconsistent sizes or a
-// file that cannot be written.
-void write_multipliers_csv(const mesh::Mesh3& reference, const SlaveSurfaceFields& contact, const std::string& path);
+// multipliers.csv of a 3D solution, the columns of the 2D `solve` file without the abscissa:
+// r, x, y, z (the row's slave node in Omega(mu) = `mesh`), gap, pressure, weight; one line per
+// row. Throws contactrb::Error for inconsistent sizes or a file that cannot be written.
+void write_multipliers_csv(const mesh::Mesh3& mesh, const SlaveSurfaceFields& contact, const std::string& path);
 
 }  // namespace contactrb::study
