@@ -104,6 +104,14 @@ training = [0.01, 0.02]
   EXPECT_TRUE(cases::same_case(spec, cases::case_from_toml_string(cases::to_toml(spec), "again.toml")));
   EXPECT_EQ(cases::case_dimension(spec), 3);
   EXPECT_NO_THROW(cases::reference_mesh3(spec, 0));
+  // A 3D case takes no traction and no body-scaling parameter (their data are 2D vectors).
+  cases::CaseSpec pushed = spec;
+  pushed.tractions.push_back({"top", true, Eigen::Vector2d::Zero(), 1.0, -1, -1});
+  EXPECT_NE(error_of([&] { cases::reference_mesh3(pushed, 0); }).find("Dirichlet data only"), std::string::npos);
+  cases::CaseSpec scaled = spec;
+  scaled.parameters.front().kind = cases::ParameterKind::BodyScaling;
+  scaled.parameters.front().body = 0;
+  EXPECT_NE(error_of([&] { cases::reference_mesh3(scaled, 0); }).find("body-scaling"), std::string::npos);
   // uz on a 2D mesh: one clear error naming the group.
   const cases::CaseSpec flat = cases::case_from_toml_string(with_generator("hertz"), "uz2d.toml");
   const std::string m = error_of([&] { cases::reference_mesh(flat, 0); });

@@ -70,7 +70,7 @@ TEST(Cli3d, PatchMeshGrowsWithTheLevel) {
   EXPECT_GT(std::stoi(field_value(r1.out, "nodes")), 4 * std::stoi(field_value(r0.out, "nodes")));
   EXPECT_NE(r0.out.find("symmetry_x"), std::string::npos) << r0.out;
   const auto bad = run_cli("mesh --case patch-3d --level 9 --out " + shell_quote((dir.path() / "9").string()));
-  expect_user_error(bad, "level 9");
+  expect_user_error(bad, "stacked-blocks mesh level must be in [0, 4] (got 9)");
   expect_one_line(bad);
 }
 

@@ -33,6 +33,9 @@ void map_contact_groups(mesh::SimplexMesh<Dim>& m, const MeshSpec& ms) {
   m.boundaries[mesh::kMasterBoundary] = std::move(master);
 }
 
+// mesh::stacked_blocks' finest level.
+constexpr int kMaxStackedBlocksLevel = 4;
+
 bool is_3d_generator(const std::string& generator) { return generator == "hertz-3d" || generator == "stacked-blocks"; }
 
 // The case's .msh file as a Dim-dimensional mesh with its contact groups renamed and its
@@ -73,6 +76,9 @@ mesh::Mesh3 generated_mesh3(const std::string& generator, int level) {
     geometry.fine_size = mesh::hertz_3d_fine_size_for_level(level);
     return mesh::generate_hertz_3d(geometry);
   }
+  require(level <= kMaxStackedBlocksLevel, "the stacked-blocks mesh level must be in [0, " +
+                                              std::to_string(kMaxStackedBlocksLevel) + "] (got " +
+                                              std::to_string(level) + ")");
   mesh::Mesh3 m = mesh::stacked_blocks(level);
   for (const auto& [group, axis] : {std::pair{"symmetry_x", 0}, std::pair{"symmetry_y", 1}}) {
     auto& plane = m.boundaries[group];
@@ -108,6 +114,10 @@ mesh::Mesh3 reference_mesh3(const CaseSpec& spec, int level) {
   require(spec.tractions.empty() && spec.bodies[0].load.isZero(0.0) && spec.bodies[1].load.isZero(0.0),
           context(spec) + " is three-dimensional: its loads are Dirichlet data only (tractions and body loads "
                           "are read in 2D cases)");
+  for (const ParameterSpec& p : spec.parameters) {
+    require(p.kind != ParameterKind::BodyScaling, context(spec) + " is three-dimensional: parameter '" + p.name +
+                                                      "' of kind body-scaling is read in 2D cases only");
+  }
   mesh::Mesh3 m = spec.mesh.generator.empty() ? mesh_from_file<3>(spec, level) : generated_mesh3(spec.mesh.generator, level);
   for (const DirichletSpec& d : spec.dirichlet) m.boundary(d.group);  // throws naming a missing group
   mesh::validate(m);
