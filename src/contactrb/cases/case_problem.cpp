@@ -36,8 +36,6 @@ void map_contact_groups(mesh::SimplexMesh<Dim>& m, const MeshSpec& ms) {
 // mesh::stacked_blocks' finest level.
 constexpr int kMaxStackedBlocksLevel = 4;
 
-bool is_3d_generator(const std::string& generator) { return generator == "hertz-3d" || generator == "stacked-blocks"; }
-
 // The case's .msh file as a Dim-dimensional mesh with its contact groups renamed and its
 // Dirichlet groups present.
 template <int Dim>
@@ -101,11 +99,6 @@ void check_no_uz(const CaseSpec& spec) {
 }
 
 }  // namespace
-
-int case_dimension(const CaseSpec& spec) {
-  if (!spec.mesh.generator.empty()) return is_3d_generator(spec.mesh.generator) ? 3 : 2;
-  return mesh::msh_dimension(spec.mesh.msh_file);
-}
 
 mesh::Mesh3 reference_mesh3(const CaseSpec& spec, int level) {
   check_case_spec(spec);

@@ -10,6 +10,7 @@
 #include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/geometries.hpp"
+#include "contactrb/mesh/msh_io.hpp"
 #include "contactrb/common/number_text.hpp"
 
 namespace contactrb::cases {
@@ -408,6 +409,12 @@ void check_case_spec(const CaseSpec& c) {
   for (const TractionSpec& t : c.tractions) check_traction(c, t, used, where);
   check_parameters_used(c, used, where);
   check_sets(c, where);
+}
+
+int case_dimension(const CaseSpec& spec) {
+  const std::string& g = spec.mesh.generator;
+  if (!g.empty()) return g == "hertz-3d" || g == "stacked-blocks" ? 3 : 2;
+  return mesh::msh_dimension(spec.mesh.msh_file);
 }
 
 bool has_affine_dirichlet(const CaseSpec& spec) { return !dirichlet_parameters(spec).empty(); }

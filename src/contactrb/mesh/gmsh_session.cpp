@@ -147,8 +147,6 @@ std::vector<std::size_t> element_nodes(int dim, int tag, int type) {
   return nodes;
 }
 
-}  // namespace
-
 template <int Dim>
 SimplexMesh<Dim> extract_simplex_mesh(const std::map<int, int>& entity_body,
                                       const std::map<std::string, std::vector<int>>& groups) {
@@ -210,6 +208,8 @@ SimplexMesh<Dim> extract_simplex_mesh(const std::map<int, int>& entity_body,
   }
   return mesh;
 }
+
+}  // namespace
 
 Mesh extract_mesh(const std::map<int, int>& surface_body, const std::map<std::string, std::vector<int>>& groups) {
   return extract_simplex_mesh<2>(surface_body, groups);

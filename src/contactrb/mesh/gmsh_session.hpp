@@ -57,12 +57,10 @@ void mesh_2d(const std::vector<SizeRamp>& ramps);
 // in 3D (Delaunay, one thread).
 void mesh_3d_occ(const std::vector<SizeRamp>& ramps);
 
-// Converts the current Gmsh mesh: entities of dimension Dim (surfaces in 2D, volumes in 3D)
-// -> bodies, named sets of entities of dimension Dim - 1 -> boundary groups (facets oriented
-// with the outward normal of their body, mesh.hpp). Cells are made positive.
-template <int Dim>
-SimplexMesh<Dim> extract_simplex_mesh(const std::map<int, int>& entity_body,
-                                      const std::map<std::string, std::vector<int>>& groups);
+// Converts the current Gmsh mesh (one code for both dimensions): entities of the mesh's
+// dimension (surfaces in 2D, volumes in 3D) -> bodies, named sets of entities of one dimension
+// less -> boundary groups (facets oriented with the outward normal of their body, mesh.hpp).
+// Cells are made positive.
 Mesh extract_mesh(const std::map<int, int>& surface_body, const std::map<std::string, std::vector<int>>& groups);
 Mesh3 extract_mesh3(const std::map<int, int>& volume_body, const std::map<std::string, std::vector<int>>& groups);
 
