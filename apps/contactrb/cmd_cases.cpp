@@ -1,4 +1,4 @@
-// `contactrb cases`: one line per built-in case (paper Section 6).
+// `contactrb cases`: one line per built-in case (paper Section 6 and the 3D cases), with its dimension.
 #include <iomanip>
 #include <iostream>
 
@@ -8,12 +8,13 @@
 namespace contactrb::app {
 
 Command add_cases_command(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("cases", "List the built-in cases (paper Section 6), one per line");
+  CLI::App* sub = app.add_subcommand("cases", "List the built-in cases, one per line: name, dimension, summary");
   return {sub, [] {
             std::size_t width = 0;
             for (const auto& c : cases::builtin_cases()) width = std::max(width, c.name.size());
             for (const auto& c : cases::builtin_cases()) {
-              std::cout << std::left << std::setw(static_cast<int>(width) + 2) << c.name << c.summary << "\n";
+              std::cout << std::left << std::setw(static_cast<int>(width) + 2) << c.name << c.dimension << "D  "
+                        << c.summary << "\n";
             }
             return 0;
           }};

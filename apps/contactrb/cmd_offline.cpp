@@ -110,7 +110,7 @@ offline::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases
 // offline.json are written too (one run's three files, never mixed with another run's).
 io::SnapshotSet compute_snapshots(const OfflineOptions& opt, const std::string& path, std::optional<OutputLock>& lock) {
   const cases::CaseSpec spec =
-      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+      read_case_2d(opt.case_name, opt.case_file, "offline");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   const offline::SnapshotRequest request = snapshot_request(opt, spec);
@@ -202,7 +202,7 @@ int run_greedy(const OfflineOptions& opt) {
   const std::string csv_path = sibling_path(opt.out, "greedy.csv");
   const std::string json_path = sibling_path(opt.out, "greedy.json");
   const cases::CaseSpec spec =
-      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+      read_case_2d(opt.case_name, opt.case_file, "offline");
   std::vector<FileRole> inputs{{"--case-file", opt.case_file}};
   if (!opt.case_file.empty()) inputs.push_back({"the case's mesh file", spec.mesh.msh_file});
   check_file_roles(inputs, {{"--out", opt.out},

@@ -119,7 +119,7 @@ void commit_report(const fs::path& staging, const std::string& out, const std::v
 
 int run_report(const ReportOptions& opt) {
   const cases::CaseSpec spec =
-      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+      read_case_2d(opt.case_name, opt.case_file, "report");
   study::StudySettings s;
   s.level = opt.level;
   if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);

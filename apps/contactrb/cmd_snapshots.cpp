@@ -68,7 +68,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
                                      ": under mpirun each rank solves one value at a time (start more ranks)");
   // Cheap checks first.
   const cases::CaseSpec spec =
-      opt.case_file.empty() ? cases::builtin_case_spec(opt.case_name) : cases::case_from_toml_file(opt.case_file);
+      read_case_2d(opt.case_name, opt.case_file, "snapshots");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   std::optional<contact::Discretization> constraint;

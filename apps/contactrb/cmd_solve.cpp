@@ -82,13 +82,8 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
 int run_solve(SolveOptions opt) {
   // Cheap checks first: case (the TOML file is read and checked here), parameter,
   // settings, output directory; the mesh comes later.
-  cases::CaseSpec spec;
-  if (!opt.case_file.empty()) {
-    spec = cases::case_from_toml_file(opt.case_file);
-    opt.case_name = spec.name;
-  } else {
-    spec = cases::builtin_case_spec(opt.case_name);
-  }
+  const cases::CaseSpec spec = read_case_2d(opt.case_name, opt.case_file, "solve");
+  if (!opt.case_file.empty()) opt.case_name = spec.name;
   opt.mu = parse_mu_option(opt.mu_text, "--mu", spec.parameters);
   opt.parameters = spec.parameters;
   cases::check_mu(spec.parameters, opt.mu,

@@ -19,6 +19,10 @@ namespace contactrb::model {
 struct ReducedModel;
 }  // namespace contactrb::model
 
+namespace contactrb::cases {
+struct CaseSpec;
+}  // namespace contactrb::cases
+
 namespace contactrb::online {
 struct OnlineSizes;
 struct OnlineSolution;
@@ -70,6 +74,11 @@ Command add_sample_command(CLI::App& app);
 Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);
+
+// The case of --case (a built-in name) or --case-file (a TOML file) for `command`, which solves
+// 2D cases only: throws contactrb::Error in one line naming the command, the case and its
+// dimension for a 3D case (case_input.cpp; contactrb-full only).
+cases::CaseSpec read_case_2d(const std::string& case_name, const std::string& case_file, const std::string& command);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.

@@ -127,8 +127,8 @@ TEST(CaseToml, UnknownKeysAreNamedWithFileAndLine) {
   expect_mentions(m1, {"unknown key 'parameter.domian'", "my-case.toml:", "domain"});
   const std::string m2 = error_of("colour = 3\n" + good_case());
   expect_mentions(m2, {"unknown key 'colour'", "my-case.toml:1:"});
-  const std::string m3 = error_of(replace_in(good_case(), "ux = 0.0\nuy = { a", "ux = 0.0\nuz = 1.0\nuy = { a"));
-  expect_mentions(m3, {"unknown key 'dirichlet[1].uz'", "my-case.toml:"});
+  const std::string m3 = error_of(replace_in(good_case(), "ux = 0.0\nuy = { a", "ux = 0.0\nuw = 1.0\nuy = { a"));
+  expect_mentions(m3, {"unknown key 'dirichlet[1].uw'", "my-case.toml:"});
   const std::string m4 = error_of(replace_in(good_case(), "{ b = 0.5 }", "{ b = 0.5, c = 1 }"));
   expect_mentions(m4, {"unknown key 'dirichlet[2].uy.c'"});
 }

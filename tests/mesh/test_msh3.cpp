@@ -240,3 +240,77 @@ TEST(Msh3, RoundTripStackedBlocks) {
   std::filesystem::remove(path);
 }
 
+
+namespace {
+
+// two_tetrahedra() with a third node block: node 9 at (0.25, 0.25, 0.5), under the slave face
+// (1, 2, 3), in entity `block` (a volume entity of tag 1, or a surface entity of tag 1).
+std::string with_node_9(const std::string& elements, const std::string& block = "3 1 0 1\n9\n0.25 0.25 0.5\n") {
+  std::string s = two_tetrahedra(elements);
+  const std::string head = "$Nodes\n2 8 1 8\n";
+  s.replace(s.find(head), head.size(), "$Nodes\n3 9 1 9\n");
+  const std::string end = "$EndNodes\n";
+  s.insert(s.find(end), block);
+  return s;
+}
+
+}  // namespace
+
+TEST(Msh3, TetrahedraWithoutVolumeGroups) {
+  // The tetrahedra are in volume entities that carry no physical tag.
+  std::string text = two_tetrahedra();
+  for (const std::string tagged : {"1 0 0 1 1 1 2 1 3 0\n", "2 0 0 -1 1 1 0 1 4 0\n"}) {
+    const std::string untagged = tagged.substr(0, tagged.size() - 7) + " 0 0\n";
+    text.replace(text.find(tagged), tagged.size(), untagged);
+  }
+  const std::string path = write("no_volume_groups.msh", text);
+  EXPECT_EQ(msh_dimension(path), 3);
+  const std::string msg = read3_error(path);
+  EXPECT_NE(msg.find("tetrahedron 3 (volume 1) is in no body group 'body1' or 'body2'"), std::string::npos) << msg;
+  std::filesystem::remove(path);
+}
+
+TEST(Msh3, SurfaceGroupInsideABody) {
+  // body1 is two tetrahedra sharing the face (1, 2, 3); "slave" names that interior face.
+  const std::string path = write("interior_face.msh", with_node_9("$Elements\n4 5 1 5\n"
+                                                                  "2 1 2 1\n1 1 2 3\n"
+                                                                  "2 2 2 1\n2 5 6 7\n"
+                                                                  "3 1 4 2\n3 1 2 3 4\n4 1 3 2 9\n"
+                                                                  "3 2 4 1\n5 5 6 7 8\n$EndElements\n"));
+  const std::string msg = read3_error(path);
+  EXPECT_NE(msg.find("boundary group 'slave'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(nodes 1, 2, 3) is an interior face, not on the boundary"), std::string::npos) << msg;
+  std::filesystem::remove(path);
+}
+
+TEST(Msh3, MixedTwoAndThreeDimensionalBodies) {
+  // body1 is a triangle of a surface group, body2 a tetrahedron: no mesh of one dimension.
+  std::string text = two_tetrahedra("$Elements\n2 2 1 2\n"
+                                    "2 1 2 1\n1 1 2 3\n"
+                                    "3 2 4 1\n2 5 6 7 8\n$EndElements\n");
+  text.replace(text.find("2 1 \"slave\""), 11, "2 3 \"body1\"");  // surface entity 1 carries body1
+  text.replace(text.find("3 3 \"body1\""), 11, "3 1 \"slave\"");
+  const std::string path = write("mixed_dimension.msh", text);
+  EXPECT_EQ(msh_dimension(path), 3);
+  const std::string msg = read3_error(path);
+  EXPECT_NE(msg.find("has no 3D physical group 'body1' (the slave body); groups present:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'body1' (2D)"), std::string::npos) << msg;
+  std::filesystem::remove(path);
+}
+
+TEST(Msh3, AllTetrahedraOfABodyInvertedAreReorientedOneInvertedIsRefused) {
+  // two_tetrahedra() writes body2 negative: read as positive (a mirrored file).
+  const std::string good = write("negative_body.msh", two_tetrahedra());
+  const Mesh3 m = read_msh3(good);
+  for (int c = 0; c < m.num_cells(); ++c) EXPECT_GT(signed_volume(m, c), 0.0);
+  std::filesystem::remove(good);
+  // body1 of two tetrahedra, one of them inverted: refused.
+  const std::string bad = write("one_inverted.msh", with_node_9("$Elements\n2 3 1 3\n"
+                                                                "3 1 4 2\n3 1 2 3 4\n4 1 2 3 9\n"
+                                                                "3 2 4 1\n5 5 6 7 8\n$EndElements\n"));
+  MshGroups no_boundaries;
+  no_boundaries.required_boundaries = {};
+  const std::string msg = read3_error(bad, no_boundaries);
+  EXPECT_NE(msg.find("inverted tetrahedra"), std::string::npos) << msg;
+  std::filesystem::remove(bad);
+}

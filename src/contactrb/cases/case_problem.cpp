@@ -8,6 +8,7 @@
 #include "contactrb/fem/traction.hpp"
 #include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/msh_io.hpp"
+#include "contactrb/mesh/structured.hpp"
 
 namespace contactrb::cases {
 
@@ -18,9 +19,10 @@ std::string context(const CaseSpec& spec) { return spec.context(); }
 std::string body_name(int body) { return body == 0 ? "slave" : "master"; }
 
 // Renames the user's contact groups to "slave" / "master" (a swap is allowed).
-void map_contact_groups(mesh::Mesh& m, const MeshSpec& ms) {
-  std::vector<mesh::Edge> slave = m.boundary(ms.slave_group);
-  std::vector<mesh::Edge> master = m.boundary(ms.master_group);
+template <int Dim>
+void map_contact_groups(mesh::SimplexMesh<Dim>& m, const MeshSpec& ms) {
+  auto slave = m.boundary(ms.slave_group);
+  auto master = m.boundary(ms.master_group);
   m.boundaries.erase(ms.slave_group);
   m.boundaries.erase(ms.master_group);
   for (const char* name : {mesh::kSlaveBoundary, mesh::kMasterBoundary}) {
@@ -31,11 +33,96 @@ void map_contact_groups(mesh::Mesh& m, const MeshSpec& ms) {
   m.boundaries[mesh::kMasterBoundary] = std::move(master);
 }
 
+// mesh::stacked_blocks' finest level.
+constexpr int kMaxStackedBlocksLevel = 4;
+
+// The case's .msh file as a Dim-dimensional mesh with its contact groups renamed and its
+// Dirichlet groups present.
+template <int Dim>
+mesh::SimplexMesh<Dim> mesh_from_file(const CaseSpec& spec, int level) {
+  const MeshSpec& ms = spec.mesh;
+  require(level == 0, "refinement level " + std::to_string(level) + " requested, but the mesh of " + context(spec) +
+                          " is the file " + ms.msh_file + " (level 0 only)");
+  mesh::MshGroups groups;
+  groups.body_groups = {ms.body_groups[0], ms.body_groups[1]};
+  groups.required_boundaries = {ms.slave_group, ms.master_group};
+  mesh::SimplexMesh<Dim> m;
+  if constexpr (Dim == 2) {
+    m = mesh::read_msh(ms.msh_file, groups);
+  } else {
+    m = mesh::read_msh3(ms.msh_file, groups);
+  }
+  require(m.num_bodies() == 2, "the .msh file " + ms.msh_file + " of " + context(spec) + " has " +
+                                   std::to_string(m.num_bodies()) + " body, a contact case needs two");
+  map_contact_groups(m, ms);
+  for (const DirichletSpec& d : spec.dirichlet) {
+    if (!m.has_boundary(d.group)) {
+      std::string present;
+      for (const auto& [name, facets] : m.boundaries) present += " " + name;
+      throw Error("Dirichlet group '" + d.group + "' of " + context(spec) + " is not a " + std::to_string(Dim - 1) +
+                  "D physical group of " + ms.msh_file + " (groups:" + present + ")");
+    }
+  }
+  mesh::validate(m);
+  return m;
+}
+
+// "hertz-3d" and "stacked-blocks" at `level` (case_problem.hpp, reference_mesh3).
+mesh::Mesh3 generated_mesh3(const std::string& generator, int level) {
+  if (generator == "hertz-3d") {
+    mesh::Hertz3dGeometry geometry;
+    geometry.fine_size = mesh::hertz_3d_fine_size_for_level(level);
+    return mesh::generate_hertz_3d(geometry);
+  }
+  require(level <= kMaxStackedBlocksLevel, "the stacked-blocks mesh level must be in [0, " +
+                                              std::to_string(kMaxStackedBlocksLevel) + "] (got " +
+                                              std::to_string(level) + ")");
+  mesh::Mesh3 m = mesh::stacked_blocks(level);
+  for (const auto& [group, axis] : {std::pair{"symmetry_x", 0}, std::pair{"symmetry_y", 1}}) {
+    auto& plane = m.boundaries[group];
+    for (const char* sides : {"slave_sides", "master_sides"}) {
+      for (const mesh::Face& f : m.boundary(sides)) {
+        bool on_plane = true;
+        for (int v : f.vertices()) on_plane = on_plane && m.nodes[static_cast<std::size_t>(v)](axis) == 0.0;
+        if (on_plane) plane.push_back(f);
+      }
+    }
+  }
+  return m;
+}
+
+void check_no_uz(const CaseSpec& spec) {
+  for (const DirichletSpec& d : spec.dirichlet) {
+    require(!d.uz, "Dirichlet condition on '" + d.group + "' of " + context(spec) +
+                       " gives uz, but the case is two-dimensional (its mesh has triangles)");
+  }
+}
+
 }  // namespace
+
+mesh::Mesh3 reference_mesh3(const CaseSpec& spec, int level) {
+  check_case_spec(spec);
+  require(level >= 0, "refinement level must be >= 0 (got " + std::to_string(level) + ")");
+  require(case_dimension(spec) == 3, context(spec) + " is two-dimensional (its mesh has triangles), not 3D");
+  require(spec.tractions.empty() && spec.bodies[0].load.isZero(0.0) && spec.bodies[1].load.isZero(0.0),
+          context(spec) + " is three-dimensional: its loads are Dirichlet data only (tractions and body loads "
+                          "are read in 2D cases)");
+  for (const ParameterSpec& p : spec.parameters) {
+    require(p.kind != ParameterKind::BodyScaling, context(spec) + " is three-dimensional: parameter '" + p.name +
+                                                      "' of kind body-scaling is read in 2D cases only");
+  }
+  mesh::Mesh3 m = spec.mesh.generator.empty() ? mesh_from_file<3>(spec, level) : generated_mesh3(spec.mesh.generator, level);
+  for (const DirichletSpec& d : spec.dirichlet) m.boundary(d.group);  // throws naming a missing group
+  mesh::validate(m);
+  return m;
+}
 
 mesh::Mesh reference_mesh(const CaseSpec& spec, int level) {
   check_case_spec(spec);
   require(level >= 0, "refinement level must be >= 0 (got " + std::to_string(level) + ")");
+  require(case_dimension(spec) == 2, context(spec) + " is three-dimensional (its mesh has tetrahedra): this "
+                                                     "operation supports 2D cases only");
+  check_no_uz(spec);
   const MeshSpec& ms = spec.mesh;
   if (ms.generator == "hertz") {
     mesh::HertzGeometry geometry;
@@ -53,24 +140,7 @@ mesh::Mesh reference_mesh(const CaseSpec& spec, int level) {
     check_tractions(spec, m);
     return m;
   }
-  require(level == 0, "refinement level " + std::to_string(level) + " requested, but the mesh of " + context(spec) +
-                          " is the file " + ms.msh_file + " (level 0 only)");
-  mesh::MshGroups groups;
-  groups.body_groups = {ms.body_groups[0], ms.body_groups[1]};
-  groups.required_boundaries = {ms.slave_group, ms.master_group};
-  mesh::Mesh m = mesh::read_msh(ms.msh_file, groups);
-  require(m.num_bodies() == 2, "the .msh file " + ms.msh_file + " of " + context(spec) + " has " +
-                                   std::to_string(m.num_bodies()) + " body, a contact case needs two");
-  map_contact_groups(m, ms);
-  for (const DirichletSpec& d : spec.dirichlet) {
-    if (!m.has_boundary(d.group)) {
-      std::string present;
-      for (const auto& [name, edges] : m.boundaries) present += " " + name;
-      throw Error("Dirichlet group '" + d.group + "' of " + context(spec) + " is not a 1D physical group of " +
-                  ms.msh_file + " (groups:" + present + ")");
-    }
-  }
-  mesh::validate(m);
+  mesh::Mesh m = mesh_from_file<2>(spec, level);
   check_tractions(spec, m);
   return m;
 }
@@ -110,6 +180,7 @@ std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, const Mu
     c.group = d.group;
     if (d.ux) c.ux = d.ux->at(mu);
     if (d.uy) c.uy = d.uy->at(mu);
+    if (d.uz) c.uz = d.uz->at(mu);
     out.push_back(std::move(c));
   }
   return out;

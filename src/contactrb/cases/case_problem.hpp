@@ -16,6 +16,13 @@ namespace contactrb::cases {
 // the file and the problem (missing file, missing group, level > 0 for a .msh).
 mesh::Mesh reference_mesh(const CaseSpec& spec, int level = 0);
 
+// The reference mesh of a three-dimensional case (generator "hertz-3d" or "stacked-blocks", or a
+// .msh file of tetrahedra), with the same checks. "hertz-3d" at level k has the contact-zone size
+// mesh::hertz_3d_fine_size_for_level(k); "stacked-blocks" is mesh::stacked_blocks(k) with the
+// groups "symmetry_x" and "symmetry_y" (the block faces on x = 0 and y = 0) added. Throws
+// contactrb::Error for a 2D case, a level outside the generator's range, or as reference_mesh.
+mesh::Mesh3 reference_mesh3(const CaseSpec& spec, int level = 0);
+
 // Throws contactrb::Error naming the case for a traction group missing from `reference`, or
 // on another body than the case says (reference_mesh runs it; for built-in generators too).
 void check_tractions(const CaseSpec& spec, const mesh::Mesh& reference);

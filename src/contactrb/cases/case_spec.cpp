@@ -10,6 +10,7 @@
 #include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/mesh/geometries.hpp"
+#include "contactrb/mesh/msh_io.hpp"
 #include "contactrb/common/number_text.hpp"
 
 namespace contactrb::cases {
@@ -29,6 +30,10 @@ constexpr double kRingBlockNu = 0.3;
 // fit a ring of radius 1). 0.1 gave the same active set at mu = 1 and 1.13 (10 rows);
 // 0.2 (the ring thickness) gives 18 and 16 rows (Fig. 18: the zone varies with mu).
 constexpr double kRingPush = 0.2;
+// hertz-3d: the moduli of hertz-a, nu = 0.3 (docs/cases.md); patch-3d: the 2D patch example's.
+constexpr double kHertz3dNu = 0.3;
+constexpr double kPatchE = 10.0;
+constexpr double kPatchNu = 0.3;
 
 AffineValue constant(double a) { return {a, 0.0, 0}; }
 
@@ -173,6 +178,56 @@ CaseSpec ring_block() {
   return c;
 }
 
+// The Hertz sphere problem, quarter model (docs/cases.md, "hertz-3d"): the hemisphere's flat top
+// pushed down by mu, the block's bottom clamped, rollers on the symmetry planes.
+CaseSpec hertz_3d() {
+  CaseSpec c;
+  c.name = "hertz-3d";
+  c.description = "quarter of a hemisphere R = 1 pressed on a block, imposed displacement mu in [0.01, 0.03]";
+  c.mesh.generator = "hertz-3d";
+  c.bodies = {BodySpec{kHertzE, kHertz3dNu, Eigen::Vector2d::Zero()},
+              BodySpec{kHertzE, kHertz3dNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"top", constant(0.0), constant(0.0), AffineValue{0.0, -1.0, 0}},
+                 {"bottom", constant(0.0), constant(0.0), constant(0.0)},
+                 {"symmetry_x", constant(0.0), std::nullopt, std::nullopt},
+                 {"symmetry_y", std::nullopt, constant(0.0), std::nullopt}};
+  c.constraint = contact::Discretization::Collocation;
+  ParameterSpec& p = c.parameters.emplace_back();
+  p.name = "imposed displacement";
+  p.kind = ParameterKind::DirichletScale;
+  p.min = 0.01;
+  p.max = 0.03;
+  p.reference = 0.02;
+  const std::vector<double> training = arithmetic_set(0.01, 0.002, 11);  // 0.01 + 0.002 i, i = 0..10
+  c.sets = sets_1d(training, midpoints(training));
+  return c;
+}
+
+// The 3D patch test (docs/cases.md, "patch-3d"): two unit-square blocks of height 1/2 with
+// non-matching meshes, the top pushed down by mu, the bottom held vertically, rollers on the
+// planes x = 0 and y = 0: uniaxial stress, uniform pressure E mu.
+CaseSpec patch_3d() {
+  CaseSpec c;
+  c.name = "patch-3d";
+  c.description = "two stacked blocks, non-matching meshes, uniform compression mu in [0.01, 0.03], LAC";
+  c.mesh.generator = "stacked-blocks";
+  c.bodies = {BodySpec{kPatchE, kPatchNu, Eigen::Vector2d::Zero()}, BodySpec{kPatchE, kPatchNu, Eigen::Vector2d::Zero()}};
+  c.dirichlet = {{"top", std::nullopt, std::nullopt, AffineValue{0.0, -1.0, 0}},
+                 {"bottom", std::nullopt, std::nullopt, constant(0.0)},
+                 {"symmetry_x", constant(0.0), std::nullopt, std::nullopt},
+                 {"symmetry_y", std::nullopt, constant(0.0), std::nullopt}};
+  c.constraint = contact::Discretization::LAC;
+  ParameterSpec& p = c.parameters.emplace_back();
+  p.name = "imposed displacement";
+  p.kind = ParameterKind::DirichletScale;
+  p.min = 0.01;
+  p.max = 0.03;
+  p.reference = 0.02;
+  const std::vector<double> training = arithmetic_set(0.01, 0.005, 5);  // 0.01 + 0.005 i, i = 0..4
+  c.sets = sets_1d(training, midpoints(training));
+  return c;
+}
+
 }  // namespace
 
 namespace {
@@ -185,8 +240,10 @@ void check_mesh_spec(const MeshSpec& m, const std::string& where) {
   const bool gen = !m.generator.empty();
   const bool msh = !m.msh_file.empty();
   if (gen == msh) fail_case("the mesh needs exactly one of a generator or a .msh file", where);
-  if (gen && m.generator != "hertz" && m.generator != "ring-block") {
-    fail_case("unknown mesh generator '" + m.generator + "' (expected hertz or ring-block)", where);
+  if (gen && m.generator != "hertz" && m.generator != "ring-block" && m.generator != "hertz-3d" &&
+      m.generator != "stacked-blocks") {
+    fail_case("unknown mesh generator '" + m.generator + "' (expected hertz, ring-block, hertz-3d or stacked-blocks)",
+              where);
   }
   for (const std::string& g : m.body_groups) {
     if (g.empty()) fail_case("empty body group name", where);
@@ -261,8 +318,8 @@ void check_dirichlet_value(const CaseSpec& c, const std::string& group, const Af
 void check_dirichlet(const CaseSpec& c, std::vector<bool>& used, const std::string& where) {
   for (const DirichletSpec& d : c.dirichlet) {
     if (d.group.empty()) fail_case("a Dirichlet condition has no group", where);
-    if (!d.ux && !d.uy) fail_case("Dirichlet condition on '" + d.group + "' prescribes no component", where);
-    for (const auto& v : {d.ux, d.uy}) {
+    if (!d.ux && !d.uy && !d.uz) fail_case("Dirichlet condition on '" + d.group + "' prescribes no component", where);
+    for (const auto& v : {d.ux, d.uy, d.uz}) {
       if (v) check_dirichlet_value(c, d.group, *v, used, where);
     }
   }
@@ -354,12 +411,18 @@ void check_case_spec(const CaseSpec& c) {
   check_sets(c, where);
 }
 
+int case_dimension(const CaseSpec& spec) {
+  const std::string& g = spec.mesh.generator;
+  if (!g.empty()) return g == "hertz-3d" || g == "stacked-blocks" ? 3 : 2;
+  return mesh::msh_dimension(spec.mesh.msh_file);
+}
+
 bool has_affine_dirichlet(const CaseSpec& spec) { return !dirichlet_parameters(spec).empty(); }
 
 std::vector<int> dirichlet_parameters(const CaseSpec& spec) {
   std::set<int> k;
   for (const DirichletSpec& d : spec.dirichlet) {
-    for (const auto& v : {d.ux, d.uy}) {
+    for (const auto& v : {d.ux, d.uy, d.uz}) {
       if (v && v->b != 0.0) k.insert(v->parameter);
     }
   }
@@ -400,6 +463,8 @@ CaseSpec builtin_case_spec(const std::string& name) {
   CaseSpec c = name == "hertz-a"    ? hertz_a()
                : name == "hertz-b"  ? hertz_b()
                : name == "hertz-3p" ? hertz_3p()
+               : name == "hertz-3d" ? hertz_3d()
+               : name == "patch-3d" ? patch_3d()
                                     : ring_block();
   c.origin = kBuiltin;
   return c;

@@ -18,15 +18,17 @@ namespace contactrb::cases {
 // Where the reference mesh (Omega = Omega(reference)) comes from: exactly one of a
 // built-in generator or a Gmsh .msh file.
 struct MeshSpec {
-  // Built-in Gmsh geometry: "hertz" (two half-disks R1 = R2 = 1, gap 0.1, matching) or
-  // "ring-block" (docs/meshes.md); refined by the `level` of make_problem.
+  // Built-in geometry: "hertz" (two half-disks R1 = R2 = 1, gap 0.1, matching) or
+  // "ring-block" (docs/meshes.md) in 2D; "hertz-3d" (mesh::generate_hertz_3d) or
+  // "stacked-blocks" (mesh::stacked_blocks) in 3D; refined by the `level` of make_problem.
   std::string generator;
   // .msh file (ASCII 4.1): an absolute path, or relative to the directory of the TOML
   // file it came from (resolved by the loader, so this holds the resolved path).
   std::string msh_file;
-  std::array<std::string, 2> body_groups{"body1", "body2"};  // 2D groups: slave, master
-  std::string slave_group = "slave";    // 1D group mapped to the mesh group "slave"
-  std::string master_group = "master";  // 1D group mapped to the mesh group "master"
+  // Groups of the mesh's dimension (2D: surfaces, 3D: volumes): slave, master.
+  std::array<std::string, 2> body_groups{"body1", "body2"};
+  std::string slave_group = "slave";    // boundary group (one dimension less) mapped to "slave"
+  std::string master_group = "master";  // boundary group mapped to "master"
 };
 
 // Material and constant body force (per unit volume of Omega_i(mu)) of one body.
@@ -50,6 +52,7 @@ struct DirichletSpec {
   std::string group;
   std::optional<AffineValue> ux;
   std::optional<AffineValue> uy;
+  std::optional<AffineValue> uz = std::nullopt;  // 3D cases only (an initializer: 2D call sites omit it)
 };
 
 // A surface load (Neumann) on a boundary group, per unit length of Omega(mu): a fixed vector
@@ -98,6 +101,10 @@ struct CaseSpec {
 // parameter of a body without load, an inconsistent parameter list or set.
 // Does not read the mesh (group names are checked by reference_mesh / make_problem).
 void check_case_spec(const CaseSpec& spec);
+
+// The dimension of the case's mesh: 2 or 3, from its generator or from the elements of its
+// .msh file (mesh::msh_dimension). Throws contactrb::Error for a .msh file that cannot be read.
+int case_dimension(const CaseSpec& spec);
 
 // The built-in cases (paper Section 6; data in docs/cases.md). Throws contactrb::Error
 // naming an unknown case and listing the known ones.

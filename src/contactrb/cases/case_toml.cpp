@@ -350,8 +350,10 @@ void Reader::read_mesh(const toml::table& root, CaseSpec& c) const {
   }
   if (generator != nullptr) {
     c.mesh.generator = string(*generator, "mesh.generator");
-    if (c.mesh.generator != "hertz" && c.mesh.generator != "ring-block") {
-      fail(generator, "key 'mesh.generator' must be hertz or ring-block, got '" + c.mesh.generator + "'");
+    if (c.mesh.generator != "hertz" && c.mesh.generator != "ring-block" && c.mesh.generator != "hertz-3d" &&
+        c.mesh.generator != "stacked-blocks") {
+      fail(generator, "key 'mesh.generator' must be hertz, ring-block, hertz-3d or stacked-blocks, got '" +
+                          c.mesh.generator + "'");
     }
     return;
   }
@@ -490,7 +492,7 @@ void Reader::read_parameter_body(const toml::table& par, const std::string& path
   }
 }
 
-// [[dirichlet]]: a group and ux and/or uy.
+// [[dirichlet]]: a group and ux, uy and/or uz (uz: 3D meshes, checked by reference_mesh).
 void Reader::read_dirichlet(const toml::table& root, CaseSpec& c) const {
   const toml::node* d = root.get("dirichlet");
   if (d == nullptr) return;
@@ -499,12 +501,15 @@ void Reader::read_dirichlet(const toml::table& root, CaseSpec& c) const {
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const toml::table& t = *arr->get(i)->as_table();
     const std::string path = "dirichlet[" + std::to_string(i + 1) + "]";
-    check_keys(t, path, {"group", "ux", "uy"});
+    check_keys(t, path, {"group", "ux", "uy", "uz"});
     DirichletSpec ds;
     ds.group = string(required(t, path, "group"), path + ".group");
     if (const toml::node* v = t.get("ux")) ds.ux = affine(*v, path + ".ux", c.parameters);
     if (const toml::node* v = t.get("uy")) ds.uy = affine(*v, path + ".uy", c.parameters);
-    if (!ds.ux && !ds.uy) fail(&t, "[[dirichlet]] on group '" + ds.group + "' needs 'ux' or 'uy' (" + path + ")");
+    if (const toml::node* v = t.get("uz")) ds.uz = affine(*v, path + ".uz", c.parameters);
+    if (!ds.ux && !ds.uy && !ds.uz) {
+      fail(&t, "[[dirichlet]] on group '" + ds.group + "' needs 'ux', 'uy' or 'uz' (" + path + ")");
+    }
     c.dirichlet.push_back(std::move(ds));
   }
 }
@@ -662,6 +667,7 @@ std::string to_toml(const CaseSpec& c) {
     os << "\n[[dirichlet]]\ngroup = " << quoted(d.group) << "\n";
     if (d.ux) os << "ux = " << affine_text(*d.ux, c.parameters) << "\n";
     if (d.uy) os << "uy = " << affine_text(*d.uy, c.parameters) << "\n";
+    if (d.uz) os << "uz = " << affine_text(*d.uz, c.parameters) << "\n";
   }
   for (const TractionSpec& t : c.tractions) {
     os << "\n[[traction]]\ngroup = " << quoted(t.group) << "\n";
@@ -712,7 +718,9 @@ bool same_case(const CaseSpec& a, const CaseSpec& b) {
   for (std::size_t i = 0; i < a.dirichlet.size(); ++i) {
     const DirichletSpec& x = a.dirichlet[i];
     const DirichletSpec& y = b.dirichlet[i];
-    if (x.group != y.group || !same_value(x.ux, y.ux) || !same_value(x.uy, y.uy)) return false;
+    if (x.group != y.group || !same_value(x.ux, y.ux) || !same_value(x.uy, y.uy) || !same_value(x.uz, y.uz)) {
+      return false;
+    }
   }
   if (a.tractions.size() != b.tractions.size()) return false;
   for (std::size_t i = 0; i < a.tractions.size(); ++i) {

@@ -14,6 +14,8 @@ const std::vector<CaseInfo>& builtin_cases() {
       {"hertz-b", "two half-disks, lower radius R2 = mu in [0.9, 1.12], non-matching meshes, collocation"},
       {"ring-block", "half-ring of radius mu in [0.95, 1.15] pressed on a softer block, LAC"},
       {"hertz-3p", "two half-disks: imposed displacement delta x lower radius R2 x lower modulus E2, collocation"},
+      {"hertz-3d", "quarter of a hemisphere R = 1 pressed on a block, imposed displacement mu in [0.01, 0.03]", 3},
+      {"patch-3d", "two stacked blocks, non-matching meshes, uniform compression mu in [0.01, 0.03], LAC", 3},
   };
   return cases;
 }
@@ -31,6 +33,10 @@ const CaseInfo& find_case(const std::string& name) {
 
 mesh::Mesh reference_mesh(const std::string& name, int level) {
   return reference_mesh(builtin_case_spec(name), level);
+}
+
+mesh::Mesh3 reference_mesh3(const std::string& name, int level) {
+  return reference_mesh3(builtin_case_spec(name), level);
 }
 
 }  // namespace contactrb::cases

@@ -11,6 +11,7 @@ namespace contactrb::cases {
 struct CaseInfo {
   std::string name;
   std::string summary;  // one line for `contactrb cases`
+  int dimension = 2;    // 2: triangles (plane strain), 3: tetrahedra
 };
 
 const std::vector<CaseInfo>& builtin_cases();
@@ -18,7 +19,9 @@ const std::vector<CaseInfo>& builtin_cases();
 const CaseInfo& find_case(const std::string& name);
 
 // Reference mesh of a built-in case (mu = reference value) at refinement level `level`
-// (0: the paper's mesh). Throws contactrb::Error for an unknown case or level < 0.
+// (0: the paper's mesh). Throws contactrb::Error for an unknown case, level < 0 or a 3D case.
 mesh::Mesh reference_mesh(const std::string& name, int level = 0);
+// The same for a three-dimensional built-in case (throws contactrb::Error for a 2D case).
+mesh::Mesh3 reference_mesh3(const std::string& name, int level = 0);
 
 }  // namespace contactrb::cases

@@ -17,9 +17,10 @@ namespace contactrb::io {
 
 namespace {
 
-// VTK cell types (vtkCellType.h): VTK_LINE, VTK_TRIANGLE.
+// VTK cell types (vtkCellType.h): VTK_LINE, VTK_TRIANGLE, VTK_TETRA.
 constexpr std::uint8_t kVtkLine = 3;
 constexpr std::uint8_t kVtkTriangle = 5;
+constexpr std::uint8_t kVtkTetra = 10;
 constexpr const char* kBodyField = "body";
 
 
@@ -37,7 +38,7 @@ std::string default_attributes(const std::vector<VtuField>& section, const char*
   std::string vectors;
   for (const VtuField& f : section) {
     if (f.components == 1 && scalars.empty()) scalars = f.name;
-    if (f.components == 2 && vectors.empty()) vectors = f.name;
+    if ((f.components == 2 || f.components == 3) && vectors.empty()) vectors = f.name;
   }
   std::string attrs;
   if (!scalars.empty()) attrs += " Scalars=\"" + xml_escape(scalars) + "\"";
@@ -81,27 +82,30 @@ void data_array_header(std::ostream& out, const char* indent, const char* type, 
   out << extra << " format=\"appended\" offset=\"" << offset << "\"/>\n";
 }
 
-// A Float64 field: scalars as they are, 2D vectors with a third component 0.
+// A Float64 field: 2D vectors with a third component 0, other fields as they are.
 void write_field(std::ostream& out, AppendedBlocks& blocks, const VtuField& f) {
-  const std::size_t entities = f.values.size() / static_cast<std::size_t>(f.components);
-  const int written_components = f.components == 2 ? 3 : 1;
-  const std::uint64_t offset = blocks.begin<double>(entities * static_cast<std::size_t>(written_components));
+  const auto components = static_cast<std::size_t>(f.components);
+  const std::size_t entities = f.values.size() / components;
+  const std::size_t written_components = f.components == 2 ? 3 : components;
+  const std::uint64_t offset = blocks.begin<double>(entities * written_components);
   for (std::size_t i = 0; i < entities; ++i) {
-    if (f.components == 2) {
-      blocks.put(f.values[2 * i]);
-      blocks.put(f.values[2 * i + 1]);
-      blocks.put(0.0);
-    } else {
-      blocks.put(f.values[i]);
-    }
+    for (std::size_t c = 0; c < components; ++c) blocks.put(f.values[components * i + c]);
+    if (f.components == 2) blocks.put(0.0);
   }
-  data_array_header(out, "        ", "Float64", f.name, written_components, offset);
+  data_array_header(out, "        ", "Float64", f.name, static_cast<int>(written_components), offset);
+}
+
+std::vector<Eigen::Vector3d> points_3d(const std::vector<Eigen::Vector2d>& points) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (const Eigen::Vector2d& p : points) out.emplace_back(p.x(), p.y(), 0.0);
+  return out;
 }
 
 }  // namespace
 
 VtuWriter::VtuWriter(const mesh::Mesh& mesh)
-    : points_(mesh.nodes),
+    : points_(points_3d(mesh.nodes)),
       nodes_per_cell_(3),
       cell_type_(kVtkTriangle),
       has_body_(true),
@@ -110,9 +114,31 @@ VtuWriter::VtuWriter(const mesh::Mesh& mesh)
   for (const auto& tri : mesh.triangles) connectivity_.insert(connectivity_.end(), tri.begin(), tri.end());
 }
 
-VtuWriter VtuWriter::lines(std::vector<Eigen::Vector2d> points, std::vector<std::array<int, 2>> segments) {
+VtuWriter::VtuWriter(const mesh::Mesh3& mesh)
+    : points_(mesh.nodes.begin(), mesh.nodes.end()),
+      dim_(3),
+      nodes_per_cell_(4),
+      cell_type_(kVtkTetra),
+      has_body_(true),
+      body_(mesh.body.begin(), mesh.body.end()) {
+  connectivity_.reserve(4 * mesh.tetrahedra.size());
+  for (const auto& tet : mesh.tetrahedra) connectivity_.insert(connectivity_.end(), tet.begin(), tet.end());
+}
+
+VtuWriter VtuWriter::triangles(std::vector<Eigen::Vector3d> points, std::vector<std::array<int, 3>> triangles) {
   VtuWriter w;
   w.points_ = std::move(points);
+  w.dim_ = 3;
+  w.nodes_per_cell_ = 3;
+  w.cell_type_ = kVtkTriangle;
+  w.connectivity_.reserve(3 * triangles.size());
+  for (const auto& t : triangles) w.connectivity_.insert(w.connectivity_.end(), t.begin(), t.end());
+  return w;
+}
+
+VtuWriter VtuWriter::lines(std::vector<Eigen::Vector2d> points, std::vector<std::array<int, 2>> segments) {
+  VtuWriter w;
+  w.points_ = points_3d(points);
   w.nodes_per_cell_ = 2;
   w.cell_type_ = kVtkLine;
   w.connectivity_.reserve(2 * segments.size());
@@ -156,7 +182,7 @@ VtuWriter& VtuWriter::add_point_scalar(const std::string& name, const Eigen::Ref
 }
 
 VtuWriter& VtuWriter::add_point_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(point_data_, "point", num_points(), name, 2, as_span(values));
+  add(point_data_, "point", num_points(), name, dim_, as_span(values));
   return *this;
 }
 
@@ -166,7 +192,14 @@ VtuWriter& VtuWriter::add_cell_scalar(const std::string& name, const Eigen::Ref<
 }
 
 VtuWriter& VtuWriter::add_cell_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values) {
-  add(cell_data_, "cell", num_cells(), name, 2, as_span(values));
+  add(cell_data_, "cell", num_cells(), name, dim_, as_span(values));
+  return *this;
+}
+
+VtuWriter& VtuWriter::add_cell_field(const std::string& name, int components,
+                                     const Eigen::Ref<const Eigen::VectorXd>& values) {
+  require(components >= 1, "VTU cell field '" + name + "' needs at least one component");
+  add(cell_data_, "cell", num_cells(), name, components, as_span(values));
   return *this;
 }
 
@@ -181,7 +214,7 @@ VtuWriter& VtuWriter::add_field_data(const std::string& name, double value) {
 
 VtuWriter& VtuWriter::deform_by(const std::string& point_vector, double scale) {
   const VtuField* f = find_field(point_data_, point_vector);
-  require(f != nullptr && f->components == 2,
+  require(f != nullptr && f->components == dim_,
           "cannot deform the VTU mesh by '" + point_vector + "': no point vector field of that name");
   require(std::isfinite(scale), "VTU deformation scale must be finite");
   deform_field_ = point_vector;
@@ -193,7 +226,7 @@ void VtuWriter::write(const std::string& path) const {
   const int n = num_points();
   const int m = num_cells();
   require(!has_body_ || static_cast<int>(body_.size()) == m,
-          "cannot write '" + path + "': mesh has " + std::to_string(m) + " triangles but " +
+          "cannot write '" + path + "': mesh has " + std::to_string(m) + " cells but " +
               std::to_string(body_.size()) + " body ids");
   for (std::size_t k = 0; k < connectivity_.size(); ++k) {
     const std::int64_t v = connectivity_[k];
@@ -238,14 +271,13 @@ void VtuWriter::write(const std::string& path) const {
   {
     const std::uint64_t offset = blocks.begin<double>(3 * points_.size());
     for (std::size_t i = 0; i < points_.size(); ++i) {
-      Eigen::Vector2d x = points_[i];
-      if (deform != nullptr) {
-        x.x() += deform_scale_ * deform->values[2 * i];
-        x.y() += deform_scale_ * deform->values[2 * i + 1];
+      Eigen::Vector3d x = points_[i];
+      for (int c = 0; deform != nullptr && c < dim_; ++c) {
+        x(c) += deform_scale_ * deform->values[static_cast<std::size_t>(dim_) * i + static_cast<std::size_t>(c)];
       }
       blocks.put(x.x());
       blocks.put(x.y());
-      blocks.put(0.0);
+      blocks.put(x.z());
     }
     xml << "      <Points>\n";
     data_array_header(xml, "        ", "Float64", "Points", 3, offset);
@@ -280,5 +312,6 @@ void VtuWriter::write(const std::string& path) const {
 }
 
 void write_vtu(const mesh::Mesh& mesh, const std::string& path) { VtuWriter(mesh).write(path); }
+void write_vtu(const mesh::Mesh3& mesh, const std::string& path) { VtuWriter(mesh).write(path); }
 
 }  // namespace contactrb::io

@@ -1,14 +1,14 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu) output for ParaView: a triangle mesh, or a set of line
-// segments (a contact boundary), with point, cell and field data. Binary: every array is a
+// VTK XML UnstructuredGrid (.vtu) output for ParaView: a triangle or tetrahedron mesh, or a set
+// of line segments or surface triangles (a contact boundary), with point, cell and field data. Binary: every array is a
 // block of VTK's "appended raw" data (little-endian, each block preceded by its byte count as
 // UInt64), so a file is exact (no decimal round trip) and about a third of the ASCII size;
-// the XML header stays readable text (docs/file-formats.md, "VTU files (ParaView)"). 2D points are written as
-// 3D with z = 0, 2D vectors as 3-component vectors with z = 0. The cell data of a triangle
-// mesh always holds "body" (Int32, mesh.hpp body ids).
+// the XML header stays readable text (docs/file-formats.md, "VTU files (ParaView)"). 2D points are
+// written as 3D with z = 0, 2D vectors as 3-component vectors with z = 0. The cell data of a
+// triangle or tetrahedron mesh always holds "body" (Int32, mesh.hpp body ids).
 //
 //   io::VtuWriter(mesh)
-//       .add_point_vector("displacement", u)       // u in DOF numbering (2i, 2i+1)
+//       .add_point_vector("displacement", u)       // u in DOF numbering (Dim i + c)
 //       .add_point_scalar("contact_pressure", p)   // one value per node
 //       .add_cell_scalar("von_mises", s)           // one value per triangle
 //       .add_field_data("delta", 0.3)              // one value for the whole dataset
@@ -37,6 +37,12 @@ class VtuWriter {
  public:
   // The nodes and triangles of `mesh` (copied), cell data "body".
   explicit VtuWriter(const mesh::Mesh& mesh);
+  // The nodes and tetrahedra (VTK_TETRA) of `mesh` (copied), cell data "body".
+  explicit VtuWriter(const mesh::Mesh3& mesh);
+
+  // Triangle cells in 3D (a surface, e.g. the slave boundary): triangle k joins the points
+  // triangles[k][0..2]. No "body" cell data; vectors have 3 components. Indices are checked by write().
+  static VtuWriter triangles(std::vector<Eigen::Vector3d> points, std::vector<std::array<int, 3>> triangles);
 
   // Line cells (VTK_LINE): segment k joins points[segments[k][0]] and points[segments[k][1]].
   // No "body" cell data. Indices are checked by write().
@@ -46,11 +52,14 @@ class VtuWriter {
   // size is wrong, the name is empty or already used (in the same data section), or a
   // value is not finite (a failed solve's field, not one to look at).
   VtuWriter& add_point_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
-  // 2 values per node, in the DOF numbering of mesh.hpp (node i: 2i, 2i+1).
+  // 2 values per node (3 for a 3D writer), in the DOF numbering of mesh.hpp (node i: Dim i + c).
   VtuWriter& add_point_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
   VtuWriter& add_cell_scalar(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
-  // 2 values per cell (cell t: 2t, 2t+1).
+  // 2 values per cell (3 for a 3D writer; cell t: Dim t + c).
   VtuWriter& add_cell_vector(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values);
+  // `components` values per cell written as they are (e.g. a 3 x 3 tensor, 9 components, row
+  // by row, which ParaView shows as a tensor).
+  VtuWriter& add_cell_field(const std::string& name, int components, const Eigen::Ref<const Eigen::VectorXd>& values);
   // Field data: values of the whole dataset (not per point or cell), e.g. the parameter
   // values; one tuple per value, at least one value.
   VtuWriter& add_field_data(const std::string& name, std::span<const double> values);
@@ -78,7 +87,8 @@ class VtuWriter {
   void add(std::vector<VtuField>& section, const char* section_name, int entities, const std::string& name,
            int components, std::span<const double> values);
 
-  std::vector<Eigen::Vector2d> points_;
+  std::vector<Eigen::Vector3d> points_;  // 2D points with z = 0
+  int dim_ = 2;                          // components of point and cell vectors
   std::vector<std::int64_t> connectivity_;  // nodes_per_cell_ point indices per cell
   int nodes_per_cell_ = 3;
   std::uint8_t cell_type_ = 0;  // vtkCellType.h
@@ -93,5 +103,6 @@ class VtuWriter {
 
 // The mesh alone (cell data "body").
 void write_vtu(const mesh::Mesh& mesh, const std::string& path);
+void write_vtu(const mesh::Mesh3& mesh, const std::string& path);
 
 }  // namespace contactrb::io

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 #include <unordered_map>
 
 #include "contactrb/common/error.hpp"
@@ -21,6 +22,7 @@ std::mutex& gmsh_mutex() {
 // Gmsh element type codes (Gmsh reference manual, "MSH file format").
 constexpr int kGmshLine2 = 1;
 constexpr int kGmshTriangle3 = 2;
+constexpr int kGmshTetrahedron4 = 4;
 
 }  // namespace
 
@@ -86,8 +88,10 @@ int add_plane_surface(const std::vector<int>& loop_curves) {
   return gmsh::model::geo::addPlaneSurface({loop});
 }
 
-void mesh_2d(const std::vector<SizeRamp>& ramps) {
-  gmsh::model::geo::synchronize();
+namespace {
+
+// The background size field: the minimum over `ramps` of their thresholds.
+void set_background_field(const std::vector<SizeRamp>& ramps) {
   std::vector<double> thresholds;
   for (const SizeRamp& r : ramps) {
     const int d = gmsh::model::mesh::field::add("MathEval");
@@ -96,18 +100,56 @@ void mesh_2d(const std::vector<SizeRamp>& ramps) {
     gmsh::model::mesh::field::setNumber(t, "InField", d);
     gmsh::model::mesh::field::setNumber(t, "SizeMin", r.size_min);
     gmsh::model::mesh::field::setNumber(t, "SizeMax", r.size_max);
-    gmsh::model::mesh::field::setNumber(t, "DistMin", 0.0);
+    gmsh::model::mesh::field::setNumber(t, "DistMin", r.dist_min);
     gmsh::model::mesh::field::setNumber(t, "DistMax", r.dist_max);
     thresholds.push_back(t);
   }
   const int background = gmsh::model::mesh::field::add("Min");
   gmsh::model::mesh::field::setNumbers(background, "FieldsList", thresholds);
   gmsh::model::mesh::field::setAsBackgroundMesh(background);
+}
+
+}  // namespace
+
+void mesh_2d(const std::vector<SizeRamp>& ramps) {
+  gmsh::model::geo::synchronize();
+  set_background_field(ramps);
   gmsh::model::mesh::generate(2);
 }
 
-Mesh extract_mesh(const std::map<int, int>& surface_body,
-                  const std::map<std::string, std::vector<int>>& groups) {
+void mesh_3d_occ(const std::vector<SizeRamp>& ramps) {
+  gmsh::model::occ::synchronize();
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: deterministic on one thread
+  set_background_field(ramps);
+  gmsh::model::mesh::generate(3);
+}
+
+namespace {
+
+// The Gmsh element type of the cells and of the boundary facets of a Dim-dimensional mesh.
+template <int Dim>
+constexpr int kGmshCell = Dim == 2 ? kGmshTriangle3 : kGmshTetrahedron4;
+template <int Dim>
+constexpr int kGmshFacet = Dim == 2 ? kGmshLine2 : kGmshTriangle3;
+
+// The node tags of the elements of entity (dim, tag), checked to be of `type`.
+std::vector<std::size_t> element_nodes(int dim, int tag, int type) {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags;
+  std::vector<std::vector<std::size_t>> node_tags;
+  gmsh::model::mesh::getElements(types, element_tags, node_tags, dim, tag);
+  std::vector<std::size_t> nodes;
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    require(types[k] == type, "gmsh produced element type " + std::to_string(types[k]) + " in dimension " +
+                                  std::to_string(dim) + " (expected type " + std::to_string(type) + ")");
+    nodes.insert(nodes.end(), node_tags[k].begin(), node_tags[k].end());
+  }
+  return nodes;
+}
+
+template <int Dim>
+SimplexMesh<Dim> extract_simplex_mesh(const std::map<int, int>& entity_body,
+                                      const std::map<std::string, std::vector<int>>& groups) {
   std::vector<std::size_t> tags;
   std::vector<double> coords;
   std::vector<double> parametric;
@@ -115,60 +157,66 @@ Mesh extract_mesh(const std::map<int, int>& surface_body,
   std::unordered_map<std::size_t, std::size_t> position;  // gmsh tag -> index in tags
   for (std::size_t k = 0; k < tags.size(); ++k) position.emplace(tags[k], k);
 
-  Mesh mesh;
+  SimplexMesh<Dim> mesh;
   std::unordered_map<std::size_t, int> index;  // gmsh tag -> mesh node
   auto node = [&](std::size_t tag) {
     auto [it, inserted] = index.emplace(tag, mesh.num_nodes());
     if (inserted) {
       const std::size_t k = position.at(tag);
-      mesh.nodes.emplace_back(coords[3 * k], coords[3 * k + 1]);
+      typename SimplexMesh<Dim>::Point p;
+      for (int c = 0; c < Dim; ++c) p(c) = coords[3 * k + static_cast<std::size_t>(c)];
+      mesh.nodes.push_back(p);
     }
     return it->second;
   };
 
-  for (const auto& [surface, body] : surface_body) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> element_tags;
-    std::vector<std::vector<std::size_t>> node_tags;
-    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
-    for (std::size_t k = 0; k < types.size(); ++k) {
-      require(types[k] == kGmshTriangle3,
-              "gmsh produced element type " + std::to_string(types[k]) + " (expected 3-node triangles)");
-      const auto& nt = node_tags[k];
-      for (std::size_t e = 0; e + 2 < nt.size(); e += 3) {
-        std::array<int, 3> tri{node(nt[e]), node(nt[e + 1]), node(nt[e + 2])};
-        mesh.triangles.push_back(tri);
-        mesh.body.push_back(body);
-        if (signed_area(mesh, mesh.num_triangles() - 1) < 0.0) {
-          std::swap(mesh.triangles.back()[1], mesh.triangles.back()[2]);
-        }
-      }
+  constexpr std::size_t kCellNodes = Dim + 1;
+  for (const auto& [entity, body] : entity_body) {
+    const std::vector<std::size_t> nt = element_nodes(Dim, entity, kGmshCell<Dim>);
+    for (std::size_t e = 0; e + kCellNodes <= nt.size(); e += kCellNodes) {
+      typename SimplexMesh<Dim>::Cell cell{};
+      for (std::size_t v = 0; v < kCellNodes; ++v) cell[v] = node(nt[e + v]);
+      mesh.cells().push_back(cell);
+      mesh.body.push_back(body);
+      if (signed_volume(mesh, mesh.num_cells() - 1) < 0.0) std::swap(mesh.cells().back()[1], mesh.cells().back()[2]);
     }
   }
 
-  std::map<std::pair<int, int>, int> directed;  // counter-clockwise triangle edges
-  for (const auto& tri : mesh.triangles) {
-    for (std::size_t k = 0; k < 3; ++k) directed.emplace(std::make_pair(tri[k], tri[(k + 1) % 3]), 1);
+  std::set<std::array<int, Dim>> outward;  // the cells' facets, oriented with their outward normal
+  for (const auto& cell : mesh.cells()) {
+    for (const auto& local : kCellFacets<Dim>) {
+      std::array<int, Dim> f{};
+      for (std::size_t k = 0; k < Dim; ++k) f[k] = cell[static_cast<std::size_t>(local[k])];
+      outward.insert(oriented_key<Dim>(f));
+    }
   }
-  for (const auto& [name, curves] : groups) {
-    auto& edges = mesh.boundaries[name];
-    for (int curve : curves) {
-      std::vector<int> types;
-      std::vector<std::vector<std::size_t>> element_tags;
-      std::vector<std::vector<std::size_t>> node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, curve);
-      for (std::size_t k = 0; k < types.size(); ++k) {
-        require(types[k] == kGmshLine2, "gmsh produced curve element type " + std::to_string(types[k]));
-        const auto& nt = node_tags[k];
-        for (std::size_t e = 0; e + 1 < nt.size(); e += 2) {
-          const int a = index.at(nt[e]);
-          const int b = index.at(nt[e + 1]);
-          edges.push_back(directed.count({a, b}) ? Edge{a, b} : Edge{b, a});
+  for (const auto& [name, entities] : groups) {
+    auto& facets = mesh.boundaries[name];
+    for (int entity : entities) {
+      const std::vector<std::size_t> nt = element_nodes(Dim - 1, entity, kGmshFacet<Dim>);
+      for (std::size_t e = 0; e + Dim <= nt.size(); e += Dim) {
+        std::array<int, Dim> f{};
+        for (std::size_t v = 0; v < Dim; ++v) f[v] = index.at(nt[e + v]);
+        if (outward.count(oriented_key<Dim>(f)) == 0) std::swap(f[Dim - 2], f[Dim - 1]);
+        if constexpr (Dim == 2) {
+          facets.push_back(Edge{f[0], f[1]});
+        } else {
+          facets.push_back(Face{f[0], f[1], f[2]});
         }
       }
     }
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh extract_mesh(const std::map<int, int>& surface_body, const std::map<std::string, std::vector<int>>& groups) {
+  return extract_simplex_mesh<2>(surface_body, groups);
+}
+
+Mesh3 extract_mesh3(const std::map<int, int>& volume_body, const std::map<std::string, std::vector<int>>& groups) {
+  return extract_simplex_mesh<3>(volume_body, groups);
 }
 
 void rethrow_as_error(const std::string& what) {

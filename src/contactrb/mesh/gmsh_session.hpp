@@ -13,7 +13,7 @@
 namespace contactrb::mesh::detail {
 
 // Locks the process-wide Gmsh mutex, initializes Gmsh silently (General.Terminal = 0) with
-// deterministic 2D settings (Frontal-Delaunay, one thread, order-1 triangles, sizes from
+// deterministic settings (2D: Frontal-Delaunay, one thread, order-1 triangles, sizes from
 // the background field only) and a fresh model; finalizes on destruction.
 class GmshSession {
  public:
@@ -26,13 +26,14 @@ class GmshSession {
   std::unique_lock<std::mutex> lock_;
 };
 
-// Graded size field: h = size_min where dist <= 0, growing linearly to size_max at
-// dist = dist_max. `distance` is a Gmsh MathEval expression in x, y.
+// Graded size field: h = size_min where dist <= dist_min, growing linearly to size_max at
+// dist = dist_max. `distance` is a Gmsh MathEval expression in x, y (and z in 3D).
 struct SizeRamp {
   std::string distance;
   double size_min = 0.0;
   double size_max = 0.0;
   double dist_max = 1.0;
+  double dist_min = 0.0;
 };
 
 // Built-in (geo) kernel helpers; call inside a GmshSession.
@@ -52,11 +53,16 @@ int add_plane_surface(const std::vector<int>& loop_curves);
 // Synchronizes, sets the background field min over `ramps` and meshes in 2D.
 void mesh_2d(const std::vector<SizeRamp>& ramps);
 
-// Converts the current Gmsh mesh: surfaces -> bodies, named curve sets -> boundary
-// groups (edges oriented with their body on the left). Triangles are made
-// counter-clockwise.
-Mesh extract_mesh(const std::map<int, int>& surface_body,
-                  const std::map<std::string, std::vector<int>>& groups);
+// Synchronizes the OpenCASCADE model, sets the background field min over `ramps` and meshes
+// in 3D (Delaunay, one thread).
+void mesh_3d_occ(const std::vector<SizeRamp>& ramps);
+
+// Converts the current Gmsh mesh (one code for both dimensions): entities of the mesh's
+// dimension (surfaces in 2D, volumes in 3D) -> bodies, named sets of entities of one dimension
+// less -> boundary groups (facets oriented with the outward normal of their body, mesh.hpp).
+// Cells are made positive.
+Mesh extract_mesh(const std::map<int, int>& surface_body, const std::map<std::string, std::vector<int>>& groups);
+Mesh3 extract_mesh3(const std::map<int, int>& volume_body, const std::map<std::string, std::vector<int>>& groups);
 
 // Call from a catch block inside a GmshSession: rethrows contactrb::Error unchanged and
 // anything else (Gmsh API failures) as contactrb::Error("<what>: <Gmsh's last error>").
