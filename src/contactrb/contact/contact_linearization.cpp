@@ -119,49 +119,6 @@ double difference_step(const mesh::Mesh3& mesh, const ContactPair3& pair, double
   return h;
 }
 
-// The movable DOFs row r of (K, g) can depend on in 3D: the slave nodes of I_r and the master
-// vertices of the triangles around each vertex of the triangle a slave node projects onto (their
-// normals make the vertex normals n_j and the rim conormals, contact_linearization.hpp).
-std::vector<std::vector<int>> row_inputs(const ContactPair3& pair, const ContactQuadrature& quadrature,
-                                         const PointwiseContact3& pw, const std::vector<char>& movable) {
-  const std::size_t M = pair.master.size();
-  std::vector<int> start(M + 1, 0), faces;  // CSR: the master triangles at each master vertex
-  for (const auto& t : pair.master_faces) {
-    for (int v : t) ++start[static_cast<std::size_t>(v) + 1];
-  }
-  for (std::size_t v = 0; v < M; ++v) start[v + 1] += start[v];
-  faces.resize(static_cast<std::size_t>(start[M]));
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < pair.master_faces.size(); ++f) {
-    for (int v : pair.master_faces[f]) faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
-  }
-  const auto add_node = [&movable](std::vector<int>& out, int node) {
-    for (int c = 0; c < 3; ++c) {
-      const int dof = 3 * node + c;
-      if (movable[static_cast<std::size_t>(dof)]) out.push_back(dof);
-    }
-  };
-  std::vector<std::vector<int>> inputs(static_cast<std::size_t>(quadrature.W.rows()));
-  for (int r = 0; r < quadrature.W.rows(); ++r) {
-    std::vector<int>& in = inputs[static_cast<std::size_t>(r)];
-    for (RowSparse::InnerIterator it(quadrature.W, r); it; ++it) {
-      const auto p = static_cast<std::size_t>(it.col());
-      add_node(in, pair.slave[p]);
-      const int f = pw.projection[p].facet;
-      if (f < 0) continue;
-      for (int v : pair.master_faces[static_cast<std::size_t>(f)]) {
-        for (int k = start[static_cast<std::size_t>(v)]; k < start[static_cast<std::size_t>(v) + 1]; ++k) {
-          for (int w : pair.master_faces[static_cast<std::size_t>(faces[static_cast<std::size_t>(k)])]) {
-            add_node(in, pair.master[static_cast<std::size_t>(w)]);
-          }
-        }
-      }
-    }
-    sort_unique(in);
-  }
-  return inputs;
-}
-
 // The columns of colour k of `v` set to u + shift, or back to u.
 void shift_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, double shift, Eigen::VectorXd& v) {
   for (std::size_t c = 0; c < cc.columns.size(); ++c) {
@@ -252,14 +209,14 @@ ContactMapsOf<Dim> maps_at(const mesh::SimplexMesh<Dim>& mesh, const ContactPair
   return maps;
 }
 
-// The movable DOFs of each row: 2D from the analytic module's chain rule (contact_derivatives.hpp).
+// The movable DOFs of each row (contact_derivatives.hpp).
 std::vector<std::vector<int>> inputs_of(const ContactPair& pair, const ContactQuadrature& quadrature,
                                         const PointwiseContact& pw, const std::vector<char>& movable) {
   return detail::row_inputs(pair, quadrature, pw, movable);
 }
 std::vector<std::vector<int>> inputs_of(const ContactPair3& pair, const ContactQuadrature& quadrature,
                                         const PointwiseContact3& pw, const std::vector<char>& movable) {
-  return row_inputs(pair, quadrature, pw, movable);
+  return detail::row_inputs(pair, quadrature, pw, movable);
 }
 
 // linearize_contact with the maps at u given, in either dimension.
@@ -272,12 +229,8 @@ ContactLinearizationOf<Dim> linearize(const mesh::SimplexMesh<Dim>& mesh, const 
   ContactLinearizationOf<Dim> lin;
   lin.maps = std::move(maps_at_u);
   if (options.method == LinearizationMethod::Analytic) {
-    if constexpr (has_analytic_linearization<Dim>) {
-      detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
-      return lin;
-    } else {
-      throw Error("linearize_contact: the analytic linearization is not available in 3D (use 'finite-difference')");
-    }
+    detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
+    return lin;
   }
   const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps.pointwise, movable);
   const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());

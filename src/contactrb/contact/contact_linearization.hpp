@@ -19,10 +19,11 @@
 //    independent check of the analytic one (tests/contact/test_contact_linearization.cpp).
 //    Its error is truncation (step)^2 plus round-off eps |x| / step: on hertz-a level 6
 //    (edges 1e-3 of the body) it stopped Newton's quadratic rate near 1e-9 (docs/solvers.md).
-// In 3D (Mesh3, ContactPair3) only FiniteDifference is available (docs/solvers.md, "Three
+// In 3D (Mesh3, ContactPair3, collocation) both methods exist (docs/solvers.md, "Three
 // dimensions"): the rows of slave node s read its DOFs and those of every master vertex of the
 // triangles around the vertices of the triangle it projects onto (their normals make the vertex
-// normals n_j and the rim conormals).
+// normals n_j and the rim conormals); the continuation on other branches
+// (linearize_contact_on_branches) is 2D only.
 // The maps are piecewise smooth (the closest segment switches at master vertices, where
 // they are continuous, docs/contact.md): there the analytic derivative is the one-sided
 // Jacobian of the branch taken at u, and the difference quotient a one-sided or averaged
@@ -92,8 +93,7 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options = {});
-// 3D: the same, by finite differences; LinearizationMethod::Analytic throws contactrb::Error
-// (the analytic derivative is 2D only).
+// 3D: the same (collocation rows, contact_derivatives.hpp for the analytic method).
 ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
                                         const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                         const Eigen::VectorXd& lambda, const std::vector<char>& movable,
@@ -102,9 +102,9 @@ ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPa
                                         const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                         const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                         ContactMaps3 maps_at_u, const LinearizationOptions& options = {});
-// The linearization methods available in a dimension: both in 2D, FiniteDifference in 3D.
+// The maps continued on prescribed branches (linearize_contact_on_branches) exist in 2D only.
 template <int Dim>
-constexpr bool has_analytic_linearization = Dim == 2;
+constexpr bool has_branch_continuation = Dim == 2;
 
 // Branches of the piecewise smooth pointwise maps: the closest segment and whether xi is clamped
 // (0 or 1, a vertex's wedge) or interior, and the candidate flag. Two projections lie on the same

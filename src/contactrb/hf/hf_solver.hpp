@@ -1,5 +1,5 @@
 #pragma once
-// High-fidelity contact solver, two methods (HFMethod):
+// High-fidelity contact solver in 2D and 3D (BasicHFSolver<Dim>), two methods (HFMethod):
 //  - Newton: semi-smooth Newton / primal-dual active set with the geometry linearized
 //    consistently; each Newton system reduced exactly to the contact DOFs of the active rows
 //    on one Cholesky of A_00 per solve (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");

@@ -136,13 +136,9 @@ bool NewtonSolve<Dim>::linearize() {
   const auto t0 = Clock::now();
   contact::ContactLinearizationOf<Dim> lin;
   if (!kacanov_phase_) {
-    contact::LinearizationOptions options = s_.linearization;
-    if constexpr (!contact::has_analytic_linearization<Dim>) {
-      options.method = contact::LinearizationMethod::FiniteDifference;  // docs/solvers.md, "Three dimensions"
-    }
     try {
       lin = contact::linearize_contact(*p_.mesh, *p_.pair, *p_.quadrature, st_.u, st_.lambda, movable_, st_.maps,
-                                       options);
+                                       s_.linearization);
     } catch (const Error& e) {
       return finish(solve::KacanovStatus::StepFailed, "semi-smooth Newton iteration " + std::to_string(k_) +
                                                           ": the contact maps cannot be linearized: " + e.what());
@@ -250,11 +246,11 @@ bool NewtonSolve<Dim>::solve_on_active_set() {
 // continued on the branches of u + du (contact::linearize_contact_on_branches): exact on
 // piecewise linear maps; repeated while the branches move, at most max_branch_passes times
 // (docs/performance.md, "Why the defaults are what they are", "Newton: branch passes near the
-// solution"). Then the whole step. 2D only: the continuation on branches is the analytic
-// derivative's (docs/solvers.md, "Three dimensions").
+// solution"). Then the whole step. 2D only: the continuation on branches is 2D only
+// (docs/solvers.md, "Three dimensions").
 template <int Dim>
 void NewtonSolve<Dim>::branch_passes() {
-  if (contact::has_analytic_linearization<Dim> && !pass_frozen_ && t_.max_branch_passes > 0 &&
+  if (contact::has_branch_continuation<Dim> && !pass_frozen_ && t_.max_branch_passes > 0 &&
       it_.residual <= t_.branch_passes_below &&
       p_.quadrature->discretization != contact::Discretization::LAC) {
     for (int pass = 0; pass < t_.max_branch_passes && branch_pass(); ++pass) {
@@ -269,7 +265,7 @@ void NewtonSolve<Dim>::branch_passes() {
 // is singular: the previous pass's step stays).
 template <int Dim>
 bool NewtonSolve<Dim>::branch_pass() {
-  if constexpr (!contact::has_analytic_linearization<Dim>) {
+  if constexpr (!contact::has_branch_continuation<Dim>) {
     return false;
   } else {
     // The projection at u + du reads du at the contact nodes only (beyond the read DOFs): the

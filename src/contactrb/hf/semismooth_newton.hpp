@@ -131,8 +131,7 @@ struct NewtonSettings {
   // docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering").
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;
   // Step 1: analytic (default) or finite differences, and the projection's options
-  // ("Newton: analytic linearization"). 3D: finite differences always (the analytic derivative
-  // is 2D only; docs/solvers.md, "Three dimensions").
+  // ("Newton: analytic linearization"); both in 3D too (docs/solvers.md, "Three dimensions").
   contact::LinearizationOptions linearization;
   NewtonTuning tuning;
 };
@@ -206,8 +205,7 @@ struct NewtonResult {
 };
 
 // u0_start (num_free) and lambda_start (R): the initial guess (zeros: u = u_D, lambda = 0).
-// 3D: the linearization is the finite-difference one whatever NewtonSettings::linearization asks
-// for, and there are no branch passes (docs/solvers.md, "Three dimensions").
+// 3D: no branch passes (docs/solvers.md, "Three dimensions").
 template <int Dim>
 NewtonResult semismooth_newton(const BasicNewtonProblem<Dim>& problem, const Eigen::VectorXd& u0_start,
                                const Eigen::VectorXd& lambda_start, const NewtonSettings& settings);
