@@ -73,13 +73,15 @@ class DualSurface {
       const DVec3 e1 = y(t[sz((i + 1) % 3)]) - p, e2 = y(t[sz((i + 2) % 3)]) - p;
       sum = sum + atan2(norm(cross(e1, e2)), dot(e1, e2)) * face_normal(f);
     }
-    return sum / norm(sum);
+    const Dual len = norm(sum);
+    return len.v > 0.0 ? sum / len : face_normal(around_.faces[sz(around_.start[sz(j)])]);  // a fold
   }
-  // n2 = normalize(sum_i phi_i n_{t_i}) (MasterSurface::normal_at).
-  DVec3 normal_at(int f, const std::array<Dual, 3>& phi) const {
+  // n2 = normalize(sum_i phi_i n_{t_i}) (MasterSurface::normal_at), on the branch of the
+  // projection's own coordinates `at`.
+  DVec3 normal_at(int f, const Vec3& at, const std::array<Dual, 3>& phi) const {
     const auto& t = face(f);
     for (int i = 0; i < 3; ++i) {
-      if (phi[sz(i)].v == 1.0) return vertex_normal(t[sz(i)]);
+      if (at(i) == 1.0) return vertex_normal(t[sz(i)]);
     }
     DVec3 n = phi[0] * vertex_normal(t[0]);
     n = n + phi[1] * vertex_normal(t[1]);
@@ -160,7 +162,7 @@ DualRow3 pointwise_row(const DualSurface& geo, const ContactPair3& pair, const P
     row.g = norm(x - q);
     return row;
   }
-  const DVec3 n2 = geo.normal_at(p.facet, phi);
+  const DVec3 n2 = geo.normal_at(p.facet, p.phi, phi);
   DVec3 rho = phi[0] * constant3(geo.reference(pair.master[sz(t[0])]));
   rho = rho + phi[1] * constant3(geo.reference(pair.master[sz(t[1])]));
   rho = rho + phi[2] * constant3(geo.reference(pair.master[sz(t[2])]));
