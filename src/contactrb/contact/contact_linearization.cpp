@@ -226,6 +226,10 @@ ContactLinearizationOf<Dim> linearize(const mesh::SimplexMesh<Dim>& mesh, const 
                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                       ContactMapsOf<Dim> maps_at_u, const LinearizationOptions& options) {
   check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
+  // Both 3D methods read the rows as W * pointwise (contact_derivatives.hpp).
+  require(Dim == 2 || quadrature.discretization == Discretization::Collocation,
+          std::string("linearize_contact: the 3D '") + to_string(quadrature.discretization) +
+              "' rows are not linearized (collocation only)");
   ContactLinearizationOf<Dim> lin;
   lin.maps = std::move(maps_at_u);
   if (options.method == LinearizationMethod::Analytic) {
