@@ -279,40 +279,6 @@ void lac_edge(const DualGeometry& geo, const mesh::Mesh& mesh, const ContactPair
   }
 }
 
-// Differentiates with respect to `inputs`, kDualWidth of them per pass: eval(window, count)
-// runs with slot[inputs[start + q]] = q.
-template <class Eval>
-void in_passes(const std::vector<int>& inputs, std::vector<int>& slot, Eval&& eval) {
-  for (std::size_t start = 0; start < inputs.size(); start += kDualWidth) {
-    const int count = static_cast<int>(std::min<std::size_t>(kDualWidth, inputs.size() - start));
-    for (int q = 0; q < count; ++q) slot[static_cast<std::size_t>(inputs[start + static_cast<std::size_t>(q)])] = q;
-    eval(&inputs[start], count);
-    for (int q = 0; q < count; ++q) slot[static_cast<std::size_t>(inputs[start + static_cast<std::size_t>(q)])] = -1;
-  }
-}
-
-// D row r += weight d' (d = g - K u of the dual row) over the window of inputs.
-void scatter_d(const Dual& d, int r, double weight, const int* window, int count,
-               std::vector<Eigen::Triplet<double>>& d_trip) {
-  for (int q = 0; q < count; ++q) {
-    const double v = d.slot(q);
-    if (v != 0.0) d_trip.emplace_back(r, window[q], weight * v);
-  }
-}
-
-// H += load (K row)' on the movable rows (H = (K' lambda)' with lambda frozen).
-void scatter_h(const DualRow& row, double load, const int* window, int count, const std::vector<char>& movable,
-               std::vector<Eigen::Triplet<double>>& h_trip) {
-  if (load == 0.0) return;
-  for (const auto& [dof, k] : row.K) {
-    if (!movable[static_cast<std::size_t>(dof)]) continue;
-    for (int q = 0; q < count; ++q) {
-      const double v = k.slot(q);
-      if (v != 0.0) h_trip.emplace_back(dof, window[q], load * v);
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<std::vector<int>> row_inputs(const ContactPair& pair, const ContactQuadrature& quadrature,

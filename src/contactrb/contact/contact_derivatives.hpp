@@ -31,4 +31,20 @@ void analytic_linearization(const mesh::Mesh& mesh, const ContactPair& pair, con
                             const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                             ContactLinearization& lin);
 
+// 3D (contact_derivatives3.cpp): the same for the collocation rows of 3D (docs/contact.md, "Three
+// dimensions"), slave node s on master triangle f = (t_0, t_1, t_2):
+//   d_s = (x_s - p) . n2,  p = sum_i phi_i y_{t_i},  n2 = normalize(sum_i phi_i n_{t_i}),
+//   phi: the face branch (x_s projected on the triangle's plane), an edge branch (one phi_i = 0,
+//   the projection on the edge's line) or a vertex (constant), as the closest point at u;
+//   n_j = normalize(sum over the triangles at j of angle_j(f) n_f), angles by atan2.
+// Non-candidates: d_s = |x_s - p|, zero K row.
+// Row inputs: the slave node of I_r and the master vertices of the triangles around each vertex
+// of the triangle the node projects onto (their normals make the vertex normals n_j and the rim
+// conormals).
+std::vector<std::vector<int>> row_inputs(const ContactPair3& pair, const ContactQuadrature& quadrature,
+                                         const PointwiseContact3& pw, const std::vector<char>& movable);
+void analytic_linearization(const mesh::Mesh3& mesh, const ContactPair3& pair, const ContactQuadrature& quadrature,
+                            const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                            ContactLinearization3& lin);
+
 }  // namespace contactrb::contact::detail

@@ -103,6 +103,22 @@ double difference_step(const mesh::Mesh& mesh, const ContactPair& pair, double r
   return h;
 }
 
+// 3D: relative to the mean edge length of the reference slave triangles.
+double difference_step(const mesh::Mesh3& mesh, const ContactPair3& pair, double relative_step) {
+  double edges = 0.0;
+  for (const mesh::Face& f : pair.slave_faces) {
+    const auto v = f.vertices();
+    for (int i = 0; i < 3; ++i) {
+      edges += (mesh.nodes[static_cast<std::size_t>(v[static_cast<std::size_t>((i + 1) % 3)])] -
+                mesh.nodes[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])])
+                   .norm();
+    }
+  }
+  const double h = relative_step * edges / static_cast<double>(std::max<std::size_t>(1, 3 * pair.slave_faces.size()));
+  require(h > 0.0, "linearize_contact: the slave surface has zero area");
+  return h;
+}
+
 // The columns of colour k of `v` set to u + shift, or back to u.
 void shift_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, double shift, Eigen::VectorXd& v) {
   for (std::size_t c = 0; c < cc.columns.size(); ++c) {
@@ -116,11 +132,13 @@ void restore_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, 
 }
 
 // D = dd/du and H = d(K' lambda)/du by central differences, one pair of map evaluations per colour.
-void central_differences(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+template <int Dim>
+void central_differences(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                         const ContactQuadrature& quadrature,
                          const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
                          const std::vector<std::vector<int>>& inputs, const HessianPattern& hp,
                          const ColumnColouring& cc, double h, const LinearizationOptions& options,
-                         ContactLinearization& lin) {
+                         ContactLinearizationOf<Dim>& lin) {
   const int N = mesh.num_dofs();
   const int R = static_cast<int>(inputs.size());
   std::vector<Eigen::Triplet<double>> d_trip, h_trip;
@@ -128,8 +146,8 @@ void central_differences(const mesh::Mesh& mesh, const ContactPair& pair, const 
   for (int k = 0; k < cc.colours; ++k) {
     shift_colour(cc, k, u, h, up);
     shift_colour(cc, k, u, -h, um);
-    const ContactMaps plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
-    const ContactMaps minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
+    const ContactMapsOf<Dim> plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
+    const ContactMapsOf<Dim> minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
     lin.evaluations += 2;
     restore_colour(cc, k, u, up);
     restore_colour(cc, k, u, um);
@@ -156,9 +174,11 @@ void central_differences(const mesh::Mesh& mesh, const ContactPair& pair, const 
   lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
 }
 
-void check_linearization_input(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
-                               const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
-                               const std::vector<char>& movable, const ContactMaps& maps_at_u,
+template <int Dim>
+void check_linearization_input(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                               const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                               const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                               const ContactMapsOf<Dim>& maps_at_u,
                                const LinearizationOptions& options) {
   const int N = mesh.num_dofs();
   const int R = static_cast<int>(quadrature.W.rows());
@@ -177,15 +197,65 @@ void check_linearization_input(const mesh::Mesh& mesh, const ContactPair& pair, 
   require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
 }
 
-}  // namespace
-
-ContactMaps evaluate_contact_maps(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
-                                  const Eigen::VectorXd& u, const ProjectionOptions& options) {
-  ContactMaps maps;
+// The maps at u (both dimensions: project_slave_nodes and constraint_rows of the mesh's own).
+template <int Dim>
+ContactMapsOf<Dim> maps_at(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                           const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                           const ProjectionOptions& options) {
+  ContactMapsOf<Dim> maps;
   maps.pointwise = project_slave_nodes(mesh, pair, u, options);
   maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
   maps.d = maps.rows.g - maps.rows.K * u;
   return maps;
+}
+
+// The movable DOFs of each row (contact_derivatives.hpp).
+std::vector<std::vector<int>> inputs_of(const ContactPair& pair, const ContactQuadrature& quadrature,
+                                        const PointwiseContact& pw, const std::vector<char>& movable) {
+  return detail::row_inputs(pair, quadrature, pw, movable);
+}
+std::vector<std::vector<int>> inputs_of(const ContactPair3& pair, const ContactQuadrature& quadrature,
+                                        const PointwiseContact3& pw, const std::vector<char>& movable) {
+  return detail::row_inputs(pair, quadrature, pw, movable);
+}
+
+// linearize_contact with the maps at u given, in either dimension.
+template <int Dim>
+ContactLinearizationOf<Dim> linearize(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                                      const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                      const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                      ContactMapsOf<Dim> maps_at_u, const LinearizationOptions& options) {
+  check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
+  // Both 3D methods read the rows as W * pointwise (contact_derivatives.hpp).
+  require(Dim == 2 || quadrature.discretization == Discretization::Collocation,
+          std::string("linearize_contact: the 3D '") + to_string(quadrature.discretization) +
+              "' rows are not linearized (collocation only)");
+  ContactLinearizationOf<Dim> lin;
+  lin.maps = std::move(maps_at_u);
+  if (options.method == LinearizationMethod::Analytic) {
+    detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
+    return lin;
+  }
+  const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps.pointwise, movable);
+  const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());
+  const ColumnColouring cc = colour_columns(inputs, hp, mesh.num_dofs());
+  lin.colours = cc.colours;
+  const double h = difference_step(mesh, pair, options.relative_step);
+  central_differences(mesh, pair, quadrature, u, lambda, inputs, hp, cc, h, options, lin);
+  return lin;
+}
+
+}  // namespace
+
+ContactMaps evaluate_contact_maps(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
+                                  const Eigen::VectorXd& u, const ProjectionOptions& options) {
+  return maps_at(mesh, pair, quadrature, u, options);
+}
+
+ContactMaps3 evaluate_contact_maps(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                   const ProjectionOptions& options) {
+  return maps_at(mesh, pair, quadrature, u, options);
 }
 
 ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair& pair,
@@ -202,20 +272,24 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options) {
-  check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
-  ContactLinearization lin;
-  lin.maps = std::move(maps_at_u);
-  if (options.method == LinearizationMethod::Analytic) {
-    detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
-    return lin;
-  }
-  const std::vector<std::vector<int>> inputs = detail::row_inputs(pair, quadrature, lin.maps.pointwise, movable);
-  const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());
-  const ColumnColouring cc = colour_columns(inputs, hp, mesh.num_dofs());
-  lin.colours = cc.colours;
-  const double h = difference_step(mesh, pair, options.relative_step);
-  central_differences(mesh, pair, quadrature, u, lambda, inputs, hp, cc, h, options, lin);
-  return lin;
+  return linearize(mesh, pair, quadrature, u, lambda, movable, std::move(maps_at_u), options);
+}
+
+ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                        const LinearizationOptions& options) {
+  require(u.size() == mesh.num_dofs(), "linearize_contact: u has " + std::to_string(u.size()) + " entries for " +
+                                           std::to_string(mesh.num_dofs()) + " DOFs");
+  return linearize_contact(mesh, pair, quadrature, u, lambda, movable,
+                           evaluate_contact_maps(mesh, pair, quadrature, u, options.projection), options);
+}
+
+ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                        ContactMaps3 maps_at_u, const LinearizationOptions& options) {
+  return linearize(mesh, pair, quadrature, u, lambda, movable, std::move(maps_at_u), options);
 }
 
 bool same_branch(const SlaveProjection& a, const SlaveProjection& b) {

@@ -19,6 +19,11 @@
 //    independent check of the analytic one (tests/contact/test_contact_linearization.cpp).
 //    Its error is truncation (step)^2 plus round-off eps |x| / step: on hertz-a level 6
 //    (edges 1e-3 of the body) it stopped Newton's quadratic rate near 1e-9 (docs/solvers.md).
+// In 3D (Mesh3, ContactPair3, collocation) both methods exist (docs/solvers.md, "Three
+// dimensions"): the rows of slave node s read its DOFs and those of every master vertex of the
+// triangles around the vertices of the triangle it projects onto (their normals make the vertex
+// normals n_j and the rim conormals); the continuation on other branches
+// (linearize_contact_on_branches) is 2D only.
 // The maps are piecewise smooth (the closest segment switches at master vertices, where
 // they are continuous, docs/contact.md): there the analytic derivative is the one-sided
 // Jacobian of the branch taken at u, and the difference quotient a one-sided or averaged
@@ -49,22 +54,31 @@ struct LinearizationOptions {
 };
 
 // Values of the maps at u (no derivatives).
-struct ContactMaps {
-  PointwiseContact pointwise;
+template <int Dim>
+struct ContactMapsOf {
+  PointwiseContactOf<Dim> pointwise;
   ConstraintRows rows;      // K(u), g(u)
   Eigen::VectorXd d;        // g(u) - K(u) u
 };
+using ContactMaps = ContactMapsOf<2>;
+using ContactMaps3 = ContactMapsOf<3>;
 // Throws contactrb::Error like project_slave_nodes (non-finite or overflowing u).
 ContactMaps evaluate_contact_maps(const mesh::Mesh& mesh, const ContactPair& pair, const ContactQuadrature& quadrature,
                                   const Eigen::VectorXd& u, const ProjectionOptions& options = {});
+ContactMaps3 evaluate_contact_maps(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                   const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                   const ProjectionOptions& options = {});
 
-struct ContactLinearization {
-  ContactMaps maps;                                // at u
+template <int Dim>
+struct ContactLinearizationOf {
+  ContactMapsOf<Dim> maps;                         // at u
   Eigen::SparseMatrix<double, Eigen::RowMajor> D;  // R x num_dofs, d'(u) on movable columns
   Eigen::SparseMatrix<double> H;                   // num_dofs x num_dofs, (K' lambda)' on movable rows/cols
   int colours = 0;      // FiniteDifference: colours of the columns
   int evaluations = 0;  // FiniteDifference: map evaluations (2 per colour)
 };
+using ContactLinearization = ContactLinearizationOf<2>;
+using ContactLinearization3 = ContactLinearizationOf<3>;
 
 // movable[i]: DOF i varies (free DOFs); the other columns and rows of D and H are zero.
 // lambda: R multipliers; rows with lambda_r = 0 contribute nothing to H.
@@ -79,6 +93,18 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options = {});
+// 3D: the same (collocation rows, contact_derivatives.hpp for the analytic method).
+ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                        const LinearizationOptions& options = {});
+ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
+                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
+                                        ContactMaps3 maps_at_u, const LinearizationOptions& options = {});
+// The maps continued on prescribed branches (linearize_contact_on_branches) exist in 2D only.
+template <int Dim>
+constexpr bool has_branch_continuation = Dim == 2;
 
 // Branches of the piecewise smooth pointwise maps: the closest segment and whether xi is clamped
 // (0 or 1, a vertex's wedge) or interior, and the candidate flag. Two projections lie on the same

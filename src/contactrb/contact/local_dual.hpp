@@ -7,9 +7,11 @@
 // created per operation, and on hertz-a level 0 the fill was most of the linearization's time);
 // a slot at or beyond n reads as zero (slot()).
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace contactrb::contact::detail {
 
@@ -91,5 +93,61 @@ inline DVec2 operator/(const DVec2& a, const Dual& s) { return {a.x / s, a.y / s
 inline Dual dot(const DVec2& a, const DVec2& b) { return a.x * b.x + a.y * b.y; }
 inline Dual dot(const DVec2& a, const Eigen::Vector2d& b) { return a.x * b.x() + a.y * b.y(); }
 inline Dual norm(const DVec2& a) { return sqrt(dot(a, a)); }
+
+struct DVec3 {
+  Dual x, y, z;
+  Eigen::Vector3d value() const { return {x.v, y.v, z.v}; }
+  const Dual& operator[](int c) const { return c == 0 ? x : c == 1 ? y : z; }
+};
+inline DVec3 constant3(const Eigen::Vector3d& v) { return {Dual(v.x()), Dual(v.y()), Dual(v.z())}; }
+inline DVec3 operator+(const DVec3& a, const DVec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline DVec3 operator-(const DVec3& a, const DVec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline DVec3 operator*(const Dual& s, const DVec3& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline DVec3 operator/(const DVec3& a, const Dual& s) { return {a.x / s, a.y / s, a.z / s}; }
+inline Dual dot(const DVec3& a, const DVec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline DVec3 cross(const DVec3& a, const DVec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline Dual norm(const DVec3& a) { return sqrt(dot(a, a)); }
+// atan2(y, x) and its derivative (x dy - y dx) / (x^2 + y^2).
+inline Dual atan2(const Dual& y, const Dual& x) {
+  const double r2 = x.v * x.v + y.v * y.v;
+  return combine(std::atan2(y.v, x.v), r2 > 0.0 ? -y.v / r2 : 0.0, x, r2 > 0.0 ? x.v / r2 : 0.0, y);
+}
+
+// Differentiates with respect to `inputs`, kDualWidth of them per pass: eval(window, count)
+// runs with slot[inputs[start + q]] = q.
+template <class Eval>
+void in_passes(const std::vector<int>& inputs, std::vector<int>& slot, Eval&& eval) {
+  for (std::size_t start = 0; start < inputs.size(); start += kDualWidth) {
+    const int count = static_cast<int>(std::min<std::size_t>(kDualWidth, inputs.size() - start));
+    for (int q = 0; q < count; ++q) slot[static_cast<std::size_t>(inputs[start + static_cast<std::size_t>(q)])] = q;
+    eval(&inputs[start], count);
+    for (int q = 0; q < count; ++q) slot[static_cast<std::size_t>(inputs[start + static_cast<std::size_t>(q)])] = -1;
+  }
+}
+
+// D row r += weight d' (d = g - K u of the dual row) over the window of inputs.
+inline void scatter_d(const Dual& d, int r, double weight, const int* window, int count,
+               std::vector<Eigen::Triplet<double>>& d_trip) {
+  for (int q = 0; q < count; ++q) {
+    const double v = d.slot(q);
+    if (v != 0.0) d_trip.emplace_back(r, window[q], weight * v);
+  }
+}
+
+// H += load (K row)' on the movable rows (H = (K' lambda)' with lambda frozen).
+template <class Row>
+void scatter_h(const Row& row, double load, const int* window, int count, const std::vector<char>& movable,
+               std::vector<Eigen::Triplet<double>>& h_trip) {
+  if (load == 0.0) return;
+  for (const auto& [dof, k] : row.K) {
+    if (!movable[static_cast<std::size_t>(dof)]) continue;
+    for (int q = 0; q < count; ++q) {
+      const double v = k.slot(q);
+      if (v != 0.0) h_trip.emplace_back(dof, window[q], load * v);
+    }
+  }
+}
 
 }  // namespace contactrb::contact::detail

@@ -9,7 +9,8 @@ nlohmann::json to_json(const HFKKT& kkt) {
           {"complementarity", kkt.complementarity}};
 }
 
-nlohmann::json to_json(const HFSolution& s) {
+template <int Dim>
+nlohmann::json to_json(const BasicHFSolution<Dim>& s) {
   nlohmann::json j;
   j["converged"] = s.converged;
   j["status"] = solve::to_string(s.status);
@@ -35,12 +36,18 @@ nlohmann::json to_json(const HFSolution& s) {
   return j;
 }
 
-nlohmann::json discretization_json(const HFSolver& solver) {
+template <int Dim>
+nlohmann::json discretization_json(const BasicHFSolver<Dim>& solver) {
   return {{"constraint", contact::to_string(solver.problem().discretization)},
           {"setup_time_s", solver.setup_time_s()},
           {"n_dofs", solver.problem().mesh.num_dofs()},
           {"n_free_dofs", solver.dofs().num_free()},
           {"n_constraints", static_cast<int>(solver.quadrature().weight.size())}};
 }
+
+template nlohmann::json to_json(const BasicHFSolution<2>&);
+template nlohmann::json to_json(const BasicHFSolution<3>&);
+template nlohmann::json discretization_json(const BasicHFSolver<2>&);
+template nlohmann::json discretization_json(const BasicHFSolver<3>&);
 
 }  // namespace contactrb::hf

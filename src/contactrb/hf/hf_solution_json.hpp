@@ -14,10 +14,17 @@ nlohmann::json to_json(const HFKKT& kkt);
 // converged, status, message (when there is one), iterations, increments {displacement,
 // multipliers} (Kacanov, one per iteration), newton_residuals (Newton: the KKT residual before
 // each step), energy, contact_force, active_constraints, kkt, gap_violation, time_s.
-nlohmann::json to_json(const HFSolution& solution);
+template <int Dim>
+nlohmann::json to_json(const BasicHFSolution<Dim>& solution);
 
 // The discretization the solver set up: constraint, n_dofs, n_free_dofs, n_constraints and
 // setup_time_s.
-nlohmann::json discretization_json(const HFSolver& solver);
+template <int Dim>
+nlohmann::json discretization_json(const BasicHFSolver<Dim>& solver);
+
+extern template nlohmann::json to_json(const BasicHFSolution<2>&);
+extern template nlohmann::json to_json(const BasicHFSolution<3>&);
+extern template nlohmann::json discretization_json(const BasicHFSolver<2>&);
+extern template nlohmann::json discretization_json(const BasicHFSolver<3>&);
 
 }  // namespace contactrb::hf

@@ -37,10 +37,11 @@ HFMethod hf_method_from_string(const std::string& name) {
 
 double HFKKT::max() const { return std::max({stationarity, primal, dual, complementarity}); }
 
-struct HFSolver::Impl {
-  ContactProblem problem;
+template <int Dim>
+struct BasicHFSolver<Dim>::Impl {
+  BasicContactProblem<Dim> problem;
   fem::DofMap dofs;
-  contact::ContactPair pair;
+  contact::ContactPairOf<Dim> pair;
   contact::ContactQuadrature quadrature;
   Eigen::SparseMatrix<double> A;  // global
   Eigen::VectorXd f;              // global
@@ -92,8 +93,8 @@ struct HFSolver::Impl {
   std::vector<int> global_to_free;
 
   Eigen::VectorXd total(const Eigen::VectorXd& u0) const { return dofs.lift() + dofs.extend(u0); }
-  void finish(HFSolution& sol, Clock::time_point t0) const;
-  HFSolution solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
+  void finish(BasicHFSolution<Dim>& sol, Clock::time_point t0) const;
+  BasicHFSolution<Dim> solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
                           const Eigen::VectorXd& lambda_start, Clock::time_point t0) const;
 
   // HFSetupOptions::newton_analysis: the analysis of A_00's pattern, on its thread (the future),
@@ -125,22 +126,23 @@ HFSetupOptions setup_options_for(const HFSettings& settings) {
   return o;
 }
 
-HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl_(std::make_unique<Impl>()) {
+template <int Dim>
+BasicHFSolver<Dim>::BasicHFSolver(Problem problem, const HFSetupOptions& options) : impl_(std::make_unique<Impl>()) {
   const auto t0 = Clock::now();
   check_problem(problem);
   Impl& m = *impl_;
   m.problem = std::move(problem);
-  const mesh::Mesh& mesh = m.problem.mesh;
+  const mesh::SimplexMesh<Dim>& mesh = m.problem.mesh;
   m.dofs = fem::DofMap(mesh, m.problem.dirichlet);
   require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
   // The nodal pattern of A (fem::stiffness), shared with the analysis thread below.
-  std::shared_ptr<const fem::NodalSparsity> pattern;
+  std::shared_ptr<const fem::SimplexSparsity<Dim>> pattern;
   if (options.newton_analysis) {
     // The pattern of A_00 is the mesh's nodal pattern restricted to the free DOFs
     // (DofMap::restrict_matrix): known before any value, so its ordering and symbolic analysis
     // (hertz-a level 7: 4 s; the assembly and the rest of this constructor: 2.3 s) run beside
     // the assembly. The solve checks that A_00 has exactly this pattern before using it.
-    pattern = std::make_shared<const fem::NodalSparsity>(mesh, fem::triangles_of_body(mesh, -1));
+    pattern = std::make_shared<const fem::SimplexSparsity<Dim>>(mesh, fem::cells_of_body(mesh, -1));
     const solve::FactorOrdering ordering = options.ordering;
     m.analysis_future = std::async(std::launch::async, [pattern, &dofs = m.dofs, ordering] {
       std::vector<int> outer, inner;
@@ -153,20 +155,20 @@ HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl
   {
     // A slave boundary with no master facing it cannot make contact: almost surely a
     // mislabelled group (e.g. the two contact groups swapped or on far-apart bodies).
-    const contact::PointwiseContact pw = contact::project_slave_nodes(mesh, m.pair, m.dofs.lift());
+    const contact::PointwiseContactOf<Dim> pw = contact::project_slave_nodes(mesh, m.pair, m.dofs.lift());
     int candidates = 0;
     for (const auto& p : pw.projection) candidates += p.candidate ? 1 : 0;
     require(candidates > 0, "no node of the slave boundary faces the master boundary (" +
                                 std::to_string(m.pair.slave.size()) +
-                                " slave nodes, none projects inside the master polyline): check the "
-                                "'slave' and 'master' groups");
+                                " slave nodes, none projects inside the master " +
+                                (Dim == 2 ? "polyline" : "surface") + "): check the 'slave' and 'master' groups");
   }
   m.A = pattern ? fem::stiffness(mesh, m.problem.materials, *pattern) : fem::stiffness(mesh, m.problem.materials);
   m.f = Eigen::VectorXd::Zero(mesh.num_dofs());
   for (std::size_t body = 0; body < m.problem.body_loads.size(); ++body) {
     m.f += fem::body_load(mesh, static_cast<int>(body), m.problem.body_loads[body]);
   }
-  for (const fem::TractionLoad& t : m.problem.tractions) m.f += fem::traction_load(mesh, t);
+  for (const fem::SurfaceLoad<Dim>& t : m.problem.tractions) m.f += fem::traction_load(mesh, t);
   m.b = m.dofs.restrict(m.f - m.A * m.dofs.lift());
   m.global_to_free.assign(static_cast<std::size_t>(mesh.num_dofs()), -1);
   for (int i = 0; i < m.dofs.num_free(); ++i) {
@@ -178,8 +180,8 @@ HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   for (int node : nodes) {
-    for (int c = 0; c < 2; ++c) {
-      const int fi = m.global_to_free[static_cast<std::size_t>(2 * node + c)];
+    for (int c = 0; c < Dim; ++c) {
+      const int fi = m.global_to_free[static_cast<std::size_t>(Dim * node + c)];
       if (fi < 0) continue;
       m.free_to_contact[static_cast<std::size_t>(fi)] = static_cast<int>(m.contact_free.size());
       m.contact_free.push_back(fi);
@@ -189,27 +191,41 @@ HFSolver::HFSolver(ContactProblem problem, const HFSetupOptions& options) : impl
   m.setup_time = seconds_since(t0);
 }
 
-HFSolver::~HFSolver() = default;
-HFSolver::HFSolver(HFSolver&&) noexcept = default;
-HFSolver& HFSolver::operator=(HFSolver&&) noexcept = default;
+template <int Dim>
+BasicHFSolver<Dim>::~BasicHFSolver() = default;
+template <int Dim>
+BasicHFSolver<Dim>::BasicHFSolver(BasicHFSolver&&) noexcept = default;
+template <int Dim>
+BasicHFSolver<Dim>& BasicHFSolver<Dim>::operator=(BasicHFSolver&&) noexcept = default;
 
-const ContactProblem& HFSolver::problem() const { return impl_->problem; }
-const contact::ContactPair& HFSolver::pair() const { return impl_->pair; }
-const contact::ContactQuadrature& HFSolver::quadrature() const { return impl_->quadrature; }
-const fem::DofMap& HFSolver::dofs() const { return impl_->dofs; }
-const Eigen::SparseMatrix<double>& HFSolver::stiffness() const { return impl_->A; }
-const Eigen::VectorXd& HFSolver::load() const { return impl_->f; }
-double HFSolver::setup_time_s() const {
+template <int Dim>
+const BasicContactProblem<Dim>& BasicHFSolver<Dim>::problem() const { return impl_->problem; }
+template <int Dim>
+const contact::ContactPairOf<Dim>& BasicHFSolver<Dim>::pair() const { return impl_->pair; }
+template <int Dim>
+const contact::ContactQuadrature& BasicHFSolver<Dim>::quadrature() const { return impl_->quadrature; }
+template <int Dim>
+const fem::DofMap& BasicHFSolver<Dim>::dofs() const { return impl_->dofs; }
+template <int Dim>
+const Eigen::SparseMatrix<double>& BasicHFSolver<Dim>::stiffness() const { return impl_->A; }
+template <int Dim>
+const Eigen::VectorXd& BasicHFSolver<Dim>::load() const { return impl_->f; }
+template <int Dim>
+double BasicHFSolver<Dim>::setup_time_s() const {
   const std::lock_guard<std::mutex> lock(impl_->condensation_mutex);
   return impl_->setup_time + impl_->condensation_time;
 }
 
-HFSolution HFSolver::solve(const HFSettings& settings) const { return solve(settings, HFInitialGuess{}); }
+template <int Dim>
+BasicHFSolution<Dim> BasicHFSolver<Dim>::solve(const HFSettings& settings) const {
+  return solve(settings, HFInitialGuess{});
+}
 
-HFSolution HFSolver::solve(const HFSettings& settings, const HFInitialGuess& guess) const {
+template <int Dim>
+BasicHFSolution<Dim> BasicHFSolver<Dim>::solve(const HFSettings& settings, const HFInitialGuess& guess) const {
   const auto t0 = Clock::now();
   const Impl& m = *impl_;
-  const mesh::Mesh& mesh = m.problem.mesh;
+  const mesh::SimplexMesh<Dim>& mesh = m.problem.mesh;
   const int R = static_cast<int>(m.quadrature.weight.size());
   require(guess.u.size() == 0 || guess.u.size() == mesh.num_dofs(),
           "HF initial guess: u has " + std::to_string(guess.u.size()) + " entries for " +
@@ -224,10 +240,10 @@ HFSolution HFSolver::solve(const HFSettings& settings, const HFInitialGuess& gue
 
   solve::check_settings(settings.kacanov);
   m.ensure_condensation();
-  HFSolution sol;
+  BasicHFSolution<Dim> sol;
   sol.method = HFMethod::Kacanov;
   std::vector<int> warm;  // passive set of the previous QP
-  contact::PointwiseContact last_pointwise;
+  contact::PointwiseContactOf<Dim> last_pointwise;
   contact::ConstraintRows last_rows;
   Eigen::VectorXd last_g_lift;
   RowSparse last_Kc;
@@ -236,7 +252,7 @@ HFSolution HFSolver::solve(const HFSettings& settings, const HFInitialGuess& gue
   // One linearized step (12): K, g frozen at the previous iterate u.
   solve::KacanovStep step = [&](const Eigen::VectorXd& u, const Eigen::VectorXd&, Eigen::VectorXd& u_bar,
                                 Eigen::VectorXd& lambda_bar, int& inner, std::string& message) {
-    contact::PointwiseContact pw;
+    contact::PointwiseContactOf<Dim> pw;
     try {
       pw = contact::project_slave_nodes(mesh, m.pair, u);
     } catch (const Error& e) {  // an iterate the geometry cannot handle (non-finite, overflowing)
@@ -318,12 +334,13 @@ HFSolution HFSolver::solve(const HFSettings& settings, const HFInitialGuess& gue
 }
 
 // The report common to both methods: nonlinear feasibility, energy, force, finiteness.
-void HFSolver::Impl::finish(HFSolution& sol, Clock::time_point t0) const {
-  const mesh::Mesh& mesh = problem.mesh;
+template <int Dim>
+void BasicHFSolver<Dim>::Impl::finish(BasicHFSolution<Dim>& sol, Clock::time_point t0) const {
+  const mesh::SimplexMesh<Dim>& mesh = problem.mesh;
   // Nonlinear feasibility: geometry re-evaluated at the returned displacement.
   std::string geometry_failure;
   try {
-    const contact::PointwiseContact at_u = contact::project_slave_nodes(mesh, pair, sol.u);
+    const contact::PointwiseContactOf<Dim> at_u = contact::project_slave_nodes(mesh, pair, sol.u);
     const Eigen::VectorXd violation = at_u.K * sol.u - at_u.g;
     sol.gap_violation = std::max(0.0, violation.maxCoeff());
   } catch (const Error& e) {  // the returned displacement overflows the projection
@@ -354,9 +371,12 @@ void HFSolver::Impl::finish(HFSolution& sol, Clock::time_point t0) const {
 }
 
 
-HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Eigen::VectorXd& u0_start,
-                                        const Eigen::VectorXd& lambda_start, Clock::time_point t0) const {
-  NewtonProblem np;
+template <int Dim>
+BasicHFSolution<Dim> BasicHFSolver<Dim>::Impl::solve_newton(const NewtonSettings& settings,
+                                                           const Eigen::VectorXd& u0_start,
+                                                           const Eigen::VectorXd& lambda_start,
+                                                           Clock::time_point t0) const {
+  BasicNewtonProblem<Dim> np;
   np.mesh = &problem.mesh;
   np.pair = &pair;
   np.quadrature = &quadrature;
@@ -365,7 +385,7 @@ HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Ei
   np.b = &b;
   np.a00_analysis = [this] { return prepared_analysis(); };
   const NewtonResult nr = semismooth_newton(np, u0_start, lambda_start, settings);
-  HFSolution sol;
+  BasicHFSolution<Dim> sol;
   sol.method = HFMethod::Newton;
   sol.status = nr.status;
   sol.converged = nr.status == solve::KacanovStatus::Converged;
@@ -389,5 +409,8 @@ HFSolution HFSolver::Impl::solve_newton(const NewtonSettings& settings, const Ei
   finish(sol, t0);
   return sol;
 }
+
+template class BasicHFSolver<2>;
+template class BasicHFSolver<3>;
 
 }  // namespace contactrb::hf

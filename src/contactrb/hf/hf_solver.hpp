@@ -1,5 +1,5 @@
 #pragma once
-// High-fidelity contact solver, two methods (HFMethod):
+// High-fidelity contact solver in 2D and 3D (BasicHFSolver<Dim>), two methods (HFMethod):
 //  - Newton: semi-smooth Newton / primal-dual active set with the geometry linearized
 //    consistently; each Newton system reduced exactly to the contact DOFs of the active rows
 //    on one Cholesky of A_00 per solve (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
@@ -57,7 +57,8 @@ struct HFKKT {
   double max() const;
 };
 
-struct HFSolution {
+template <int Dim>
+struct BasicHFSolution {
   bool converged = false;
   HFMethod method = HFMethod::Kacanov;
   solve::KacanovStatus status = solve::KacanovStatus::StepFailed;  // the status of either method
@@ -70,7 +71,7 @@ struct HFSolution {
   Eigen::VectorXd u;       // total displacement u_D + u_0 (num_dofs): last linearized solution
   Eigen::VectorXd u0;      // its free part (num_free)
   Eigen::VectorXd lambda;  // contact pressures, one per constraint row (R)
-  contact::PointwiseContact pointwise;  // geometry the last step used (at the previous iterate)
+  contact::PointwiseContactOf<Dim> pointwise;  // geometry the last step used (at the previous iterate)
   contact::ConstraintRows rows;         // K, g of that geometry (R x num_dofs)
   HFKKT kkt;
   double gap_violation = 0.0;  // max(0, k(u; u) - g(u)) pointwise, geometry re-evaluated at u
@@ -79,6 +80,8 @@ struct HFSolution {
   int active_constraints = 0;  // lambda_r > 0
   double time_s = 0.0;         // setup + iterations
 };
+using HFSolution = BasicHFSolution<2>;
+using HFSolution3 = BasicHFSolution<3>;
 
 // What the constructor prepares for the solves to come. newton_analysis: the fill-reducing
 // ordering and symbolic analysis of A_00 for the Newton solver (ActiveSchur) run on a second
@@ -93,21 +96,26 @@ struct HFSetupOptions {
 // newton_analysis for a Newton ActiveSchur method, with its ordering; off for Kacanov.
 HFSetupOptions setup_options_for(const HFSettings& settings);
 
-class HFSolver {
+// Dim = 2 (HFSolver) or 3 (HFSolver3): one code path, the contact geometry of the dimension
+// (docs/solvers.md, "Three dimensions").
+template <int Dim>
+class BasicHFSolver {
  public:
+  using Problem = BasicContactProblem<Dim>;
+  using Solution = BasicHFSolution<Dim>;
   // Assembles A, f, the lift, the contact pair and quadrature; factorizes A_00.
   // Throws contactrb::Error for an invalid problem or a singular stiffness.
-  explicit HFSolver(ContactProblem problem, const HFSetupOptions& options = {});
-  ~HFSolver();
-  HFSolver(HFSolver&&) noexcept;
-  HFSolver& operator=(HFSolver&&) noexcept;
+  explicit BasicHFSolver(Problem problem, const HFSetupOptions& options = {});
+  ~BasicHFSolver();
+  BasicHFSolver(BasicHFSolver&&) noexcept;
+  BasicHFSolver& operator=(BasicHFSolver&&) noexcept;
 
-  HFSolution solve(const HFSettings& settings = {}) const;
+  Solution solve(const HFSettings& settings = {}) const;
   // From an initial guess (warm start). Throws contactrb::Error on sizes that do not match.
-  HFSolution solve(const HFSettings& settings, const HFInitialGuess& guess) const;
+  Solution solve(const HFSettings& settings, const HFInitialGuess& guess) const;
 
-  const ContactProblem& problem() const;
-  const contact::ContactPair& pair() const;
+  const Problem& problem() const;
+  const contact::ContactPairOf<Dim>& pair() const;
   const contact::ContactQuadrature& quadrature() const;
   const fem::DofMap& dofs() const;
   const Eigen::SparseMatrix<double>& stiffness() const;  // global A (num_dofs^2)
@@ -120,5 +128,9 @@ class HFSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+using HFSolver = BasicHFSolver<2>;
+using HFSolver3 = BasicHFSolver<3>;
+extern template class BasicHFSolver<2>;
+extern template class BasicHFSolver<3>;
 
 }  // namespace contactrb::hf

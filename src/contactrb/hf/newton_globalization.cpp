@@ -20,7 +20,8 @@ using newton_detail::sz;
 
 // |F|^2 at the full step (u_0 + du, lambda of the step), out: its iterate; infinite when the
 // geometry cannot be evaluated there.
-double NewtonSolve::full_step_merit2(NewtonIterate& out) const {
+template <int Dim>
+double NewtonSolve<Dim>::full_step_merit2(NewtonIterate<Dim>& out) const {
   try {
     out = evaluate_(st_.u0 + step_.du, step_.lambda);
   } catch (const Error&) {
@@ -31,7 +32,8 @@ double NewtonSolve::full_step_merit2(NewtonIterate& out) const {
 
 // The exact frozen-geometry step (the Kacanov phase's): passes from the iterate's own active set
 // (du = 0). False when a system is singular.
-bool NewtonSolve::frozen_step(std::vector<char>& frozen_active) {
+template <int Dim>
+bool NewtonSolve<Dim>::frozen_step(std::vector<char>& frozen_active) {
   step_.du.setZero();
   step_.lambda = st_.lambda;
   predict_active(frozen_active, true);
@@ -52,15 +54,16 @@ bool NewtonSolve::frozen_step(std::vector<char>& frozen_active) {
 // reduce the merit to kacanov_safeguard x its value, the frozen step is computed as well and the
 // full step with the smaller merit goes first into the line search (docs/performance.md, "Why
 // the defaults are what they are", "Newton: Kacanov safeguard").
-void NewtonSolve::kacanov_safeguard() {
+template <int Dim>
+void NewtonSolve<Dim>::kacanov_safeguard() {
   if (kacanov_phase_ || pass_frozen_ || it_.branch_passes != 0 || !(t_.kacanov_safeguard > 0.0)) return;
   const double phi_now = st_.merit * st_.merit;
-  NewtonIterate newton_trial;
+  NewtonIterate<Dim> newton_trial;
   const double phi_newton = full_step_merit2(newton_trial);
   if (!(phi_newton <= t_.kacanov_safeguard * t_.kacanov_safeguard * phi_now)) {
     const NewtonStep newton = step_;
     std::vector<char> frozen_active(sz(R_), 0);
-    NewtonIterate frozen_trial;
+    NewtonIterate<Dim> frozen_trial;
     double phi_frozen = std::numeric_limits<double>::infinity();
     if (frozen_step(frozen_active)) phi_frozen = full_step_merit2(frozen_trial);
     if (phi_frozen < phi_newton) {
@@ -90,7 +93,8 @@ void NewtonSolve::kacanov_safeguard() {
 // (Shamanskii's method). A correction is kept only when it lowers the merit of the full step;
 // the line search then starts from the corrected step (and backtracks along the plain Newton
 // direction).
-void NewtonSolve::chord_corrections() {
+template <int Dim>
+void NewtonSolve<Dim>::chord_corrections() {
   if (kacanov_phase_ || it_.kacanov_step || t_.chord_steps <= 0) return;
   system_.complete(step_, at_);
   if (!have_full_trial_) {
@@ -114,7 +118,8 @@ void NewtonSolve::chord_corrections() {
 
 // One chord correction from full_trial_; true when it lowered the merit (full_trial_ and step_
 // are then the corrected ones).
-bool NewtonSolve::chord_correction() {
+template <int Dim>
+bool NewtonSolve<Dim>::chord_correction() {
   // f = (K_0 - K_0(u_1))' lambda_1, on the few contact DOFs of both geometries.
   const Eigen::VectorXd extra = (st_.K0 - full_trial_.K0).transpose() * full_trial_.lambda;
   std::vector<int> in;
@@ -171,7 +176,7 @@ bool NewtonSolve::chord_correction() {
   } else {
     step_.du = full_trial_.u0 + step_.du - st_.u0;  // SaddleLU: dv itself
   }
-  NewtonIterate chord_trial;
+  NewtonIterate<Dim> chord_trial;
   try {
     chord_trial = evaluate_(st_.u0 + step_.du, step_.lambda);
   } catch (const Error&) {
@@ -190,7 +195,8 @@ bool NewtonSolve::chord_correction() {
 // need not be), backtracked; then the step's direction backtracked (with chord corrections
 // kept: the plain Newton direction's). Without a decrease down to min_step the best trial is
 // taken (the iteration cap ends a stall).
-bool NewtonSolve::line_search() {
+template <int Dim>
+bool NewtonSolve<Dim>::line_search() {
   it_.factorize_s = seconds_since(t_systems_);
   const auto t_search = Clock::now();
   const double phi0 = st_.merit * st_.merit;
@@ -210,13 +216,13 @@ bool NewtonSolve::line_search() {
   } else {
     trials.push_back({&step_, &dlambda, 0.5, t_.min_step, true});
   }
-  NewtonIterate best;
+  NewtonIterate<Dim> best;
   double best_phi = std::numeric_limits<double>::infinity();
   double best_t = 0.0;
   for (const Trial& tr : trials) {
     if (tr.step == &first_) system_.complete(first_, at_);
     for (double t = tr.t_first; t >= tr.t_last; t *= 0.5) {
-      NewtonIterate trial;
+      NewtonIterate<Dim> trial;
       if (have_full_trial_ && tr.full && t == 1.0) {
         trial = std::move(full_trial_);  // evaluated in step 4
         have_full_trial_ = false;
@@ -255,11 +261,28 @@ bool NewtonSolve::line_search() {
   return record(t_search);
 }
 
-bool NewtonSolve::record(std::chrono::steady_clock::time_point t_search) {
+template <int Dim>
+bool NewtonSolve<Dim>::record(std::chrono::steady_clock::time_point t_search) {
   it_.search_s = seconds_since(t_search);
   res_.history.push_back(it_);
   res_.iterations = k_ + 1;
   return true;
 }
+
+// The members defined here (newton_steps.cpp instantiates the others).
+template double NewtonSolve<2>::full_step_merit2(NewtonIterate<2>&) const;
+template bool NewtonSolve<2>::frozen_step(std::vector<char>&);
+template void NewtonSolve<2>::kacanov_safeguard();
+template void NewtonSolve<2>::chord_corrections();
+template bool NewtonSolve<2>::chord_correction();
+template bool NewtonSolve<2>::line_search();
+template bool NewtonSolve<2>::record(std::chrono::steady_clock::time_point);
+template double NewtonSolve<3>::full_step_merit2(NewtonIterate<3>&) const;
+template bool NewtonSolve<3>::frozen_step(std::vector<char>&);
+template void NewtonSolve<3>::kacanov_safeguard();
+template void NewtonSolve<3>::chord_corrections();
+template bool NewtonSolve<3>::chord_correction();
+template bool NewtonSolve<3>::line_search();
+template bool NewtonSolve<3>::record(std::chrono::steady_clock::time_point);
 
 }  // namespace contactrb::hf

@@ -6,16 +6,15 @@
 
 namespace contactrb::hf {
 
-bool finite(const NewtonIterate& x) { return x.u0.allFinite() && x.lambda.allFinite() && std::isfinite(x.merit); }
-
-std::string residual_text(const NewtonIterate& x) {
+std::string residual_text(double stationarity, double primal, double dual, double complementarity) {
   std::ostringstream os;
-  os << "KKT residuals: stationarity " << x.stationarity << ", primal " << x.primal << ", dual " << x.dual
-     << ", complementarity " << x.complementarity;
+  os << "KKT residuals: stationarity " << stationarity << ", primal " << primal << ", dual " << dual
+     << ", complementarity " << complementarity;
   return os.str();
 }
 
-NewtonEvaluator::NewtonEvaluator(const NewtonProblem& p, const NewtonSettings& s) : p_(p), s_(s) {
+template <int Dim>
+NewtonEvaluator<Dim>::NewtonEvaluator(const BasicNewtonProblem<Dim>& p, const NewtonSettings& s) : p_(p), s_(s) {
   const Eigen::SparseMatrix<double>& A = *p.A00;
   const int R = static_cast<int>(p.quadrature->weight.size());
   // c_r = (stiffness at the slave nodes of I_r) / |I_r|^2: lambda_r and c_r d_r are then
@@ -31,8 +30,8 @@ NewtonEvaluator::NewtonEvaluator(const NewtonProblem& p, const NewtonSettings& s
     int count = 0;
     for (RowSparse::InnerIterator it(p.quadrature->W, r); it; ++it) {
       const int node = p.pair->slave[static_cast<std::size_t>(it.col())];
-      for (int c = 0; c < 2; ++c) {
-        const int fi = global_to_free[static_cast<std::size_t>(2 * node + c)];
+      for (int c = 0; c < Dim; ++c) {
+        const int fi = global_to_free[static_cast<std::size_t>(Dim * node + c)];
         if (fi >= 0) {
           sum += std::abs(diag(fi));
           ++count;
@@ -44,8 +43,9 @@ NewtonEvaluator::NewtonEvaluator(const NewtonProblem& p, const NewtonSettings& s
   }
 }
 
-NewtonIterate NewtonEvaluator::operator()(Eigen::VectorXd u0, Eigen::VectorXd lambda) const {
-  NewtonIterate st;
+template <int Dim>
+NewtonIterate<Dim> NewtonEvaluator<Dim>::operator()(Eigen::VectorXd u0, Eigen::VectorXd lambda) const {
+  NewtonIterate<Dim> st;
   st.u0 = std::move(u0);
   st.lambda = std::move(lambda);
   st.u = p_.dofs->lift() + p_.dofs->extend(st.u0);
@@ -70,5 +70,8 @@ NewtonIterate NewtonEvaluator::operator()(Eigen::VectorXd u0, Eigen::VectorXd la
   }
   return st;
 }
+
+template class NewtonEvaluator<2>;
+template class NewtonEvaluator<3>;
 
 }  // namespace contactrb::hf

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "contactrb/contact/contact_linearization.hpp"
@@ -14,9 +15,10 @@ namespace contactrb::hf {
 
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
+template <int Dim>
 struct NewtonIterate {
   Eigen::VectorXd u0, lambda, u;
-  contact::ContactMaps maps;
+  contact::ContactMapsOf<Dim> maps;
   RowSparse K0;           // K(u) on the free columns
   Eigen::VectorXd F1;     // A_00 u_0 - b + K_0' lambda
   Eigen::VectorXd ncp;    // min(lambda_r, c_r d_r)
@@ -25,21 +27,33 @@ struct NewtonIterate {
   double kkt() const { return std::max({stationarity, primal, dual, complementarity}); }
 };
 
-bool finite(const NewtonIterate& x);
-std::string residual_text(const NewtonIterate& x);  // "KKT residuals: stationarity ..., ..."
+template <int Dim>
+bool finite(const NewtonIterate<Dim>& x) {
+  return x.u0.allFinite() && x.lambda.allFinite() && std::isfinite(x.merit);
+}
+// "KKT residuals: stationarity ..., ..."
+std::string residual_text(double stationarity, double primal, double dual, double complementarity);
+template <int Dim>
+std::string residual_text(const NewtonIterate<Dim>& x) {
+  return residual_text(x.stationarity, x.primal, x.dual, x.complementarity);
+}
 
 // Evaluates iterates of one problem: the scaling c_r of the complementarity function, once.
+template <int Dim>
 class NewtonEvaluator {
  public:
-  NewtonEvaluator(const NewtonProblem& problem, const NewtonSettings& settings);
+  NewtonEvaluator(const BasicNewtonProblem<Dim>& problem, const NewtonSettings& settings);
   const Eigen::VectorXd& c() const { return c_; }
   // Throws contactrb::Error when the geometry cannot be evaluated at u.
-  NewtonIterate operator()(Eigen::VectorXd u0, Eigen::VectorXd lambda) const;
+  NewtonIterate<Dim> operator()(Eigen::VectorXd u0, Eigen::VectorXd lambda) const;
 
  private:
-  const NewtonProblem& p_;
+  const BasicNewtonProblem<Dim>& p_;
   const NewtonSettings& s_;
   Eigen::VectorXd c_;
 };
+
+extern template class NewtonEvaluator<2>;
+extern template class NewtonEvaluator<3>;
 
 }  // namespace contactrb::hf

@@ -54,7 +54,7 @@ struct NewtonLinearSystem::Reduced {
   int e = 0, m = 0;
 };
 
-NewtonLinearSystem::NewtonLinearSystem(const NewtonProblem& p, const NewtonSettings& s)
+NewtonLinearSystem::NewtonLinearSystem(const NewtonAlgebra& p, const NewtonSettings& s)
     : p_(p),
       s_(s),
       schur_(s.linear_solver == NewtonLinearSolver::ActiveSchur),

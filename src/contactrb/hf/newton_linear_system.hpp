@@ -57,7 +57,7 @@ struct NewtonStep {
 
 class NewtonLinearSystem {
  public:
-  NewtonLinearSystem(const NewtonProblem& problem, const NewtonSettings& settings);
+  NewtonLinearSystem(const NewtonAlgebra& problem, const NewtonSettings& settings);
   bool schur() const { return schur_; }
   // The BLAS threads of the BLAS-3 parts (0: the BLAS's own count; NewtonTuning::blas_threads).
   int blas_threads() const { return blas_threads_; }
@@ -89,7 +89,7 @@ class NewtonLinearSystem {
   void set_step(const std::vector<int>& E, const Eigen::VectorXd& yE, const std::vector<int>& read_dofs,
                 const SystemPoint& at, NewtonStep& step) const;
 
-  const NewtonProblem& p_;
+  const NewtonAlgebra& p_;
   const NewtonSettings& s_;
   const bool schur_;
   const int blas_threads_;

@@ -15,7 +15,8 @@ using newton_detail::Clock;
 using newton_detail::seconds_since;
 using newton_detail::sz;
 
-NewtonSolve::NewtonSolve(const NewtonProblem& p, const NewtonSettings& s)
+template <int Dim>
+NewtonSolve<Dim>::NewtonSolve(const BasicNewtonProblem<Dim>& p, const NewtonSettings& s)
     : p_(p),
       s_(s),
       t_(s.tuning),
@@ -35,8 +36,8 @@ NewtonSolve::NewtonSolve(const NewtonProblem& p, const NewtonSettings& s)
   }
   for (const std::vector<int>* nodes : {&p.pair->slave, &p.pair->master}) {
     for (int node : *nodes) {
-      for (int c = 0; c < 2; ++c) {
-        const int fi = global_to_free_[sz(2 * node + c)];
+      for (int c = 0; c < Dim; ++c) {
+        const int fi = global_to_free_[sz(Dim * node + c)];
         if (fi >= 0) contact_free_.push_back(fi);
       }
     }
@@ -45,7 +46,8 @@ NewtonSolve::NewtonSolve(const NewtonProblem& p, const NewtonSettings& s)
   contact_free_.erase(std::unique(contact_free_.begin(), contact_free_.end()), contact_free_.end());
 }
 
-bool NewtonSolve::start(const Eigen::VectorXd& u0, const Eigen::VectorXd& lambda) {
+template <int Dim>
+bool NewtonSolve<Dim>::start(const Eigen::VectorXd& u0, const Eigen::VectorXd& lambda) {
   const auto t_initial = Clock::now();
   try {
     st_ = evaluate_(u0, lambda);
@@ -69,7 +71,8 @@ bool NewtonSolve::start(const Eigen::VectorXd& u0, const Eigen::VectorXd& lambda
   return true;
 }
 
-bool NewtonSolve::finish(solve::KacanovStatus status, std::string message) {
+template <int Dim>
+bool NewtonSolve<Dim>::finish(solve::KacanovStatus status, std::string message) {
   res_.status = status;
   res_.message = std::move(message);
   res_.u0 = st_.u0;
@@ -84,7 +87,8 @@ bool NewtonSolve::finish(solve::KacanovStatus status, std::string message) {
 // docs/theory.md, "Semi-smooth Newton", step 6: the KKT residuals of the iterate (HFKKT, at the
 // geometry of u itself) against the tolerance; the iteration cap and a non-finite iterate end
 // the solve with their status.
-bool NewtonSolve::keep_iterating(int k) {
+template <int Dim>
+bool NewtonSolve<Dim>::keep_iterating(int k) {
   if (!finite(st_)) {
     return finish(solve::KacanovStatus::NonFinite,
                   "semi-smooth Newton iteration " + std::to_string(k) + ": the iterate is not finite (" +
@@ -104,11 +108,13 @@ bool NewtonSolve::keep_iterating(int k) {
   return true;
 }
 
-SystemPoint NewtonSolve::iterate_point() const {
+template <int Dim>
+SystemPoint NewtonSolve<Dim>::iterate_point() const {
   return SystemPoint{&system_.z(), &lin_.top, &st_.u0, &st_.maps.d, &st_.lambda};
 }
 
-std::vector<Eigen::Triplet<double>> NewtonSolve::free_hessian(const Eigen::SparseMatrix<double>& H) const {
+template <int Dim>
+std::vector<Eigen::Triplet<double>> NewtonSolve<Dim>::free_hessian(const Eigen::SparseMatrix<double>& H) const {
   std::vector<Eigen::Triplet<double>> h_free;
   for (int j = 0; j < H.outerSize(); ++j) {
     for (Eigen::SparseMatrix<double>::InnerIterator h(H, j); h; ++h) {
@@ -124,10 +130,11 @@ std::vector<Eigen::Triplet<double>> NewtonSolve::free_hessian(const Eigen::Spars
 // (D = d'(u), H = (K(u)' lambda)') at the iterate, in the Newton phase only: the Kacanov
 // phase's frozen steps need K and d, already in the iterate's maps. Analytic by default
 // (docs/performance.md, "Why the defaults are what they are", "Newton: analytic linearization").
-bool NewtonSolve::linearize() {
+template <int Dim>
+bool NewtonSolve<Dim>::linearize() {
   kacanov_phase_ = !newton_phase_;
   const auto t0 = Clock::now();
-  contact::ContactLinearization lin;
+  contact::ContactLinearizationOf<Dim> lin;
   if (!kacanov_phase_) {
     try {
       lin = contact::linearize_contact(*p_.mesh, *p_.pair, *p_.quadrature, st_.u, st_.lambda, movable_, st_.maps,
@@ -161,7 +168,8 @@ bool NewtonSolve::linearize() {
 
 // One system on the active rows `act` (step_ set). False when it is singular (failure_ says
 // why when it was the frozen one).
-bool NewtonSolve::solve_system(const std::vector<char>& act, bool frozen) {
+template <int Dim>
+bool NewtonSolve<Dim>::solve_system(const std::vector<char>& act, bool frozen) {
   std::vector<int> active;
   for (int r = 0; r < R_; ++r) {
     if (act[sz(r)]) active.push_back(r);
@@ -176,7 +184,8 @@ bool NewtonSolve::solve_system(const std::vector<char>& act, bool frozen) {
 
 // A system on the consistent Jacobian, falling back to the frozen one (for the rest of the
 // iteration) when it is singular (e.g. a slave node at an open master end).
-bool NewtonSolve::solve_newton_system(const std::vector<char>& act) {
+template <int Dim>
+bool NewtonSolve<Dim>::solve_newton_system(const std::vector<char>& act) {
   if (!singular_consistent_ && solve_system(act, false)) return true;
   if (!singular_consistent_) {
     singular_consistent_ = true;
@@ -187,7 +196,8 @@ bool NewtonSolve::solve_newton_system(const std::vector<char>& act) {
 
 // The predicted active set: the complementarity function of the LINEARIZED gap, d + D du
 // (consistent) or d - K du (frozen), with the step's multipliers. Returns the rows that changed.
-int NewtonSolve::predict_active(std::vector<char>& out, bool frozen) const {
+template <int Dim>
+int NewtonSolve<Dim>::predict_active(std::vector<char>& out, bool frozen) const {
   const Eigen::VectorXd& du = step_.du;
   const Eigen::VectorXd d_lin = frozen ? Eigen::VectorXd(st_.maps.d - st_.K0 * du) : Eigen::VectorXd(st_.maps.d + lin_.D0 * du);
   int changed = 0;
@@ -208,7 +218,8 @@ int NewtonSolve::predict_active(std::vector<char>& out, bool frozen) const {
 // the consistent linearization, then at most max_newton_passes passes on it (their LCP is not
 // monotone; docs/performance.md, "Why the defaults are what they are", "Newton: Kacanov phase
 // first" and "Newton: consistent passes capped").
-bool NewtonSolve::solve_on_active_set() {
+template <int Dim>
+bool NewtonSolve<Dim>::solve_on_active_set() {
   is_active_.assign(sz(R_), 0);
   predict_active(is_active_, false);
   for (int r = 0; r < R_; ++r) it_.changed += is_active_[sz(r)] != previous_active_[sz(r)];
@@ -235,9 +246,12 @@ bool NewtonSolve::solve_on_active_set() {
 // continued on the branches of u + du (contact::linearize_contact_on_branches): exact on
 // piecewise linear maps; repeated while the branches move, at most max_branch_passes times
 // (docs/performance.md, "Why the defaults are what they are", "Newton: branch passes near the
-// solution"). Then the whole step.
-void NewtonSolve::branch_passes() {
-  if (!pass_frozen_ && t_.max_branch_passes > 0 && it_.residual <= t_.branch_passes_below &&
+// solution"). Then the whole step. 2D only: the continuation on branches is 2D only
+// (docs/solvers.md, "Three dimensions").
+template <int Dim>
+void NewtonSolve<Dim>::branch_passes() {
+  if (contact::has_branch_continuation<Dim> && !pass_frozen_ && t_.max_branch_passes > 0 &&
+      it_.residual <= t_.branch_passes_below &&
       p_.quadrature->discretization != contact::Discretization::LAC) {
     for (int pass = 0; pass < t_.max_branch_passes && branch_pass(); ++pass) {
       ++passes_;
@@ -249,49 +263,59 @@ void NewtonSolve::branch_passes() {
 
 // One branch pass; false when the branches do not move (or cannot be evaluated, or the system
 // is singular: the previous pass's step stays).
-bool NewtonSolve::branch_pass() {
-  // The projection at u + du reads du at the contact nodes only (beyond the read DOFs): the
-  // backward substitution along their chains gives those entries bitwise as the complete step
-  // would, without a substitution through all of L.
-  Eigen::VectorXd du_contact = step_.du;
-  if (!step_.complete) {
-    const Eigen::VectorXd x = system_.inverse().solve_sparse(step_.E, step_.yE, &contact_free_);
-    for (int fi : contact_free_) du_contact(fi) = system_.z()(fi) - x(fi) - st_.u0(fi);
-  }
-  contact::PointwiseContact next;
-  try {
-    next = contact::project_slave_nodes(*p_.mesh, *p_.pair, p_.dofs->lift() + p_.dofs->extend(st_.u0 + du_contact),
-                                        s_.linearization.projection);
-  } catch (const Error&) {
-    return false;  // the full step cannot be evaluated: the line search shortens it
-  }
-  bool moved = false;
-  for (std::size_t q = 0; q < next.projection.size() && !moved; ++q) {
-    moved = !contact::same_branch(st_.maps.pointwise.projection[q], next.projection[q]);
-  }
-  if (!moved) return false;
-  contact::ContactLinearization branch;
-  try {
-    branch = contact::linearize_contact_on_branches(*p_.mesh, *p_.pair, *p_.quadrature, st_.u, st_.lambda, movable_, next);
-  } catch (const Error&) {
+template <int Dim>
+bool NewtonSolve<Dim>::branch_pass() {
+  if constexpr (!contact::has_branch_continuation<Dim>) {
     return false;
+  } else {
+    // The projection at u + du reads du at the contact nodes only (beyond the read DOFs): the
+    // backward substitution along their chains gives those entries bitwise as the complete step
+    // would, without a substitution through all of L.
+    Eigen::VectorXd du_contact = step_.du;
+    if (!step_.complete) {
+      const Eigen::VectorXd x = system_.inverse().solve_sparse(step_.E, step_.yE, &contact_free_);
+      for (int fi : contact_free_) du_contact(fi) = system_.z()(fi) - x(fi) - st_.u0(fi);
+    }
+    contact::PointwiseContact next;
+    try {
+      next = contact::project_slave_nodes(*p_.mesh, *p_.pair, p_.dofs->lift() + p_.dofs->extend(st_.u0 + du_contact),
+                                          s_.linearization.projection);
+    } catch (const Error&) {
+      return false;  // the full step cannot be evaluated: the line search shortens it
+    }
+    bool moved = false;
+    for (std::size_t q = 0; q < next.projection.size() && !moved; ++q) {
+      moved = !contact::same_branch(st_.maps.pointwise.projection[q], next.projection[q]);
+    }
+    if (!moved) return false;
+    contact::ContactLinearization branch;
+    try {
+      branch = contact::linearize_contact_on_branches(*p_.mesh, *p_.pair, *p_.quadrature, st_.u, st_.lambda, movable_, next);
+    } catch (const Error&) {
+      return false;
+    }
+    // The step's system reads K, d (the iterate's maps) and D, H: all on the continued branches
+    // now. The merit and the line search keep the maps of u itself (the trials are evaluated afresh).
+    st_.maps = std::move(branch.maps);
+    st_.K0 = p_.dofs->restrict_columns(st_.maps.rows.K);
+    lin_.D0 = p_.dofs->restrict_columns(branch.D);
+    lin_.H = free_hessian(branch.H);
+    system_.set_read_dofs(st_.K0, lin_);
+    return solve_newton_system(is_active_);
   }
-  // The step's system reads K, d (the iterate's maps) and D, H: all on the continued branches
-  // now. The merit and the line search keep the maps of u itself (the trials are evaluated afresh).
-  st_.maps = std::move(branch.maps);
-  st_.K0 = p_.dofs->restrict_columns(st_.maps.rows.K);
-  lin_.D0 = p_.dofs->restrict_columns(branch.D);
-  lin_.H = free_hessian(branch.H);
-  system_.set_read_dofs(st_.K0, lin_);
-  return solve_newton_system(is_active_);
 }
 
 // docs/theory.md, "Semi-smooth Newton", step 3: the Kacanov phase ends after an iteration whose
 // frozen passes found the active set at once (switch_passes): the iterate is near enough for
 // Newton.
-void NewtonSolve::switch_phase() {
+template <int Dim>
+void NewtonSolve<Dim>::switch_phase() {
   if (kacanov_phase_ && passes_ <= t_.switch_passes) newton_phase_ = true;
   previous_active_ = is_active_;
 }
+
+// The members defined here; those of newton_globalization.cpp are instantiated there.
+template class NewtonSolve<2>;
+template class NewtonSolve<3>;
 
 }  // namespace contactrb::hf

@@ -26,10 +26,11 @@ inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 }  // namespace newton_detail
 
 // Each step returning bool returns false when the solve has ended there (status and message in
-// result()).
+// result()). Dim = 2, 3: the contact geometry's dimension (the algebra is the same).
+template <int Dim>
 class NewtonSolve {
  public:
-  NewtonSolve(const NewtonProblem& problem, const NewtonSettings& settings);
+  NewtonSolve(const BasicNewtonProblem<Dim>& problem, const NewtonSettings& settings);
   // The initial iterate and the once-per-solve factorization of A_00 (ActiveSchur).
   bool start(const Eigen::VectorXd& u0, const Eigen::VectorXd& lambda);
   bool keep_iterating(int k);     // step 6: convergence test at the iterate
@@ -50,23 +51,23 @@ class NewtonSolve {
   bool solve_newton_system(const std::vector<char>& act);
   int predict_active(std::vector<char>& out, bool frozen) const;
   bool branch_pass();
-  double full_step_merit2(NewtonIterate& out) const;
+  double full_step_merit2(NewtonIterate<Dim>& out) const;
   bool frozen_step(std::vector<char>& frozen_active);
   bool chord_correction();
   bool record(std::chrono::steady_clock::time_point t_search);
 
-  const NewtonProblem& p_;
+  const BasicNewtonProblem<Dim>& p_;
   const NewtonSettings& s_;
   const NewtonTuning& t_;
   const int n_, N_, R_;
   std::vector<int> global_to_free_;
   std::vector<char> movable_;
   std::vector<int> contact_free_;  // the free DOFs of the slave and master nodes, ascending
-  const NewtonEvaluator evaluate_;
+  const NewtonEvaluator<Dim> evaluate_;
   NewtonLinearSystem system_;
   std::optional<solve::ScopedBlasThreads> serial_blas_;
   NewtonResult res_;
-  NewtonIterate st_;                   // the iterate
+  NewtonIterate<Dim> st_;                 // the iterate
   std::vector<char> previous_active_;  // the active set of the previous step
   bool newton_phase_ = false;
   int free_steps_ = 0;
@@ -84,9 +85,12 @@ class NewtonSolve {
   NewtonStep first_;                  // step 2's first system: the plain semi-smooth Newton step
   int passes_ = 0;
   std::string failure_;               // a frozen system was singular: the step fails
-  NewtonIterate full_trial_;          // the full step, evaluated (step 4): the line search's first trial
+  NewtonIterate<Dim> full_trial_;          // the full step, evaluated (step 4): the line search's first trial
   bool have_full_trial_ = false;
   NewtonStep plain_;                  // the Newton step before the chord corrections kept
 };
+
+extern template class NewtonSolve<2>;
+extern template class NewtonSolve<3>;
 
 }  // namespace contactrb::hf

@@ -69,7 +69,8 @@ void check_settings(const NewtonSettings& s) {
 
 // The method of docs/theory.md, "Semi-smooth Newton": its steps are NewtonSolve's
 // (newton_steps.hpp), numbered as there.
-NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0_start,
+template <int Dim>
+NewtonResult semismooth_newton(const BasicNewtonProblem<Dim>& p, const Eigen::VectorXd& u0_start,
                                const Eigen::VectorXd& lambda_start, const NewtonSettings& s) {
   check_settings(s);
   const int n = p.dofs->num_free();
@@ -78,7 +79,7 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
                                     " entries for " + std::to_string(n) + " free DOFs");
   require(lambda_start.size() == R, "semismooth_newton: initial lambda has " + std::to_string(lambda_start.size()) +
                                         " entries for " + std::to_string(R) + " constraint rows");
-  NewtonSolve solve(p, s);
+  NewtonSolve<Dim> solve(p, s);
   if (!solve.start(u0_start, lambda_start)) return solve.result();
   for (int k = 0; solve.keep_iterating(k); ++k) {  // step 6: the convergence test at each iterate
     if (!solve.linearize()) break;                 // step 1: the contact linearized at the iterate
@@ -91,5 +92,10 @@ NewtonResult semismooth_newton(const NewtonProblem& p, const Eigen::VectorXd& u0
   }
   return solve.result();
 }
+
+template NewtonResult semismooth_newton(const BasicNewtonProblem<2>&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                        const NewtonSettings&);
+template NewtonResult semismooth_newton(const BasicNewtonProblem<3>&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                        const NewtonSettings&);
 
 }  // namespace contactrb::hf

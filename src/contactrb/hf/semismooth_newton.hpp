@@ -131,7 +131,7 @@ struct NewtonSettings {
   // docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering").
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;
   // Step 1: analytic (default) or finite differences, and the projection's options
-  // ("Newton: analytic linearization").
+  // ("Newton: analytic linearization"); both in 3D too (docs/solvers.md, "Three dimensions").
   contact::LinearizationOptions linearization;
   NewtonTuning tuning;
 };
@@ -159,11 +159,9 @@ struct NewtonIteration {
   int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
 };
 
-// What the solver needs of an HF problem (views; the HF solver owns them).
-struct NewtonProblem {
-  const mesh::Mesh* mesh = nullptr;
-  const contact::ContactPair* pair = nullptr;
-  const contact::ContactQuadrature* quadrature = nullptr;
+// What the Newton linear systems need of an HF problem (views; the HF solver owns them): the
+// algebra alone, the same in every dimension.
+struct NewtonAlgebra {
   const fem::DofMap* dofs = nullptr;
   const Eigen::SparseMatrix<double>* A00 = nullptr;  // free x free
   const Eigen::VectorXd* b = nullptr;                // f_0 - (A u_D)_0
@@ -172,6 +170,16 @@ struct NewtonProblem {
   // ordering is NewtonSettings::ordering's and A_00 has its pattern (else ignored).
   std::function<const solve::FactorAnalysis*()> a00_analysis;
 };
+
+// What the solver needs of an HF problem: the algebra and the contact geometry of a dimension.
+template <int Dim>
+struct BasicNewtonProblem : NewtonAlgebra {
+  const mesh::SimplexMesh<Dim>* mesh = nullptr;
+  const contact::ContactPairOf<Dim>* pair = nullptr;
+  const contact::ContactQuadrature* quadrature = nullptr;
+};
+using NewtonProblem = BasicNewtonProblem<2>;
+using NewtonProblem3 = BasicNewtonProblem<3>;
 
 // Wall seconds of the once-per-solve work (ActiveSchur): CHOLMOD's ordering + symbolic analysis
 // of A_00, its numeric factorization, z = A_00^-1 b; and the initial evaluation.
@@ -197,7 +205,13 @@ struct NewtonResult {
 };
 
 // u0_start (num_free) and lambda_start (R): the initial guess (zeros: u = u_D, lambda = 0).
-NewtonResult semismooth_newton(const NewtonProblem& problem, const Eigen::VectorXd& u0_start,
+// 3D: no branch passes (docs/solvers.md, "Three dimensions").
+template <int Dim>
+NewtonResult semismooth_newton(const BasicNewtonProblem<Dim>& problem, const Eigen::VectorXd& u0_start,
                                const Eigen::VectorXd& lambda_start, const NewtonSettings& settings);
+extern template NewtonResult semismooth_newton(const BasicNewtonProblem<2>&, const Eigen::VectorXd&,
+                                               const Eigen::VectorXd&, const NewtonSettings&);
+extern template NewtonResult semismooth_newton(const BasicNewtonProblem<3>&, const Eigen::VectorXd&,
+                                               const Eigen::VectorXd&, const NewtonSettings&);
 
 }  // namespace contactrb::hf
