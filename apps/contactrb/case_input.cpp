@@ -6,8 +6,12 @@
 
 namespace contactrb::app {
 
+cases::CaseSpec read_case(const std::string& case_name, const std::string& case_file) {
+  return case_file.empty() ? cases::builtin_case_spec(case_name) : cases::case_from_toml_file(case_file);
+}
+
 cases::CaseSpec read_case_2d(const std::string& case_name, const std::string& case_file, const std::string& command) {
-  cases::CaseSpec spec = case_file.empty() ? cases::builtin_case_spec(case_name) : cases::case_from_toml_file(case_file);
+  cases::CaseSpec spec = read_case(case_name, case_file);
   const int dimension = cases::case_dimension(spec);
   if (dimension != 2) {
     throw Error("`contactrb " + command + "` supports 2D cases only in this build: " + spec.context() + " is " +

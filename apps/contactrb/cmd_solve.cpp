@@ -1,5 +1,5 @@
 // `contactrb solve`: one high-fidelity contact solve of a built-in case (--case) or a TOML
-// case file (--case-file) at one parameter value. Writes DIR/solution.json,
+// case file (--case-file) at one parameter value, in the case's dimension (2D or 3D). Writes DIR/solution.json,
 // DIR/multipliers.csv, DIR/solution.vtu (Omega(mu) with displacement, contact pressure and
 // stresses), DIR/solution_deformed.vtu (the deformed configuration) and DIR/contact.vtu (the
 // slave boundary with pressure and gap) (docs/file-formats.md, "Command outputs"; study/solution_fields.hpp). A solve
@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "commands.hpp"
 #include "contactrb/cases/builtin_problems.hpp"
@@ -29,6 +30,7 @@
 #include "contactrb/io/csv_writer.hpp"
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/study/solution_fields.hpp"
+#include "contactrb/study/solution_fields_3d.hpp"
 
 namespace contactrb::app {
 
@@ -64,8 +66,10 @@ struct SolveOptions {
 
 // solution.json (docs/user-guide.md, "solve"): the run's keys, the solve's and the discretization's
 // (hf::to_json, hf::discretization_json) and the grid sequencing's (cases::to_json).
-nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver, const hf::HFSolution& s,
-                             const hf::HFSettings& settings, const cases::SequenceStart& start) {
+template <int Dim>
+nlohmann::json solution_json(const SolveOptions& opt, const hf::BasicHFSolver<Dim>& solver,
+                             const hf::BasicHFSolution<Dim>& s, const hf::HFSettings& settings,
+                             const cases::SequenceStart& start) {
   nlohmann::json j = hf::to_json(s);
   j.update(hf::discretization_json(solver));
   j.update(cases::to_json(start));
@@ -73,16 +77,123 @@ nlohmann::json solution_json(const SolveOptions& opt, const hf::HFSolver& solver
   if (!opt.case_file.empty()) j["case_file"] = opt.case_file;
   j["mu"] = cases::mu_json(opt.parameters, opt.mu);
   j["level"] = opt.level;
+  j["dimension"] = Dim;
   j["solver"] = hf::to_string(settings.method);
   j["alpha"] = settings.kacanov.alpha;
   j["tolerance"] = settings.kacanov.tolerance;
   return j;
 }
 
+struct SolvePaths {
+  std::string json, csv, vtu, deformed, contact;
+  explicit SolvePaths(const std::string& dir)
+      : json(dir + "/solution.json"), csv(dir + "/multipliers.csv"), vtu(dir + "/solution.vtu"),
+        deformed(dir + "/solution_deformed.vtu"), contact(dir + "/contact.vtu") {}
+};
+
+// The reference mesh of the case in its dimension.
+mesh::Mesh reference_of(const cases::CaseSpec& spec, int level, std::integral_constant<int, 2>) {
+  return cases::reference_mesh(spec, level);
+}
+mesh::Mesh3 reference_of(const cases::CaseSpec& spec, int level, std::integral_constant<int, 3>) {
+  return cases::reference_mesh3(spec, level);
+}
+
+// 2D: multipliers.csv with the reference abscissa of each row and the three VTU files.
+void write_fields(const SolveOptions& opt, const mesh::Mesh& reference, const hf::HFSolver& solver,
+                  const hf::HFSolution& s, const SolvePaths& paths) {
+  const mesh::Mesh& m = solver.problem().mesh;
+  io::CsvWriter csv({"r", "abscissa", "x", "y", "gap", "pressure", "weight"});
+  const Eigen::VectorXd slack = s.rows.g - s.rows.K * s.u;  // integrated deformed gap
+  const auto& q = solver.quadrature();
+  for (int r = 0; r < s.lambda.size(); ++r) {
+    const auto node = static_cast<std::size_t>(q.center_node[static_cast<std::size_t>(r)]);
+    csv.add_row({static_cast<long long>(r), reference.nodes[node].x(), m.nodes[node].x(), m.nodes[node].y(),
+                 slack(r) / q.weight(r), s.lambda(r), q.weight(r)});
+  }
+  csv.write(paths.csv);
+  study::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
+                             opt.out_dir);
+}
+
+// 3D: one row per slave node (collocation and LAC), its pressure, deformed gap and nodal area.
+void write_fields(const SolveOptions& opt, const mesh::Mesh3&, const hf::HFSolver3& solver, const hf::HFSolution3& s,
+                  const SolvePaths& paths) {
+  const auto& q = solver.quadrature();
+  study::SlaveSurfaceFields contact;
+  contact.nodes = q.center_node;
+  contact.pressure = s.lambda;
+  contact.gap = (s.rows.g - s.rows.K * s.u).cwiseQuotient(q.weight);
+  contact.weight = q.weight;
+  study::write_multipliers_csv(solver.problem().mesh, contact, paths.csv);
+  study::write_solution_vtus(solver.problem().mesh, solver.problem().materials, opt.parameters, opt.mu, s.u, contact,
+                             opt.out_dir);
+}
+
+template <int Dim>
+int solve_case(const SolveOptions& opt, const cases::CaseSpec& spec, const hf::HFSettings& settings,
+               std::optional<contact::Discretization> constraint, const SolvePaths& paths) {
+  const auto reference = reference_of(spec, opt.level, std::integral_constant<int, Dim>{});
+  // Newton: the analysis of A_00 beside the assembly (hf::HFSetupOptions; the same answer bitwise),
+  // and beside the coarse stages of the grid sequencing.
+  const hf::BasicHFSolver<Dim> solver(cases::make_problem(spec, reference, opt.mu, constraint),
+                                      hf::setup_options_for(settings));
+  cases::SequenceStart start;
+  if constexpr (Dim == 2) {
+    start = cases::sequence_start(spec, opt.mu, cases::sequence_levels(opt.level, opt.sequence), constraint, settings,
+                                  solver);
+  }
+  const hf::BasicHFSolution<Dim> s = solver.solve(settings, start.guess);
+  const auto& m = solver.problem().mesh;
+
+  // The five files of one run are written under a lock on DIR (two runs to the same --out leave
+  // the files of one of them, never a mix) and committed together (a failed write leaves the
+  // earlier files: common/output_file.hpp, OutputSet).
+  const OutputLock lock(opt.out_dir);
+  OutputSet outputs;
+  io::write_json(solution_json(opt, solver, s, settings, start), paths.json);
+  const bool with_fields = s.rows.K.rows() == s.lambda.size() && s.lambda.size() > 0;
+  if (with_fields) write_fields(opt, reference, solver, s, paths);
+  outputs.commit();
+  if (!with_fields) {
+    // No fields of this run: the files of an earlier run would sit beside its solution.json.
+    for (const std::string& stale : {paths.csv, paths.vtu, paths.deformed, paths.contact}) {
+      std::error_code ignored;
+      std::filesystem::remove(stale, ignored);
+    }
+  }
+
+  std::cout << "case " << opt.case_name << " (" << Dim << "D), "
+            << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu) : cases::mu_text(opt.parameters, opt.mu))
+            << ", " << contact::to_string(solver.problem().discretization) << ", " << m.num_dofs() << " DOFs, "
+            << solver.quadrature().weight.size() << " constraints\n";
+  if (!s.converged) {
+    std::cerr << "contactrb: error: " << s.message << "\n";
+    std::cout << "wrote " << paths.json << " (converged = false)\n";
+    return 3;
+  }
+  if (!start.stages.empty()) {
+    std::cout << "grid sequencing:";
+    for (const cases::SequenceStage& st : start.stages) {
+      std::cout << " level " << st.level << " " << st.iterations << " iterations" << (st.converged ? "" : " (not converged)")
+                << ";";
+    }
+    std::cout << " " << start.time_s * 1e3 << " ms\n";
+  }
+  std::cout << "converged in " << s.iterations << " " << (s.method == hf::HFMethod::Newton ? "Newton" : "Kacanov")
+            << " iterations (" << s.time_s * 1e3 << " ms)\n"
+            << "energy " << s.energy << ", contact force " << s.contact_force << ", active constraints "
+            << s.active_constraints << ", max KKT residual " << s.kkt.max() << "\n"
+            << "wrote " << paths.json << "\nwrote " << paths.csv << "\nwrote " << paths.vtu << "\nwrote "
+            << paths.deformed << "\nwrote " << paths.contact << "\n";
+  return 0;
+}
+
 int run_solve(SolveOptions opt) {
   // Cheap checks first: case (the TOML file is read and checked here), parameter,
   // settings, output directory; the mesh comes later.
-  const cases::CaseSpec spec = read_case_2d(opt.case_name, opt.case_file, "solve");
+  const cases::CaseSpec spec = read_case(opt.case_name, opt.case_file);
+  const int dimension = cases::case_dimension(spec);
   if (!opt.case_file.empty()) opt.case_name = spec.name;
   opt.mu = parse_mu_option(opt.mu_text, "--mu", spec.parameters);
   opt.parameters = spec.parameters;
@@ -100,84 +211,23 @@ int run_solve(SolveOptions opt) {
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   require(opt.sequence >= -1, "--sequence must be >= 0, or -1 for automatic (got " + std::to_string(opt.sequence) + ")");
+  require(dimension == 2 || opt.sequence <= 0,
+          "--sequence: grid sequencing is not available in 3D (" + spec.context() + " is 3D); use --sequence 0");
   if (opt.sequence < 0) {
-    opt.sequence = settings.method == hf::HFMethod::Newton && opt.level >= kAutoSequenceFromLevel ? kAutoSequence : 0;
+    opt.sequence = dimension == 2 && settings.method == hf::HFMethod::Newton && opt.level >= kAutoSequenceFromLevel
+                       ? kAutoSequence
+                       : 0;
   }
-  const std::string json_path = opt.out_dir + "/solution.json";
-  const std::string csv_path = opt.out_dir + "/multipliers.csv";
-  const std::string vtu_path = opt.out_dir + "/solution.vtu";
-  const std::string deformed_path = opt.out_dir + "/solution_deformed.vtu";
-  const std::string contact_path = opt.out_dir + "/contact.vtu";
+  const SolvePaths paths(opt.out_dir);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
-                   {{"solution.json in --out", json_path},
-                    {"multipliers.csv in --out", csv_path},
-                    {"solution.vtu in --out", vtu_path},
-                    {"solution_deformed.vtu in --out", deformed_path},
-                    {"contact.vtu in --out", contact_path}});
+                   {{"solution.json in --out", paths.json},
+                    {"multipliers.csv in --out", paths.csv},
+                    {"solution.vtu in --out", paths.vtu},
+                    {"solution_deformed.vtu in --out", paths.deformed},
+                    {"contact.vtu in --out", paths.contact}});
   ensure_output_directory(opt.out_dir);
-
-  const mesh::Mesh reference = cases::reference_mesh(spec, opt.level);
-  // Newton: the analysis of A_00 beside the assembly (hf::HFSetupOptions; the same answer bitwise),
-  // and beside the coarse stages of the grid sequencing.
-  const hf::HFSolver solver(cases::make_problem(spec, reference, opt.mu, constraint), hf::setup_options_for(settings));
-  const cases::SequenceStart start =
-      cases::sequence_start(spec, opt.mu, cases::sequence_levels(opt.level, opt.sequence), constraint, settings, solver);
-  const hf::HFSolution s = solver.solve(settings, start.guess);
-  const mesh::Mesh& m = solver.problem().mesh;
-
-  // The five files of one run are written under a lock on DIR (two runs to the same --out leave
-  // the files of one of them, never a mix) and committed together (a failed write leaves the
-  // earlier files: common/output_file.hpp, OutputSet).
-  const OutputLock lock(opt.out_dir);
-  OutputSet outputs;
-  io::write_json(solution_json(opt, solver, s, settings, start), json_path);
-  const bool with_fields = s.rows.K.rows() == s.lambda.size() && s.lambda.size() > 0;
-  if (with_fields) {
-    io::CsvWriter csv({"r", "abscissa", "x", "y", "gap", "pressure", "weight"});
-    const Eigen::VectorXd slack = s.rows.g - s.rows.K * s.u;  // integrated deformed gap
-    const auto& q = solver.quadrature();
-    for (int r = 0; r < s.lambda.size(); ++r) {
-      const auto node = static_cast<std::size_t>(q.center_node[static_cast<std::size_t>(r)]);
-      csv.add_row({static_cast<long long>(r), reference.nodes[node].x(), m.nodes[node].x(), m.nodes[node].y(),
-                   slack(r) / q.weight(r), s.lambda(r), q.weight(r)});
-    }
-    csv.write(csv_path);
-    study::write_solution_vtus(m, solver.problem().materials, solver.pair(), q, opt.parameters, opt.mu, s.u, s.lambda,
-                               opt.out_dir);
-  }
-  outputs.commit();
-  if (!with_fields) {
-    // No fields of this run: the files of an earlier run would sit beside its solution.json.
-    for (const std::string& stale : {csv_path, vtu_path, deformed_path, contact_path}) {
-      std::error_code ignored;
-      std::filesystem::remove(stale, ignored);
-    }
-  }
-
-  std::cout << "case " << opt.case_name << ", " << (opt.mu.size() == 1 ? "mu = " + cases::mu_values_text(opt.mu)
-                                                                    : cases::mu_text(opt.parameters, opt.mu))
-            << ", " << contact::to_string(solver.problem().discretization)
-            << ", " << m.num_dofs() << " DOFs, " << solver.quadrature().weight.size() << " constraints\n";
-  if (!s.converged) {
-    std::cerr << "contactrb: error: " << s.message << "\n";
-    std::cout << "wrote " << json_path << " (converged = false)\n";
-    return 3;
-  }
-  if (!start.stages.empty()) {
-    std::cout << "grid sequencing:";
-    for (const cases::SequenceStage& st : start.stages) {
-      std::cout << " level " << st.level << " " << st.iterations << " iterations" << (st.converged ? "" : " (not converged)")
-                << ";";
-    }
-    std::cout << " " << start.time_s * 1e3 << " ms\n";
-  }
-  std::cout << "converged in " << s.iterations << " " << (s.method == hf::HFMethod::Newton ? "Newton" : "Kacanov")
-            << " iterations (" << s.time_s * 1e3 << " ms)\n"
-            << "energy " << s.energy << ", contact force " << s.contact_force << ", active constraints "
-            << s.active_constraints << ", max KKT residual " << s.kkt.max() << "\n"
-            << "wrote " << json_path << "\nwrote " << csv_path << "\nwrote " << vtu_path << "\nwrote "
-            << deformed_path << "\nwrote " << contact_path << "\n";
-  return 0;
+  return dimension == 3 ? solve_case<3>(opt, spec, settings, constraint, paths)
+                        : solve_case<2>(opt, spec, settings, constraint, paths);
 }
 
 }  // namespace

@@ -79,6 +79,8 @@ Command add_demo_command(CLI::App& app);
 // 2D cases only: throws contactrb::Error in one line naming the command, the case and its
 // dimension for a 3D case (case_input.cpp; contactrb-full only).
 cases::CaseSpec read_case_2d(const std::string& case_name, const std::string& case_file, const std::string& command);
+// The same for a command that solves both dimensions.
+cases::CaseSpec read_case(const std::string& case_name, const std::string& case_file);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.

@@ -1,11 +1,18 @@
 // Three-dimensional cases in the CLI: `cases` gives each case's dimension, `mesh` writes the 3D
-// built-in meshes (read back by read_msh3), and the commands without a 3D path refuse a 3D case
-// in one line naming its dimension.
+// built-in meshes (read back by read_msh3), `solve` solves them, and the commands without a 3D
+// path refuse a 3D case in one line naming its dimension.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "contactrb/mesh/msh_io.hpp"
@@ -78,13 +85,74 @@ TEST(Cli3d, CommandsWithoutA3dPathRefuseA3dCaseInOneLine) {
   contactrb::test::TempDir dir("cli3d_refuse");
   const std::string out = shell_quote(dir.path().string());
   for (const std::string& command :
-       {"solve --case hertz-3d --mu 0.02 --out " + out, "snapshots --case hertz-3d --out " + out + "/s.h5",
-        "offline --case patch-3d --out " + out + "/m.h5", "report --case hertz-3d --out " + out}) {
+       {"snapshots --case hertz-3d --out " + out + "/s.h5", "offline --case patch-3d --out " + out + "/m.h5",
+        "report --case hertz-3d --out " + out}) {
     const auto r = run_cli(command);
     expect_user_error(r, "is 3D");
     expect_one_line(r);
     EXPECT_NE(r.err.find("2D cases only"), std::string::npos) << command << ": " << r.err;
   }
+  // solve: grid sequencing is 2D only.
+  const auto r = run_cli("solve --case hertz-3d --mu 0.02 --sequence 2 --out " + out);
+  expect_user_error(r, "grid sequencing is not available in 3D");
+  expect_one_line(r);
+}
+
+namespace {
+
+// The columns of a CSV file by header name.
+std::vector<std::map<std::string, double>> csv_rows(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::map<std::string, double> row;
+    for (const std::string& name : names) {
+      std::string v;
+      std::getline(fields, v, ',');
+      row[name] = std::stod(v);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double solution_force(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in).at("contact_force").get<double>();
+}
+
+}  // namespace
+
+// `solve` on the 3D patch test (two blocks, non-matching meshes, LAC): the uniform pressure
+// E mu / 0.5 ... of the confined compression at every row to round-off, and the five files.
+TEST(Cli3d, SolveGivesTheUniformPressureOfThePatchTest) {
+  contactrb::test::TempDir dir("cli3d_patch");
+  const auto r = run_cli("solve --case patch-3d --mu 0.02 --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(3D)"), std::string::npos) << r.out;
+  for (const char* f : {"solution.json", "multipliers.csv", "solution.vtu", "solution_deformed.vtu", "contact.vtu"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir.path() / f)) << f;
+  }
+  const auto rows = csv_rows(dir.path() / "multipliers.csv");
+  ASSERT_GT(rows.size(), 10u);
+  double area = 0.0, force = 0.0, pmin = 1e300, pmax = -1e300;
+  for (const auto& row : rows) {
+    area += row.at("weight");
+    force += row.at("weight") * row.at("pressure");
+    pmin = std::min(pmin, row.at("pressure"));
+    pmax = std::max(pmax, row.at("pressure"));
+    EXPECT_LT(std::abs(row.at("gap")), 1e-12);
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);  // the unit square interface
+  EXPECT_GT(pmin, 0.0);
+  EXPECT_LT((pmax - pmin) / pmax, 1e-10) << pmin << " " << pmax;
+  EXPECT_NEAR(solution_force(dir.path() / "solution.json"), force, 1e-12 * force);
 }
 
 TEST(Cli3d, TomlCaseOnA3dMeshIsThreeDimensional) {
@@ -110,6 +178,12 @@ uz = { a = 0.0, b = -1.0 }
 [[dirichlet]]
 group = "bottom"
 uz = 0.0
+[[dirichlet]]
+group = "symmetry_x"
+ux = 0.0
+[[dirichlet]]
+group = "symmetry_y"
+uy = 0.0
 [parameter]
 name = "imposed displacement"
 kind = "dirichlet-scale"
@@ -119,9 +193,9 @@ training = [0.01, 0.02, 0.03]
 )";
   const auto r = run_cli("solve --case-file " + shell_quote((dir.path() / "case.toml").string()) + " --mu 0.02 --out " +
                          shell_quote((dir.path() / "out").string()));
-  expect_user_error(r, "is 3D");
-  expect_one_line(r);
-  EXPECT_NE(r.err.find("patch-file-3d"), std::string::npos) << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("case patch-file-3d (3D)"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_regular_file(dir.path() / "out" / "contact.vtu"));
 }
 
 namespace {

@@ -229,6 +229,19 @@ hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& referenc
   return p;
 }
 
+hf::ContactProblem3 make_problem(const CaseSpec& spec, const mesh::Mesh3& reference, const Mu& mu,
+                                 std::optional<contact::Discretization> constraint) {
+  check_case_spec(spec);
+  spec.check_mu(mu);
+  require(case_dimension(spec) == 3, spec.context() + " is a 2D case: its problem is built on a 2D mesh");
+  hf::ContactProblem3 p;
+  p.mesh = reference;
+  p.materials = materials(spec, mu);
+  p.dirichlet = dirichlet_at(spec, mu);
+  p.discretization = constraint ? *constraint : spec.constraint;
+  return p;
+}
+
 hf::ContactProblem make_problem(const CaseSpec& spec, const Mu& mu, int level,
                                 std::optional<contact::Discretization> constraint) {
   check_case_spec(spec);

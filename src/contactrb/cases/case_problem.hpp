@@ -44,6 +44,11 @@ hf::ContactProblem make_problem(const CaseSpec& spec, double mu, int level = 0,
 hf::ContactProblem make_problem(const CaseSpec& spec, const mesh::Mesh& reference, double mu,
                                 std::optional<contact::Discretization> constraint = std::nullopt);
 
+// The 3D HF problem at mu on `reference` (reference_mesh3): 3D cases have no geometric
+// parameter, body load or traction (case_spec.hpp), so Omega(mu) is the reference mesh.
+hf::ContactProblem3 make_problem(const CaseSpec& spec, const mesh::Mesh3& reference, const Mu& mu,
+                                 std::optional<contact::Discretization> constraint = std::nullopt);
+
 // Dirichlet conditions at mu (values a + b mu_k).
 std::vector<fem::DirichletCondition> dirichlet_at(const CaseSpec& spec, const Mu& mu);
 // The materials at mu (E of a body with a young-modulus parameter is mu_k).
