@@ -99,29 +99,7 @@ Dual projection_xi(const DualGeometry& geo, const SlaveProjection& p, const DVec
   return geo.t_raw(p.segment, x);
 }
 
-// The K entries of one row (or pointwise node) as duals, by DOF.
-struct DualRow {
-  Dual g;
-  std::vector<std::pair<int, Dual>> K;
-  void add(int node, const Dual& c, const DVec2& n) {
-    for (int comp = 0; comp < 2; ++comp) {
-      const int dof = 2 * node + comp;
-      const Dual v = c * (comp == 0 ? n.x : n.y);
-      auto it = std::find_if(K.begin(), K.end(), [dof](const auto& e) { return e.first == dof; });
-      if (it == K.end()) {
-        K.emplace_back(dof, v);
-      } else {
-        it->second += v;
-      }
-    }
-  }
-  // d = g - K u, with the derivative of u itself.
-  Dual gap(const DualGeometry& geo) const {
-    Dual d = g;
-    for (const auto& [dof, k] : K) d = d - k * geo.dof(dof);
-    return d;
-  }
-};
+using DualRow = DualRowOf<2, DVec2>;  // one row's g and K entries as duals (local_dual.hpp)
 
 // Pointwise maps of slave position s (projection.cpp (27)-(28)): g_s and the K row.
 DualRow pointwise_row(const DualGeometry& geo, const ContactPair& pair, const PointwiseContact& pw, int s) {

@@ -123,29 +123,7 @@ class DualSurface {
   const std::vector<int>& slot_;
 };
 
-// g and the K entries of one pointwise row as duals, by DOF.
-struct DualRow3 {
-  Dual g;
-  std::vector<std::pair<int, Dual>> K;
-  void add(int node, const Dual& c, const DVec3& n) {
-    for (int comp = 0; comp < 3; ++comp) {
-      const int dof = 3 * node + comp;
-      const Dual v = c * n[comp];
-      auto it = std::find_if(K.begin(), K.end(), [dof](const auto& e) { return e.first == dof; });
-      if (it == K.end()) {
-        K.emplace_back(dof, v);
-      } else {
-        it->second += v;
-      }
-    }
-  }
-  // d = g - K u, with the derivative of u itself.
-  Dual gap(const DualSurface& geo) const {
-    Dual d = g;
-    for (const auto& [dof, k] : K) d = d - k * geo.dof(dof);
-    return d;
-  }
-};
+using DualRow3 = DualRowOf<3, DVec3>;  // one row's g and K entries as duals (local_dual.hpp)
 
 // Pointwise maps of slave position s (projection.hpp (27)-(28), 3D).
 DualRow3 pointwise_row(const DualSurface& geo, const ContactPair3& pair, const PointwiseContact3& pw, int s) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace contactrb::contact::detail {
@@ -80,6 +81,7 @@ inline Dual sqrt(const Dual& a) {
 
 struct DVec2 {
   Dual x, y;
+  const Dual& operator[](int c) const { return c == 0 ? x : y; }
   double vx() const { return x.v; }
   double vy() const { return y.v; }
   Eigen::Vector2d value() const { return {x.v, y.v}; }
@@ -108,6 +110,33 @@ inline Dual dot(const DVec3& a, const DVec3& b) { return a.x * b.x + a.y * b.y +
 inline DVec3 cross(const DVec3& a, const DVec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+
+// g and the K entries of one row (or pointwise node) as duals, by DOF: K accumulates c n on the
+// Dim DOFs of `node`; gap(geo) = g - K u with the derivative of u itself (geo.dof(d) is the dual
+// value of DOF d). Dim = 2 (n a DVec2) or 3 (a DVec3).
+template <int Dim, class Vec>
+struct DualRowOf {
+  Dual g;
+  std::vector<std::pair<int, Dual>> K;
+  void add(int node, const Dual& c, const Vec& n) {
+    for (int comp = 0; comp < Dim; ++comp) {
+      const int dof = Dim * node + comp;
+      const Dual v = c * n[comp];
+      auto it = std::find_if(K.begin(), K.end(), [dof](const auto& e) { return e.first == dof; });
+      if (it == K.end()) {
+        K.emplace_back(dof, v);
+      } else {
+        it->second += v;
+      }
+    }
+  }
+  template <class Geometry>
+  Dual gap(const Geometry& geo) const {
+    Dual d = g;
+    for (const auto& [dof, k] : K) d = d - k * geo.dof(dof);
+    return d;
+  }
+};
 inline Dual norm(const DVec3& a) { return sqrt(dot(a, a)); }
 // atan2(y, x) and its derivative (x dy - y dx) / (x^2 + y^2).
 inline Dual atan2(const Dual& y, const Dual& x) {
