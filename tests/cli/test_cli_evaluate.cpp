@@ -15,10 +15,13 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "csv_text.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::file_text;
+using contactrb::test::read_csv;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 using nlohmann::json;
@@ -31,13 +34,6 @@ std::vector<std::string> file_lines(const std::string& path) {
   std::string line;
   while (std::getline(in, line)) out.push_back(line);
   return out;
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // NumberOfPoints of the (single) piece of a VTU file, -1 when absent.

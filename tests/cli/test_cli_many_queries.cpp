@@ -18,11 +18,14 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "csv_text.hpp"
 #include "support/meshio_reader.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::file_text;
+using contactrb::test::read_csv;
 using contactrb::test::expect_user_error;
 using contactrb::test::lines_of;
 using contactrb::test::run_cli;
@@ -31,36 +34,6 @@ using nlohmann::json;
 
 namespace {
 
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-// A CSV with a header: column name -> cells.
-std::map<std::string, std::vector<std::string>> read_csv(const std::string& path) {
-  const std::vector<std::string> lines = lines_of(file_text(path));
-  std::map<std::string, std::vector<std::string>> out;
-  if (lines.empty()) return out;
-  const std::vector<std::string> header = split(lines[0]);
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    const std::vector<std::string> cells = split(lines[i]);
-    EXPECT_EQ(cells.size(), header.size()) << lines[i];
-    for (std::size_t c = 0; c < header.size() && c < cells.size(); ++c) out[header[c]].push_back(cells[c]);
-  }
-  return out;
-}
 
 class CliManyQueries : public ::testing::Test {
  protected:
@@ -179,7 +152,7 @@ TEST_F(CliManyQueries, ThreadedCompactFormatsAreTheSerialBytes) {
     double row[7];
     std::memcpy(row, npy.data() + 10 + header + i * sizeof row, sizeof row);
     EXPECT_EQ(row[0], static_cast<double>(i + 1));
-    const std::vector<std::string> cells = split(csv[i + 1]);
+    const std::vector<std::string> cells = contactrb::test::split_csv_line(csv[i + 1]);
     ASSERT_EQ(cells.size(), 7u) << csv[i + 1];
     EXPECT_EQ(cells[0], std::to_string(i + 1));
     if (i % 101 == 7) {

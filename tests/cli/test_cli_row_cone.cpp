@@ -15,10 +15,13 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "csv_text.hpp"
 #include "mpi_runner.hpp"
 #include "support/temp_dir.hpp"
 
 using contactrb::test::CliResult;
+using contactrb::test::file_text;
+using contactrb::test::read_csv;
 using contactrb::test::expect_user_error;
 using contactrb::test::lines_of;
 using contactrb::test::run_cli;
@@ -26,35 +29,6 @@ using contactrb::test::shell_quote;
 using nlohmann::json;
 
 namespace {
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  return cells;
-}
-
-// A CSV with a header: column name -> cells.
-std::map<std::string, std::vector<std::string>> read_csv(const std::string& path) {
-  const std::vector<std::string> lines = lines_of(file_text(path));
-  std::map<std::string, std::vector<std::string>> out;
-  if (lines.empty()) return out;
-  const std::vector<std::string> header = split(lines[0]);
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    const std::vector<std::string> cells = split(lines[i]);
-    EXPECT_EQ(cells.size(), header.size()) << lines[i];
-    for (std::size_t c = 0; c < header.size() && c < cells.size(); ++c) out[header[c]].push_back(cells[c]);
-  }
-  return out;
-}
 
 // The JSON lines without their timing.
 std::vector<std::string> without_time(const std::string& out) {
