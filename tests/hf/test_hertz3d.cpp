@@ -88,3 +88,24 @@ TEST(Hertz3d, ContactRadiusAndPeakPressureWithinFivePercent) {
   EXPECT_LT(std::abs(fine.p0_fit / fine.p0_hertz - 1.0), std::abs(coarse.p0_fit / coarse.p0_hertz - 1.0));
   EXPECT_GT(fine.active, 3 * coarse.active);
 }
+
+// Collocation on the quarter model: the slave nodes on the symmetry planes lie above the master's
+// rim edges there; with ProjectionOptions::rim_angle_tolerance they stay candidates as the
+// master triangles tilt, and both solvers converge (without it Kacanov and the Newton cycle).
+TEST(Hertz3d, CollocationConvergesOnTheQuarterModel) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-3d");
+  for (int level : {0, 1}) {
+    const hf::HFSolver3 solver(cases::make_problem(spec, cases::reference_mesh3(spec, level), cases::Mu::Constant(1, 0.03)));
+    const hf::HFSolution3 k = solver.solve(hf::HFSettings{});
+    hf::HFSettings newton;
+    newton.method = hf::HFMethod::Newton;
+    const hf::HFSolution3 n = solver.solve(newton);
+    ASSERT_TRUE(k.converged) << "level " << level << ": " << k.message;
+    ASSERT_TRUE(n.converged) << "level " << level << ": " << n.message;
+    EXPECT_LE(n.iterations, 10) << "level " << level;
+    EXPECT_EQ(n.active_constraints, k.active_constraints) << "level " << level;
+    EXPECT_NEAR(n.contact_force, k.contact_force, 1e-3 * k.contact_force) << "level " << level;
+    std::printf("[ hertz-3d level %d, collocation ] Kacanov %d, Newton %d iterations, force %.6e\n", level,
+                k.iterations, n.iterations, n.contact_force);
+  }
+}

@@ -238,7 +238,10 @@ class MasterSearch<3> {
   using Hit = TriangleHit;
   MasterSearch(const mesh::Mesh3& mesh, const ContactPair3& pair, const Eigen::VectorXd& w,
                const ProjectionOptions& options)
-      : pair_(pair), m_(deformed_master(mesh, pair, w)), end_tolerance_(options.end_tolerance) {
+      : pair_(pair),
+        m_(deformed_master(mesh, pair, w)),
+        end_tolerance_(options.end_tolerance),
+        rim_angle_(options.rim_angle_tolerance) {
     const bool use_tree = options.search == SearchMethod::Tree ||
                           (options.search == SearchMethod::Automatic && m_.num_facets() >= options.tree_min_segments);
     if (use_tree) {
@@ -294,7 +297,7 @@ class MasterSearch<3> {
 
   bool beyond(int rim, const Vec3& x, const Vec3& p) const {
     return (x - p).dot(m_.rim_conormal[static_cast<std::size_t>(rim)]) >
-           end_tolerance_ * m_.rim_length[static_cast<std::size_t>(rim)];
+           end_tolerance_ * m_.rim_length[static_cast<std::size_t>(rim)] + rim_angle_ * (x - p).norm();
   }
 
   // The closest point lies on an edge (one phi_i = 0) or a vertex (two) of the triangle; the
@@ -323,6 +326,7 @@ class MasterSearch<3> {
   const ContactPair3& pair_;
   MasterSurface m_;
   double end_tolerance_;
+  double rim_angle_;
   std::unique_ptr<FacetTree<3>> tree_;
   std::vector<std::pair<int, double>> stack_;
 };

@@ -95,9 +95,17 @@ struct ProjectionOptions {
   // the end segment is < -end_tolerance or > 1 + end_tolerance (relative to the segment
   // length). The tolerance keeps a slave node aligned with the master end (same-width
   // bodies) a candidate despite round-off. 3D: beyond a rim edge of the master surface when
-  // (x_s - p) . m > end_tolerance |e|, with p the closest point on the edge, m the edge's
-  // outward conormal and |e| its length.
+  // (x_s - p) . m > end_tolerance |e| + rim_angle_tolerance |x_s - p|, with p the closest point
+  // on the edge, m the edge's outward conormal (in the plane of its deformed triangle) and |e|
+  // its length.
   double end_tolerance = 1e-10;
+  // 3D only: how far (radians) the direction from the rim to x_s may lean outwards before x_s is
+  // beyond it. A slave node above a rim edge on a symmetry plane (both bodies on rollers there)
+  // leans by the tilt of the deformed master triangle, O(strain), times its gap; without this
+  // angle such nodes near the contact zone switch between candidate and not from one iterate to
+  // the next, and Kacanov and the Newton cycle on hertz-3d (docs/contact.md, "Three dimensions").
+  // Measured there (level 1, mu 0.03): 0.005 still cycles, 0.01 converges; 0.05 keeps a margin.
+  double rim_angle_tolerance = 0.05;
 };
 
 // w: global displacement (num_dofs). A closed master chain (master.front() == master.back(),
