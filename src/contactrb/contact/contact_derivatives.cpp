@@ -379,19 +379,12 @@ void analytic_linearization(const mesh::Mesh& mesh, const ContactPair& pair, con
       }
       sort_unique(in);
       in_passes(in, slot, [&](const int* window, int count) {
-        const DualRow row = pointwise_row(geo, pair, pw, s);
-        const Dual d = row.gap(geo);
-        for (Eigen::SparseMatrix<double>::InnerIterator it(Wc, s); it; ++it) {
-          scatter_d(d, static_cast<int>(it.row()), it.value(), window, count, d_trip);
-        }
-        scatter_h(row, load(s), window, count, movable, h_trip);
+        scatter_pointwise(pointwise_row(geo, pair, pw, s), geo, Wc, s, load(s), window, count, movable, d_trip,
+                          h_trip);
       });
     }
   }
-  lin.D.resize(R, N);
-  lin.D.setFromTriplets(d_trip.begin(), d_trip.end());
-  lin.H.resize(N, N);
-  lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
+  set_from_triplets(lin, R, N, d_trip, h_trip);
 }
 
 }  // namespace contactrb::contact::detail

@@ -179,4 +179,28 @@ void scatter_h(const Row& row, double load, const int* window, int count, const 
   }
 }
 
+// The pointwise row of slave position s (Collocation, LACSimpson: rows = W * pointwise) into D
+// (column s of W, Wc = W column-major) and H (its load, (W' lambda)_s), over the window of inputs.
+template <class Row, class Geometry>
+void scatter_pointwise(const Row& row, const Geometry& geo, const Eigen::SparseMatrix<double>& Wc, int s, double load,
+                       const int* window, int count, const std::vector<char>& movable,
+                       std::vector<Eigen::Triplet<double>>& d_trip, std::vector<Eigen::Triplet<double>>& h_trip) {
+  const Dual d = row.gap(geo);
+  for (Eigen::SparseMatrix<double>::InnerIterator it(Wc, s); it; ++it) {
+    scatter_d(d, static_cast<int>(it.row()), it.value(), window, count, d_trip);
+  }
+  scatter_h(row, load, window, count, movable, h_trip);
+}
+
+// D (R x N) and H (N x N) from their triplets.
+template <class Linearization>
+void set_from_triplets(Linearization& lin, Eigen::Index R, Eigen::Index N,
+                       const std::vector<Eigen::Triplet<double>>& d_trip,
+                       const std::vector<Eigen::Triplet<double>>& h_trip) {
+  lin.D.resize(R, N);
+  lin.D.setFromTriplets(d_trip.begin(), d_trip.end());
+  lin.H.resize(N, N);
+  lin.H.setFromTriplets(h_trip.begin(), h_trip.end());
+}
+
 }  // namespace contactrb::contact::detail
