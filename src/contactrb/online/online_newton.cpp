@@ -28,6 +28,7 @@ namespace contactrb::online {
 
 namespace {
 inline std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+using RowSparseW = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 }  // namespace
 
 struct OnlineSolver::NewtonSystem {
@@ -64,20 +65,62 @@ void OnlineSolver::add_geometric_stiffness(const Eigen::SparseMatrix<double>& H,
   J.noalias() += Ts.transpose() * (Hs * Ts);
 }
 
+void OnlineSolver::setup_kept_pair() {
+  kept_pair_ = {};
+  kept_column_.assign(surface_.slave.size(), -1);
+  if (surface_.discretization == contact::Discretization::LAC) return;
+  // The sparsity of W does not depend on mu: read it on the reference chain.
+  const contact::ContactQuadrature reference = contact::make_quadrature(mesh_, pair_, surface_.discretization);
+  for (const int r : kept_rows_) {
+    for (RowSparseW::InnerIterator it(reference.W, r); it; ++it) kept_column_[sz(static_cast<int>(it.col()))] = 0;
+  }
+  for (std::size_t s = 0; s < kept_column_.size(); ++s) {
+    if (kept_column_[s] < 0) continue;
+    kept_column_[s] = static_cast<int>(kept_pair_.slave.size());
+    kept_pair_.slave.push_back(surface_.slave[s]);
+  }
+  kept_pair_.master = surface_.master;
+}
+
+void OnlineSolver::restrict_quadrature() {
+  if (kept_pair_.slave.empty()) return;
+  const Eigen::Index kept = static_cast<Eigen::Index>(kept_rows_.size());
+  std::vector<Eigen::Triplet<double>> t;
+  kept_quadrature_.discretization = quadrature_.discretization;
+  kept_quadrature_.weight.resize(kept);
+  kept_quadrature_.center_node.clear();
+  for (Eigen::Index i = 0; i < kept; ++i) {
+    const int r = kept_rows_[sz(static_cast<int>(i))];
+    for (RowSparseW::InnerIterator it(quadrature_.W, r); it; ++it) {
+      t.emplace_back(static_cast<int>(i), kept_column_[sz(static_cast<int>(it.col()))], it.value());
+    }
+    kept_quadrature_.weight(i) = quadrature_.weight(r);
+    kept_quadrature_.center_node.push_back(quadrature_.center_node[sz(r)]);
+  }
+  kept_quadrature_.W.resize(kept, static_cast<Eigen::Index>(kept_pair_.slave.size()));
+  kept_quadrature_.W.setFromTriplets(t.begin(), t.end());
+}
+
 void OnlineSolver::newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys) {
   w_ = lift_mu_;
   w_.noalias() += Theta_c_ * u_hat;
   const Eigen::VectorXd lambda_kept = Xi_ * lambda_hat;
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(surface_.num_constraints);
-  for (std::size_t i = 0; i < kept_rows_.size(); ++i) lambda(kept_rows_[i]) = lambda_kept(static_cast<Eigen::Index>(i));
-  // Every contact-surface DOF moves with u_hat (through Theta_c; its zero rows do not).
-  const std::vector<char> movable(sz(static_cast<int>(w_.size())), 1);
-  const contact::ContactLinearization lin = contact::linearize_contact(mesh_, pair_, quadrature_, w_, lambda, movable);
   const Eigen::Index kept = static_cast<Eigen::Index>(kept_rows_.size());
   Eigen::MatrixXd K_Theta(kept, N_), D_Theta(kept, N_);
   Eigen::VectorXd d(kept);
+  // Pointwise rows: the kept rows from their own slave nodes (row i of the linearization is
+  // kept row i); LAC rows: the whole surface, then the kept rows picked.
+  const bool restricted = !kept_pair_.slave.empty();
+  Eigen::VectorXd lambda = lambda_kept;
+  if (!restricted) {
+    lambda.setZero(surface_.num_constraints);
+    for (Eigen::Index i = 0; i < kept; ++i) lambda(kept_rows_[sz(static_cast<int>(i))]) = lambda_kept(i);
+  }
+  const contact::ContactLinearization lin =
+      restricted ? contact::linearize_contact(mesh_, kept_pair_, kept_quadrature_, w_, lambda, movable_)
+                 : contact::linearize_contact(mesh_, pair_, quadrature_, w_, lambda, movable_);
   for (Eigen::Index i = 0; i < kept; ++i) {
-    const int r = kept_rows_[sz(static_cast<int>(i))];
+    const Eigen::Index r = restricted ? i : kept_rows_[sz(static_cast<int>(i))];
     K_Theta.row(i) = lin.maps.rows.K.row(r) * Theta_c_;
     D_Theta.row(i) = lin.D.row(r) * Theta_c_;
     d(i) = lin.maps.d(r);

@@ -141,6 +141,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   lac_rows_.erase(std::unique(lac_rows_.begin(), lac_rows_.end()), lac_rows_.end());
   lac_positions_ = contact::lac_slave_positions(lac_rows_, static_cast<int>(surface_.slave.size()));
   lac_kept_positions_ = contact::lac_slave_positions(kept_rows_, static_cast<int>(surface_.slave.size()));
+  setup_kept_pair();
   // Upper bound of |D|_F without cancellation per unit |phi|_1: |Xi| |Q_j| |Theta_c| with |q_j|_inf = 1.
   d_bound_ = Xi_.norm() * Theta_c_.norm();
 
@@ -150,6 +151,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   f_.resize(N_);
   z_.resize(N_);
   lift_mu_.resize(n_c);
+  movable_.assign(sz(static_cast<int>(n_c)), 1);
   w_.resize(n_c);
   kappa_hat_.resize(Mk_);
   gamma_hat_.resize(Mg_);
@@ -217,6 +219,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
   }
   if (slave_moved) {
     quadrature_ = contact::make_quadrature(mesh_, pair_, surface_.discretization);
+    restrict_quadrature();
     quadrature_slave_.clear();
     for (int v : surface_.slave) quadrature_slave_.push_back(mesh_.nodes[sz(v)]);
   }

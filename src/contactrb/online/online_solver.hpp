@@ -189,6 +189,10 @@ class OnlineSolver {
   struct NewtonSystem;
   void newton_system(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat, NewtonSystem& sys);
   void add_geometric_stiffness(const Eigen::SparseMatrix<double>& H, Eigen::MatrixXd& J) const;
+  // kept_pair_ and kept_column_ from the sparsity of the rows (constructor), kept_quadrature_
+  // from quadrature_ (whenever quadrature_ is rebuilt).
+  void setup_kept_pair();
+  void restrict_quadrature();
   solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
                                            const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
@@ -238,6 +242,13 @@ class OnlineSolver {
   mesh::Mesh mesh_;                      // contact nodes in Omega(mu) (positions set per solve)
   contact::ContactPair pair_;
   contact::ContactQuadrature quadrature_;
+  // Pointwise rows (collocation, LAC-Simpson): the slave nodes of the kept rows and the whole
+  // master chain, and the kept rows of quadrature_ over those nodes. The reduced Newton
+  // linearizes these rows only (online_newton.cpp); empty for LAC rows.
+  contact::ContactPair kept_pair_;
+  contact::ContactQuadrature kept_quadrature_;
+  std::vector<int> kept_column_;          // slave position -> column of kept_quadrature_.W (-1: none)
+  std::vector<char> movable_;             // every contact-surface DOF moves with u_hat
   std::vector<Eigen::Vector2d> quadrature_slave_;  // the slave node positions quadrature_ was built at
   MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
   MagicPointEvaluator kept_;              // the kept rows whole (ContactRows::Exact, pointwise rows)
