@@ -1,5 +1,5 @@
-// Moving contact zone: the row cone (`contactrb offline --dual rows`) against the paper's default
-// CPG cone, per case (docs/performance.md, "Moving contact zone"). For each case and method: the
+// Moving contact zone: the row cone (the default of `contactrb offline`) against the paper's
+// CPG cone (`--dual cpg`), per case (docs/performance.md, "Moving contact zone"). For each case and method: the
 // sizes, max and median e_displ / e_press / e_force, the effectivity range and median, the median
 // and worst online time per query and the offline time, one CSV line each (study::evaluate_model,
 // as `contactrb evaluate`), and the same as a markdown table on stdout.

@@ -64,7 +64,7 @@ struct OfflineOptions {
   double eps_pod = offline::OfflineSettings{}.eps_pod;
   std::optional<int> n;  // absent: --eps-pod decides
   std::string inner_product = "energy";
-  std::string dual = "cpg";
+  std::string dual = to_string(offline::OfflineSettings{}.dual_method);
   double eps_du = offline::OfflineSettings{}.eps_du;
   bool eps_du_relative = false;  // the default anyway; kept for scripts that pass it
   std::optional<int> r;  // absent: --eps-du decides

@@ -43,7 +43,7 @@ class CliOfflineOnline : public ::testing::Test {
                                 " -j 2 -q --out " + shell_quote(snapshots_));
     ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
     offline_ = run_cli("offline --snapshots " + shell_quote(snapshots_) +
-                       " --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model_));
+                       " --dual cpg --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model_));
     ASSERT_EQ(offline_.exit_code, 0) << offline_.out << offline_.err;
   }
   static void TearDownTestSuite() { dir_.reset(); }
@@ -269,7 +269,7 @@ TEST_F(CliOfflineOnline, OfflineFromACaseEqualsSnapshotsThenOffline) {
   fs::create_directories(sub);
   const std::string model = sub + "/model.h5";
   const CliResult r = run_cli(std::string("offline --case hertz-a --values ") + kValues + kTight +
-                              " -j 2 -q --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model));
+                              " -j 2 -q --dual cpg --n 100 --eps-du 0 --eps-eim-k 0 --eps-eim-g 0 --out " + shell_quote(model));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_TRUE(fs::exists(sub + "/snapshots.h5"));
   EXPECT_NE(r.out.find("wrote " + sub + "/snapshots.h5"), std::string::npos) << r.out;
@@ -372,8 +372,8 @@ TEST_F(CliOfflineOnline, BadInputsGiveOneClearError) {
 }
 
 // A model whose primal basis cannot see the contact (the patch test's single POD mode has no
-// interface jump, so D^kappa = 0 without supremizers) must fail with a clear message, never answer
-// with undetermined multipliers. With the supremizer (the default) the basis sees the contact and
+// interface jump, so D = 0 without supremizers) must fail with a clear message, never answer
+// with undetermined multipliers. With the supremizers (the default) the basis sees the contact and
 // the reduced model reproduces the HF patch solution (uniform pressure) to round-off.
 TEST(CliOnlineBlindBasis, PatchModelIsRefusedWithAClearMessage) {
   contactrb::test::TempDir dir("online_blind");
@@ -399,7 +399,8 @@ TEST(CliOnlineBlindBasis, PatchModelIsRefusedWithAClearMessage) {
   std::ifstream in(dir.path() / "hf" / "solution.json");
   const json hf = json::parse(in);
   const json rb = json::parse(ok.out);
-  EXPECT_EQ(rb.at("sizes").at("N"), 2);  // the POD mode and the supremizer
+  // The POD mode and one supremizer per generator (the row cone: one per kept row).
+  EXPECT_EQ(rb.at("sizes").at("N").get<int>(), 1 + rb.at("sizes").at("R").get<int>());
   EXPECT_NEAR(rb.at("contact_force").get<double>(), hf.at("contact_force").get<double>(),
               1e-10 * hf.at("contact_force").get<double>());
   EXPECT_NEAR(rb.at("energy").get<double>(), hf.at("energy").get<double>(), 1e-10 * hf.at("energy").get<double>());

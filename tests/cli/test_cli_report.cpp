@@ -376,7 +376,7 @@ TEST(CliReportCaseFile, OfflineDefaultsAndAWarningAboveOnePercent) {
   ASSERT_EQ(ok.exit_code, 0) << ok.out << ok.err;
   const json study = json::parse(read_text(fs::path(dir.file("ok")) / "study.json"));
   const std::string md_ok = read_text(fs::path(dir.file("ok")) / "report.md");
-  EXPECT_NE(md_ok.find("Tolerances (relative, as `contactrb offline`'s defaults): eps_POD = 3e-05, eps_DU = 0.001, "
+  EXPECT_NE(md_ok.find("Tolerances (relative, as `contactrb offline`'s defaults): eps_POD = 1e-06, eps_DU = 0.001, "
                        "eps_EIM^k = 1e-05, eps_EIM^g = 1e-05"),
             std::string::npos)
       << md_ok;

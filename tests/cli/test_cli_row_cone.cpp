@@ -141,7 +141,7 @@ TEST_F(CliRowCone, EvaluateWithTheNewtonAnswersAsOnlineNewton) {
 
 TEST_F(CliRowCone, NewtonOnAGlobalConeIsAUserError) {
   const std::string cpg = dir_->file("cpg.h5");
-  ASSERT_EQ(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(cpg)).exit_code, 0);
+  ASSERT_EQ(run_cli("offline --snapshots " + shell_quote(snapshots_) + " --dual cpg --out " + shell_quote(cpg)).exit_code, 0);
   expect_user_error(run_cli("evaluate --model " + shell_quote(cpg) + " --iteration newton -q --out " +
                             shell_quote(dir_->file("ev_cpg"))),
                     "--iteration newton needs a model built with `contactrb offline --dual rows` (its dual cone is 'cpg')");

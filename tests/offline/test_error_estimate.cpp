@@ -31,6 +31,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
+#include "support/cpg_settings.hpp"
 
 namespace {
 
@@ -77,7 +78,7 @@ const OfflineResult& untruncated_model(const std::string& name) {
   static std::map<std::string, std::unique_ptr<OfflineResult>> cache;
   auto& slot = cache[name];
   if (!slot) {
-    OfflineSettings s;
+    OfflineSettings s = test_support::cpg_settings();
     s.pod_modes = 1000;
     s.eps_du = 0.0;
     s.eps_eim_k = 0.0;

@@ -23,6 +23,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
+#include "support/cpg_settings.hpp"
 
 namespace {
 
@@ -67,7 +68,7 @@ const SnapshotSet& snapshots(const std::string& name, bool verification = false)
 }
 
 OfflineSettings untruncated(bool compression) {
-  OfflineSettings s;
+  OfflineSettings s = test_support::cpg_settings();
   s.pod_modes = 1000;  // capped at the numerical rank: N = P
   s.eps_du = 0.0;      // CPG until every snapshot lies in the cone
   s.eps_eim_k = 0.0;   // EIM until exhausted
@@ -101,7 +102,7 @@ Errors compare(const OfflineResult& off, OnlineSolver& solver, const SnapshotSet
 
 // A truncated model (N 4, R 4, Mk 4, Mg 3) of a case's test snapshots.
 OfflineResult truncated_model(const SnapshotSet& set, const std::string& name) {
-  OfflineSettings s;
+  OfflineSettings s = test_support::cpg_settings();
   s.eps_pod = 0.0;
   s.pod_modes = 4;
   s.dual_size = 4;
@@ -188,7 +189,7 @@ TEST_P(OfflineOnline, ErrorsFallAsOfflineTolerancesTighten) {
   const auto spec = contactrb::cases::builtin_case_spec(GetParam());
   std::vector<double> worst;
   for (double rel : {1e-1, 1e-4}) {
-    OfflineSettings s;
+    OfflineSettings s = test_support::cpg_settings();
     ASSERT_TRUE(s.eps_pod_relative && s.eps_du_relative && s.eps_eim_k_relative && s.eps_eim_g_relative);
     s.eps_pod = rel;
     s.eps_du = rel;
@@ -211,7 +212,7 @@ TEST_P(OfflineOnline, ErrorsFallAsOfflineTolerancesTighten) {
 // the full contact-surface rows.
 TEST_P(OfflineOnline, RestrictedMagicRowsEqualFullRows) {
   const SnapshotSet& set = snapshots(GetParam());
-  OfflineSettings s;
+  OfflineSettings s = test_support::cpg_settings();
   s.eps_pod = 0.0;
   s.dual_size = 3;
   s.eim_k_size = 4;
@@ -278,7 +279,7 @@ TEST_P(OfflineOnline, RowConeWithExactRowsReproducesTheTrainingSnapshots) {
 // needs tens, and its answer carries a smaller estimate (no complementarity lag of the last step).
 TEST_P(OfflineOnline, ReducedNewtonReachesTheFixedPointInFewSteps) {
   const SnapshotSet& set = snapshots(GetParam());
-  OfflineSettings s;
+  OfflineSettings s = test_support::cpg_settings();
   s.dual_method = contactrb::offline::DualConeMethod::Rows;
   const OfflineResult off =
       contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
@@ -558,13 +559,13 @@ TEST(OfflineBuilder, RefusesAModelWithoutEIMFunctions) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
   };
-  OfflineSettings loose_k;
+  OfflineSettings loose_k = test_support::cpg_settings();
   loose_k.eps_eim_k = 1e9;
   expect_refused(loose_k, "M^k = 0");
-  OfflineSettings loose_g;
+  OfflineSettings loose_g = test_support::cpg_settings();
   loose_g.eps_eim_g = 1e9;
   expect_refused(loose_g, "M^g = 0");
-  OfflineSettings zero_g;
+  OfflineSettings zero_g = test_support::cpg_settings();
   zero_g.eim_g_size = 0;
   expect_refused(zero_g, "M^g = 0");
 }
@@ -759,7 +760,7 @@ TEST(OfflineOnlineRingBlock, UntruncatedLACModelReproducesTrainingSnapshots) {
 TEST(OfflineOnlineRingBlock, RestrictedLACRowsEqualFullRows) {
   const SnapshotSet& set = ring_block_snapshots();
   ASSERT_EQ(set.num_failed(), 0) << set.snapshots[0].message;
-  OfflineSettings s;
+  OfflineSettings s = test_support::cpg_settings();
   s.eps_pod = 0.0;
   s.dual_size = 3;
   s.eim_k_size = 4;

@@ -26,6 +26,7 @@
 namespace fs = std::filesystem;
 using namespace contactrb;
 
+#include "support/cpg_settings.hpp"
 namespace {
 
 const fs::path kData = fs::path(CONTACTRB_SOURCE_DIR) / "tests" / "data" / "scaling";
@@ -59,7 +60,7 @@ struct Study {
   double hf_energy_scale = 0.0;  // max |energy_hf| over the verification set
 };
 
-// Training snapshots, the model at the default settings, the evaluation on the verification set.
+// Training snapshots, the model of the paper's method (CPG), the evaluation on the verification set.
 Study study_of(const cases::CaseSpec& spec) {
   contactrb::offline::SnapshotRequest request =
       contactrb::offline::make_snapshot_request(spec, "training", 0, std::nullopt, std::nullopt);
@@ -68,7 +69,7 @@ Study study_of(const cases::CaseSpec& spec) {
   const io::SnapshotSet set = contactrb::offline::generate_snapshots(request, run);
   EXPECT_EQ(set.num_failed(), 0) << spec.name;
   Study s;
-  s.offline = contactrb::offline::build_reduced_model(set, spec, contactrb::offline::OfflineSettings{});
+  s.offline = contactrb::offline::build_reduced_model(set, spec, test_support::cpg_settings());
   study::EvaluationOptions options;
   options.online_repeats = 1;
   options.jobs = 2;
@@ -178,7 +179,7 @@ TEST(UnitScaling, AbsoluteTolerancesDependOnTheUnits) {
   const cases::CaseSpec si = cases.spec("hertz-a-si");
   contactrb::offline::SnapshotRunOptions run;
   run.jobs = 2;
-  contactrb::offline::OfflineSettings absolute;
+  contactrb::offline::OfflineSettings absolute = test_support::cpg_settings();
   absolute.set_absolute();
   absolute.eps_pod = 1e-3;
   absolute.eps_eim_k = absolute.eps_eim_g = 1e-6;

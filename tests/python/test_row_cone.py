@@ -112,7 +112,10 @@ def test_evaluate_newton_equals_cli(rows_model, rows_model_path, tmp_path):
     assert e["summary"]["max_e_press"] < 1e-2
 
 
-def test_newton_on_a_global_cone_is_refused_as_by_the_cli(model, cli_model):
+def test_newton_on_a_global_cone_is_refused_as_by_the_cli(cli_snapshots, tmp_path):
+    cli_model = tmp_path / "cpg.h5"
+    run_cli("offline", "--snapshots", cli_snapshots, "--dual", "cpg", "--out", cli_model)
+    model = contactrb.Model.load(str(cli_model))
     message = cli_error("online", "--model", cli_model, "--mu", "0.3", "--iteration", "newton")
     assert message.startswith("--iteration newton needs a model built with `contactrb offline --dual rows`")
     with pytest.raises(contactrb.Error, match="iteration 'newton' needs a model built with dual 'rows'"):

@@ -32,6 +32,7 @@
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
+#include "support/cpg_settings.hpp"
 
 namespace {
 
@@ -68,7 +69,7 @@ const OfflineResult& model(bool truncated) {
   static std::unique_ptr<OfflineResult> full, small;
   auto& slot = truncated ? small : full;
   if (!slot) {
-    OfflineSettings s;
+    OfflineSettings s = test_support::cpg_settings();
     if (truncated) {
       s.supremizers = false;  // N = 1: the independent computation below uses the single POD mode
       s.pod_modes = 1;

@@ -29,13 +29,13 @@ struct OfflineSettings {
   // when pod_modes >= 0 (capped at the numerical rank).
   // 3e-5 relative keeps the N of the former default (1e-3 absolute, sigma_1 = 33 and 35) on
   // hertz-a and hertz-b (docs/cli.md, "`contactrb offline`").
-  double eps_pod = 3e-5;
+  double eps_pod = 1e-6;
   bool eps_pod_relative = true;
   int pod_modes = -1;
   InnerProduct inner_product = InnerProduct::Energy;  // energy: A(reference mu) on the free DOFs
   // Dual cone (T3): eps_DU on the L2(Gamma^c) error (58): relative, each mu's error divided by
   // |lambda(mu)|_Lambda; absolute, the error itself. dual_size >= 0 fixes R.
-  DualConeMethod dual_method = DualConeMethod::CPG;
+  DualConeMethod dual_method = DualConeMethod::Rows;
   double eps_du = 1e-3;
   bool eps_du_relative = true;
   int dual_size = -1;

@@ -328,6 +328,13 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
                         std::string& message) {
   if (exact_rows_) {
     exact_operators(u_hat);
+    // |D'|_F <= |Theta_c|_F |Xi|_F max_r |K_r| and |K_r| <= 2 |I_r| (a unit normal on the slave
+    // node and a partition of unity on the master): the bound of the blind test below.
+    const double d_norm = Dt_.norm();
+    if (R_ > 0 && d_norm <= kBlindContactTolerance * 2.0 * d_bound_ * quadrature_.weight.maxCoeff()) {
+      message = blind_contact_message(d_norm);
+      return false;
+    }
     return solve_reduced_qp(u_bar, lambda_bar, inner, message);
   }
   if (pointwise_magic_) {
@@ -351,9 +358,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
   // not determined by (53): the QP would return round-off over round-off. Fail instead.
   const double d_norm = Dt_.norm();
   if (R_ > 0 && d_norm <= kBlindContactTolerance * d_scale) {
-    message = "the reduced contact operator D^kappa vanishes (|D| = " + number_text(d_norm) +
-              "): the primal basis does not see the contact constraints, so the reduced multipliers "
-              "are undetermined; rebuild the model with a larger N";
+    message = blind_contact_message(d_norm);
     return false;
   }
   if (Mg_ > 0) {
@@ -403,6 +408,13 @@ double OnlineSolver::relative_inf_sup() const {
   const Eigen::VectorXd& sigma = svd.singularValues();
   if (!(sigma(0) > 0.0)) return 0.0;
   return sigma(sigma.size() - 1) / sigma(0);
+}
+
+std::string OnlineSolver::blind_contact_message(double d_norm) const {
+  return std::string("the reduced contact operator ") + (exact_rows_ ? "D" : "D^kappa") + " vanishes (|D| = " +
+         number_text(d_norm) +
+         "): the primal basis does not see the contact constraints, so the reduced multipliers are undetermined; "
+         "rebuild the model with a larger N or with supremizers";
 }
 
 std::string OnlineSolver::undetermined_message(double beta) const {

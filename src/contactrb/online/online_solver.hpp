@@ -204,6 +204,8 @@ class OnlineSolver {
   // V_N (R > N, or the supremizer that sees it cut by the N truncation).
   double relative_inf_sup() const;
   std::string undetermined_message(double beta) const;
+  // D vanishes: the primal basis has no component the contact rows see (K Theta_c = 0).
+  std::string blind_contact_message(double d_norm) const;
 
   // Contact-surface mesh at mu (chain nodes only, no triangles) and the EIM values at the
   // magic points for the contact-DOF displacement w.
