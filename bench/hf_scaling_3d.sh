@@ -12,9 +12,13 @@ max_newton=${2:-3}
 max_kacanov=${3:-2}
 bin="$build/bench/bench_hf_scaling"
 "$bin" --header
-for level in $(seq 0 "$max_newton"); do
+newton=$(for level in $(seq 0 "$max_newton"); do
   "$bin" --case hertz-3d --level "$level" --mu 0.02 --solver newton --repeat $((level < 3 ? 3 : 1))
-done
+done)
+echo "$newton"
+# The growth exponent of the wall time (total_s) between consecutive levels, on stderr.
+echo "$newton" | awk -F, 'NR > 1 { printf "newton level %d -> %d: N^%.2f\n", level, $2, log($10 / t) / log($3 / n) >"/dev/stderr" }
+                          { level = $2; n = $3; t = $10 }'
 for level in $(seq 0 "$max_kacanov"); do
   "$bin" --case hertz-3d --level "$level" --mu 0.02 --solver kacanov --repeat $((level < 2 ? 3 : 1))
 done

@@ -68,33 +68,32 @@ def read_mesh(path):
 
 
 class Body:
-    """One body as its own GetFEM mesh: the nodes of its tetrahedra, renumbered."""
+    """One body as its own GetFEM mesh: the nodes of its tetrahedra, renumbered, convex k being
+    tetrahedron k with its vertices in order (checked)."""
 
     def __init__(self, gf, points, tets):
         self.nodes = np.unique(tets)
         self.local = -np.ones(len(points), dtype=int)
         self.local[self.nodes] = np.arange(len(self.nodes))
-        self.mesh = gf.Mesh("ptND", points[self.nodes].T.copy(), self.local[tets].T.copy())
-        if not np.allclose(self.mesh.pts().T, points[self.nodes]):
-            sys.exit("hertz3d_getfem: GetFEM renumbered the nodes of a body")
+        cells = self.local[tets]
+        self.mesh = gf.Mesh("ptND", points[self.nodes].T.copy(), cells.T.copy())
+        pid, _ = self.mesh.pid_from_cvid(np.arange(len(cells)))
+        if not np.allclose(self.mesh.pts().T, points[self.nodes]) or not np.array_equal(pid.reshape(-1, 4), cells):
+            sys.exit("hertz3d_getfem: GetFEM renumbered the nodes or the tetrahedra of a body")
         self.outer = self.mesh.outer_faces()
-        self.outer_keys = {}
-        pid, idx = self.mesh.pid_from_cvid(self.outer[0])
-        for k in range(self.outer.shape[1]):
-            cv, f = int(self.outer[0, k]), int(self.outer[1, k])
-            fp = self.mesh.pid_in_faces(np.array([[cv], [f]]))
-            self.outer_keys[tuple(sorted(int(p) for p in fp))] = k
+        # Face f of a GetFEM simplex is the one opposite its vertex f.
+        vertices = cells[self.outer[0]]
+        keep = np.arange(4)[None, :] != self.outer[1][:, None]
+        keys = np.sort(vertices[keep].reshape(-1, 3), axis=1)
+        self.outer_keys = {tuple(k): j for j, k in enumerate(keys.tolist())}
 
     def set_region(self, number, triangles):
         """The group's triangles on this body as GetFEM region `number`; returns their count."""
-        cols = []
-        for tri in triangles:
-            key = tuple(sorted(int(self.local[v]) for v in tri))
-            if min(key) < 0:
-                continue  # on the other body
-            if key not in self.outer_keys:
-                sys.exit("hertz3d_getfem: a boundary triangle is not on the boundary of its body")
-            cols.append(self.outer_keys[key])
+        local = np.sort(self.local[triangles], axis=1)
+        mine = local[(local >= 0).all(axis=1)]  # the others are on the other body
+        cols = [self.outer_keys.get(tuple(k), -1) for k in mine.tolist()]
+        if -1 in cols:
+            sys.exit("hertz3d_getfem: a boundary triangle is not on the boundary of its body")
         if cols:
             self.mesh.set_region(number, self.outer[:, cols])
         return len(cols)
@@ -155,7 +154,7 @@ def solve_getfem(gf, points, tets, faces, mu):
     areas = np.array([coords[tuple(np.round(basic[:, k], 12))] for k in range(basic.shape[1])])
     pressure = forces / areas
     return {"time": seconds, "mesh_time": t_mesh, "iterations": iterations, "force": forces.sum(),
-            "max_pressure": pressure.max(), "active": int((forces > 0).sum()), "converged": converged, "dofs": mf1.nbdof() + bodies["u2"][0].nbdof()}
+            "max_pressure": pressure.max(), "active": int((forces > 1e-10 * forces.max()).sum()), "converged": converged, "dofs": mf1.nbdof() + bodies["u2"][0].nbdof()}
 
 
 def solve_contactrb(binary, level, mu, work):
