@@ -4,21 +4,23 @@
 python3-getfem) and python3-meshio, run with /usr/bin/python3.
 
     /usr/bin/python3 bench/getfem/hertz3d_getfem.py --contactrb build/apps/contactrb/contactrb \
-        --level 2 [--mu 0.02] [--work DIR] [--repeat 1]
+        --level 2 [--mu 0.02] [--work DIR]
 
 The mesh is the one `contactrb mesh --case hertz-3d --level L` writes (mesh.msh, Gmsh 4.1), read
 with meshio and split into the two bodies (two GetFEM meshes: the bodies touch at the origin, and
 a single GetFEM mesh would merge the two coincident nodes there). Same problem as the case
 (docs/cases.md, "Three-dimensional cases"): P1 tetrahedra, E = 15, nu = 0.3 in both bodies, `top`
 u = (0, 0, -mu), `bottom` u = 0 (both eliminated), rollers u.n = 0 on `symmetry_x` and
-`symmetry_y` (a penalty 1e9 on the face integral of (u.n)(v.n)), frictionless contact of the
-slave nodes against the master faces: GetFEM's nodal contact between non-matching meshes (small
-sliding, Alart-Curnier augmented Lagrangian, r = E) solved by GetFEM's Newton with MUMPS.
+`symmetry_y` (a penalty 1e9 on the face integral of (u.n)(v.n); 1e11 moves the force by 2e-8 on
+level 1), frictionless contact of the slave nodes against the master faces: GetFEM's nodal
+contact between non-matching meshes (small sliding, Alart-Curnier augmented Lagrangian, r = E)
+solved by GetFEM's Newton with MUMPS.
 
 GetFEM's multipliers are nodal forces; the pressure of a slave node is its force over its nodal
 area (a third of the area of each slave triangle at the node), as contactrb's collocation
-weights. OPENBLAS_NUM_THREADS is 1 on both sides unless set. The time of each side is the wall time of the solve from the mesh in memory: GetFEM's
-model assembly and Newton; contactrb's setup and solve (solution.json "time_s").
+weights. OPENBLAS_NUM_THREADS is 1 on both sides unless set. The time of each side is the wall
+time of the solve from the mesh in memory: GetFEM's model assembly and Newton; contactrb's setup
+and solve (solution.json "time_s").
 """
 import argparse
 import json
