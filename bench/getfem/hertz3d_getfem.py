@@ -42,7 +42,10 @@ SLAVE, MASTER, TOP, BOTTOM, SYM_X, SYM_Y = 1, 2, 3, 4, 5, 6
 
 
 def run(cmd):
-    done = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        done = subprocess.run(cmd, capture_output=True, text=True)
+    except OSError as e:
+        sys.exit("hertz3d_getfem: cannot run %s: %s (--contactrb)" % (cmd[0], e))
     if done.returncode != 0:
         sys.exit("hertz3d_getfem: '%s' failed (%d):\n%s%s" % (" ".join(cmd), done.returncode, done.stdout, done.stderr))
     return done.stdout
