@@ -267,6 +267,41 @@ TEST(SelectedInverse, TwoThreadSubstitutionIsBitwiseTheSerialOne) {
   }
 }
 
+// The symbolic counts of a FactorAnalysis: a tridiagonal matrix (a path graph, eliminated leaf
+// first without fill) has nnz(L) = 2n - 1 and sum_j |L_j|^2 = 4(n - 1) + 1 flops (CHOLMOD's fl);
+// on a grid with fill, nnz(L) lies between nnz(tril(A)) and the supernodal factor's count
+// (which stores the zeros inside its supernodes).
+TEST(SelectedInverse, AnalysisCountsTheFactorBeforeTheNumericWork) {
+  const int n = 200;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 4.0);
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  Eigen::SparseMatrix<double> T(n, n);
+  T.setFromTriplets(t.begin(), t.end());
+  const solve::FactorAnalysis path = solve::FactorAnalysis::analyze(T, solve::FactorOrdering::Cholmod);
+  ASSERT_TRUE(path.valid());
+  EXPECT_EQ(path.factor_nonzeros(), 2.0 * n - 1.0);
+  EXPECT_EQ(path.factor_flops(), 4.0 * (n - 1) + 1.0);
+
+  const Eigen::SparseMatrix<double> A = vector_grid_matrix(30);
+  for (const solve::FactorOrdering ordering : {solve::FactorOrdering::Cholmod, solve::FactorOrdering::NodeMetis}) {
+    const solve::FactorAnalysis analysis = solve::FactorAnalysis::analyze(A, ordering);
+    ASSERT_TRUE(analysis.valid());
+    solve::SelectedInverse inv;
+    ASSERT_EQ(inv.compute(A, analysis), solve::SelectedInverseStatus::Success);
+    const double lower = static_cast<double>((A.nonZeros() + A.rows()) / 2);
+    EXPECT_GT(analysis.factor_nonzeros(), lower) << solve::to_string(ordering);
+    EXPECT_LE(analysis.factor_nonzeros(), static_cast<double>(inv.factor_nonzeros())) << solve::to_string(ordering);
+    EXPECT_GT(analysis.factor_flops(), analysis.factor_nonzeros()) << solve::to_string(ordering);
+  }
+  EXPECT_EQ(solve::FactorAnalysis::analyze(Eigen::SparseMatrix<double>(3, 4)).factor_nonzeros(), 0.0);
+}
+
 // A FactorAnalysis of the pattern alone (zero values), made on another thread, gives the same
 // factor as compute(A, ordering): bitwise the same solves and blocks, for both orderings; a
 // matrix with another pattern falls back to its own analysis (still the right inverse).

@@ -428,6 +428,7 @@ struct FactorAnalysis::Impl {
   FactorOrdering requested = FactorOrdering::Cholmod, used = FactorOrdering::Cholmod;
   std::vector<int> outer, inner;  // the pattern analysed, for matches()
   double seconds = 0.0;
+  double lnz = 0.0, flops = 0.0;  // cholmod_common's, read right after the analysis
   Impl() { cholmod_start(&common); }
   ~Impl() {
     if (L != nullptr) cholmod_free_factor(&L, &common);
@@ -461,6 +462,10 @@ FactorAnalysis FactorAnalysis::analyze(int n, std::vector<int> outer, std::vecto
     return a;
   }
   m.L = analyze_pattern(n, outer.data(), inner.data(), m.requested, m.common, m.used);
+  // Set from the column counts before the supernodal analysis, so also when that one fails for
+  // size (CHOLMOD_TOO_LARGE: a factor beyond the int indices).
+  m.lnz = std::max(0.0, m.common.lnz);  // EMPTY (-1) when the analysis stopped before the counts
+  m.flops = std::max(0.0, m.common.fl);
   if (m.L == nullptr) return a;
   m.outer = std::move(outer);
   m.inner = std::move(inner);
@@ -471,6 +476,8 @@ FactorAnalysis FactorAnalysis::analyze(int n, std::vector<int> outer, std::vecto
 bool FactorAnalysis::valid() const { return impl_ && impl_->L != nullptr; }
 FactorOrdering FactorAnalysis::requested() const { return impl_ ? impl_->requested : FactorOrdering::Auto; }
 double FactorAnalysis::seconds() const { return impl_ ? impl_->seconds : 0.0; }
+double FactorAnalysis::factor_nonzeros() const { return impl_ ? impl_->lnz : 0.0; }
+double FactorAnalysis::factor_flops() const { return impl_ ? impl_->flops : 0.0; }
 bool FactorAnalysis::matches(const Eigen::SparseMatrix<double>& A) const {
   if (!valid() || !A.isCompressed() || A.rows() != A.cols()) return false;
   const Impl& m = *impl_;

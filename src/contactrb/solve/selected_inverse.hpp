@@ -64,6 +64,13 @@ class FactorAnalysis {
   FactorOrdering requested() const;  // the ordering asked for (Auto resolved by the size)
   bool matches(const Eigen::SparseMatrix<double>& A) const;  // A compressed with exactly this pattern
   double seconds() const;  // wall seconds of analyze()
+  // CHOLMOD's count from the symbolic analysis (cholmod_common lnz, fl), before any numeric work:
+  // the nonzeros of L and the flops of its numeric factorization, from the column counts: also
+  // when the supernodal analysis then failed for size (not valid(): a factor beyond CHOLMOD's int
+  // indices); 0 when no analysis ran. Why: where a direct factorization stops fitting is known
+  // before it is attempted (docs/performance.md, "HF scaling in 3D").
+  double factor_nonzeros() const;
+  double factor_flops() const;
 
  private:
   friend class SelectedInverse;
