@@ -3,13 +3,14 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
-#include "contactrb/fem/cholesky.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::offline {
 
@@ -36,10 +37,34 @@ std::vector<Index> touched_dofs(const contact::ContactLinearization& lin, const 
   return out;
 }
 
-}  // namespace
+// A_00(mu_p) factored once and kept while the next snapshot's matrix is the same (a parameter
+// that does not enter the stiffness, as an imposed displacement): its block of the inverse on
+// the touched DOFs is then read from the same factor and the columns it has cached.
+class InverseBlocks {
+ public:
+  Eigen::MatrixXd block(const Eigen::SparseMatrix<double>& A, const std::vector<int>& idx) {
+    if (!same_as_factored(A)) {
+      require(inverse_.compute(A) == solve::SelectedInverseStatus::Success,
+              "geometric_ratio: A_00(mu) is not positive definite");
+      factored_ = A;
+    }
+    return inverse_.block(idx);
+  }
+
+ private:
+  bool same_as_factored(const Eigen::SparseMatrix<double>& A) const {
+    if (factored_.rows() != A.rows() || factored_.nonZeros() != A.nonZeros() || !A.isCompressed()) return false;
+    const auto n = static_cast<std::size_t>(A.nonZeros());
+    return std::equal(A.valuePtr(), A.valuePtr() + n, factored_.valuePtr()) &&
+           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + n, factored_.innerIndexPtr()) &&
+           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, factored_.outerIndexPtr());
+  }
+  solve::SelectedInverse inverse_;
+  Eigen::SparseMatrix<double> factored_;
+};
 
 double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
-                       const io::Snapshot& snapshot) {
+                       const io::Snapshot& snapshot, InverseBlocks& inverse) {
   const hf::HFSolver solver(cases::make_problem(spec, reference, snapshot.mu, d));
   const fem::DofMap& dofs = solver.dofs();
   require(snapshot.u.size() == dofs.num_dofs() && snapshot.lambda.size() == solver.quadrature().weight.size(),
@@ -59,15 +84,8 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
   for (Index i = 0; i < m; ++i) slot[sz(cd[sz(i)])] = i;
 
   // C = (A_00^-1) on cd; its inverse is the Schur complement (the minimum energy of an extension).
-  fem::SparseCholesky chol;
-  require(chol.compute(dofs.restrict_matrix(solver.stiffness())) == fem::FactorStatus::Success,
-          "geometric_ratio: A_00(mu) is not positive definite");
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(dofs.num_free(), m);
-  for (Index i = 0; i < m; ++i) E(cd[sz(i)], i) = 1.0;
-  const Eigen::MatrixXd X = chol.solve(E);
-  Eigen::MatrixXd C(m, m);
-  for (Index i = 0; i < m; ++i) C.row(i) = X.row(cd[sz(i)]);
-  const Eigen::MatrixXd S = C.inverse();
+  const std::vector<int> idx(cd.begin(), cd.end());
+  const Eigen::MatrixXd S = inverse.block(dofs.restrict_matrix(solver.stiffness()), idx).inverse();
 
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, m);
   for (Index k = 0; k < lin.H.outerSize(); ++k) {
@@ -97,11 +115,20 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
   return std::max(0.0, eig.eigenvalues().maxCoeff());
 }
 
+}  // namespace
+
+double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
+                       const io::Snapshot& snapshot) {
+  InverseBlocks inverse;
+  return geometric_ratio(spec, reference, d, snapshot, inverse);
+}
+
 double max_geometric_ratio(const io::SnapshotSet& set, const cases::CaseSpec& spec, const mesh::Mesh& reference,
                            contact::Discretization d) {
+  InverseBlocks inverse;
   double eta = 0.0;
   for (const io::Snapshot& s : set.snapshots) {
-    if (s.converged) eta = std::max(eta, geometric_ratio(spec, reference, d, s));
+    if (s.converged) eta = std::max(eta, geometric_ratio(spec, reference, d, s, inverse));
   }
   return eta;
 }
