@@ -10,6 +10,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::offline {
@@ -43,6 +44,9 @@ std::vector<Index> touched_dofs(const contact::ContactLinearization& lin, const 
 class InverseBlocks {
  public:
   Eigen::MatrixXd block(const Eigen::SparseMatrix<double>& A, const std::vector<int>& idx) {
+    // One BLAS thread: the supernodal factor and block are then the same bitwise whatever the
+    // machine's threads (a model built on each MPI rank is the serial one).
+    const solve::ScopedBlasThreads blas(1);
     if (!same_as_factored(A)) {
       require(inverse_.compute(A) == solve::SelectedInverseStatus::Success,
               "geometric_ratio: A_00(mu) is not positive definite");
