@@ -225,6 +225,28 @@ TEST(SnapshotFile, WrongVersionIsRejected) {
                                             "): generate the snapshots again with `contactrb snapshots`");
 }
 
+// The dimension (format 6): a 2D set reads back as 2D; a damaged or edited value is refused,
+// and a 2D layout cannot pass for 3D (20 DOFs are not 3 x nodes).
+TEST(SnapshotFile, DimensionIsRecordedAndChecked) {
+  TempDir dir("dimension");
+  write_snapshot_file(synthetic_set(), dir.file("d.h5"));
+  EXPECT_EQ(read_snapshot_file(dir.file("d.h5")).dimension, 2);
+  const auto set_dimension = [&](const std::string& name, int value) {
+    fs::copy_file(dir.file("d.h5"), dir.file(name));
+    edit_file(dir.file(name), [value](hid_t f) {
+      const hid_t attr = H5Aopen(f, "dimension", H5P_DEFAULT);
+      ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &value), 0);
+      H5Aclose(attr);
+    });
+    return dir.file(name);
+  };
+  expect_error_naming(set_dimension("four.h5", 4), "the root attribute dimension is 4 (expected 2 or 3)");
+  expect_error_naming(set_dimension("three.h5", 3), "checksum mismatch");
+  SnapshotSet three = synthetic_set();
+  three.dimension = 3;
+  EXPECT_THROW(write_snapshot_file(three, dir.file("t.h5")), contactrb::Error);
+}
+
 TEST(SnapshotFile, IncompleteFileIsRejected) {
   TempDir dir("incomplete");
   write_snapshot_file(synthetic_set(), dir.file("i.h5"));
