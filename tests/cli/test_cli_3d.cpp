@@ -93,10 +93,17 @@ TEST(Cli3d, CommandsWithoutA3dPathRefuseA3dCaseInOneLine) {
     expect_one_line(r);
     EXPECT_NE(r.err.find("2D cases only"), std::string::npos) << command << ": " << r.err;
   }
-  // solve: grid sequencing is 2D only.
-  const auto r = run_cli("solve --case hertz-3d --mu 0.02 --sequence 2 --out " + out);
-  expect_user_error(r, "grid sequencing is not available in 3D");
-  expect_one_line(r);
+}
+
+// solve --sequence in 3D: the coarse stage runs and the patch test's answer stays uniform.
+TEST(Cli3d, SolveWithGridSequencingKeepsThePatchAnswer) {
+  contactrb::test::TempDir dir("cli3d_sequence");
+  const auto r = run_cli("solve --case patch-3d --level 2 --solver newton --sequence 1 --mu 0.02 --out " +
+                         shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("grid sequencing: level 0 "), std::string::npos) << r.out;
+  const auto csv = contactrb::test::read_csv((dir.path() / "multipliers.csv").string());
+  for (const std::string& p : csv.at("pressure")) EXPECT_NEAR(std::stod(p), 0.2, 1e-9) << r.out;
 }
 
 // `snapshots` in 3D writes a file of dimension 3 (its contents: io_snapshots_3d_h5py); the
