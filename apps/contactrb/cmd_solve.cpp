@@ -255,7 +255,7 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sequence", opt->sequence,
                   "Grid sequencing: solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 "
-                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4, "
+                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4 in 2D, "
                   "0 otherwise (docs/solvers.md)")
       ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();
