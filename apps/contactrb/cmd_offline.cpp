@@ -274,6 +274,7 @@ int run_offline(const OfflineOptions& opt) {
 
   const io::SnapshotSet set =
       compute ? compute_snapshots(opt, snapshots_path, lock) : io::read_snapshot_file(snapshots_path);
+  require_2d_snapshots(set, snapshots_path, "offline");
   offline::refuse_snapshot_part(set, snapshots_path);
   if (set.num_failed() > 0) {
     std::cerr << "contactrb: error: " << failure_report(set, snapshots_path) << "\n";

@@ -1,5 +1,5 @@
-// `contactrb snapshots`: high-fidelity solves of a case over a parameter set, in parallel,
-// stored in one HDF5 file (docs/cli.md, "`contactrb snapshots`"). Failed solves are recorded in
+// `contactrb snapshots`: high-fidelity solves of a case (2D or 3D) over a parameter set, in
+// parallel, stored in one HDF5 file (docs/cli.md, "`contactrb snapshots`"). Failed solves are recorded in
 // the file; the command then exits with code 3 unless --allow-failures.
 #include <unistd.h>
 
@@ -68,7 +68,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
                                      ": under mpirun each rank solves one value at a time (start more ranks)");
   // Cheap checks first.
   const cases::CaseSpec spec =
-      read_case_2d(opt.case_name, opt.case_file, "snapshots");
+      read_case(opt.case_name, opt.case_file);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   std::optional<contact::Discretization> constraint;
@@ -183,7 +183,7 @@ int run_snapshots(const SnapshotsOptions& opt) {
 
   const offline::SnapshotSummary s = offline::summarize(set);
   const std::size_t rows = set.snapshots.empty() ? 0 : static_cast<std::size_t>(set.snapshots.front().lambda.size());
-  std::cout << "case " << set.case_name << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
+  std::cout << "case " << set.case_name << (set.dimension == 3 ? " (3D)" : "") << ", set " << set.set_name << " (" << set.snapshots.size() << " values of "
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
             << " constraints, "
             << (ranks > 0 ? std::to_string(ranks) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));

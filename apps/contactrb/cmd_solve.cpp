@@ -134,15 +134,15 @@ template <int Dim>
 int solve_case(const SolveOptions& opt, const cases::CaseSpec& spec, const hf::HFSettings& settings,
                std::optional<contact::Discretization> constraint, const SolvePaths& paths) {
   const auto reference = reference_of(spec, opt.level, std::integral_constant<int, Dim>{});
+  // The coarse meshes before the analysis thread below starts (cases::CoarseMeshes: Gmsh's 3D
+  // mesher is not reproducible beside another thread that allocates).
+  const cases::CoarseMeshes<Dim> coarse =
+      cases::coarse_meshes<Dim>(spec, cases::sequence_levels(opt.level, opt.sequence));
   // Newton: the analysis of A_00 beside the assembly (hf::HFSetupOptions; the same answer bitwise),
   // and beside the coarse stages of the grid sequencing.
   const hf::BasicHFSolver<Dim> solver(cases::make_problem(spec, reference, opt.mu, constraint),
                                       hf::setup_options_for(settings));
-  cases::SequenceStart start;
-  if constexpr (Dim == 2) {
-    start = cases::sequence_start(spec, opt.mu, cases::sequence_levels(opt.level, opt.sequence), constraint, settings,
-                                  solver);
-  }
+  const cases::SequenceStart start = cases::sequence_start(spec, opt.mu, coarse, constraint, settings, solver);
   const hf::BasicHFSolution<Dim> s = solver.solve(settings, start.guess);
   const auto& m = solver.problem().mesh;
 
@@ -211,8 +211,6 @@ int run_solve(SolveOptions opt) {
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   require(opt.sequence >= -1, "--sequence must be >= 0, or -1 for automatic (got " + std::to_string(opt.sequence) + ")");
-  require(dimension == 2 || opt.sequence <= 0,
-          "--sequence: grid sequencing is not available in 3D (" + spec.context() + " is 3D); use --sequence 0");
   if (opt.sequence < 0) {
     opt.sequence = dimension == 2 && settings.method == hf::HFMethod::Newton && opt.level >= kAutoSequenceFromLevel
                        ? kAutoSequence
@@ -257,7 +255,7 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sequence", opt->sequence,
                   "Grid sequencing: solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 "
-                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4, "
+                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4 in 2D, "
                   "0 otherwise (docs/solvers.md)")
       ->capture_default_str();
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();

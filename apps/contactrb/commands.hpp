@@ -23,6 +23,10 @@ namespace contactrb::cases {
 struct CaseSpec;
 }  // namespace contactrb::cases
 
+namespace contactrb::io {
+struct SnapshotSet;
+}  // namespace contactrb::io
+
 namespace contactrb::online {
 struct OnlineSizes;
 struct OnlineSolution;
@@ -81,6 +85,9 @@ Command add_demo_command(CLI::App& app);
 cases::CaseSpec read_case_2d(const std::string& case_name, const std::string& case_file, const std::string& command);
 // The same for a command that solves both dimensions.
 cases::CaseSpec read_case(const std::string& case_name, const std::string& case_file);
+// A snapshot file read by `command`, which builds 2D models only: throws contactrb::Error in
+// one line naming the command, the file and its dimension for 3D snapshots.
+void require_2d_snapshots(const io::SnapshotSet& set, const std::string& path, const std::string& command);
 
 // Creates `dir` (and its parents) if missing; throws contactrb::Error naming it when that
 // fails or when it exists and is not a directory.

@@ -228,7 +228,7 @@ void run_worker(const MpiWorld& world, const offline::SnapshotRequest& request,
 std::optional<io::SnapshotSet> mpi_generate_snapshots(MpiWorld& world, const offline::SnapshotRequest& request,
                                                       const offline::SnapshotRunOptions& options,
                                                       std::future<std::optional<EarlySolve>> early) {
-  const bool ok = !request.mu.empty() && static_cast<bool>(request.make_problem);
+  const bool ok = !request.mu.empty() && offline::has_problem_factory(request);
   if (!world.agree(ok)) {
     if (world.rank() == 0) throw Error("an MPI rank could not start the run (its error is above)");
     return std::nullopt;

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Best approximation of HF contact pressures (and displacements) by reduced spaces that follow a
-moving contact zone, on snapshot files of `contactrb snapshots` (format 5, docs/file-formats.md).
+moving contact zone, on snapshot files of `contactrb snapshots` (2D, format 5 or 6, docs/file-formats.md).
 
 For every verification point mu and every candidate space, the relative error of the best
 approximation of the HF pressure lambda(mu) in the weighted L2(Gamma_c) norm
@@ -84,17 +84,18 @@ def row_positions(K, contact_dofs, arc):
 
 
 def check_format(path):
-    """Stops with one message unless `path` is a complete snapshot file of format 5."""
+    """Stops with one message unless `path` is a complete 2D snapshot file of format 5 or 6."""
     try:
         with h5py.File(path, 'r') as f:
             fmt, version = f.attrs.get('format'), f.attrs.get('format_version')
             complete = f.attrs.get('complete')
+            dimension = f.attrs.get('dimension', 2)  # format 5 files are 2D
     except OSError as e:
         sys.exit(f'best_approximation.py: {path}: cannot be read as HDF5 ({e})')
     fmt = fmt.decode() if isinstance(fmt, bytes) else fmt
-    if fmt != 'contactrb-snapshots' or version != 5 or complete != 1:
-        sys.exit(f'best_approximation.py: {path}: not a complete contactrb snapshot file of format 5 '
-                 f'(format {fmt!r}, version {version}, complete {complete})')
+    if fmt != 'contactrb-snapshots' or version not in (5, 6) or complete != 1 or dimension != 2:
+        sys.exit(f'best_approximation.py: {path}: not a complete 2D contactrb snapshot file of format 5 or 6 '
+                 f'(format {fmt!r}, version {version}, complete {complete}, dimension {dimension})')
 
 
 def read(path):

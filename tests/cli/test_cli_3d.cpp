@@ -1,6 +1,6 @@
 // Three-dimensional cases in the CLI: `cases` gives each case's dimension, `mesh` writes the 3D
-// built-in meshes (read back by read_msh3), `solve` solves them, and the commands without a 3D
-// path refuse a 3D case in one line naming its dimension.
+// built-in meshes (read back by read_msh3), `solve` and `snapshots` solve them, and the commands
+// without a 3D path refuse a 3D case or 3D snapshots in one line naming the dimension.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -86,17 +86,68 @@ TEST(Cli3d, CommandsWithoutA3dPathRefuseA3dCaseInOneLine) {
   contactrb::test::TempDir dir("cli3d_refuse");
   const std::string out = shell_quote(dir.path().string());
   for (const std::string& command :
-       {"snapshots --case hertz-3d --out " + out + "/s.h5", "offline --case patch-3d --out " + out + "/m.h5",
+       {"offline --case patch-3d --out " + out + "/m.h5", "offline --greedy --case patch-3d --out " + out + "/m.h5",
         "report --case hertz-3d --out " + out}) {
     const auto r = run_cli(command);
     expect_user_error(r, "is 3D");
     expect_one_line(r);
     EXPECT_NE(r.err.find("2D cases only"), std::string::npos) << command << ": " << r.err;
   }
-  // solve: grid sequencing is 2D only.
-  const auto r = run_cli("solve --case hertz-3d --mu 0.02 --sequence 2 --out " + out);
-  expect_user_error(r, "grid sequencing is not available in 3D");
-  expect_one_line(r);
+}
+
+// solve --sequence in 3D: the coarse stage runs and the patch test's answer stays uniform.
+TEST(Cli3d, SolveWithGridSequencingKeepsThePatchAnswer) {
+  contactrb::test::TempDir dir("cli3d_sequence");
+  const auto r = run_cli("solve --case patch-3d --level 2 --solver newton --sequence 1 --mu 0.02 --out " +
+                         shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("grid sequencing: level 0 "), std::string::npos) << r.out;
+  const auto csv = contactrb::test::read_csv((dir.path() / "multipliers.csv").string());
+  for (const std::string& p : csv.at("pressure")) EXPECT_NEAR(std::stod(p), 0.2, 1e-9) << r.out;
+}
+
+// `snapshots` in 3D writes a file of dimension 3 (its contents: io_snapshots_3d_h5py); the
+// commands that build or answer reduced models refuse it in one line, and no model appears.
+TEST(Cli3d, SnapshotsOfA3dCaseAreWrittenAndTheModelCommandsRefuseThem) {
+  contactrb::test::TempDir dir("cli3d_snapshots");
+  const std::string snapshots = (dir.path() / "s.h5").string();
+  const auto r = run_cli("snapshots --case patch-3d --values 0.01,0.02 -q --out " + shell_quote(snapshots));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("case patch-3d (3D)"), std::string::npos) << r.out;
+  EXPECT_EQ(field_value(r.out, "failures"), "0") << r.out;
+  const std::string model = (dir.path() / "m.h5").string();
+  const auto offline = run_cli("offline --snapshots " + shell_quote(snapshots) + " --out " + shell_quote(model));
+  expect_user_error(offline, "supports 2D snapshots only in this build");
+  EXPECT_NE(offline.err.find("is 3D"), std::string::npos) << offline.err;
+  expect_one_line(offline);
+  for (const std::string& command : {"online --model " + shell_quote(snapshots) + " --mu 0.02",
+                                     "evaluate --model " + shell_quote(snapshots) + " --set training --out " +
+                                         shell_quote((dir.path() / "e").string())}) {
+    const auto e = run_cli(command);
+    expect_user_error(e, "a contactrb snapshot file, not a reduced model");
+    expect_one_line(e);
+  }
+  EXPECT_FALSE(fs::exists(model));
+}
+
+// Array-job parts of a 3D case merge into the file a single run writes (the same solves).
+TEST(Cli3d, SnapshotPartsOfA3dCaseMergeIntoTheSingleRunsFile) {
+  contactrb::test::TempDir dir("cli3d_parts");
+  const auto file = [&](const std::string& name) { return shell_quote((dir.path() / name).string()); };
+  const std::string common = "snapshots --case patch-3d --values 0.01,0.015,0.02 -q --warm-start off ";
+  for (const std::string part : {"1/2", "2/2"}) {
+    const auto r = run_cli(common + "--part " + part + " --out " + file("p" + part.substr(0, 1) + ".h5"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto whole = run_cli(common + "--out " + file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto merged = run_cli("merge " + file("p1.h5") + " " + file("p2.h5") + " --out " + file("merged.h5"));
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  // Both read back (the reader checks every index against the 3D layout); offline names the dimension.
+  for (const char* name : {"merged.h5", "whole.h5"}) {
+    const auto r = run_cli("offline --snapshots " + file(name) + " --out " + file("m.h5"));
+    expect_user_error(r, "is 3D");
+  }
 }
 
 namespace {

@@ -50,6 +50,21 @@ TEST(SnapshotMpi, RanksGatherTheSerialFile) {
   contactrb::test::expect_same_data(reference, contactrb::io::read_snapshot_file(dir.file("plain.h5")), false);
 }
 
+// A 3D case takes the same path: the gathered patch-3d file is the serial one.
+TEST(SnapshotMpi, RanksGatherTheSerialFileOfA3dCase) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_snapshots_3d");
+  const std::string values = "--case patch-3d --values 0.01,0.015,0.02 -q";
+  const CliResult serial = contactrb::test::run_cli("snapshots " + values + " --out " + shell_quote(dir.file("serial.h5")));
+  ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+  const auto reference = contactrb::io::read_snapshot_file(dir.file("serial.h5"));
+  EXPECT_EQ(reference.dimension, 3);
+  const CliResult r = mpirun(2, "snapshots " + values + " --out " + shell_quote(dir.file("mpi.h5")));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("case patch-3d (3D)"), std::string::npos) << r.out;
+  contactrb::test::expect_same_data(reference, contactrb::io::read_snapshot_file(dir.file("mpi.h5")), false);
+}
+
 // The warm-start schedule (--warm-start on): rank 0 hands out each wave's values with the
 // snapshot each starts from; the gathered file is the serial warm-started file. The warm start
 // is checked to be taken: the iteration counts differ from the cold run's.

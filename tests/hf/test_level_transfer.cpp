@@ -1,9 +1,12 @@
 // Grid sequencing (hf/level_transfer.hpp, cases/level_sequence.hpp; docs/solvers.md "Grid
 // sequencing"): the transfer between two non-nested Gmsh levels reproduces fields linear on
-// each body (and pressures linear along the arc) exactly, the point location agrees with a
-// brute-force search, and a sequenced solve gives the cold solve's answer (u, lambda, force,
-// energy, active set, KKT) in fewer fine-level iterations.
+// each body (and pressures linear along the arc, in 3D on the slave surface) exactly, in 2D
+// (triangles) and 3D (tetrahedra), the point location agrees with a brute-force search, and a
+// sequenced solve gives the cold solve's answer (u, lambda, force, energy, active set, KKT) in
+// fewer fine-level iterations.
 #include <gtest/gtest.h>
+
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +19,7 @@
 #include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/triangle_hit.hpp"
 #include "contactrb/hf/level_transfer.hpp"
 
 using namespace contactrb;
@@ -87,8 +91,8 @@ TEST(LevelTransfer, LocatorFindsTheBruteForceNearestTriangle) {
     for (int k = 0; k < 400; ++k) {
       const Eigen::Vector2d p(x(rng), y(rng));
       const hf::TriangleLocator::Location loc = locator.locate(p);
-      ASSERT_GE(loc.triangle, 0);
-      EXPECT_EQ(m.body[static_cast<std::size_t>(loc.triangle)], body);
+      ASSERT_GE(loc.cell, 0);
+      EXPECT_EQ(m.body[static_cast<std::size_t>(loc.cell)], body);
       // Brute force: inside some triangle of the body (distance 0) or the smallest distance.
       double best = std::numeric_limits<double>::infinity();
       for (int t = 0; t < m.num_triangles(); ++t) {
@@ -109,7 +113,7 @@ TEST(LevelTransfer, LocatorFindsTheBruteForceNearestTriangle) {
       }
       EXPECT_NEAR(loc.distance, best, 1e-12) << "body " << body << " point " << p.transpose();
       // The barycentric coordinates reproduce the point.
-      const auto& tri = m.triangles[static_cast<std::size_t>(loc.triangle)];
+      const auto& tri = m.triangles[static_cast<std::size_t>(loc.cell)];
       Eigen::Vector2d back = Eigen::Vector2d::Zero();
       for (int i = 0; i < 3; ++i) back += loc.barycentric(i) * m.nodes[static_cast<std::size_t>(tri[static_cast<std::size_t>(i)])];
       EXPECT_LT((back - p).norm(), 1e-12);
@@ -207,4 +211,125 @@ TEST(LevelSequence, ACoarseStageThatFailsEndsTheChainWithoutAGuess) {
   // A coarse level that is not coarser is refused.
   EXPECT_THROW(cases::sequence_start(spec, Eigen::VectorXd::Constant(1, 0.3), {2}, std::nullopt, newton(1e-10), solver),
                contactrb::Error);
+}
+
+namespace {
+
+// u = M_b x + c_b on body b of a 3D mesh (a different affine field on each body).
+Eigen::VectorXd affine_field3(const mesh::Mesh3& m) {
+  Eigen::Matrix3d M[2];
+  Eigen::Vector3d c[2];
+  M[0] << 0.3, -1.7, 2.1, 0.4, 1.2, -0.5, 0.9, 0.1, -2.2;
+  M[1] << -1.1, 0.6, 0.2, 3.3, -0.4, 1.5, 0.7, -0.8, 0.05;
+  c[0] << -0.25, 1.5, 0.5;
+  c[1] << 0.75, -2.0, 1.25;
+  Eigen::VectorXd u(m.num_dofs());
+  for (int t = 0; t < m.num_tetrahedra(); ++t) {
+    const int b = m.body[static_cast<std::size_t>(t)];
+    for (int v : m.tetrahedra[static_cast<std::size_t>(t)]) {
+      u.segment<3>(3 * v) = M[b] * m.nodes[static_cast<std::size_t>(v)] + c[b];
+    }
+  }
+  return u;
+}
+
+}  // namespace
+
+// hertz-3d levels 0 -> 1 (separate Gmsh meshes): a field linear on each body is reproduced to
+// round-off, also at the fine nodes on the sphere outside the coarse facets (extrapolated from
+// the nearest coarse tetrahedron); the located tetrahedron agrees with a brute-force search.
+TEST(LevelTransfer3d, ReproducesAFieldLinearOnEachBodyExactly) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-3d");
+  const mesh::Mesh3 coarse = cases::reference_mesh3(spec, 0);
+  const mesh::Mesh3 fine = cases::reference_mesh3(spec, 1);
+  ASSERT_GT(fine.num_nodes(), coarse.num_nodes());
+  const Eigen::VectorXd u = hf::transfer_displacement(coarse, affine_field3(coarse), fine);
+  const Eigen::VectorXd truth = affine_field3(fine);
+  EXPECT_LT((u - truth).lpNorm<Eigen::Infinity>(), 1e-12 * truth.lpNorm<Eigen::Infinity>());
+  // Not the identity by accident: a quadratic field is not reproduced.
+  Eigen::VectorXd q(coarse.num_dofs()), q_truth(fine.num_dofs());
+  for (int v = 0; v < coarse.num_nodes(); ++v) q.segment<3>(3 * v) = coarse.nodes[static_cast<std::size_t>(v)].array().square();
+  for (int v = 0; v < fine.num_nodes(); ++v) q_truth.segment<3>(3 * v) = fine.nodes[static_cast<std::size_t>(v)].array().square();
+  EXPECT_GT((hf::transfer_displacement(coarse, q, fine) - q_truth).lpNorm<Eigen::Infinity>(), 1e-5);
+
+  // The locator against all tetrahedra of the slave body: inside one of them (distance 0)
+  // exactly when the brute force finds one containing the node, else at the brute force's
+  // nearest distance; some fine nodes of the sphere lie outside the coarse facets.
+  std::vector<int> fine_body(static_cast<std::size_t>(fine.num_nodes()), -1);
+  for (int t = 0; t < fine.num_tetrahedra(); ++t) {
+    for (int v : fine.tetrahedra[static_cast<std::size_t>(t)]) fine_body[static_cast<std::size_t>(v)] = fine.body[static_cast<std::size_t>(t)];
+  }
+  const hf::TetrahedronLocator locator(coarse, mesh::kSlaveBody);
+  int outside = 0, checked = 0;
+  for (int v = 0; v < fine.num_nodes(); v += 5) {
+    if (fine_body[static_cast<std::size_t>(v)] != mesh::kSlaveBody) continue;
+    const Eigen::Vector3d& x = fine.nodes[static_cast<std::size_t>(v)];
+    const hf::TetrahedronLocator::Location loc = locator.locate(x);
+    bool contained = false;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < coarse.num_tetrahedra(); ++t) {
+      if (coarse.body[static_cast<std::size_t>(t)] != mesh::kSlaveBody) continue;
+      const auto& c = coarse.tetrahedra[static_cast<std::size_t>(t)];
+      const auto p = [&](int k) { return coarse.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]; };
+      Eigen::Matrix3d J;
+      J << p(1) - p(0), p(2) - p(0), p(3) - p(0);
+      const Eigen::Vector3d l = J.partialPivLu().solve(x - p(0));
+      contained = contained || (l.minCoeff() >= -1e-12 && 1.0 - l.sum() >= -1e-12);
+      for (const auto& f : mesh::kCellFacets<3>) {
+        nearest = std::min(nearest, std::sqrt(contact::closest_on_triangle(p(f[0]), p(f[1]), p(f[2]), 0, x).d2));
+      }
+    }
+    ++checked;
+    if (contained) {
+      EXPECT_EQ(loc.distance, 0.0) << "node " << v;
+    } else {
+      ++outside;
+      EXPECT_NEAR(loc.distance, nearest, 1e-14) << "node " << v;
+    }
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_GT(outside, 0);
+}
+
+// The 3D pressure transfer on patch-3d (a flat interface, levels 0 -> 1): a pressure linear on
+// the coarse slave surface reaches the fine rows exactly.
+TEST(LevelTransfer3d, ReproducesAPressureLinearOnTheSlaveSurface) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("patch-3d");
+  const mesh::Mesh3 coarse = cases::reference_mesh3(spec, 0);
+  const mesh::Mesh3 fine = cases::reference_mesh3(spec, 1);
+  const contact::ContactPair3 cp = contact::make_contact_pair(coarse), fp = contact::make_contact_pair(fine);
+  const contact::ContactQuadrature cq = contact::make_quadrature(coarse, cp, contact::Discretization::Collocation);
+  const contact::ContactQuadrature fq = contact::make_quadrature(fine, fp, contact::Discretization::Collocation);
+  const auto linear = [](const Eigen::Vector3d& x) { return 0.5 + 0.3 * x.x() - 0.7 * x.y(); };
+  Eigen::VectorXd lc(static_cast<Eigen::Index>(cq.center_node.size()));
+  for (std::size_t r = 0; r < cq.center_node.size(); ++r) lc(static_cast<Eigen::Index>(r)) = linear(coarse.nodes[static_cast<std::size_t>(cq.center_node[r])]);
+  const Eigen::VectorXd lf = hf::transfer_pressure(coarse, cp, cq, lc, fine, fp, fq);
+  ASSERT_EQ(lf.size(), static_cast<Eigen::Index>(fq.center_node.size()));
+  ASSERT_GT(lf.size(), lc.size());
+  for (std::size_t r = 0; r < fq.center_node.size(); ++r) {
+    EXPECT_NEAR(lf(static_cast<Eigen::Index>(r)), linear(fine.nodes[static_cast<std::size_t>(fq.center_node[r])]), 1e-14) << "row " << r;
+  }
+  EXPECT_THROW(hf::transfer_pressure(coarse, cp, cq, Eigen::VectorXd::Zero(2), fine, fp, fq), contactrb::Error);
+}
+
+// hertz-3d at level 2 (collocation, Newton): sequenced from level 0, the fine solve converges
+// to the cold solve's answer in fewer iterations (docs/solvers.md, "Grid sequencing").
+TEST(LevelSequence3d, SequencedHertz3dSolveIsTheColdSolveInFewerIterations) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-3d");
+  const cases::Mu mu = Eigen::VectorXd::Constant(1, 0.02);
+  const hf::HFSolver3 solver(cases::make_problem(spec, cases::reference_mesh3(spec, 2), mu));
+  const hf::HFSolution3 cold = solver.solve(newton(1e-10));
+  const cases::SequenceStart start = cases::sequence_start(spec, mu, {0}, std::nullopt, newton(1e-10), solver);
+  ASSERT_EQ(start.stages.size(), 1u);
+  EXPECT_TRUE(start.stages[0].converged);
+  const hf::HFSolution3 warm = solver.solve(newton(1e-10), start.guess);
+  ASSERT_TRUE(cold.converged && warm.converged) << cold.message << warm.message;
+  EXPECT_LT(warm.iterations, cold.iterations);
+  EXPECT_LE(warm.kkt.max(), 1e-10);
+  EXPECT_LT(relative(warm.u, cold.u), 1e-8);
+  EXPECT_LT(relative(warm.lambda, cold.lambda), 1e-6);
+  EXPECT_NEAR(warm.contact_force, cold.contact_force, 1e-8 * cold.contact_force);
+  EXPECT_EQ(warm.active_constraints, cold.active_constraints);
+  std::cout << "hertz-3d mu 0.02 level 2: cold " << cold.iterations << ", sequenced " << warm.iterations
+            << " (coarse 0:" << start.stages[0].iterations << ")\n";
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -223,6 +224,55 @@ TEST(SnapshotFile, WrongVersionIsRejected) {
                                             " is newer than this build reads (format " +
                                             std::to_string(contactrb::io::kSnapshotFormatVersion) +
                                             "): generate the snapshots again with `contactrb snapshots`");
+}
+
+// The dimension (format 6): a 2D set reads back as 2D; a damaged or edited value is refused,
+// and a 2D layout cannot pass for 3D (20 DOFs are not 3 x nodes).
+TEST(SnapshotFile, DimensionIsRecordedAndChecked) {
+  TempDir dir("dimension");
+  write_snapshot_file(synthetic_set(), dir.file("d.h5"));
+  EXPECT_EQ(read_snapshot_file(dir.file("d.h5")).dimension, 2);
+  const auto set_dimension = [&](const std::string& name, int value) {
+    fs::copy_file(dir.file("d.h5"), dir.file(name));
+    edit_file(dir.file(name), [value](hid_t f) {
+      const hid_t attr = H5Aopen(f, "dimension", H5P_DEFAULT);
+      ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &value), 0);
+      H5Aclose(attr);
+    });
+    return dir.file(name);
+  };
+  expect_error_naming(set_dimension("four.h5", 4), "the root attribute dimension is 4 (expected 2 or 3)");
+  expect_error_naming(set_dimension("three.h5", 3), "checksum mismatch");
+  SnapshotSet three = synthetic_set();
+  three.dimension = 3;
+  EXPECT_THROW(write_snapshot_file(three, dir.file("t.h5")), contactrb::Error);
+}
+
+// A format 5 file (no `dimension`; tests/io/snapshot_as_format5.py rewrites a 2D format 6 file
+// as the format 5 writer wrote it, its checksum recomputed by an independent implementation)
+// is still read, as 2D, with every field as written.
+TEST(SnapshotFile, AFormat5FileIsReadAsTwoDimensional) {
+  const std::string python = "/usr/bin/python3";
+  if (!fs::exists(python) || std::system((python + " -c 'import h5py, numpy' >/dev/null 2>&1").c_str()) != 0) {
+    GTEST_SKIP() << "no h5py or numpy under " << python;
+  }
+  TempDir dir("format5");
+  const SnapshotSet set = synthetic_set();
+  write_snapshot_file(set, dir.file("v5.h5"));
+  const std::string cmd = python + " " + CONTACTRB_SOURCE_DIR + "/tests/io/snapshot_as_format5.py '" + dir.file("v5.h5") + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  contactrb::seal_file(dir.file("v5.h5"));
+  const SnapshotSet read = read_snapshot_file(dir.file("v5.h5"));
+  EXPECT_EQ(read.dimension, 2);
+  contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
+  // The same file without its `dimension` but still marked format 6 is damaged.
+  edit_file(dir.file("v5.h5"), [](hid_t f) {
+    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const int version = 6;
+    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
+    H5Aclose(attr);
+  });
+  expect_error_naming(dir.file("v5.h5"), "dimension");
 }
 
 TEST(SnapshotFile, IncompleteFileIsRejected) {

@@ -13,6 +13,7 @@
 #include "contactrb/cases/case_toml.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "support/snapshot_fixtures.hpp"
 
@@ -214,4 +215,36 @@ TEST(SnapshotRequestCase, TomlCaseIsStoredAsItsText) {
   EXPECT_EQ(b.case_kind, "builtin");
   EXPECT_EQ(b.case_spec, "hertz-b");
   EXPECT_EQ(b.mu.size(), 21u);  // midpoints of the 22 training values
+}
+
+// A 3D case by the same path: patch-3d's snapshots record dimension 3 and the tetrahedral
+// reference mesh, do not depend on the thread count, hold u with 3 components per node and the
+// patch test's uniform pressure E mu (E = 10, docs/cases.md "patch-3d"); the offline builder
+// refuses them with a message naming the dimension.
+TEST(SnapshotGeneration3d, PatchSnapshotsAreThreeDimensionalAndRefusedByTheBuilder) {
+  const contactrb::cases::CaseSpec spec = contactrb::cases::builtin_case_spec("patch-3d");
+  const SnapshotRequest request = contactrb::offline::make_snapshot_request(
+      spec, "training", 0, std::nullopt, contactrb::cases::points_1d({0.01, 0.03}));
+  EXPECT_EQ(request.dimension, 3);
+  SnapshotRunOptions two;
+  two.jobs = 2;
+  const SnapshotSet s = generate_snapshots(request, {});
+  contactrb::test::expect_same_data(s, generate_snapshots(request, two), /*with_timings=*/false);
+  EXPECT_EQ(s.dimension, 3);
+  EXPECT_TRUE(s.mesh.nodes.empty());
+  ASSERT_FALSE(s.mesh3.nodes.empty());
+  EXPECT_EQ(s.num_dofs, 3 * s.mesh3.num_nodes());
+  EXPECT_EQ(s.contact_dofs.size() % 3, 0u);
+  for (const Snapshot& snap : s.snapshots) {
+    ASSERT_TRUE(snap.converged) << snap.message;
+    EXPECT_EQ(snap.u.size(), s.num_dofs);
+    const double p = 10.0 * snap.mu(0);
+    EXPECT_LT((snap.lambda.array() - p).abs().maxCoeff(), 1e-10 * p);
+  }
+  try {
+    contactrb::offline::build_reduced_model(s, spec, {});
+    ADD_FAILURE() << "3D snapshots were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the snapshots are 3D"), std::string::npos) << e.what();
+  }
 }

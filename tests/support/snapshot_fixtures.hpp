@@ -42,6 +42,10 @@ inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b,
   EXPECT_EQ(a.kacanov_alpha, b.kacanov_alpha);
   EXPECT_EQ(a.kacanov_tolerance, b.kacanov_tolerance);
   EXPECT_EQ(a.kacanov_max_iterations, b.kacanov_max_iterations);
+  EXPECT_EQ(a.dimension, b.dimension);
+  EXPECT_EQ(a.mesh.nodes.size(), b.mesh.nodes.size());
+  EXPECT_EQ(a.mesh3.nodes.size(), b.mesh3.nodes.size());
+  EXPECT_EQ(a.mesh3.tetrahedra, b.mesh3.tetrahedra);
   EXPECT_EQ(a.num_dofs, b.num_dofs);
   EXPECT_EQ(a.free_dofs, b.free_dofs);
   EXPECT_EQ(a.contact_dofs, b.contact_dofs);

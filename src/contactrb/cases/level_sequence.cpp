@@ -14,13 +14,25 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The solution of `from` as an initial guess of `to` (same case, same mu, another mesh).
-hf::HFInitialGuess transfer(const hf::HFSolver& from, const hf::HFSolution& solution, const hf::HFSolver& to) {
+template <int Dim>
+hf::HFInitialGuess transfer(const hf::BasicHFSolver<Dim>& from, const hf::BasicHFSolution<Dim>& solution,
+                            const hf::BasicHFSolver<Dim>& to) {
   hf::HFInitialGuess guess;
   guess.u = hf::transfer_displacement(from.problem().mesh, solution.u, to.problem().mesh);
   guess.lambda = hf::transfer_pressure(from.problem().mesh, from.pair(), from.quadrature(), solution.lambda,
                                        to.problem().mesh, to.pair(), to.quadrature());
   return guess;
 }
+// The case's reference mesh of `level`.
+template <int Dim>
+mesh::SimplexMesh<Dim> reference_at_level(const CaseSpec& spec, int level) {
+  if constexpr (Dim == 2) {
+    return reference_mesh(spec, level);
+  } else {
+    return reference_mesh3(spec, level);
+  }
+}
+
 }  // namespace
 
 std::vector<int> sequence_levels(int level, int count, int step) {
@@ -34,23 +46,53 @@ std::vector<int> sequence_levels(int level, int count, int step) {
   return levels;
 }
 
-SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vector<int>& levels,
-                             std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
-                             const hf::HFSolver& fine) {
-  const auto t0 = Clock::now();
-  SequenceStart start;
+template <int Dim>
+CoarseMeshes<Dim> coarse_meshes(const CaseSpec& spec, const std::vector<int>& levels) {
   for (std::size_t k = 1; k < levels.size(); ++k) {
     require(levels[k - 1] < levels[k], "grid sequencing: the coarse levels must ascend");
   }
-  std::optional<hf::HFSolver> previous;
-  hf::HFSolution previous_solution;
+  CoarseMeshes<Dim> coarse;
+  coarse.levels = levels;
   for (int level : levels) {
+    const auto t = Clock::now();
+    coarse.meshes.push_back(reference_at_level<Dim>(spec, level));
+    coarse.mesh_s.push_back(seconds_since(t));
+  }
+  return coarse;
+}
+
+template <int Dim>
+SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vector<int>& levels,
+                             std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
+                             const hf::BasicHFSolver<Dim>& fine) {
+  const auto t0 = Clock::now();
+  SequenceStart start = sequence_start(spec, mu, coarse_meshes<Dim>(spec, levels), constraint, settings, fine);
+  start.time_s = seconds_since(t0);
+  return start;
+}
+
+template <int Dim>
+SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const CoarseMeshes<Dim>& coarse,
+                             std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
+                             const hf::BasicHFSolver<Dim>& fine) {
+  const auto t0 = Clock::now();
+  SequenceStart start;
+  require(coarse.meshes.size() == coarse.levels.size() && coarse.mesh_s.size() == coarse.levels.size(),
+          "grid sequencing: one coarse mesh per level");
+  double meshes_s = 0.0;
+  std::optional<hf::BasicHFSolver<Dim>> previous;
+  hf::BasicHFSolution<Dim> previous_solution;
+  for (std::size_t k = 0; k < coarse.levels.size(); ++k) {
+    const int level = coarse.levels[k];
     SequenceStage stage;
     stage.level = level;
     auto t = Clock::now();
-    hf::HFSolver solver(make_problem(spec, mu, level, constraint));
+    spec.check_mu(mu);
+    hf::BasicHFSolver<Dim> solver(make_problem(spec, coarse.meshes[k], mu, constraint));
     stage.dofs = solver.problem().mesh.num_dofs();
-    stage.mesh_s = seconds_since(t) - solver.setup_time_s();  // setup_time_s is in solve_s
+    // The mesh's generation and the problem; setup_time_s is in solve_s.
+    stage.mesh_s = coarse.mesh_s[k] + seconds_since(t) - solver.setup_time_s();
+    meshes_s += coarse.mesh_s[k];
     require(stage.dofs < fine.problem().mesh.num_dofs(),
             "grid sequencing: level " + std::to_string(level) + " is not coarser than the fine mesh");
     hf::HFInitialGuess guess;
@@ -59,7 +101,7 @@ SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vect
       guess = transfer(*previous, previous_solution, solver);
       start.stages.back().transfer_s = seconds_since(t);
     }
-    hf::HFSolution solution = solver.solve(settings, guess);
+    hf::BasicHFSolution<Dim> solution = solver.solve(settings, guess);
     stage.iterations = solution.iterations;
     stage.converged = solution.converged;
     stage.solve_s = solution.time_s;
@@ -79,8 +121,23 @@ SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vect
       }
     }
   }
-  start.time_s = seconds_since(t0);
+  start.time_s = meshes_s + seconds_since(t0);
   return start;
 }
+
+template CoarseMeshes<2> coarse_meshes(const CaseSpec&, const std::vector<int>&);
+template CoarseMeshes<3> coarse_meshes(const CaseSpec&, const std::vector<int>&);
+template SequenceStart sequence_start(const CaseSpec&, const Mu&, const CoarseMeshes<2>&,
+                                      std::optional<contact::Discretization>, const hf::HFSettings&,
+                                      const hf::BasicHFSolver<2>&);
+template SequenceStart sequence_start(const CaseSpec&, const Mu&, const CoarseMeshes<3>&,
+                                      std::optional<contact::Discretization>, const hf::HFSettings&,
+                                      const hf::BasicHFSolver<3>&);
+template SequenceStart sequence_start(const CaseSpec&, const Mu&, const std::vector<int>&,
+                                      std::optional<contact::Discretization>, const hf::HFSettings&,
+                                      const hf::BasicHFSolver<2>&);
+template SequenceStart sequence_start(const CaseSpec&, const Mu&, const std::vector<int>&,
+                                      std::optional<contact::Discretization>, const hf::HFSettings&,
+                                      const hf::BasicHFSolver<3>&);
 
 }  // namespace contactrb::cases

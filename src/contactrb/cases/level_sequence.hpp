@@ -32,12 +32,33 @@ struct SequenceStart {
   double time_s = 0.0;  // all of the stages, wall
 };
 
+// The reference meshes of the coarse levels (ascending) and the wall time of each one's
+// generation. A caller that starts other threads before the coarse stages (the Newton solver's
+// analysis beside them, hf::HFSetupOptions) generates them first: Gmsh's 3D Delaunay mesher
+// gives another mesh when another thread allocates meanwhile (hertz-3d level 0: 2520, 2544 or
+// 2562 DOFs from run to run), and the answer would then depend on the run.
+template <int Dim>
+struct CoarseMeshes {
+  std::vector<int> levels;
+  std::vector<mesh::SimplexMesh<Dim>> meshes;
+  std::vector<double> mesh_s;
+};
+template <int Dim>
+CoarseMeshes<Dim> coarse_meshes(const CaseSpec& spec, const std::vector<int>& levels);
+
 // The coarse stages on `levels` (ascending, each below the fine solver's level) of the built-in
 // or TOML case `spec` at mu, the HF settings `settings` on each, and the initial guess for
 // `fine` (a solver of the same case at mu on the finer level). A stage that does not converge
 // ends the chain: the guess is the last converged stage's (or none), and the stage says so.
+// Dim = 2 or 3: one path, the transfer of the dimension (hf/level_transfer.hpp).
+template <int Dim>
 SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const std::vector<int>& levels,
                              std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
-                             const hf::HFSolver& fine);
+                             const hf::BasicHFSolver<Dim>& fine);
+// The same on meshes generated before (coarse_meshes).
+template <int Dim>
+SequenceStart sequence_start(const CaseSpec& spec, const Mu& mu, const CoarseMeshes<Dim>& coarse,
+                             std::optional<contact::Discretization> constraint, const hf::HFSettings& settings,
+                             const hf::BasicHFSolver<Dim>& fine);
 
 }  // namespace contactrb::cases

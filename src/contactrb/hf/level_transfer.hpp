@@ -1,10 +1,12 @@
 #pragma once
 // Transfer of an HF solution from one mesh of a geometry to another (grid sequencing, docs/solvers.md
 // "Grid sequencing"): the built-in levels are separate Gmsh meshes (not nested: only the slave
-// arc nodes of levels >= 2 are), so each fine node is located in a coarse triangle of its own body
-// and the P1 displacement is interpolated there; the contact pressures are interpolated along the
-// slave boundary. The result is an initial guess only (HFInitialGuess), never an answer.
+// arc nodes of levels >= 2 are), so each fine node is located in a coarse triangle (2D) or
+// tetrahedron (3D) of its own body and the P1 displacement is interpolated there; the contact
+// pressures are interpolated along the slave boundary (2D: its arc length; 3D: its triangles). The result is an initial guess only (HFInitialGuess), never an answer.
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -12,37 +14,52 @@
 
 namespace contactrb::hf {
 
-// Point location in the triangles of one body of a mesh: a bucket grid over the body's bounding
-// box (about one triangle per cell), triangles registered in every cell their bounding box meets.
-class TriangleLocator {
+// Point location in the cells of one body of a mesh (triangles in 2D, tetrahedra in 3D): a
+// bucket grid over the body's bounding box (about one cell per grid cell), each cell registered
+// in every grid cell its bounding box meets; a query visits rings of grid cells around the
+// point's until no nearer cell can remain. Never all pairs.
+template <int Dim>
+class SimplexLocator {
  public:
-  TriangleLocator(const mesh::Mesh& mesh, int body);
+  using Point = Eigen::Matrix<double, Dim, 1>;
+  using Barycentric = Eigen::Matrix<double, Dim + 1, 1>;
+  SimplexLocator(const mesh::SimplexMesh<Dim>& mesh, int body);
   struct Location {
-    int triangle = -1;
-    Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();  // of the point in `triangle` (may be < 0 outside)
-    double distance = 0.0;  // from the point to the triangle (0 inside)
+    int cell = -1;
+    Barycentric barycentric = Barycentric::Zero();  // of the point in `cell` (some < 0 outside)
+    double distance = 0.0;  // from the point to the cell (0 inside)
   };
-  // The triangle containing x, or, for a point outside the body (a fine boundary node beyond a
-  // coarse chord of a curved boundary), the nearest triangle; its barycentric coordinates then
-  // extrapolate linearly. Throws contactrb::Error when the body has no triangle.
-  Location locate(const Eigen::Vector2d& x) const;
+  // The cell containing x, or, for a point outside the body (a fine boundary node beyond a
+  // coarse chord or facet of a curved boundary), the nearest cell; its barycentric coordinates
+  // then extrapolate linearly (docs/solvers.md, "Grid sequencing"). Throws contactrb::Error
+  // when the body has no cell.
+  Location locate(const Point& x) const;
 
  private:
-  const mesh::Mesh* mesh_ = nullptr;
-  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  const mesh::SimplexMesh<Dim>* mesh_ = nullptr;
+  Point origin_ = Point::Zero();
   double cell_ = 1.0;
-  int nx_ = 1, ny_ = 1;
-  std::vector<int> start_;      // CSR over cells
-  std::vector<int> triangles_;
-  void cell_of(const Eigen::Vector2d& x, int& i, int& j) const;
+  std::array<int, Dim> n_{};
+  std::vector<int> start_;  // CSR over grid cells
+  std::vector<int> cells_;
+  std::array<int, Dim> grid_cell_of(const Point& x) const;
+  std::size_t grid_index(const std::array<int, Dim>& g) const;
 };
+using TriangleLocator = SimplexLocator<2>;
+using TetrahedronLocator = SimplexLocator<3>;
+extern template class SimplexLocator<2>;
+extern template class SimplexLocator<3>;
 
-// The P1 field u_coarse (2 per node, mesh.hpp numbering) at the nodes of `fine`: each fine node
-// is located in the coarse triangles of its own body (the body of a triangle that uses it).
+// The P1 field u_coarse (Dim per node, mesh.hpp numbering) at the nodes of `fine`: each fine
+// node is located in the coarse cells of its own body (the body of a cell that uses it) and
+// interpolated barycentrically (extrapolated from the nearest cell outside the coarse body).
 // Exact for a field linear on each body. Throws contactrb::Error on sizes that do not match or
 // a fine body absent from the coarse mesh.
-Eigen::VectorXd transfer_displacement(const mesh::Mesh& coarse, const Eigen::VectorXd& u_coarse,
-                                      const mesh::Mesh& fine);
+template <int Dim>
+Eigen::VectorXd transfer_displacement(const mesh::SimplexMesh<Dim>& coarse, const Eigen::VectorXd& u_coarse,
+                                      const mesh::SimplexMesh<Dim>& fine);
+extern template Eigen::VectorXd transfer_displacement(const mesh::Mesh&, const Eigen::VectorXd&, const mesh::Mesh&);
+extern template Eigen::VectorXd transfer_displacement(const mesh::Mesh3&, const Eigen::VectorXd&, const mesh::Mesh3&);
 
 // Contact pressures (one per constraint row) from the coarse rows to the fine ones: piecewise
 // linear in the normalized arc length along the slave chain, each row at the centroid of its
@@ -52,6 +69,16 @@ Eigen::VectorXd transfer_pressure(const mesh::Mesh& coarse, const contact::Conta
                                   const contact::ContactQuadrature& coarse_quadrature,
                                   const Eigen::VectorXd& lambda_coarse, const mesh::Mesh& fine,
                                   const contact::ContactPair& fine_pair,
+                                  const contact::ContactQuadrature& fine_quadrature);
+
+// 3D: one row per slave node (its center node). The coarse pressure is the P1 field of the
+// coarse rows' values on the coarse slave triangles; each fine row takes its value at the
+// closest point of its node on that surface (a bounding-volume tree over the coarse slave
+// triangles). Exact for a pressure linear on the coarse slave surface.
+Eigen::VectorXd transfer_pressure(const mesh::Mesh3& coarse, const contact::ContactPair3& coarse_pair,
+                                  const contact::ContactQuadrature& coarse_quadrature,
+                                  const Eigen::VectorXd& lambda_coarse, const mesh::Mesh3& fine,
+                                  const contact::ContactPair3& fine_pair,
                                   const contact::ContactQuadrature& fine_quadrature);
 
 // Normalized arc length (0 at slave.front(), 1 at slave.back()) of each constraint row's centroid.

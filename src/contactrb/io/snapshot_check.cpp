@@ -100,20 +100,23 @@ void check_header(const SnapshotSet& set) {
   }
 }
 
-// contact_dofs is derived from the chains (both components of each contact node, ascending):
+// contact_dofs is derived from the chains (every component of each contact node, ascending):
 // anything else would make K's columns mean other DOFs.
 void check_contact_dofs(const SnapshotSet& set) {
   std::vector<int> nodes = set.slave;
   nodes.insert(nodes.end(), set.master.begin(), set.master.end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  bool contact_ok = set.contact_dofs.size() == 2 * nodes.size();
+  const auto d = static_cast<std::size_t>(set.dimension);
+  bool contact_ok = set.contact_dofs.size() == d * nodes.size();
   for (std::size_t i = 0; contact_ok && i < nodes.size(); ++i) {
-    contact_ok = set.contact_dofs[2 * i] == 2 * nodes[i] && set.contact_dofs[2 * i + 1] == 2 * nodes[i] + 1;
+    for (std::size_t c = 0; c < d; ++c) {
+      contact_ok = contact_ok && set.contact_dofs[d * i + c] == set.dimension * nodes[i] + static_cast<int>(c);
+    }
   }
   if (!contact_ok) {
-    invalid("/discretization/contact_dofs (" + std::to_string(set.contact_dofs.size()) +
-            " entries) are not the two components of the " + std::to_string(nodes.size()) +
+    invalid("/discretization/contact_dofs (" + std::to_string(set.contact_dofs.size()) + " entries) are not the " +
+            std::string(d == 2 ? "two" : "three") + " components of the " + std::to_string(nodes.size()) +
             " slave and master nodes in ascending order");
   }
 }
@@ -121,8 +124,12 @@ void check_contact_dofs(const SnapshotSet& set) {
 // Every index is checked before anyone uses it.
 void check_discretization(const SnapshotSet& set) {
   const bool has_layout = set.num_dofs != 0;
-  if (set.num_dofs < 0 || set.num_dofs % 2 != 0) {
-    invalid("/discretization num_dofs = " + std::to_string(set.num_dofs) + " (expected 2 x nodes, >= 0)");
+  if (set.dimension != 2 && set.dimension != 3) {
+    invalid("the dimension is " + std::to_string(set.dimension) + " (expected 2 or 3)");
+  }
+  if (set.num_dofs < 0 || set.num_dofs % set.dimension != 0) {
+    invalid("/discretization num_dofs = " + std::to_string(set.num_dofs) + " (expected " +
+            std::to_string(set.dimension) + " x nodes, >= 0)");
   }
   if (!has_layout) {
     // Every solve threw before its discretization existed: nothing but failures to record.
@@ -132,10 +139,11 @@ void check_discretization(const SnapshotSet& set) {
   } else if (!known_constraint(set.constraint)) {
     invalid("/case/constraint is '" + set.constraint + "' (expected collocation, lac or lac-simpson)");
   }
-  const int num_nodes = set.num_dofs / 2;
+  const int num_nodes = set.num_dofs / set.dimension;
   check_indices(set.free_dofs, set.num_dofs, "/discretization/free_dofs", "num_dofs");
   check_indices(set.slave, num_nodes, "/discretization/slave", "nodes");
-  check_indices(set.master, num_nodes, "/discretization/master", "nodes", /*closed_chain_allowed=*/true);
+  // A closed master loop exists in 2D only (3D: the master nodes, sorted).
+  check_indices(set.master, num_nodes, "/discretization/master", "nodes", /*closed_chain_allowed=*/set.dimension == 2);
   if (has_layout && (set.slave.empty() || set.master.size() < 2)) {
     invalid("/discretization: the slave chain has " + std::to_string(set.slave.size()) + " node(s), the master " +
             std::to_string(set.master.size()) + " (at least 1 and 2 are needed)");
@@ -143,17 +151,31 @@ void check_discretization(const SnapshotSet& set) {
   check_contact_dofs(set);
 }
 
-// The stored reference mesh (format 4): valid, and the mesh of these DOFs.
-void check_reference_mesh(const SnapshotSet& set) {
-  if (set.mesh.nodes.empty()) return;
+// The stored reference mesh (format 4): valid, and the mesh of these DOFs; only the mesh of
+// the set's dimension.
+template <int Dim>
+void check_mesh_of(const mesh::SimplexMesh<Dim>& m, int num_dofs) {
+  if (m.nodes.empty()) return;
   try {
-    mesh::validate(set.mesh);
+    mesh::validate(m);
   } catch (const Error& e) {
     invalid(std::string("/mesh: ") + e.what());
   }
-  if (set.mesh.num_dofs() != set.num_dofs) {
-    invalid("/mesh has " + std::to_string(set.mesh.num_nodes()) + " nodes (" + std::to_string(set.mesh.num_dofs()) +
-            " DOFs), /discretization num_dofs = " + std::to_string(set.num_dofs));
+  if (m.num_dofs() != num_dofs) {
+    invalid("/mesh has " + std::to_string(m.num_nodes()) + " nodes (" + std::to_string(m.num_dofs()) +
+            " DOFs), /discretization num_dofs = " + std::to_string(num_dofs));
+  }
+}
+
+void check_reference_mesh(const SnapshotSet& set) {
+  const bool other_dimension = set.dimension == 3 ? !set.mesh.nodes.empty() : !set.mesh3.nodes.empty();
+  if (other_dimension) {
+    invalid("the set of dimension " + std::to_string(set.dimension) + " holds a reference mesh of the other dimension");
+  }
+  if (set.dimension == 3) {
+    check_mesh_of(set.mesh3, set.num_dofs);
+  } else {
+    check_mesh_of(set.mesh, set.num_dofs);
   }
 }
 

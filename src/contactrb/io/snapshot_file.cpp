@@ -78,14 +78,26 @@ SnapshotTables tables_of(const SnapshotSet& set) {
 
 // The format attributes; the reader checks them first (check_header) and reads them again
 // here for the checksum.
+// Returns the version (the reader's: the file's, checked by check_header).
 template <typename V>
-void visit_format(V& v, const Loc& root) {
+int visit_format(V& v, const Loc& root) {
   std::string format = kSnapshotFormatName;
   int version = kSnapshotFormatVersion;
   std::string written_by = kVersion;
   v.str(root, "format", format);
   v.integer(root, "format_version", version);
   v.str(root, "contactrb_version", written_by);
+  return version;
+}
+
+// The space dimension (format 6 and later; a format 5 file is 2D).
+template <typename V, typename Set>
+void visit_dimension(V& v, const Loc& root, Set& set, int version) {
+  if (version < 6) return;
+  v.integer(root, "dimension", set.dimension);
+  if (set.dimension != 2 && set.dimension != 3) {
+    throw H5Failure{"the root attribute dimension is " + std::to_string(set.dimension) + " (expected 2 or 3)"};
+  }
 }
 
 template <typename V, typename Set>
@@ -153,9 +165,12 @@ void visit_discretization(V& v, const Loc& root, Set& set) {
 // The reference mesh (format 4 and later): no .msh file is needed to use the snapshots.
 template <typename V, typename Set>
 void visit_reference_mesh(V& v, const Loc& root, Set& set) {
-  int has_mesh = set.mesh.nodes.empty() ? 0 : 1;
+  const bool three = set.dimension == 3;
+  int has_mesh = (three ? set.mesh3.nodes.empty() : set.mesh.nodes.empty()) ? 0 : 1;
   v.integer(root, "has_mesh", has_mesh);
-  if (has_mesh == 1) {
+  if (has_mesh == 1 && three) {
+    hdf5::visit_mesh(v, root, set.mesh3);
+  } else if (has_mesh == 1) {
     hdf5::visit_mesh(v, root, set.mesh);
   } else if (has_mesh != 0) {
     throw H5Failure{"the root attribute has_mesh is " + std::to_string(has_mesh) + " (expected 0 or 1)"};
@@ -218,7 +233,8 @@ void visit_snapshots(V& v, const Loc& root, Set& set, SnapshotTables& t) {
 
 template <typename V, typename Set>
 void visit(V& v, const Loc& root, Set& set, SnapshotTables& tables) {
-  visit_format(v, root);
+  const int version = visit_format(v, root);
+  visit_dimension(v, root, set, version);
   visit_case(v, root, set);
   visit_parameters(v, root, set, tables.mu);
   visit_settings(v, root, set);
@@ -334,8 +350,8 @@ std::string version_message(int version) {
     return "snapshot format " + std::to_string(version) + " is newer than this build reads (format " + current + ")" +
            again;
   }
-  return "snapshot format " + std::to_string(version) + " is no longer read (this build reads format " + current + ")" +
-         again;
+  return "snapshot format " + std::to_string(version) + " is no longer read (this build reads formats " +
+         std::to_string(kSnapshotFormatOldestRead) + " to " + current + ")" + again;
 }
 
 // A file whose `format` is a variable-length string (snapshot format 4 and model format 5 and
@@ -352,7 +368,7 @@ std::string version_message(int version) {
   } catch (const H5Failure& f) {
     throw Error(name + " is a snapshot file of an older format without a valid format version: " + f.what);
   }
-  if (version == kSnapshotFormatVersion) {
+  if (version >= kSnapshotFormatOldestRead && version <= kSnapshotFormatVersion) {
     throw Error(name + " is damaged: its 'format' is a variable-length string, which format " +
                 std::to_string(version) + " never stores (not read)");
   }
@@ -383,7 +399,9 @@ void check_header(hid_t file, const std::string& name, bool sealed) {
   } catch (const H5Failure& f) {
     throw Error(name + " has no valid format version: " + f.what);
   }
-  if (version != kSnapshotFormatVersion) throw Error(name + ": " + version_message(version));
+  if (version < kSnapshotFormatOldestRead || version > kSnapshotFormatVersion) {
+    throw Error(name + ": " + version_message(version));
+  }
   // Every file of this version is sealed by its writer: no seal, its first bytes were damaged.
   if (!sealed) throw Error(name + " is damaged: its seal (the first bytes of the file) is missing");
   // `complete` = 1 is written last; any other value (0, a damaged one) is not a finished write.

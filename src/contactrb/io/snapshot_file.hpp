@@ -20,9 +20,12 @@ inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
 // and domain). Version 4: the self-describing layout (strings as variable-length UTF-8
 // attributes, `shape_meaning` and `units` on every dataset) and the reference mesh in /mesh
 // (docs/file-formats.md). Version 5: every string a fixed-length UTF-8 attribute (no
-// variable-length data, which HDF5 1.10 cannot read safely from a damaged file). Older versions
-// are refused with their version named: generate them again.
-inline constexpr int kSnapshotFormatVersion = 5;
+// variable-length data, which HDF5 1.10 cannot read safely from a damaged file). Version 6: the
+// root attribute `dimension` (2 or 3) and a 3D mesh in /mesh; a version 5 file is read as 2D.
+// Older versions are refused with their version named: generate them again.
+inline constexpr int kSnapshotFormatVersion = 6;
+// The oldest version this build reads (kSnapshotFormatVersion and this one).
+inline constexpr int kSnapshotFormatOldestRead = 5;
 
 // What a snapshot file records of each parameter (cases::ParameterSpec, without the case).
 struct SnapshotParameter {
@@ -74,16 +77,23 @@ struct SnapshotSet {
   double kacanov_tolerance = 0.0;
   int kacanov_max_iterations = 0;
 
+  // The space dimension of the mesh and of every displacement: 2 (triangles, 2 components per
+  // node) or 3 (tetrahedra, 3 components per node).
+  int dimension = 2;
+
   // Discretization, identical for every mu (one reference mesh, mapped).
   int num_dofs = 0;
   std::vector<int> free_dofs;     // global index of each entry of u0
-  std::vector<int> contact_dofs;  // global index of each column of K (both components of
+  std::vector<int> contact_dofs;  // global index of each column of K (every component of
                                   // every slave and master node, ascending)
-  std::vector<int> slave;         // slave chain (mesh node indices)
-  std::vector<int> master;        // master chain (closed: first node repeated at the end)
+  std::vector<int> slave;         // 2D: slave chain; 3D: slave nodes, sorted (mesh node indices)
+  std::vector<int> master;        // 2D: master chain (closed: first node repeated at the end);
+                                  // 3D: master nodes, sorted
   // The reference mesh of these DOFs (level `level`), stored in /mesh so that no .msh file is
   // needed later; empty when unknown (a set built by hand, or no solve got a discretization).
+  // `mesh` in 2D, `mesh3` in 3D; the other one stays empty.
   mesh::Mesh mesh;
+  mesh::Mesh3 mesh3;
 
   std::vector<Snapshot> snapshots;
 

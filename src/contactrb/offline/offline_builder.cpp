@@ -147,6 +147,8 @@ constexpr double kGapRoundoff = 1e-12;
 // unchecked.
 
 void check_set_matches_case(const io::SnapshotSet& set, const cases::CaseSpec& spec) {
+  require(set.dimension == 2, "offline: the snapshots are " + std::to_string(set.dimension) +
+                                  "D: reduced models are built from 2D snapshots only in this build");
   require(!set.snapshots.empty(), "offline: the snapshot set is empty");
   try {
     io::check_snapshot_set(set);

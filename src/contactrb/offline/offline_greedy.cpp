@@ -448,6 +448,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   check_settings(settings);
   const std::vector<GreedyMu>& training = request.mu;
   require(!training.empty(), "greedy: the training set '" + request.set_name + "' is empty");
+  require(request.dimension == 2, "greedy: the case is " + std::to_string(request.dimension) +
+                                      "D: reduced models are built from 2D cases only in this build");
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
   const std::size_t P = training.size();
   Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),

@@ -51,7 +51,8 @@ double thread_cpu_seconds() {
 
 using Layout = SnapshotLayout;
 
-Layout layout_of(const hf::HFSolver& solver) {
+template <int Dim>
+Layout layout_of(const hf::BasicHFSolver<Dim>& solver) {
   Layout l;
   l.valid = true;
   l.num_dofs = solver.problem().mesh.num_dofs();
@@ -64,10 +65,19 @@ Layout layout_of(const hf::HFSolver& solver) {
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   for (int node : nodes) {
-    l.contact_dofs.push_back(2 * node);
-    l.contact_dofs.push_back(2 * node + 1);
+    for (int c = 0; c < Dim; ++c) l.contact_dofs.push_back(Dim * node + c);
   }
   return l;
+}
+
+// The factory of the request's dimension.
+template <int Dim>
+const BasicProblemFactory<Dim>& factory_of(const SnapshotRequest& request) {
+  if constexpr (Dim == 2) {
+    return request.make_problem;
+  } else {
+    return request.make_problem3;
+  }
 }
 
 // K (R x num_dofs, sparse) on the contact DOF columns, dense R x n_c.
@@ -91,13 +101,14 @@ Eigen::MatrixXd contact_columns(const Eigen::SparseMatrix<double, Eigen::RowMajo
 }
 
 // One parameter value: build, solve, extract. Exceptions become a failed snapshot.
+template <int Dim>
 void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
                const io::Snapshot* start) {
   const auto t0 = Clock::now();
   const double cpu0 = thread_cpu_seconds();
   out.mu = request.mu[index];
   try {
-    const hf::HFSolver solver(request.make_problem(out.mu));
+    const hf::BasicHFSolver<Dim> solver(factory_of<Dim>(request)(out.mu));
     layout = layout_of(solver);
     hf::HFInitialGuess guess;
     if (start != nullptr && start->converged && start->u.size() == solver.problem().mesh.num_dofs() &&
@@ -105,7 +116,7 @@ void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& 
       guess.u = start->u;
       guess.lambda = start->lambda;
     }
-    hf::HFSolution s = solver.solve(request.settings, guess);
+    hf::BasicHFSolution<Dim> s = solver.solve(request.settings, guess);
     out.converged = s.converged;
     out.status = solve::to_string(s.status);
     out.message = s.message;
@@ -138,6 +149,15 @@ void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& 
   }
   out.time_s = seconds_since(t0);
   out.cpu_time_s = thread_cpu_seconds() - cpu0;
+}
+
+void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
+               const io::Snapshot* start) {
+  if (request.dimension == 3) {
+    solve_one<3>(request, index, out, layout, start);
+  } else {
+    solve_one<2>(request, index, out, layout, start);
+  }
 }
 
 // Progress reports, serialized by a mutex (workers finish concurrently).
@@ -206,12 +226,25 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   for (const cases::Mu& mu : r.mu) spec.check_mu(mu);
   if (values) cases::check_points(spec.parameters, *values, "the explicit parameter values");
   // One reference mesh, shared read-only by every worker.
-  auto reference = std::make_shared<const mesh::Mesh>(cases::reference_mesh(spec, level));
-  r.make_problem = [spec, reference, constraint](const cases::Mu& mu) {
-    return cases::make_problem(spec, *reference, mu, constraint);
-  };
-  r.reference = reference;
+  r.dimension = cases::case_dimension(spec);
+  if (r.dimension == 3) {
+    auto reference = std::make_shared<const mesh::Mesh3>(cases::reference_mesh3(spec, level));
+    r.make_problem3 = [spec, reference, constraint](const cases::Mu& mu) {
+      return cases::make_problem(spec, *reference, mu, constraint);
+    };
+    r.reference3 = reference;
+  } else {
+    auto reference = std::make_shared<const mesh::Mesh>(cases::reference_mesh(spec, level));
+    r.make_problem = [spec, reference, constraint](const cases::Mu& mu) {
+      return cases::make_problem(spec, *reference, mu, constraint);
+    };
+    r.reference = reference;
+  }
   return r;
+}
+
+bool has_problem_factory(const SnapshotRequest& request) {
+  return request.dimension == 3 ? static_cast<bool>(request.make_problem3) : static_cast<bool>(request.make_problem);
 }
 
 SnapshotSchedule snapshot_schedule(const SnapshotRequest& request, const SnapshotRunOptions& options) {
@@ -296,7 +329,7 @@ SnapshotSchedule snapshot_schedule(const SnapshotRequest& request, const Snapsho
 io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const SnapshotRunOptions& options) {
   require(options.jobs >= 1, "the number of jobs must be >= 1 (got " + std::to_string(options.jobs) + ")");
   require(!request.mu.empty(), "the parameter set '" + request.set_name + "' is empty");
-  require(static_cast<bool>(request.make_problem), "no problem factory given");
+  require(has_problem_factory(request), "no problem factory given");
 
   const std::size_t n = request.mu.size();
   std::vector<io::Snapshot> snapshots(n);
@@ -333,6 +366,7 @@ io::SnapshotSet assemble_snapshot_set(const SnapshotRequest& request, std::vecto
   set.kacanov_alpha = request.settings.kacanov.alpha;
   set.kacanov_tolerance = request.settings.kacanov.tolerance;
   set.kacanov_max_iterations = request.settings.kacanov.max_iterations;
+  set.dimension = request.dimension;
   // The discretization of the first value whose solver was built; all others must agree.
   const Layout* first = nullptr;
   for (std::size_t i = 0; i < n; ++i) {
@@ -354,7 +388,12 @@ io::SnapshotSet assemble_snapshot_set(const SnapshotRequest& request, std::vecto
     set.slave = first->slave;
     set.master = first->master;
     set.constraint = first->constraint;
-    if (request.reference && request.reference->num_dofs() == set.num_dofs) set.mesh = *request.reference;
+    if (set.dimension == 2 && request.reference && request.reference->num_dofs() == set.num_dofs) {
+      set.mesh = *request.reference;
+    }
+    if (set.dimension == 3 && request.reference3 && request.reference3->num_dofs() == set.num_dofs) {
+      set.mesh3 = *request.reference3;
+    }
   }
   set.snapshots = std::move(snapshots);
   return set;

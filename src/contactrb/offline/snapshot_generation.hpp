@@ -24,9 +24,12 @@
 
 namespace contactrb::offline {
 
-// Builds the HF problem at mu. Called concurrently from the worker threads: it must not
-// modify shared state (capture immutable data only).
-using ProblemFactory = std::function<hf::ContactProblem(const cases::Mu& mu)>;
+// Builds the HF problem at mu (Dim = 2 or 3). Called concurrently from the worker threads: it
+// must not modify shared state (capture immutable data only).
+template <int Dim>
+using BasicProblemFactory = std::function<hf::BasicContactProblem<Dim>(const cases::Mu& mu)>;
+using ProblemFactory = BasicProblemFactory<2>;
+using ProblemFactory3 = BasicProblemFactory<3>;
 
 // What to compute, and the metadata the snapshot file records about it.
 struct SnapshotRequest {
@@ -37,20 +40,28 @@ struct SnapshotRequest {
   std::vector<io::SnapshotParameter> parameters;
   std::string set_name;
   std::vector<cases::Mu> mu;  // the parameter points, in the order of the output
+  // The space dimension: 2 solves with make_problem on `reference`, 3 with make_problem3 on
+  // `reference3` (one code path, BasicHFSolver<Dim>); recorded in the set.
+  int dimension = 2;
   ProblemFactory make_problem;
+  ProblemFactory3 make_problem3;
   hf::HFSettings settings;
-  // The reference mesh the factory maps, recorded in the set (SnapshotSet::mesh, /mesh of the
-  // file); null: not recorded.
+  // The reference mesh the factory maps, recorded in the set (SnapshotSet::mesh or mesh3, /mesh
+  // of the file); null: not recorded.
   std::shared_ptr<const mesh::Mesh> reference;
+  std::shared_ptr<const mesh::Mesh3> reference3;
 };
 
-// A request for a case specification over one of its named sets (or over `values` when
-// given, recorded as set "custom"). The reference mesh is generated once, here, and mapped
+// A request for a case specification (2D or 3D, cases::case_dimension) over one of its named
+// sets (or over `values` when given, recorded as set "custom"). The reference mesh is generated once, here, and mapped
 // per mu by the factory (Gmsh is serialized and slow; mapping is cheap).
 // Throws contactrb::Error for an unknown set or a value outside the parameter domain.
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
                                       std::optional<contact::Discretization> constraint = std::nullopt,
                                       const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
+
+// True when the request holds the problem factory of its dimension.
+bool has_problem_factory(const SnapshotRequest& request);
 
 // What a snapshot file records of the case's parameters.
 std::vector<io::SnapshotParameter> snapshot_parameters(const cases::CaseSpec& spec);

@@ -47,6 +47,7 @@ std::vector<std::pair<std::string, std::string>> run_fields(const io::SnapshotSe
   values << tag.total << " values, hash " << std::hex << tag.values;
   return {{"case", s.case_kind + ":" + s.case_name + "\n" + s.case_spec},
           {"mesh level", std::to_string(s.level)},
+          {"dimension", std::to_string(s.dimension)},
           {"parameters", params.str()},
           {"Kacanov settings", kacanov.str()},
           {"parameter set", tag.set},
