@@ -406,7 +406,10 @@ TEST(SnapshotFile, EditedValuesAreCaughtByTheChecksum) {
 TEST(SnapshotFile, CompleteOtherThanOneIsRefused) {
   TempDir dir("complete_zero");
   for (const int value : {0, 2}) {
-    const std::string path = dir.file("c" + std::to_string(value) + ".h5");
+    std::string name = "c";  // appended, not "c" + ...: GCC 12's -Wrestrict false positive there
+    name += std::to_string(value);
+    name += ".h5";
+    const std::string path = dir.file(name);
     write_snapshot_file(synthetic_set(), path);
     edit_file(path, [&](hid_t f) {
       const hid_t attr = H5Aopen(f, "complete", H5P_DEFAULT);
