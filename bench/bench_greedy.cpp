@@ -4,7 +4,8 @@
 // the POD over every training snapshot (the default `contactrb offline`). Prints markdown.
 //
 //   bench_greedy [case ...] [--tol 1e-2,1e-3] [--jobs 2] [--dense P] [--steps] [--hf-tol eps_KA]
-//                [--eps-du e] [--eps-eim e] [--eps-pod e] [--no-compression] [--no-supremizers]
+//                [--eps-du e] [--eps-eim e] [--eps-pod e] [--dual rows|cpg|angle|nmf] [--no-compression]
+//                [--no-supremizers]
 // --dense P: P equispaced training points over the domain instead of the case's training set.
 // The offline settings apply to the greedy's builds and to the POD (--no-compression to both).
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/parameter.hpp"
+#include "contactrb/offline/dual_cone.hpp"
 #include "contactrb/study/evaluation.hpp"
 #include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
   double eps_eim = contactrb::offline::OfflineSettings{}.eps_eim_k;
   double eps_pod = contactrb::offline::OfflineSettings{}.eps_pod;
   bool no_sup = false, no_compression = false;
+  contactrb::offline::DualConeMethod dual = contactrb::offline::OfflineSettings{}.dual_method;
   double eps_du = contactrb::offline::OfflineSettings{}.eps_du, hf_tol = solve::KacanovSettings{}.tolerance;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -76,6 +79,8 @@ int main(int argc, char** argv) {
       eps_eim = std::atof(argv[++i]);
     } else if (a == "--eps-pod" && i + 1 < argc) {
       eps_pod = std::atof(argv[++i]);
+    } else if (a == "--dual" && i + 1 < argc) {
+      dual = contactrb::offline::dual_cone_method_from_string(argv[++i]);
     } else if (a == "--no-compression") {
       no_compression = true;
     } else if (a == "--no-supremizers") {
@@ -105,6 +110,7 @@ int main(int argc, char** argv) {
     contactrb::offline::OfflineSettings offline;  // the defaults of `contactrb offline`
     offline.eps_du = eps_du;
     offline.eps_pod = eps_pod;
+    offline.dual_method = dual;
     offline.supremizers = !no_sup;
     offline.compression = !no_compression;
     offline.eps_eim_k = offline.eps_eim_g = eps_eim;
