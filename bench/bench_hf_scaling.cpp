@@ -7,7 +7,8 @@
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
 //                    (--mu: default the case's reference value; hertz-3d: --case hertz-3d --mu 0.02)
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen]
-//                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)] [--verbose] [--header]
+//                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)]
+//                    [--frozen-rows-from-dimension 3 (4: never)] [--verbose] [--header]
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
 //                     block from 200 000 free DOFs, one elsewhere; default: the hardware threads;
 //                     0: OPENBLAS_NUM_THREADS everywhere)]
@@ -56,7 +57,7 @@ namespace {
 
 struct BenchOptions {
   std::string case_name = "hertz-a", solver = "newton", constraint, lu = "umfpack", linear = "schur", passes = "frozen";
-  int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1, krylov = -1;
+  int level = 0, repeat = 1, inner = -1, free_steps = -1, branch_passes = -1, krylov = -1, frozen_rows_from_dimension = -1;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string ordering = "auto";
   std::string linearization = "analytic";
@@ -105,6 +106,7 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     else if (a == "--chord") o.chord = std::stoi(next());
     else if (a == "--linearization") o.linearization = next();
     else if (a == "--krylov") o.krylov = std::stoi(next());
+    else if (a == "--frozen-rows-from-dimension") o.frozen_rows_from_dimension = std::stoi(next());
     else if (a == "--threads") o.threads = std::stoi(next());
     else if (a == "--keep-freed") o.keep_freed = std::stoi(next()) != 0;
     else if (a == "--ahead") o.ahead = std::stoi(next()) != 0;
@@ -139,6 +141,7 @@ hf::HFSettings settings_from(const BenchOptions& o) {
   if (o.switch_passes > 0) t.switch_passes = o.switch_passes;
   if (o.chord >= 0) t.chord_steps = o.chord;
   if (o.krylov >= 0) t.krylov_max_iterations = o.krylov;
+  if (o.frozen_rows_from_dimension >= 0) t.frozen_rows_from_dimension = o.frozen_rows_from_dimension;
   t.blas_threads = o.threads;
   if (o.linearization == "fd") {
     settings.newton.linearization.method = contact::LinearizationMethod::FiniteDifference;

@@ -312,6 +312,18 @@ TEST(HF3D, CurvedMasterPartialContactBothSolversAgree) {
     }
     expect_kkt(solver, n, 1e-8, label);
   }
+  // The first iteration's frozen systems on the constraint rows (the 3D default) or on the block of
+  // A_00^-1 over every DOF they touch: the same iterates up to round-off.
+  hf::HFSettings on_block = newton();
+  on_block.newton.tuning.frozen_rows_from_dimension = 4;
+  const hf::HFSolution3 g = solver.solve(on_block), r = solver.solve(newton());
+  ASSERT_TRUE(g.converged && r.converged) << g.message << r.message;
+  EXPECT_EQ(g.iterations, r.iterations);
+  ASSERT_FALSE(r.newton_history.empty());
+  EXPECT_GT(r.newton_history.front().factorizations, 1) << "the first iteration solved one frozen system only";
+  EXPECT_LT((g.u - r.u).norm() / g.u.norm(), 1e-10);
+  EXPECT_LT((g.lambda - r.lambda).norm() / g.lambda.norm(), 1e-9);
+  EXPECT_LT((r.u - k.u).norm() / k.u.norm(), 1e-8);
 }
 
 // A gap between the blocks that the load does not close: no contact, lambda = 0, positive gap.

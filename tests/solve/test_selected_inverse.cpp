@@ -344,3 +344,51 @@ TEST(SelectedInverse, AnalysisOfThePatternOnAnotherThreadGivesTheSameFactorBitwi
   }
   EXPECT_FALSE(solve::FactorAnalysis::analyze(Eigen::SparseMatrix<double>(3, 4)).valid());
 }
+
+// row_block: (V A^-1 V')[rows, rows] for sparse rows of V (several entries each, spread over the
+// grid so that their chains part and join) equals the dense V A^-1 V'; asked again with cached
+// and new rows, then after forget_rows() with V changed, it stays exact; block() is untouched.
+TEST(SelectedInverse, RowBlocksMatchTheDenseProduct) {
+  const Eigen::SparseMatrix<double> A = grid_matrix(32);
+  const int n = static_cast<int>(A.rows());
+  const Eigen::MatrixXd inv = Eigen::MatrixXd(A).llt().solve(Eigen::MatrixXd::Identity(n, n));
+  auto rows_matrix = [n](double shift) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int r = 0; r < 40; ++r) {
+      t.emplace_back(r, (r * 37) % n, 1.0 + shift);
+      t.emplace_back(r, (r * 53 + 11) % n, -0.5 * r);
+      t.emplace_back(r, (r * 101 + 500) % n, 0.25 + shift * r);
+    }
+    Eigen::SparseMatrix<double, Eigen::RowMajor> V(40, n);
+    V.setFromTriplets(t.begin(), t.end());
+    return V;
+  };
+  solve::SelectedInverse s;
+  ASSERT_EQ(s.compute(A), solve::SelectedInverseStatus::Success);
+  const std::vector<int> unit_idx = {3, 500, 1000};
+  const Eigen::MatrixXd G_before = s.block(unit_idx);
+  auto worst_error = [&](const Eigen::SparseMatrix<double, Eigen::RowMajor>& V, const std::vector<int>& rows) {
+    std::vector<double> storage;
+    const Eigen::MatrixXd Q = s.row_block(rows, V, storage);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(V) * inv * Eigen::MatrixXd(V).transpose();
+    double worst = 0.0;
+    for (std::size_t a = 0; a < rows.size(); ++a) {
+      for (std::size_t b = 0; b < rows.size(); ++b) {
+        worst = std::max(worst, std::abs(Q(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) -
+                                         dense(rows[a], rows[b])));
+      }
+    }
+    return worst / dense.cwiseAbs().maxCoeff();
+  };
+  const auto V1 = rows_matrix(0.0), V2 = rows_matrix(0.3);
+  EXPECT_LT(worst_error(V1, {0, 5, 7, 12, 30, 39}), 1e-14);
+  EXPECT_LT(worst_error(V1, {39, 1, 5, 20, 21}), 1e-14);  // 39 and 5 cached
+  s.forget_rows();
+  EXPECT_LT(worst_error(V2, {0, 5, 7, 12, 30, 39}), 1e-14);
+  EXPECT_EQ(s.cached_columns(), 3);
+  EXPECT_EQ(Eigen::MatrixXd(s.block(unit_idx)), G_before);
+  std::vector<double> storage;
+  EXPECT_THROW(s.row_block({40}, V1, storage), Error);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> wrong(2, n + 1);
+  EXPECT_THROW(s.row_block({0}, wrong, storage), Error);
+}

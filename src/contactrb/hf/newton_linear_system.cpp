@@ -54,12 +54,13 @@ struct NewtonLinearSystem::Reduced {
   int e = 0, m = 0;
 };
 
-NewtonLinearSystem::NewtonLinearSystem(const NewtonAlgebra& p, const NewtonSettings& s)
+NewtonLinearSystem::NewtonLinearSystem(const NewtonAlgebra& p, const NewtonSettings& s, int dimension)
     : p_(p),
       s_(s),
       schur_(s.linear_solver == NewtonLinearSolver::ActiveSchur),
       blas_threads_(s.tuning.blas_threads > 0 && p.dofs->num_free() >= s.tuning.blas_threads_from ? s.tuning.blas_threads
                                                                                                   : 0),
+      rows_block_(schur_ && dimension >= s.tuning.frozen_rows_from_dimension),
       lu_(s.lu),
       e_position_(sz(p.dofs->num_free()), -1) {
   if (!schur_) {
@@ -110,6 +111,7 @@ bool NewtonLinearSystem::factorize(NewtonTimings& timings, std::string& message)
 void NewtonLinearSystem::set_read_dofs(const RowSparse& K0, NewtonLinearization& lin) {
   lin.read_dofs.clear();
   if (!schur_) return;
+  inverse_.forget_rows();  // K_0 changed
   for (const RowSparse* rows : {&K0, static_cast<const RowSparse*>(&lin.D0)}) {
     for (int r = 0; r < rows->outerSize(); ++r) {
       for (RowSparse::InnerIterator kk(*rows, r); kk; ++kk) {
@@ -148,12 +150,34 @@ bool NewtonLinearSystem::solve(const std::vector<int>& active, bool frozen, cons
   Eigen::VectorXd yE;
   bool solved = false;
   if (frozen) {
-    solved = solve_frozen_dual(sys, active, yE, step.lambda, message);
+    solved = solve_frozen_dual(sys, active, K0, yE, step.lambda, it, message);
   } else {
     solved = solve_krylov(sys, active, at, yE, step.lambda, it) || solve_dense(sys, active, yE, step.lambda, message);
   }
   if (solved) set_step(sys.E, yE, lin.read_dofs, at, step);
   return solved;
+}
+
+void NewtonLinearSystem::begin_iteration(int k) {
+  rows_now_ = rows_block_ && k == 0;
+  if (!rows_now_) inverse_.forget_rows();
+}
+
+// Q = K_E G K_E' of the frozen dual system (solve_frozen_dual): from the rows of K_0 directly in
+// the first iteration (docs/performance.md, "Why the defaults are what they are", "Newton: the
+// first frozen systems on the constraint rows"), else from G.
+Eigen::MatrixXd NewtonLinearSystem::frozen_dual_matrix(const Reduced& sys, const std::vector<int>& active,
+                                                       const RowSparse& K0, NewtonIteration& it) {
+  if (rows_now_) {
+    const auto t_block = Clock::now();
+    const solve::ScopedBlasThreads threads(blas_threads_);
+    Eigen::MatrixXd Q = inverse_.row_block(active, K0, q_storage_);
+    it.block_s += seconds_since(t_block);
+    return Q;
+  }
+  Eigen::Map<Eigen::MatrixXd> GKt = reuse(gkt_storage_, sys.e, sys.m);
+  GKt.noalias() = sys.G * sys.KE.transpose();
+  return sys.KE * GKt;
 }
 
 NewtonLinearSystem::Reduced NewtonLinearSystem::reduce(const std::vector<int>& active, bool frozen, const RowSparse& K0,
@@ -186,6 +210,7 @@ NewtonLinearSystem::Reduced NewtonLinearSystem::reduce(const std::vector<int>& a
   it.reduced_size = e;
   const auto t_block = Clock::now();
   const Eigen::Map<const Eigen::MatrixXd> G = [&] {
+    if (frozen && rows_now_) return Eigen::Map<const Eigen::MatrixXd>(nullptr, 0, 0);  // Q from the rows
     const solve::ScopedBlasThreads threads(blas_threads_);  // the first block: all columns new
     return inverse_.block(E, g_storage_);
   }();
@@ -223,12 +248,11 @@ NewtonLinearSystem::Reduced NewtonLinearSystem::reduce(const std::vector<int>& a
 // K_E w = d_A gives the SPD system of the active rows alone (Kacanov's dual system, paper (12)):
 //   (K_E G K_E') lambda_A = K_E r_E - d_A,
 // of size |A| instead of |E| + |A|.
-bool NewtonLinearSystem::solve_frozen_dual(const Reduced& sys, const std::vector<int>& active, Eigen::VectorXd& yE,
-                                           Eigen::VectorXd& lambda, std::string& message) {
+bool NewtonLinearSystem::solve_frozen_dual(const Reduced& sys, const std::vector<int>& active, const RowSparse& K0,
+                                           Eigen::VectorXd& yE, Eigen::VectorXd& lambda, NewtonIteration& it,
+                                           std::string& message) {
   const int e = sys.e, m = sys.m;
-  Eigen::Map<Eigen::MatrixXd> GKt = reuse(gkt_storage_, e, m);
-  GKt.noalias() = sys.G * sys.KE.transpose();
-  Eigen::MatrixXd Q = sys.KE * GKt;
+  Eigen::MatrixXd Q = frozen_dual_matrix(sys, active, K0, it);
   const Eigen::VectorXd rE = sys.rhs.head(e);
   const Eigen::VectorXd q = sys.KE * rE - sys.rhs.tail(m);
   const Eigen::VectorXd scale = dual_scale(Q);

@@ -57,13 +57,17 @@ struct NewtonStep {
 
 class NewtonLinearSystem {
  public:
-  NewtonLinearSystem(const NewtonAlgebra& problem, const NewtonSettings& settings);
+  NewtonLinearSystem(const NewtonAlgebra& problem, const NewtonSettings& settings, int dimension);
   bool schur() const { return schur_; }
   // The BLAS threads of the BLAS-3 parts (0: the BLAS's own count; NewtonTuning::blas_threads).
   int blas_threads() const { return blas_threads_; }
   // ActiveSchur: A_00 = L L' and z = A_00^-1 b. False (message set) when A_00 is not SPD.
   bool factorize(NewtonTimings& timings, std::string& message);
   const Eigen::VectorXd& z() const { return z_; }
+  // Newton iteration k begins. The frozen systems of the first one (from a cold start: the active
+  // set of the unloaded overlap, much larger than the final one) take their dual matrix from the
+  // active rows of K_0; later systems the block G, kept across iterations (rows_block_).
+  void begin_iteration(int k);
   // Sets lin.read_dofs: the free DOFs K_0 and D_0 read over every row (ActiveSchur).
   void set_read_dofs(const RowSparse& K0, NewtonLinearization& lin);
   // One system on the rows `active` at `at`: sets step. False when the system is singular
@@ -78,8 +82,10 @@ class NewtonLinearSystem {
   struct Reduced;
   Reduced reduce(const std::vector<int>& active, bool frozen, const RowSparse& K0, const NewtonLinearization& lin,
                  const SystemPoint& at, NewtonIteration& it);
-  bool solve_frozen_dual(const Reduced& sys, const std::vector<int>& active, Eigen::VectorXd& yE,
-                         Eigen::VectorXd& lambda, std::string& message);
+  bool solve_frozen_dual(const Reduced& sys, const std::vector<int>& active, const RowSparse& K0, Eigen::VectorXd& yE,
+                         Eigen::VectorXd& lambda, NewtonIteration& it, std::string& message);
+  Eigen::MatrixXd frozen_dual_matrix(const Reduced& sys, const std::vector<int>& active, const RowSparse& K0,
+                                     NewtonIteration& it);
   bool solve_krylov(const Reduced& sys, const std::vector<int>& active, const SystemPoint& at, Eigen::VectorXd& yE,
                     Eigen::VectorXd& lambda, NewtonIteration& it);
   bool solve_dense(const Reduced& sys, const std::vector<int>& active, Eigen::VectorXd& yE, Eigen::VectorXd& lambda,
@@ -93,6 +99,10 @@ class NewtonLinearSystem {
   const NewtonSettings& s_;
   const bool schur_;
   const int blas_threads_;
+  // ActiveSchur: the first iteration's frozen systems take Q = K_E G K_E' from the rows of K_0
+  // (SelectedInverse::row_block) instead of G (NewtonTuning::frozen_rows_from_dimension).
+  const bool rows_block_;
+  bool rows_now_ = false;
   solve::SelectedInverse inverse_;
   solve::SparseLU lu_;
   Eigen::VectorXd z_;
@@ -100,7 +110,7 @@ class NewtonLinearSystem {
   std::vector<int> e_position_;                 // scratch: position in E, -1 outside
   // G = (A_00^-1)[E, E] and G K_E', in storage reused by every system (docs/performance.md, "Why
   // the defaults are what they are", "Newton: storage reused across systems").
-  std::vector<double> g_storage_, gkt_storage_;
+  std::vector<double> g_storage_, gkt_storage_, q_storage_;
 };
 
 }  // namespace contactrb::hf

@@ -26,7 +26,7 @@ NewtonSolve<Dim>::NewtonSolve(const BasicNewtonProblem<Dim>& p, const NewtonSett
       global_to_free_(sz(N_), -1),
       movable_(sz(N_), 0),
       evaluate_(p, s),
-      system_(p, s),
+      system_(p, s, Dim),
       previous_active_(sz(R_), 0),
       newton_phase_(t_.inner_passes == NewtonInnerPasses::Consistent) {
   for (int i = 0; i < n_; ++i) {
@@ -150,6 +150,7 @@ bool NewtonSolve<Dim>::linearize() {
   it_.colours = lin.colours;
   it_.linearize_s = seconds_since(t0);
   lin_.D0 = p_.dofs->restrict_columns(lin.D);
+  system_.begin_iteration(k_);
   system_.set_read_dofs(st_.K0, lin_);
   t_systems_ = Clock::now();
   lin_.H = free_hessian(lin.H);

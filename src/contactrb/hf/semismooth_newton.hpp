@@ -118,6 +118,13 @@ struct NewtonTuning {
   // leave 0 when solves run in parallel threads ("BLAS threads").
   int blas_threads = 0;
   int blas_threads_from = 200000;
+  // ActiveSchur: the frozen systems of the first iteration (a cold start's active set is the
+  // unloaded overlap, far larger than the final one) take their dual matrix K_A A_00^-1 K_A' from
+  // one sparse substitution per active row (SelectedInverse::row_block) instead of the block G of
+  // A_00^-1 on every DOF the rows touch; G then from the second iteration on, on the smaller set.
+  // In problems of this dimension and above: 3D, where it pays, not 2D, where it does not
+  // ("Newton: the first frozen systems on the constraint rows").
+  int frozen_rows_from_dimension = 3;
 };
 
 // What a user sets: the tolerance, the iteration cap, the linear solver; the method's tuning

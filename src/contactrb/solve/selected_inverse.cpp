@@ -53,7 +53,43 @@ struct SparseColumn {
   std::vector<int> rows;
   std::vector<double> values;
 };
+// A right-hand side b of forward_batch(): its entries on the permuted rows `rows`.
+struct SparseRhs {
+  std::vector<int> rows;
+  std::vector<double> values;
+};
 struct ColumnCursors;
+
+// Cached columns x_k = L^-1 P b_k and their Gram matrix G(i, j) = x_i . x_j, by key: the
+// original index i of b = e_i (block()), or a row of V (row_block()).
+struct GramCache {
+  std::unordered_map<int, int> column_of;   // key -> position in `columns` / G
+  std::vector<SparseColumn> columns;
+  // G column-major with leading dimension g_capacity (>= columns.size()): new columns are
+  // written in place, and the storage grows by a quarter beyond what is asked, so that a Newton
+  // iteration adding a few columns neither copies G nor touches fresh memory (at 1.2e6 DOFs G
+  // is ~3 500^2 doubles, ~100 MB: a new one per call is freed to the OS and page-faulted again
+  // by the next; docs/performance.md, "Why the defaults are what they are", "Newton: storage
+  // reused across systems").
+  std::vector<double> G;
+  int g_capacity = 0;
+  double& g(int i, int j) { return G[static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * static_cast<std::size_t>(g_capacity)]; }
+  void clear() {
+    column_of.clear();
+    columns.clear();
+    G = std::vector<double>();
+    g_capacity = 0;
+  }
+  // G[:, new] for the columns old.. (defined with SelectedInverse::block()); row_pos: n, -1
+  // between uses.
+  void gram_new_columns(int old, std::vector<int>& row_pos);
+  std::vector<int> new_rows(int old, int total, std::vector<int>& row_pos);
+  void grow_gram(int old, int total);
+  void gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present, Eigen::MatrixXd& Xc,
+                  Eigen::MatrixXd& Gc);
+  // G[keys, keys] into `storage` (its capacity kept and grown by a quarter beyond what is asked).
+  Eigen::Map<const Eigen::MatrixXd> gather(const std::vector<int>& keys, std::vector<double>& storage);
+};
 }  // namespace
 
 struct SelectedInverse::Impl {
@@ -66,23 +102,12 @@ struct SelectedInverse::Impl {
   bool used_analysis = false;
   std::vector<int> inverse_perm;            // original index -> position in P A P'
   std::vector<int> row_pos;                 // n, -1 between uses (block(): row -> dense row)
-  std::unordered_map<int, int> column_of;   // original index -> position in `columns` / G
-  std::vector<SparseColumn> columns;
-  // G(i, j) = x_i . x_j over the cached columns, column-major with leading dimension g_capacity
-  // (>= columns.size()): new columns are written in place, and the storage grows by a quarter
-  // beyond what is asked, so that a Newton iteration adding a few columns neither copies G nor
-  // touches fresh memory (at 1.2e6 DOFs G is ~3 500^2 doubles, ~100 MB: a new one per call is
-  // freed to the OS and page-faulted again by the next; docs/performance.md, "Why the defaults
-  // are what they are", "Newton: storage reused across systems").
-  std::vector<double> G;
-  int g_capacity = 0;
-  double& g(int i, int j) { return G[static_cast<std::size_t>(i) + static_cast<std::size_t>(j) * static_cast<std::size_t>(g_capacity)]; }
-  // block(): G[:, new] for the cached columns old.. (defined with block()).
-  void gram_new_columns(int old);
-  std::vector<int> new_rows(int old, int total);
-  void grow_gram(int old, int total);
-  void gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present, Eigen::MatrixXd& Xc,
-                  Eigen::MatrixXd& Gc);
+  GramCache units;                          // block(): x_i = L^-1 P e_i by original index i
+  GramCache rows;                           // row_block(): x_r = L^-1 P V' e_r by row r of V
+  // The block of `cache` on `keys`, its missing columns from rhs(key) first.
+  template <class MakeRhs>
+  Eigen::Map<const Eigen::MatrixXd> cached_block(GramCache& cache, const std::vector<int>& keys, MakeRhs rhs,
+                                                 std::vector<double>& storage);
 
   Impl() { cholmod_start(&common); }
   ~Impl() {
@@ -91,10 +116,8 @@ struct SelectedInverse::Impl {
   }
   void release() {
     if (L != nullptr) cholmod_free_factor(&L, &common);
-    column_of.clear();
-    columns.clear();
-    G = std::vector<double>();
-    g_capacity = 0;
+    units.clear();
+    rows.clear();
   }
 
   // Supernodal structure (CHOLMOD, relaxed supernodes): supernode of each column and the parent
@@ -177,31 +200,34 @@ struct SelectedInverse::Impl {
     return out;
   }
 
-  // x_j = L^-1 e_{q_j} for a batch of permuted indices q_j. The pattern of x_j is the path from
-  // q_j to the root of the elimination tree (Gilbert's theorem), in supernodal terms the chain of
-  // supernodes from the one holding q_j to the root. One sweep over the union of these chains,
-  // children before parents: in supernode s, B_s (its columns x the batch columns J_s whose
+  // x_j = L^-1 b_j for a batch of sparse b_j (permuted rows). The pattern of x_j is the union of
+  // the paths from the rows of b_j to the root of the elimination tree (Gilbert's theorem), in
+  // supernodal terms the chains of supernodes from the ones holding them to the root. One sweep
+  // over the union of these chains, children before parents: in supernode s, B_s (its columns x the batch columns J_s whose
   // chain passes through s) gets B_s = L_ss^-1 B_s (dtrsm), then L_below,s B_s (dgemm) is
   // subtracted from the ancestors' blocks. Dense BLAS per supernode instead of one scalar sparse
   // substitution per column (simplicial L), which takes 4 of the 15 CPU seconds of a hertz-a
   // level 6 solve.
-  std::vector<SparseColumn> forward_batch(const std::vector<int>& q) {
+  std::vector<SparseColumn> forward_batch(const std::vector<SparseRhs>& b) {
     const int* super = static_cast<const int*>(L->super);
     const int* pi = static_cast<const int*>(L->pi);
     const int* px = static_cast<const int*>(L->px);
     const int* Ls = static_cast<const int*>(L->s);
     const double* Lx = static_cast<const double*>(L->x);
-    const int nb = static_cast<int>(q.size());
+    const int nb = static_cast<int>(b.size());
     std::vector<int> touched;
-    std::vector<int> start_position(static_cast<std::size_t>(nb));
+    std::vector<std::vector<int>> chain(static_cast<std::size_t>(nb));  // per column, its supernodes ascending
     for (int j = 0; j < nb; ++j) {
-      const int s0 = supernode_of[static_cast<std::size_t>(q[static_cast<std::size_t>(j)])];
-      start_position[static_cast<std::size_t>(j)] = static_cast<int>(path_columns[static_cast<std::size_t>(s0)].size());
-      for (int s = s0; s >= 0; s = supernode_parent[static_cast<std::size_t>(s)]) {
-        auto& cols = path_columns[static_cast<std::size_t>(s)];
-        if (cols.empty()) touched.push_back(s);
-        cols.push_back(j);  // ascending in j: batch columns are visited in order
+      for (int r : b[static_cast<std::size_t>(j)].rows) {
+        for (int s = supernode_of[static_cast<std::size_t>(r)]; s >= 0; s = supernode_parent[static_cast<std::size_t>(s)]) {
+          auto& cols = path_columns[static_cast<std::size_t>(s)];
+          if (!cols.empty() && cols.back() == j) break;  // the rest of this chain is column j's already
+          if (cols.empty()) touched.push_back(s);
+          cols.push_back(j);  // ascending in j: batch columns are visited in order
+          chain[static_cast<std::size_t>(j)].push_back(s);
+        }
       }
+      std::sort(chain[static_cast<std::size_t>(j)].begin(), chain[static_cast<std::size_t>(j)].end());
     }
     std::sort(touched.begin(), touched.end());
     std::vector<Eigen::MatrixXd> blocks(touched.size());
@@ -210,10 +236,17 @@ struct SelectedInverse::Impl {
       block_of[static_cast<std::size_t>(s)] = static_cast<int>(a);
       blocks[a].setZero(super[s + 1] - super[s], static_cast<Eigen::Index>(path_columns[static_cast<std::size_t>(s)].size()));
     }
+    auto position = [this](int s, int j) {  // of batch column j in the block of supernode s
+      const auto& js = path_columns[static_cast<std::size_t>(s)];
+      return std::lower_bound(js.begin(), js.end(), j) - js.begin();
+    };
     for (int j = 0; j < nb; ++j) {
-      const int qj = q[static_cast<std::size_t>(j)];
-      const int s0 = supernode_of[static_cast<std::size_t>(qj)];
-      blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(s0)])](qj - super[s0], start_position[static_cast<std::size_t>(j)]) = 1.0;
+      const SparseRhs& bj = b[static_cast<std::size_t>(j)];
+      for (std::size_t e = 0; e < bj.rows.size(); ++e) {
+        const int r = bj.rows[e];
+        const int s0 = supernode_of[static_cast<std::size_t>(r)];
+        blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(s0)])](r - super[s0], position(s0, j)) += bj.values[e];
+      }
     }
     Eigen::MatrixXd W;
     std::vector<int> column_map;
@@ -257,12 +290,12 @@ struct SelectedInverse::Impl {
     std::vector<SparseColumn> out(static_cast<std::size_t>(nb));
     for (int j = 0; j < nb; ++j) {
       SparseColumn& x = out[static_cast<std::size_t>(j)];
-      const int qj = q[static_cast<std::size_t>(j)];
-      for (int s = supernode_of[static_cast<std::size_t>(qj)]; s >= 0; s = supernode_parent[static_cast<std::size_t>(s)]) {
-        const auto& js = path_columns[static_cast<std::size_t>(s)];
-        const auto c = std::lower_bound(js.begin(), js.end(), j) - js.begin();
+      const auto& rows_j = b[static_cast<std::size_t>(j)].rows;
+      const int first = rows_j.empty() ? 0 : *std::min_element(rows_j.begin(), rows_j.end());
+      for (int s : chain[static_cast<std::size_t>(j)]) {
+        const auto c = position(s, j);
         const Eigen::MatrixXd& B = blocks[static_cast<std::size_t>(block_of[static_cast<std::size_t>(s)])];
-        for (int k = std::max(super[s], qj); k < super[s + 1]; ++k) {  // rows above q_j in its supernode are zero
+        for (int k = std::max(super[s], first); k < super[s + 1]; ++k) {  // rows above the first of b_j are zero
           x.rows.push_back(k);
           x.values.push_back(B(k - super[s], c));
         }
@@ -589,7 +622,7 @@ long SelectedInverse::factor_nonzeros() const {
 double SelectedInverse::analyze_seconds() const { return impl_->analyze_s; }
 double SelectedInverse::factorize_seconds() const { return impl_->factorize_s; }
 FactorOrdering SelectedInverse::ordering() const { return impl_->ordering_used; }
-int SelectedInverse::cached_columns() const { return static_cast<int>(impl_->columns.size()); }
+int SelectedInverse::cached_columns() const { return static_cast<int>(impl_->units.columns.size()); }
 void SelectedInverse::set_substitution_threads(int threads) { impl_->substitution_threads = std::max(1, threads); }
 bool SelectedInverse::has_substitution_fork() const { return impl_->status == SelectedInverseStatus::Success && impl_->split_top >= 0; }
 
@@ -746,7 +779,7 @@ struct ColumnCursors {
 }  // namespace
 
 // The pattern rows of the columns old..total-1, ascending: U_new; row_pos holds their positions.
-std::vector<int> SelectedInverse::Impl::new_rows(int old, int total) {
+std::vector<int> GramCache::new_rows(int old, int total, std::vector<int>& row_pos) {
   std::vector<int> union_rows;
   for (int j = old; j < total; ++j) {
     for (int r : columns[static_cast<std::size_t>(j)].rows) {
@@ -765,7 +798,7 @@ std::vector<int> SelectedInverse::Impl::new_rows(int old, int total) {
 // G to hold `total` columns: exactly at the first call (all the columns of the first system:
 // hertz-a level 7, 3 960, the most of the solve); a quarter more than asked when later calls
 // add columns.
-void SelectedInverse::Impl::grow_gram(int old, int total) {
+void GramCache::grow_gram(int old, int total) {
   if (total <= g_capacity) return;
   const int capacity = old == 0 ? total : total + total / 4;
   std::vector<double> grown(static_cast<std::size_t>(capacity) * static_cast<std::size_t>(capacity));
@@ -779,7 +812,7 @@ void SelectedInverse::Impl::grow_gram(int old, int total) {
 // One chunk [begin, end) of U_new: G[:, old:] += Xc' Xc[:, new], Xc = X[chunk, J_c] over the
 // columns J_c present in the chunk. Old columns x new ones (dgemm), new x new (dsyrk, one
 // triangle: the first call has only new columns, and this halves its flops).
-void SelectedInverse::Impl::gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present,
+void GramCache::gram_chunk(int begin, int end, int old, ColumnCursors& cursors, std::vector<int>& present,
                                       Eigen::MatrixXd& Xc, Eigen::MatrixXd& Gc) {
   const int total = static_cast<int>(columns.size());
   present.clear();
@@ -836,10 +869,10 @@ void SelectedInverse::Impl::gram_chunk(int begin, int end, int old, ColumnCursor
 // the columns present in it only. One dense product over all of U_new would cost
 // |U_new| x total x new: on hertz-a level 6 (1 400 columns, paths of ~3 000 rows) 7 of the 15
 // CPU seconds of a solve.
-void SelectedInverse::Impl::gram_new_columns(int old) {
+void GramCache::gram_new_columns(int old, std::vector<int>& row_pos) {
   constexpr int kChunk = 256;
   const int total = static_cast<int>(columns.size());
-  const std::vector<int> union_rows = new_rows(old, total);
+  const std::vector<int> union_rows = new_rows(old, total, row_pos);
   const int u = static_cast<int>(union_rows.size());
   grow_gram(old, total);
   for (int j = old; j < total; ++j) std::fill_n(&g(0, j), total, 0.0);  // accumulated in place
@@ -855,36 +888,74 @@ void SelectedInverse::Impl::gram_new_columns(int old) {
   }
 }
 
-Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>& idx, std::vector<double>& storage) {
-  Impl& m = *impl_;
-  require(m.status == SelectedInverseStatus::Success,
-          std::string("SelectedInverse::block: the factorization is ") + to_string(m.status));
-  std::vector<int> fresh, fresh_permuted;
-  for (int i : idx) {
-    require(i >= 0 && i < m.n, "SelectedInverse::block: index " + std::to_string(i) + " outside [0, " +
-                                   std::to_string(m.n) + ")");
-    if (m.column_of.count(i) == 0) {
-      m.column_of.emplace(i, static_cast<int>(m.columns.size() + fresh.size()));
-      fresh.push_back(i);
-      fresh_permuted.push_back(m.inverse_perm[static_cast<std::size_t>(i)]);
-    }
-  }
-  for (SparseColumn& x : m.forward_batch(fresh_permuted)) m.columns.push_back(std::move(x));
-  if (!fresh.empty()) m.gram_new_columns(static_cast<int>(m.columns.size() - fresh.size()));
-  const std::size_t e = idx.size();
+Eigen::Map<const Eigen::MatrixXd> GramCache::gather(const std::vector<int>& keys, std::vector<double>& storage) {
+  const std::size_t e = keys.size();
   if (storage.capacity() < e * e) {
     storage = std::vector<double>();  // no copy of the old contents
     storage.reserve(e * e + e * e / 4);
   }
   storage.resize(e * e);
   std::vector<int> pos(e);
-  for (std::size_t a = 0; a < e; ++a) pos[a] = m.column_of[idx[a]];
+  for (std::size_t a = 0; a < e; ++a) pos[a] = column_of[keys[a]];
   for (std::size_t b = 0; b < e; ++b) {
-    const double* column = &m.g(0, pos[b]);
+    const double* column = &g(0, pos[b]);
     double* out = storage.data() + b * e;
     for (std::size_t a = 0; a < e; ++a) out[a] = column[pos[a]];
   }
   return Eigen::Map<const Eigen::MatrixXd>(storage.data(), static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(e));
 }
+
+template <class MakeRhs>
+Eigen::Map<const Eigen::MatrixXd> SelectedInverse::Impl::cached_block(GramCache& cache, const std::vector<int>& keys,
+                                                                      MakeRhs rhs, std::vector<double>& storage) {
+  std::vector<SparseRhs> fresh;
+  const int cached = static_cast<int>(cache.columns.size());
+  for (int key : keys) {
+    if (cache.column_of.count(key) == 0) {
+      cache.column_of.emplace(key, cached + static_cast<int>(fresh.size()));
+      fresh.push_back(rhs(key));
+    }
+  }
+  for (SparseColumn& x : forward_batch(fresh)) cache.columns.push_back(std::move(x));
+  if (!fresh.empty()) cache.gram_new_columns(cached, row_pos);
+  return cache.gather(keys, storage);
+}
+
+Eigen::Map<const Eigen::MatrixXd> SelectedInverse::block(const std::vector<int>& idx, std::vector<double>& storage) {
+  Impl& m = *impl_;
+  require(m.status == SelectedInverseStatus::Success,
+          std::string("SelectedInverse::block: the factorization is ") + to_string(m.status));
+  for (int i : idx) {
+    require(i >= 0 && i < m.n, "SelectedInverse::block: index " + std::to_string(i) + " outside [0, " +
+                                   std::to_string(m.n) + ")");
+  }
+  auto unit = [&m](int i) { return SparseRhs{{m.inverse_perm[static_cast<std::size_t>(i)]}, {1.0}}; };
+  return m.cached_block(m.units, idx, unit, storage);
+}
+
+Eigen::Map<const Eigen::MatrixXd> SelectedInverse::row_block(const std::vector<int>& rows,
+                                                             const Eigen::SparseMatrix<double, Eigen::RowMajor>& V,
+                                                             std::vector<double>& storage) {
+  Impl& m = *impl_;
+  require(m.status == SelectedInverseStatus::Success,
+          std::string("SelectedInverse::row_block: the factorization is ") + to_string(m.status));
+  require(V.cols() == m.n, "SelectedInverse::row_block: V has " + std::to_string(V.cols()) + " columns for " +
+                               std::to_string(m.n) + " rows");
+  for (int r : rows) {
+    require(r >= 0 && r < V.rows(), "SelectedInverse::row_block: row " + std::to_string(r) + " outside [0, " +
+                                        std::to_string(V.rows()) + ")");
+  }
+  auto row = [&m, &V](int r) {
+    SparseRhs b;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator v(V, r); v; ++v) {
+      b.rows.push_back(m.inverse_perm[static_cast<std::size_t>(v.col())]);
+      b.values.push_back(v.value());
+    }
+    return b;
+  };
+  return m.cached_block(m.rows, rows, row, storage);
+}
+
+void SelectedInverse::forget_rows() { impl_->rows.clear(); }
 
 }  // namespace contactrb::solve

@@ -6,7 +6,8 @@
 //    (or all): only the elimination-tree chains of `in` (forward) and of `out` (backward) are
 //    visited;
 //  - block(idx) = (A^-1)[idx, idx], a small dense block of the inverse on a few indices (the
-//    contact DOFs of the active rows), without ever forming A^-1 on more columns than asked.
+//    contact DOFs of the active rows), without ever forming A^-1 on more columns than asked;
+//    row_block(rows, V) = (V A^-1 V')[rows, rows] the same on a few sparse rows of V.
 // With P A P' = L L', (A^-1)_ij = x_i . x_j where x_i = L^-1 P e_i. The pattern of x_i is the
 // path from P(i) to the root of the elimination tree (Gilbert's theorem), short under a
 // fill-reducing ordering (about the separator sizes, O(sqrt N) for 2D meshes). The x_i of a
@@ -115,7 +116,17 @@ class SelectedInverse {
   // beyond what is asked): a caller asking at every iteration reuses the memory instead of
   // allocating (and page-faulting) a new |idx|^2 matrix. Valid until `storage` changes.
   Eigen::Map<const Eigen::MatrixXd> block(const std::vector<int>& idx, std::vector<double>& storage);
-  int cached_columns() const;
+  // (V A^-1 V')[rows, rows] for rows of V (over A's indices): x_r = L^-1 P V' e_r is one sparse
+  // forward substitution along the union of the chains of row r's entries, so a block on |rows|
+  // constraint rows costs |rows| columns instead of the block() of every index they touch
+  // (docs/performance.md, "Why the defaults are what they are", "Newton: the first frozen systems
+  // on the constraint rows"). Cached by row like block(), until forget_rows() (V changed). Valid until
+  // `storage` changes.
+  Eigen::Map<const Eigen::MatrixXd> row_block(const std::vector<int>& rows,
+                                              const Eigen::SparseMatrix<double, Eigen::RowMajor>& V,
+                                              std::vector<double>& storage);
+  void forget_rows();
+  int cached_columns() const;  // of block()
   // Threads of solve_sparse's full backward substitution (out == nullptr): 2 runs the two
   // subtrees below the first fork of the elimination tree at once (bitwise the serial result;
   // the BLAS must be single-threaded then, solve/blas_threads.hpp). Default 1.
