@@ -17,10 +17,7 @@ Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
 """
 import csv
 import os
-import re
 import shutil
-import struct
-import subprocess
 import sys
 
 try:
@@ -29,43 +26,11 @@ try:
 except ImportError:
     sys.exit(77)
 
-FAILURES = []
+from h5py_check_support import FAILURES, check, run, vtu_arrays  # noqa: E402 (after the skip)
+
 # patch-3d's Young's modulus (docs/cases.md, "patch-3d": p = E mu).
 PATCH_E = 10.0
 ROUND_OFF = 1e-12
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
-
-
-def run(cli, args, cwd):
-    p = subprocess.run([cli] + args, cwd=cwd, capture_output=True, text=True, timeout=600)
-    if p.returncode != 0:
-        print(p.stdout)
-        print(p.stderr, file=sys.stderr)
-        raise SystemExit(f"contactrb {' '.join(args)} exited with {p.returncode}")
-    return p.stdout
-
-
-def vtu_arrays(path):
-    """The Float64 DataArrays of a VTU file written with raw appended data (UInt64 headers)."""
-    data = open(path, "rb").read()
-    start = data.index(b"<AppendedData")
-    xml = data[:start].decode("utf-8")
-    base = data.index(b"_", start) + 1
-    arrays = {}
-    for m in re.finditer(r"<DataArray ([^>]*)/>", xml):
-        attrs = dict(re.findall(r'(\w+)="([^"]*)"', m.group(1)))
-        if attrs.get("type") != "Float64":
-            continue
-        offset = base + int(attrs["offset"])
-        (nbytes,) = struct.unpack_from("<Q", data, offset)
-        values = np.frombuffer(data, dtype="<f8", count=nbytes // 8, offset=offset + 8)
-        arrays[attrs["Name"]] = values.reshape(-1, int(attrs.get("NumberOfComponents", "1")))
-    return arrays
 
 
 def relative(a, b):
