@@ -211,12 +211,22 @@ ContactMapsOf<Dim> maps_at(const mesh::SimplexMesh<Dim>& mesh, const ContactPair
 
 // The movable DOFs of each row (contact_derivatives.hpp).
 std::vector<std::vector<int>> inputs_of(const ContactPair& pair, const ContactQuadrature& quadrature,
-                                        const PointwiseContact& pw, const std::vector<char>& movable) {
-  return detail::row_inputs(pair, quadrature, pw, movable);
+                                        const ContactMaps& maps, const std::vector<char>& movable) {
+  return detail::row_inputs(pair, quadrature, maps.pointwise, movable);
 }
 std::vector<std::vector<int>> inputs_of(const ContactPair3& pair, const ContactQuadrature& quadrature,
-                                        const PointwiseContact3& pw, const std::vector<char>& movable) {
-  return detail::row_inputs(pair, quadrature, pw, movable);
+                                        const ContactMaps3& maps, const std::vector<char>& movable) {
+  if (quadrature.discretization == Discretization::LAC) {
+    return detail::lac_row_inputs(pair, quadrature, maps.pointwise, maps.rows, movable);
+  }
+  return detail::row_inputs(pair, quadrature, maps.pointwise, movable);
+}
+
+// The analytic method covers every row but the clipped 3D LAC rows (docs/solvers.md, "Three
+// dimensions"): those take the coloured differences whatever the options say.
+template <int Dim>
+bool analytic_rows(const ContactQuadrature& quadrature) {
+  return Dim == 2 || quadrature.discretization != Discretization::LAC;
 }
 
 // linearize_contact with the maps at u given, in either dimension.
@@ -226,17 +236,13 @@ ContactLinearizationOf<Dim> linearize(const mesh::SimplexMesh<Dim>& mesh, const 
                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                       ContactMapsOf<Dim> maps_at_u, const LinearizationOptions& options) {
   check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
-  // Both 3D methods read the rows as W * pointwise (contact_derivatives.hpp).
-  require(Dim == 2 || quadrature.discretization == Discretization::Collocation,
-          std::string("linearize_contact: the 3D '") + to_string(quadrature.discretization) +
-              "' rows are not linearized (collocation only)");
   ContactLinearizationOf<Dim> lin;
   lin.maps = std::move(maps_at_u);
-  if (options.method == LinearizationMethod::Analytic) {
+  if (options.method == LinearizationMethod::Analytic && analytic_rows<Dim>(quadrature)) {
     detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
     return lin;
   }
-  const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps.pointwise, movable);
+  const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps, movable);
   const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());
   const ColumnColouring cc = colour_columns(inputs, hp, mesh.num_dofs());
   lin.colours = cc.colours;
