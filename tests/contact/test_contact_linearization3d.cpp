@@ -1,9 +1,11 @@
 // The 3D linearization of the contact maps (contact_linearization.hpp), analytic and by coloured
 // central differences: D = d'(u) and H = (K(u)' lambda)' against plain central differences of
 // the maps, one DOF at a time (no colouring, no sparsity pattern assumed), on a randomly deformed
-// pair of stacked blocks; D = -K on an undeformed flat master.
+// pair of stacked blocks; D = -K on an undeformed flat master. The 3D LAC rows (lac3d.hpp) by
+// coloured central differences, whichever method is asked, against the same plain differences.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,11 +26,11 @@ struct StackedPair {
   std::vector<char> movable;
 };
 
-StackedPair stacked(double gap) {
+StackedPair stacked(double gap, Discretization discretization = Discretization::Collocation) {
   StackedPair s;
   s.mesh = mesh::stacked_blocks(0, gap);
   s.pair = make_contact_pair(s.mesh);
-  s.quadrature = make_quadrature(s.mesh, s.pair, Discretization::Collocation);
+  s.quadrature = make_quadrature(s.mesh, s.pair, discretization);
   s.movable.assign(static_cast<std::size_t>(s.mesh.num_dofs()), 1);
   return s;
 }
@@ -116,6 +118,36 @@ TEST(ContactLinearization3D, FlatMasterGivesMinusK) {
   EXPECT_LT((Eigen::MatrixXd(coloured.D) + K).cwiseAbs().maxCoeff(), 1e-5 * kmax);
   EXPECT_EQ(analytic.H.nonZeros(), 0);  // lambda = 0
   EXPECT_EQ(coloured.H.nonZeros(), 0);
+}
+
+// The LAC rows move with the clipping of the slave cells by the deformed master triangles; a
+// missing row input (a master vertex whose normal enters, a slave node whose projection makes a
+// direction d_T) would leave an entry of the order of the largest one out of the coloured
+// differences, which perturb many columns at once. The analytic method asked for gives the same
+// coloured differences (the clipped rows have no analytic linearization).
+TEST(ContactLinearization3D, LacRowsEqualPlainDifferences) {
+  const StackedPair s = stacked(0.01, Discretization::LAC);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unif(-1.0, 1.0);
+  Eigen::VectorXd u(s.mesh.num_dofs());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u(i) = 0.01 * unif(rng);
+  const int R = static_cast<int>(s.quadrature.weight.size());
+  Eigen::VectorXd lambda(R);
+  for (int r = 0; r < R; ++r) lambda(r) = 1.0 + 0.5 * unif(rng);
+  const ContactLinearization3 coloured =
+      linearize_contact(s.mesh, s.pair, s.quadrature, u, lambda, s.movable, finite_differences());
+  EXPECT_GT(coloured.colours, 0);
+  EXPECT_EQ(coloured.evaluations, 2 * coloured.colours);
+  const ContactLinearization3 asked_analytic = linearize_contact(s.mesh, s.pair, s.quadrature, u, lambda, s.movable);
+  EXPECT_EQ(asked_analytic.colours, coloured.colours);
+  EXPECT_EQ((Eigen::MatrixXd(asked_analytic.D) - Eigen::MatrixXd(coloured.D)).cwiseAbs().maxCoeff(), 0.0);
+  const Difference e = compare(s, u, lambda, coloured);
+  std::printf("[ LAC stacked_blocks ] %d colours, D error %.2e of %.2e, H error %.2e of %.2e\n", coloured.colours,
+              e.d_error, e.d_max, e.h_error, e.h_max);
+  EXPECT_GT(e.d_max, 0.01);
+  EXPECT_GT(e.h_max, 0.01);
+  EXPECT_LT(e.d_error, 1e-6 * e.d_max);
+  EXPECT_LT(e.h_error, 1e-6 * e.h_max);
 }
 
 TEST(ContactLinearization3D, SizeErrors) {

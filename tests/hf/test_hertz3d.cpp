@@ -6,12 +6,15 @@
 // the finer mesh (level 2: 16 slave nodes across the contact radius along each symmetry axis).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/catalog.hpp"
+#include "contactrb/contact/contact_linearization.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 
 namespace {
@@ -108,4 +111,111 @@ TEST(Hertz3d, CollocationConvergesOnTheQuarterModel) {
     std::printf("[ hertz-3d level %d, collocation ] Kacanov %d, Newton %d iterations, force %.6e\n", level,
                 k.iterations, n.iterations, n.contact_force);
   }
+}
+
+namespace {
+
+hf::HFSolver3 hertz_lac_solver(int level) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-3d");
+  return hf::HFSolver3(cases::make_problem(spec, cases::reference_mesh3(spec, level), cases::Mu::Constant(1, 0.02),
+                                           contactrb::contact::Discretization::LAC));
+}
+
+hf::HFSettings tight_kacanov() {
+  hf::HFSettings s;
+  s.kacanov.tolerance = 1e-10;
+  s.kacanov.max_iterations = 2000;
+  return s;
+}
+
+}  // namespace
+
+// The linearization of the 3D LAC rows (coloured central differences, contact_linearization.hpp)
+// at the Kacanov solution on the sphere, against plain central differences of the maps one DOF at
+// a time over every free DOF of the contact surfaces' nodes (the maps read no other node), with
+// the solution's pressures as lambda. A missing row input would leave an entry of the order of the
+// largest one out; truncation and round-off of the two steps are below 1e-8 relative here.
+TEST(Hertz3d, LacLinearizationEqualsPlainDifferences) {
+  namespace contact = contactrb::contact;
+  const hf::HFSolver3 solver = hertz_lac_solver(0);
+  const hf::HFSolution3 k = solver.solve(tight_kacanov());
+  ASSERT_TRUE(k.converged) << k.message;
+  const auto& mesh = solver.problem().mesh;
+  const auto& pair = solver.pair();
+  const auto& q = solver.quadrature();
+  // The free DOFs, as in the Newton: the symmetry planes fix the normal components of the nodes on
+  // them, where the quarter model's master rim makes the maps one-sided.
+  std::vector<char> movable(static_cast<std::size_t>(mesh.num_dofs()), 0);
+  for (int g : solver.dofs().free_dofs()) movable[static_cast<std::size_t>(g)] = 1;
+  const Eigen::VectorXd movable_rows = Eigen::Map<const Eigen::Matrix<char, Eigen::Dynamic, 1>>(
+      movable.data(), static_cast<Eigen::Index>(movable.size())).cast<double>();
+  const contact::ContactLinearization3 lin = contact::linearize_contact(mesh, pair, q, k.u, k.lambda, movable);
+  EXPECT_GT(lin.colours, 0);
+  std::vector<int> surface(pair.slave.begin(), pair.slave.end());
+  surface.insert(surface.end(), pair.master.begin(), pair.master.end());
+  std::vector<char> checked(static_cast<std::size_t>(mesh.num_dofs()), 0);
+  const Eigen::MatrixXd D(lin.D), H(lin.H);
+  double h_step = 0.0;  // 4e-6 of the mean slave edge, four times the step of the coloured differences
+  for (const auto& f : pair.slave_faces) {
+    const auto v = f.vertices();
+    for (int i = 0; i < 3; ++i) h_step += (mesh.nodes[static_cast<std::size_t>(v[static_cast<std::size_t>((i + 1) % 3)])] -
+                                          mesh.nodes[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])]).norm();
+  }
+  h_step *= 4e-6 / (3.0 * static_cast<double>(pair.slave_faces.size()));
+  double d_error = 0.0, h_error = 0.0, d_max = 0.0, h_max = 0.0;
+  Eigen::VectorXd up = k.u, um = k.u;
+  for (int node : surface) {
+    for (int c = 0; c < 3; ++c) {
+      const int j = 3 * node + c;
+      if (!movable[static_cast<std::size_t>(j)]) continue;
+      checked[static_cast<std::size_t>(j)] = 1;
+      up(j) = k.u(j) + h_step;
+      um(j) = k.u(j) - h_step;
+      const contact::ContactMaps3 plus = contact::evaluate_contact_maps(mesh, pair, q, up);
+      const contact::ContactMaps3 minus = contact::evaluate_contact_maps(mesh, pair, q, um);
+      up(j) = um(j) = k.u(j);
+      const Eigen::VectorXd dd = (plus.d - minus.d) / (2.0 * h_step);
+      const Eigen::VectorXd df = (plus.rows.K.transpose() * k.lambda - minus.rows.K.transpose() * k.lambda)
+                                     .cwiseProduct(movable_rows) / (2.0 * h_step);
+      d_error = std::max(d_error, (D.col(j) - dd).cwiseAbs().maxCoeff());
+      h_error = std::max(h_error, (H.col(j) - df).cwiseAbs().maxCoeff());
+      d_max = std::max(d_max, dd.cwiseAbs().maxCoeff());
+      h_max = std::max(h_max, df.cwiseAbs().maxCoeff());
+    }
+  }
+  for (int j = 0; j < mesh.num_dofs(); ++j) {  // no entry in a fixed column or off the contact surfaces
+    if (checked[static_cast<std::size_t>(j)]) continue;
+    EXPECT_EQ(D.col(j).cwiseAbs().maxCoeff(), 0.0) << "D column " << j;
+    EXPECT_EQ(H.col(j).cwiseAbs().maxCoeff(), 0.0) << "H column " << j;
+  }
+  std::printf("[ hertz-3d level 0, LAC ] %d colours, D error %.2e of %.2e, H error %.2e of %.2e\n", lin.colours,
+              d_error, d_max, h_error, h_max);
+  EXPECT_GT(d_max, 0.0);
+  EXPECT_GT(h_max, 0.0);
+  EXPECT_LT(d_error, 1e-6 * d_max);
+  EXPECT_LT(h_error, 1e-6 * h_max);
+}
+
+// The semi-smooth Newton on the 3D LAC rows converges to the answer of Kacanov run to 1e-10 (the
+// same displacement, pressures and force to the solvers' tolerances), with its KKT residual at
+// the returned geometry, in a few iterations.
+TEST(Hertz3d, NewtonOnLacRowsMatchesKacanov) {
+  const hf::HFSolver3 solver = hertz_lac_solver(0);
+  const hf::HFSolution3 k = solver.solve(tight_kacanov());
+  hf::HFSettings newton;
+  newton.method = hf::HFMethod::Newton;
+  const hf::HFSolution3 n = solver.solve(newton);
+  ASSERT_TRUE(k.converged) << k.message;
+  ASSERT_TRUE(n.converged) << n.message;
+  std::printf("[ hertz-3d level 0, LAC ] Kacanov %d, Newton %d iterations, force %.10e vs %.10e, KKT %.2e\n",
+              k.iterations, n.iterations, n.contact_force, k.contact_force, n.kkt.max());
+  EXPECT_LE(n.iterations, 10);
+  EXPECT_LT(n.kkt.max(), 1e-10);
+  EXPECT_EQ(n.active_constraints, k.active_constraints);
+  EXPECT_NEAR(n.contact_force, k.contact_force, 1e-8 * k.contact_force);
+  EXPECT_LT((n.lambda - k.lambda).norm(), 1e-7 * k.lambda.norm());
+  EXPECT_LT((n.u - k.u).norm(), 1e-8 * k.u.norm());
+  int colours = 0;
+  for (const hf::NewtonIteration& it : n.newton_history) colours = std::max(colours, it.colours);
+  EXPECT_GT(colours, 0) << "no Newton-phase step";
 }

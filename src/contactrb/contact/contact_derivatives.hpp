@@ -43,6 +43,14 @@ void analytic_linearization(const mesh::Mesh& mesh, const ContactPair& pair, con
 // conormals).
 std::vector<std::vector<int>> row_inputs(const ContactPair3& pair, const ContactQuadrature& quadrature,
                                          const PointwiseContact3& pw, const std::vector<char>& movable);
+// 3D LAC rows (lac3d.hpp), linearized by coloured central differences only: row r reads the
+// inputs of the pointwise maps at the slave nodes of its median dual cell's triangles (their
+// projections make the directions d_T; W's row r holds these nodes) and the master vertices of
+// the triangles around every master vertex K(u)'s row r holds (the triangles its clipped pieces
+// touch, and the neighbours whose normals make the vertex normals n_j).
+std::vector<std::vector<int>> lac_row_inputs(const ContactPair3& pair, const ContactQuadrature& quadrature,
+                                             const PointwiseContact3& pw, const ConstraintRows& rows,
+                                             const std::vector<char>& movable);
 void analytic_linearization(const mesh::Mesh3& mesh, const ContactPair3& pair, const ContactQuadrature& quadrature,
                             const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                             ContactLinearization3& lin);

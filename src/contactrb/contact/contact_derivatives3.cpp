@@ -185,6 +185,32 @@ std::vector<std::vector<int>> row_inputs(const ContactPair3& pair, const Contact
   return inputs;
 }
 
+std::vector<std::vector<int>> lac_row_inputs(const ContactPair3& pair, const ContactQuadrature& quadrature,
+                                             const PointwiseContact3& pw, const ConstraintRows& rows,
+                                             const std::vector<char>& movable) {
+  std::vector<std::vector<int>> inputs = row_inputs(pair, quadrature, pw, movable);
+  const VertexFaces around(pair);
+  const auto add_node = [&movable](int node, std::vector<int>& in) {
+    for (int c = 0; c < 3; ++c) {
+      if (movable[sz(3 * node + c)]) in.push_back(3 * node + c);
+    }
+  };
+  for (int r = 0; r < rows.K.rows(); ++r) {
+    std::vector<int>& in = inputs[sz(r)];
+    for (RowSparse::InnerIterator it(rows.K, r); it; ++it) {
+      const int node = static_cast<int>(it.col()) / 3;
+      const auto m = std::lower_bound(pair.master.begin(), pair.master.end(), node);
+      if (m == pair.master.end() || *m != node) continue;  // a slave node: in W's row already
+      const int j = static_cast<int>(m - pair.master.begin());
+      for (int k = around.start[sz(j)]; k < around.start[sz(j) + 1]; ++k) {
+        for (int v : pair.master_faces[sz(around.faces[sz(k)])]) add_node(pair.master[sz(v)], in);
+      }
+    }
+    sort_unique(in);
+  }
+  return inputs;
+}
+
 void analytic_linearization(const mesh::Mesh3& mesh, const ContactPair3& pair, const ContactQuadrature& quadrature,
                             const Eigen::VectorXd& u, const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                             ContactLinearization3& lin) {

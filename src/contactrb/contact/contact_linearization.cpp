@@ -7,6 +7,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_derivatives.hpp"
+#include "contactrb/contact/lac3d.hpp"
 
 namespace contactrb::contact {
 
@@ -131,6 +132,49 @@ void restore_colour(const ColumnColouring& cc, int k, const Eigen::VectorXd& u, 
   }
 }
 
+// The maps at u (both dimensions: project_slave_nodes and constraint_rows of the mesh's own).
+template <int Dim>
+ContactMapsOf<Dim> maps_at(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                           const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                           const ProjectionOptions& options) {
+  ContactMapsOf<Dim> maps;
+  maps.pointwise = project_slave_nodes(mesh, pair, u, options);
+  maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
+  maps.d = maps.rows.g - maps.rows.K * u;
+  return maps;
+}
+
+// The rows each colour moves: those whose inputs hold a column of the colour.
+std::vector<std::vector<int>> rows_of_colours(const std::vector<std::vector<int>>& inputs, const ColumnColouring& cc) {
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(cc.colours));
+  for (std::size_t r = 0; r < inputs.size(); ++r) {
+    for (int j : inputs[r]) {
+      auto& of = rows[static_cast<std::size_t>(cc.colour[static_cast<std::size_t>(cc.compact[static_cast<std::size_t>(j)])])];
+      if (of.empty() || of.back() != static_cast<int>(r)) of.push_back(static_cast<int>(r));
+    }
+  }
+  return rows;
+}
+
+// The maps at a perturbed u on the rows a colour moves (the others may be zero): the 3D LAC
+// rows integrate those rows' cells only (integrate_lac_rows on a row subset, the projections of
+// their triangles' vertices), every other discretization evaluates all rows.
+template <int Dim>
+ContactMapsOf<Dim> maps_on_rows(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                                const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
+                                const std::vector<int>& rows, const ProjectionOptions& options) {
+  if constexpr (Dim == 3) {
+    if (quadrature.discretization == Discretization::LAC) {
+      ContactMapsOf<Dim> maps;
+      maps.pointwise = project_slave_nodes(mesh, pair, u, lac_slave_positions(pair, rows), options);
+      maps.rows = integrate_lac_rows(mesh, pair, quadrature, maps.pointwise, u, rows);
+      maps.d = maps.rows.g - maps.rows.K * u;
+      return maps;
+    }
+  }
+  return maps_at(mesh, pair, quadrature, u, options);
+}
+
 // D = dd/du and H = d(K' lambda)/du by central differences, one pair of map evaluations per colour.
 template <int Dim>
 void central_differences(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
@@ -142,12 +186,14 @@ void central_differences(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf
   const int N = mesh.num_dofs();
   const int R = static_cast<int>(inputs.size());
   std::vector<Eigen::Triplet<double>> d_trip, h_trip;
+  const std::vector<std::vector<int>> moved = rows_of_colours(inputs, cc);
   Eigen::VectorXd up = u, um = u;
   for (int k = 0; k < cc.colours; ++k) {
     shift_colour(cc, k, u, h, up);
     shift_colour(cc, k, u, -h, um);
-    const ContactMapsOf<Dim> plus = evaluate_contact_maps(mesh, pair, quadrature, up, options.projection);
-    const ContactMapsOf<Dim> minus = evaluate_contact_maps(mesh, pair, quadrature, um, options.projection);
+    const auto& rows = moved[static_cast<std::size_t>(k)];
+    const ContactMapsOf<Dim> plus = maps_on_rows(mesh, pair, quadrature, up, rows, options.projection);
+    const ContactMapsOf<Dim> minus = maps_on_rows(mesh, pair, quadrature, um, rows, options.projection);
     lin.evaluations += 2;
     restore_colour(cc, k, u, up);
     restore_colour(cc, k, u, um);
@@ -197,26 +243,24 @@ void check_linearization_input(const mesh::SimplexMesh<Dim>& mesh, const Contact
   require(options.relative_step > 0.0, "linearize_contact: relative_step must be > 0");
 }
 
-// The maps at u (both dimensions: project_slave_nodes and constraint_rows of the mesh's own).
-template <int Dim>
-ContactMapsOf<Dim> maps_at(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
-                           const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
-                           const ProjectionOptions& options) {
-  ContactMapsOf<Dim> maps;
-  maps.pointwise = project_slave_nodes(mesh, pair, u, options);
-  maps.rows = constraint_rows(mesh, pair, quadrature, maps.pointwise, u);
-  maps.d = maps.rows.g - maps.rows.K * u;
-  return maps;
-}
-
 // The movable DOFs of each row (contact_derivatives.hpp).
 std::vector<std::vector<int>> inputs_of(const ContactPair& pair, const ContactQuadrature& quadrature,
-                                        const PointwiseContact& pw, const std::vector<char>& movable) {
-  return detail::row_inputs(pair, quadrature, pw, movable);
+                                        const ContactMaps& maps, const std::vector<char>& movable) {
+  return detail::row_inputs(pair, quadrature, maps.pointwise, movable);
 }
 std::vector<std::vector<int>> inputs_of(const ContactPair3& pair, const ContactQuadrature& quadrature,
-                                        const PointwiseContact3& pw, const std::vector<char>& movable) {
-  return detail::row_inputs(pair, quadrature, pw, movable);
+                                        const ContactMaps3& maps, const std::vector<char>& movable) {
+  if (quadrature.discretization == Discretization::LAC) {
+    return detail::lac_row_inputs(pair, quadrature, maps.pointwise, maps.rows, movable);
+  }
+  return detail::row_inputs(pair, quadrature, maps.pointwise, movable);
+}
+
+// The analytic method covers every row but the clipped 3D LAC rows (docs/solvers.md, "Three
+// dimensions"): those take the coloured differences whatever the options say.
+template <int Dim>
+bool analytic_rows(const ContactQuadrature& quadrature) {
+  return Dim == 2 || quadrature.discretization != Discretization::LAC;
 }
 
 // linearize_contact with the maps at u given, in either dimension.
@@ -226,17 +270,13 @@ ContactLinearizationOf<Dim> linearize(const mesh::SimplexMesh<Dim>& mesh, const 
                                       const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                       ContactMapsOf<Dim> maps_at_u, const LinearizationOptions& options) {
   check_linearization_input(mesh, pair, quadrature, u, lambda, movable, maps_at_u, options);
-  // Both 3D methods read the rows as W * pointwise (contact_derivatives.hpp).
-  require(Dim == 2 || quadrature.discretization == Discretization::Collocation,
-          std::string("linearize_contact: the 3D '") + to_string(quadrature.discretization) +
-              "' rows are not linearized (collocation only)");
   ContactLinearizationOf<Dim> lin;
   lin.maps = std::move(maps_at_u);
-  if (options.method == LinearizationMethod::Analytic) {
+  if (options.method == LinearizationMethod::Analytic && analytic_rows<Dim>(quadrature)) {
     detail::analytic_linearization(mesh, pair, quadrature, u, lambda, movable, lin);
     return lin;
   }
-  const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps.pointwise, movable);
+  const std::vector<std::vector<int>> inputs = inputs_of(pair, quadrature, lin.maps, movable);
   const HessianPattern hp = hessian_pattern(inputs, lambda, mesh.num_dofs());
   const ColumnColouring cc = colour_columns(inputs, hp, mesh.num_dofs());
   lin.colours = cc.colours;

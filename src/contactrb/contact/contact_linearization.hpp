@@ -19,10 +19,12 @@
 //    independent check of the analytic one (tests/contact/test_contact_linearization.cpp).
 //    Its error is truncation (step)^2 plus round-off eps |x| / step: on hertz-a level 6
 //    (edges 1e-3 of the body) it stopped Newton's quadratic rate near 1e-9 (docs/solvers.md).
-// In 3D (Mesh3, ContactPair3, collocation) both methods exist (docs/solvers.md, "Three
+// In 3D (Mesh3, ContactPair3) the collocation rows have both methods (docs/solvers.md, "Three
 // dimensions"): the rows of slave node s read its DOFs and those of every master vertex of the
 // triangles around the vertices of the triangle it projects onto (their normals make the vertex
-// normals n_j and the rim conormals); the continuation on other branches
+// normals n_j and the rim conormals). The LAC rows (lac3d.hpp) have FiniteDifference only, taken
+// whatever the method asked, each colour re-evaluating only the rows it moves (docs/contact.md,
+// "LAC in three dimensions", "Linearization"). The continuation on other branches
 // (linearize_contact_on_branches) is 2D only.
 // The maps are piecewise smooth (the closest segment switches at master vertices, where
 // they are continuous, docs/contact.md): there the analytic derivative is the one-sided
@@ -93,7 +95,8 @@ ContactLinearization linearize_contact(const mesh::Mesh& mesh, const ContactPair
                                        const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& lambda, const std::vector<char>& movable,
                                        ContactMaps maps_at_u, const LinearizationOptions& options = {});
-// 3D: the same (collocation rows, contact_derivatives.hpp for the analytic method).
+// 3D: the same (contact_derivatives.hpp for the analytic method of the collocation rows; the LAC
+// rows by coloured differences whatever options.method says).
 ContactLinearization3 linearize_contact(const mesh::Mesh3& mesh, const ContactPair3& pair,
                                         const ContactQuadrature& quadrature, const Eigen::VectorXd& u,
                                         const Eigen::VectorXd& lambda, const std::vector<char>& movable,
