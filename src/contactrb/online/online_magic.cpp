@@ -255,11 +255,68 @@ double MagicPointEvaluator::gamma_term(const Term& term) const {
   return term.weight * (p.g - k_lift);
 }
 
-void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, Eigen::MatrixXd& K_Theta, Eigen::VectorXd& gamma) {
+void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma) {
+  rows(u_hat, K_Theta, gamma, nullptr);
+}
+
+void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
+                                        RowMatrix& K_Y) {
+  require(llt_ != nullptr, "MagicPointEvaluator: evaluate_rows with K_Y before prepare_solved");
+  rows(u_hat, K_Theta, gamma, &K_Y);
+}
+
+void MagicPointEvaluator::prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt) {
+  llt_ = &llt;
+  ThetaA_r_.resize(Theta_r_.rows(), Theta_r_.cols());
+  solved_.assign(used_node_.size(), 0);
+}
+
+void MagicPointEvaluator::solve_touched_rows() {
+  // The nodes the candidate rows touch and not solved yet, solved together (one blocked
+  // triangular solve pair, not one per node).
+  pending_.clear();
+  const auto need = [&](int node) {
+    const int slot = node_slot_[sz(node)];
+    if (!solved_[sz(slot)]) {
+      solved_[sz(slot)] = 1;
+      pending_.push_back(slot);
+    }
+  };
+  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+      const Term& term = gamma_terms_[sz(t)];
+      const Projection& p = projection_[sz(term.slave)];
+      if (!p.candidate) continue;
+      need(p.a);
+      need(p.b);
+      need(slave_node_[sz(term.slave)]);
+    }
+  }
+  if (pending_.empty()) return;
+  const Eigen::Index m = static_cast<Eigen::Index>(pending_.size());
+  solve_work_.resize(Theta_r_.cols(), 2 * m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    solve_work_.col(2 * k) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))]).transpose();
+    solve_work_.col(2 * k + 1) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1).transpose();
+  }
+  llt_->solveInPlace(solve_work_);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    ThetaA_r_.row(2 * pending_[sz(static_cast<int>(k))]) = solve_work_.col(2 * k).transpose();
+    ThetaA_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1) = solve_work_.col(2 * k + 1).transpose();
+  }
+}
+
+void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
+                               RowMatrix* K_Y) {
   project(u_hat);
   K_Theta.setZero();
+  if (K_Y != nullptr) {
+    K_Y->setZero(K_Theta.rows(), K_Theta.cols());
+    solve_touched_rows();
+  }
   for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
     double v = 0.0;
+    const Eigen::Index row = static_cast<Eigen::Index>(i);
     for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
       const Term& term = gamma_terms_[sz(t)];
       const Projection& p = projection_[sz(term.slave)];
@@ -268,14 +325,16 @@ void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, Eigen::Mat
       // (27): the row k(w; .)_s = ((1 - xi) e_a + xi e_b - e_s) . n2, applied to Theta.
       const auto add = [&](int node, double c) {
         const int slot = node_slot_[sz(node)];
-        K_Theta.row(static_cast<Eigen::Index>(i)).noalias() +=
-            (c * p.normal.x()) * Theta_r_.row(2 * slot) + (c * p.normal.y()) * Theta_r_.row(2 * slot + 1);
+        const double cx = c * p.normal.x(), cy = c * p.normal.y();
+        K_Theta.row(row).noalias() += cx * Theta_r_.row(2 * slot) + cy * Theta_r_.row(2 * slot + 1);
+        if (K_Y == nullptr) return;
+        K_Y->row(row).noalias() += cx * ThetaA_r_.row(2 * slot) + cy * ThetaA_r_.row(2 * slot + 1);
       };
       add(p.a, term.weight * (1.0 - p.xi));
       add(p.b, term.weight * p.xi);
       add(slave_node_[sz(term.slave)], -term.weight);
     }
-    gamma(static_cast<Eigen::Index>(i)) = v;
+    gamma(row) = v;
   }
 }
 

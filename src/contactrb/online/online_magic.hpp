@@ -15,6 +15,7 @@
 // displacement only on the master chain and on those slave nodes (w = u_D,c + Theta_c u_hat on
 // those rows), and computes segment normals only where a closest point lies. The online tests
 // compare it with the full contact-surface rows (constraint_rows) to 1e-10.
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <vector>
 
@@ -23,6 +24,9 @@
 #include "contactrb/model/reduced_model.hpp"
 
 namespace contactrb::online {
+
+// Row-major: the rows of K(w) Theta_c are built by row updates, from rows of Theta_c.
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 class MagicPointEvaluator {
  public:
@@ -42,7 +46,14 @@ class MagicPointEvaluator {
   // Per step, whole rows instead of magic entries: for each gamma row i, row i of K(w) Theta_c
   // (K_Theta, gamma rows x N, sized by the caller) and gamma_i (the exact contact rows of
   // ContactRows::Exact on the kept rows; setup with those as gamma rows and no kappa pair).
-  void evaluate_rows(const Eigen::VectorXd& u_hat, Eigen::MatrixXd& K_Theta, Eigen::VectorXd& gamma);
+  void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma);
+  // The same, and row i of K(w) Theta_c A^-1 in K_Y (sized as K_Theta): from the rows of
+  // Theta_c A^-1 of the nodes the rows touch, solved with `llt` (A = L L') the first time a step
+  // needs them after prepare_solved, together. Why: Y = A^-1 D' then costs 6 N per row and step instead
+  // of two triangular solves (2 N^2 per row), and a query touches the same few nodes at every
+  // step (docs/offline-online.md, "Cost of a query with the exact rows").
+  void prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt);
+  void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix& K_Y);
 
   int num_slave_nodes() const { return static_cast<int>(slave_node_.size()); }  // restricted slave nodes
 
@@ -83,7 +94,17 @@ class MagicPointEvaluator {
   std::vector<int> slave_node_;             // restricted slave index -> local node
   std::vector<int> used_node_;              // nodes whose displacement is needed: master chain nodes, then slaves
   std::vector<int> node_slot_;              // local node -> index in used_node_ (-1)
-  Eigen::MatrixXd Theta_r_;                 // 2 |used| x N: the rows of Theta_c of used_node_
+  RowMatrix Theta_r_;                       // 2 |used| x N: the rows of Theta_c of used_node_
+  // Per mu (prepare_solved): the rows of Theta_c A^-1 of the used nodes solved so far.
+  const Eigen::LLT<Eigen::MatrixXd>* llt_ = nullptr;
+  RowMatrix ThetaA_r_;                      // 2 |used| x N
+  std::vector<char> solved_;                // per used node
+  std::vector<int> pending_;                // used-node slots to solve at this step
+  Eigen::MatrixXd solve_work_;              // N x 2 |pending|
+  // Solves the rows of Theta_c A^-1 of the nodes the step's candidate rows touch (projection_ set).
+  void solve_touched_rows();
+  // evaluate_rows; K_Y also when not null.
+  void rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix* K_Y);
   // Per mu.
   std::vector<Term> kappa_terms_, gamma_terms_;
   std::vector<int> kappa_start_, gamma_start_;  // CSR-like offsets into the term lists

@@ -109,6 +109,8 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   if (Mg_ > 0) B_gamma_lu_.compute(model.B_gamma.topLeftCorner(Mg_, Mg_));
   XiQ_gamma_ = model.XiQ_gamma.topLeftCorner(R_, Mg_);
   Xi_ = model.Xi.leftCols(R_);
+  xi_is_identity_ = Xi_.rows() >= R_ && Xi_.topRows(R_).isIdentity(0.0) &&
+                    (Xi_.rows() == R_ || Xi_.bottomRows(Xi_.rows() - R_).isZero(0.0));
   kept_rows_ = model.kept_rows;
   for (int i = 0; i < Mk_; ++i) {
     kappa_row_.push_back(model.kept_rows[sz(model.kappa_row[sz(i)])]);
@@ -134,6 +136,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
   kept_.setup(surface_, {}, {}, kept_rows_, Theta_c_);
   KTheta_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
+  KY_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
   gamma_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
   lac_rows_ = kappa_row_;
   lac_rows_.insert(lac_rows_.end(), gamma_row_.begin(), gamma_row_.end());
@@ -263,6 +266,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     lift_mu_.setZero();
   }
   if (pointwise_magic_) (exact_rows_ ? kept_ : magic_).prepare(mesh_.nodes, quadrature_, lift_mu_);
+  if (pointwise_magic_ && exact_rows_) kept_.prepare_solved(llt_);
   warm_.clear();
   prepared_mu_ = mu;
   prepared_ = true;
@@ -275,9 +279,16 @@ bool OnlineSolver::exact_rows(ContactRows choice) const {
 
 void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   if (pointwise_magic_) {  // collocation and LAC-Simpson rows: from the slaves under the kept rows only
-    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_);
-    Dt_.noalias() = KTheta_.transpose() * Xi_;
-    dg_.noalias() = Xi_.transpose() * gamma_kept_;
+    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KY_);
+    if (xi_is_identity_) {  // the row cone: generator r is kept row r
+      Dt_ = KTheta_.topRows(R_).transpose();
+      Et_ = KY_.topRows(R_).transpose();
+      dg_ = gamma_kept_.head(R_);
+    } else {
+      Dt_.noalias() = KTheta_.transpose() * Xi_;
+      Et_.noalias() = KY_.transpose() * Xi_;
+      dg_.noalias() = Xi_.transpose() * gamma_kept_;
+    }
     return;
   }
   w_ = lift_mu_;
@@ -328,6 +339,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
                         std::string& message) {
   if (exact_rows_) {
     exact_operators(u_hat);
+    const bool y_given = pointwise_magic_;  // exact_operators set Et_ from the solved rows
     // |D'|_F <= |Theta_c|_F |Xi|_F max_r |K_r| and |K_r| <= 2 |I_r| (a unit normal on the slave
     // node and a partition of unity on the master): the bound of the blind test below.
     const double d_norm = Dt_.norm();
@@ -335,7 +347,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
       message = blind_contact_message(d_norm);
       return false;
     }
-    return solve_reduced_qp(u_bar, lambda_bar, inner, message);
+    return solve_reduced_qp(u_bar, lambda_bar, inner, message, y_given);
   }
   if (pointwise_magic_) {
     magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
@@ -371,14 +383,16 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
 }
 
 bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
-                                    std::string& message) {
+                                    std::string& message, bool y_given) {
   // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y symmetrized,
   // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
   // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
   // multipliers, whose QP is ill-conditioned there.)
-  Et_ = Dt_;
-  llt_.matrixL().solveInPlace(Et_);
-  llt_.matrixU().solveInPlace(Et_);
+  if (!y_given) {
+    Et_ = Dt_;
+    llt_.matrixL().solveInPlace(Et_);
+    llt_.matrixU().solveInPlace(Et_);
+  }
   Q_.noalias() = Dt_.transpose() * Et_;
   for (int j = 0; j < R_; ++j) {
     for (int i = j + 1; i < R_; ++i) Q_(i, j) = Q_(j, i) = 0.5 * (Q_(i, j) + Q_(j, i));

@@ -178,7 +178,10 @@ class OnlineSolver {
   // The HF contact rows at the returned solution, for ErrorEstimator::evaluate_exact.
   ErrorEstimator::ExactContact exact_contact(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat);
   // The reduced dual QP of the step's D and Xi'gamma, and u_bar = A^-1 (f - D' lambda).
-  bool solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner, std::string& message);
+  // y_given: Et_ = A^-1 D' is already set (the exact pointwise rows, from the solved rows of
+  // Theta_c A^-1); otherwise it is solved here from Dt_.
+  bool solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner, std::string& message,
+                        bool y_given = false);
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
@@ -229,6 +232,7 @@ class OnlineSolver {
   Eigen::PartialPivLU<Eigen::MatrixXd> B_kappa_lu_, B_gamma_lu_;  // leading blocks (Remark 4)
   Eigen::MatrixXd XiQ_gamma_;            // R x Mg
   Eigen::MatrixXd Xi_;                   // R_kept x R
+  bool xi_is_identity_ = false;          // Xi_ = the first R unit vectors (the row cone): products skipped
   double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
   // N below the model's N_max cuts supremizers (they are the last basis vectors): the pair
   // (V_N, span Xi_R) may then lose its inf-sup stability, and lambda_hat its uniqueness.
@@ -265,7 +269,8 @@ class OnlineSolver {
   bool restricted_ = true;
   bool exact_rows_ = false;              // this solve's ContactRows, resolved
   bool row_cone_ = false;                // the model's dual cone is the row cone
-  Eigen::MatrixXd KTheta_;               // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_)
+  RowMatrix KTheta_;                     // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_)
+  RowMatrix KY_;                         // R_kept x N: K(w) Theta_c A_hat^-1 (exact pointwise rows)
   Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_)
   cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
   bool prepared_ = false;
