@@ -17,8 +17,9 @@
 // (docs/offline-online.md).
 //
 // Cost per query (docs/performance.md, "Online query"): A_hat(mu) and its Cholesky factor once; per
-// step the magic points, D' (N x R) assembled and solved against A, Q = D A^-1 D', the QP warm
-// started from the previous step's passive set; no allocation of size N or R per step.
+// step the magic points, D' (N x R) assembled and solved against A (exact pointwise rows: assembled
+// from the rows of Theta_c A^-1 of the nodes they touch, solved once per query), Q = D A^-1 D', the
+// QP warm started from the previous step's passive set; no allocation of size N or R per step.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
