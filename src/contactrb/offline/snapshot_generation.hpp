@@ -45,6 +45,8 @@ struct SnapshotRequest {
   int dimension = 2;
   ProblemFactory make_problem;
   ProblemFactory3 make_problem3;
+  // The HF method (settings.method: default_snapshot_method of the dimension and level, from
+  // make_snapshot_request) and its settings; recorded in the set (SnapshotSet::solver).
   hf::HFSettings settings;
   // The reference mesh the factory maps, recorded in the set (SnapshotSet::mesh or mesh3, /mesh
   // of the file); null: not recorded.
@@ -59,6 +61,12 @@ struct SnapshotRequest {
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
                                       std::optional<contact::Discretization> constraint = std::nullopt,
                                       const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
+
+// The HF method of snapshot solves when none is asked for (docs/solvers.md, "Which solver for
+// snapshots"): Newton, 1.4-4x faster per solve from mesh level 1 in 2D and at every level in 3D
+// (measured on the training sets); Kacanov on the paper's 2D meshes (level 0), where the two
+// take 4-10 ms per solve and the paper's tables are Kacanov snapshots.
+hf::HFMethod default_snapshot_method(int dimension, int level);
 
 // True when the request holds the problem factory of its dimension.
 bool has_problem_factory(const SnapshotRequest& request);
