@@ -28,6 +28,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/offline/snapshot_parts.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 
 namespace contactrb::app {
 
@@ -150,6 +151,8 @@ bool overlap_mpi_init() {
 int run_snapshots(const SnapshotsOptions& opt) {
   // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
   const bool mpi = built_with_mpi() && mpirun_processes() > 1;
+  // Before any thread: the MPI path (its early solve included) solves as generate_snapshots does.
+  const solve::ScopedBlasThreads blas(offline::kSnapshotBlasThreads);
   const bool overlap = mpi && overlap_mpi_init();
   EarlyStart early;
   if (overlap) early = start_early(opt, mpirun_rank());

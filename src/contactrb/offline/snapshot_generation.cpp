@@ -23,6 +23,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 
 namespace contactrb::offline {
 
@@ -336,6 +337,7 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   require(!request.mu.empty(), "the parameter set '" + request.set_name + "' is empty");
   require(has_problem_factory(request), "no problem factory given");
 
+  const solve::ScopedBlasThreads blas(kSnapshotBlasThreads);
   const std::size_t n = request.mu.size();
   std::vector<io::Snapshot> snapshots(n);
   std::vector<Layout> layouts(n);
