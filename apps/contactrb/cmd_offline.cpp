@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "hf_solver_option.hpp"
 #include "mpi_greedy.hpp"
 #include "mpi_world.hpp"
 #include "contactrb/cases/case_record.hpp"
@@ -60,6 +61,7 @@ struct OfflineOptions {
   double alpha = solve::KacanovSettings{}.alpha;
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
+  std::optional<std::string> solver;  // --solver (nullopt: offline::default_snapshot_method)
   bool quiet = false;
   double eps_pod = offline::OfflineSettings{}.eps_pod;
   std::optional<int> n;  // absent: --eps-pod decides
@@ -102,6 +104,7 @@ offline::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases
   request.settings.kacanov.tolerance = opt.tolerance;
   request.settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(request.settings.kacanov);
+  request.settings.method = snapshot_solver_option(opt.solver).value_or(request.settings.method);
   return request;
 }
 
@@ -386,8 +389,10 @@ Command add_offline_command(CLI::App& app) {
   CLI::Option* iterations_opt =
       sub->add_option("--max-iterations", opt->max_iterations, "With --case: Kacanov iteration limit")
           ->capture_default_str();
+  CLI::Option* solver_opt = add_snapshot_solver_option(sub, opt->solver, "With --case: ");
   CLI::Option* quiet_opt = sub->add_flag("--quiet,-q", opt->quiet, "With --case: no progress report on stderr");
-  for (CLI::Option* o : {set_opt, values_opt, level_opt, constraint_opt, jobs_opt, alpha_opt, tol_opt, iterations_opt, quiet_opt}) {
+  for (CLI::Option* o :
+       {set_opt, values_opt, level_opt, constraint_opt, jobs_opt, alpha_opt, tol_opt, iterations_opt, solver_opt, quiet_opt}) {
     o->excludes(snapshots_opt);
   }
   CLI::Option* eps_pod =

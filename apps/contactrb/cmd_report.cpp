@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "hf_solver_option.hpp"
 #include "plot_script.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/case_toml.hpp"
@@ -50,6 +51,7 @@ struct ReportOptions {
   std::vector<std::string> training_values;  // parse_values_option
   std::vector<std::string> verification_values;
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
+  std::optional<std::string> solver;  // --solver (nullopt: offline::default_snapshot_method)
   int history_r = study::StudySettings{}.history_max_R;
   int profiles = study::StudySettings{}.multiplier_profiles;
   int deformed = study::StudySettings{}.deformed_configurations;
@@ -123,6 +125,7 @@ int run_report(const ReportOptions& opt) {
   study::StudySettings s;
   s.level = opt.level;
   if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);
+  s.snapshot_method = snapshot_solver_option(opt.solver);
   // A case file gets `contactrb offline`'s defaults whatever its name (a user case named like a
   // built-in one is not that case).
   s.tolerances = opt.case_file.empty() ? study::default_study_tolerances(spec.name) : study::StudyTolerances{};
@@ -211,6 +214,7 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--constraint", opt->constraint, "collocation | lac | lac-simpson (default: the case's)");
   sub->add_option("--out", opt->out, "Output directory (default: out/report-<case>)");
   sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
+  add_snapshot_solver_option(sub, opt->solver);
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr, no plotting messages");
   sub->add_flag("--no-plots", opt->no_plots, "Write the CSV files and report.md only (no Python needed)");
   sub->add_option("--max-training", opt->max_training,

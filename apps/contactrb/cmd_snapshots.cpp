@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "hf_solver_option.hpp"
 #include "mpi_snapshots.hpp"
 #include "mpi_world.hpp"
 #include "contactrb/cases/case_spec.hpp"
@@ -27,6 +28,7 @@
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "contactrb/offline/snapshot_parts.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 
 namespace contactrb::app {
 
@@ -46,6 +48,7 @@ struct SnapshotsOptions {
   double alpha = solve::KacanovSettings{}.alpha;
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
+  std::optional<std::string> solver;  // --solver (nullopt: offline::default_snapshot_method)
   bool allow_failures = false;
   bool quiet = false;
   std::string part;  // "k/K": part k of K of the values (offline/snapshot_parts.hpp)
@@ -78,6 +81,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   settings.kacanov.tolerance = opt.tolerance;
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
+  const std::optional<hf::HFMethod> method = snapshot_solver_option(opt.solver);
   check_output_file(opt.out);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
@@ -87,6 +91,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   Setup p;
   p.start = Clock::now();
   p.request = offline::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
+  settings.method = method.value_or(p.request.settings.method);
   p.request.settings = settings;
   if (part) offline::restrict_to_part(p.request, *part);
   offline::SnapshotRunOptions& run = p.run;
@@ -146,6 +151,8 @@ bool overlap_mpi_init() {
 int run_snapshots(const SnapshotsOptions& opt) {
   // Under mpirun: every rank does the setup, rank 0 the rest (mpi_snapshots.hpp).
   const bool mpi = built_with_mpi() && mpirun_processes() > 1;
+  // Before any thread: the MPI path (its early solve included) solves as generate_snapshots does.
+  const solve::ScopedBlasThreads blas(offline::kSnapshotBlasThreads);
   const bool overlap = mpi && overlap_mpi_init();
   EarlyStart early;
   if (overlap) early = start_early(opt, mpirun_rank());
@@ -187,7 +194,8 @@ int run_snapshots(const SnapshotsOptions& opt) {
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
             << " constraints, "
             << (ranks > 0 ? std::to_string(ranks) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));
-  std::cout << "solves: " << s.solves << "\n"
+  std::cout << "solver: " << set.solver << "\n"
+            << "solves: " << s.solves << "\n"
             << "failures: " << s.failures << "\n";
   if (s.failures < s.solves) {
     std::cout << "iterations: min " << s.iterations_min << ", median " << s.iterations_median << ", max "
@@ -237,6 +245,7 @@ Command add_snapshots_command(CLI::App& app) {
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
+  add_snapshot_solver_option(sub, opt->solver);
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some solves failed (they are recorded)");
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
   sub->add_option("--warm-start", opt->warm_start,

@@ -204,7 +204,7 @@ int run_solve(SolveOptions opt) {
   settings.kacanov.tolerance = opt.tolerance;
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
-  settings.method = hf::hf_method_from_string(opt.solver);
+  settings.method = option_enum("--solver", opt.solver, hf::hf_method_from_string);
   settings.newton.max_iterations = opt.newton_max_iterations;
   hf::check_settings(settings.newton);
   std::optional<contact::Discretization> constraint;

@@ -17,7 +17,8 @@ namespace {
 // The HF solves a call asks for: a named set of the case, or explicit points (set "custom").
 contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int level,
                                                      const std::optional<std::string>& constraint_name, double alpha,
-                                                     double tolerance, int max_iterations) {
+                                                     double tolerance, int max_iterations,
+                                                     const std::optional<std::string>& solver) {
   require(level >= 0, "level must be >= 0 (got " + std::to_string(level) + ")");
   std::optional<contact::Discretization> constraint;
   if (constraint_name) constraint = contact::discretization_from_string(*constraint_name);
@@ -36,6 +37,8 @@ contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::
   request.settings.kacanov.tolerance = tolerance;
   request.settings.kacanov.max_iterations = max_iterations;
   solve::check_settings(request.settings.kacanov);
+  // None: the request's default (offline::default_snapshot_method), as the CLI's --solver.
+  if (solver) request.settings.method = contactrb::hf::hf_method_from_string(*solver);
   return request;
 }
 
@@ -60,10 +63,10 @@ io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request
 
 PySnapshots make_snapshots(PyCase& c, const py::object& set, int jobs, int level,
                            const std::optional<std::string>& constraint, double alpha, double tolerance,
-                           int max_iterations, const std::optional<std::string>& path,
-                           const std::optional<bool>& progress) {
+                           int max_iterations, const std::optional<std::string>& solver,
+                           const std::optional<std::string>& path, const std::optional<bool>& progress) {
   const contactrb::offline::SnapshotRequest request =
-      snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+      snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
   PySnapshots s{run_snapshots(request, jobs, progress), {}};
   if (path) {
     io::write_snapshot_file(s.set, *path);
@@ -161,7 +164,8 @@ py::object as_case(const py::object& source) {
 
 std::shared_ptr<PyModel> offline(const py::object& source, const std::string& method, const py::object& set, int jobs,
                                  int level, const std::optional<std::string>& constraint, double alpha,
-                                 double tolerance, int max_iterations, double greedy_tol, int max_hf, int greedy_batch,
+                                 double tolerance, int max_iterations, const std::optional<std::string>& solver,
+                                 double greedy_tol, int max_hf, int greedy_batch,
                                  const std::optional<std::string>& path, const std::optional<bool>& progress,
                                  const py::kwargs& kw) {
   for (const auto& item : kw) {
@@ -185,7 +189,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
       const py::object case_object = as_case(source);
       PyCase& c = case_object.cast<PyCase&>();
       const contactrb::offline::SnapshotRequest request =
-          snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+          snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
       m = offline_from_set(run_snapshots(request, jobs, progress), "snapshot set", settings);
     }
   } else if (method == "greedy") {
@@ -205,7 +209,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     gs.progress = progress_mode(progress);
     contactrb::offline::check_settings(gs);
     const contactrb::offline::SnapshotRequest request =
-        snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations);
+        snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
     std::optional<contactrb::offline::GreedyOfflineResult> g;
     {
       py::gil_scoped_release release;
@@ -260,6 +264,8 @@ void bind_offline(py::module_& m) {
       .def_property_readonly("set_name", [](const PySnapshots& s) { return s.set.set_name; })
       .def_property_readonly("constraint", [](const PySnapshots& s) { return s.set.constraint; })
       .def_property_readonly("level", [](const PySnapshots& s) { return s.set.level; })
+      .def_property_readonly("solver", [](const PySnapshots& s) { return s.set.solver; },
+                             "the HF method of the solves: 'kacanov' | 'newton'")
       .def_property_readonly("num_dofs", [](const PySnapshots& s) { return s.set.num_dofs; })
       .def_property_readonly("num_failed", [](const PySnapshots& s) { return s.set.num_failed(); })
       .def_property_readonly("mu", [](const PySnapshots& s) { return snapshot_rows(s.set, &io::Snapshot::mu); },
@@ -295,13 +301,14 @@ void bind_offline(py::module_& m) {
   const solve::KacanovSettings k{};
   m.def("snapshots", &make_snapshots, py::arg("case"), py::arg("set") = "training", py::kw_only(), py::arg("jobs") = 1,
         py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha, py::arg("tol") = k.tolerance,
-        py::arg("max_iterations") = k.max_iterations, py::arg("path") = py::none(), py::arg("progress") = py::none(),
+        py::arg("max_iterations") = k.max_iterations, py::arg("solver") = py::none(), py::arg("path") = py::none(),
+        py::arg("progress") = py::none(),
         "HF snapshots of a case (a Case, or its name or TOML path) over a named parameter set or an (n, p)\n"
-        "array of points, on `jobs` threads, as `contactrb snapshots`. Returns a Snapshots; with path=,\n"
-        "also writes the snapshot file.");
+        "array of points, on `jobs` threads, as `contactrb snapshots`. solver: 'kacanov' | 'newton' (None:\n"
+        "kacanov on 2D level 0, newton otherwise). Returns a Snapshots; with path=, also writes the snapshot file.");
   m.def("offline", &offline, py::arg("source"), py::arg("method") = "pod", py::kw_only(), py::arg("set") = "training",
         py::arg("jobs") = 1, py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha,
-        py::arg("tol") = k.tolerance, py::arg("max_iterations") = k.max_iterations,
+        py::arg("tol") = k.tolerance, py::arg("max_iterations") = k.max_iterations, py::arg("solver") = py::none(),
         py::arg("greedy_tol") = contactrb::offline::GreedyOfflineSettings{}.tolerance,
         py::arg("max_hf") = contactrb::offline::GreedyOfflineSettings{}.max_hf,
         py::arg("greedy_batch") = contactrb::offline::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
@@ -310,7 +317,8 @@ void bind_offline(py::module_& m) {
         "method='pod': source is a Snapshots, a snapshot file path, or a case (its `set` snapshots are\n"
         "computed first). method='greedy': source is a case; the weak greedy on the error estimate over\n"
         "the set's points (greedy_tol, max_hf; greedy_batch HF solves per step, on `jobs` threads);\n"
-        "model.greedy holds its table and selected snapshots.\n"
+        "model.greedy holds its table and selected snapshots. solver: the HF method of the snapshots\n"
+        "('kacanov' | 'newton'; None: kacanov on 2D level 0, newton otherwise).\n"
         "Offline settings (keywords, the CLI's defaults): eps_pod, N, inner_product ('energy'|'h1'),\n"
         "dual ('cpg'|'angle'|'nmf'|'rows'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
         "compression, supremizers.");

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli_runner.hpp"
+#include "contactrb/io/snapshot_file.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -60,6 +61,34 @@ TEST(CliOfflineGreedy, WritesTheModelTheSnapshotsAndTheStepTable) {
   EXPECT_NE(again.out.find("4 snapshots (set greedy)"), std::string::npos) << again.out;
 }
 
+// --solver reaches the HF solves of the greedy and of `offline --case`: snapshots.h5 records the
+// method and its solves took Newton's iteration counts (hertz-a: 4-8; Kacanov 21-25); offline.json
+// names it.
+TEST(CliOfflineGreedy, SolverOptionReachesTheHFSolves) {
+  const contactrb::test::TempDir dir("offline_solver");
+  for (const char* d : {"g", "p", "x"}) fs::create_directories(dir.path() / d);
+  const CliResult g = run_cli("offline --greedy --case hertz-a --greedy-tol 1e-6 --max-hf 2 --solver newton -q --out " +
+                              shell_quote(dir.file("g/model.h5")));
+  ASSERT_EQ(g.exit_code, 0) << g.out << g.err;
+  const contactrb::io::SnapshotSet greedy = contactrb::io::read_snapshot_file(dir.file("g/snapshots.h5"));
+  EXPECT_EQ(greedy.solver, "newton");
+  ASSERT_EQ(greedy.snapshots.size(), 2u);
+  for (const auto& s : greedy.snapshots) EXPECT_LE(s.iterations, 12);
+  const CliResult p = run_cli("offline --case hertz-a --values 0.2,0.3,0.4 --solver newton -q --out " +
+                              shell_quote(dir.file("p/model.h5")));
+  ASSERT_EQ(p.exit_code, 0) << p.out << p.err;
+  const contactrb::io::SnapshotSet pod = contactrb::io::read_snapshot_file(dir.file("p/snapshots.h5"));
+  EXPECT_EQ(pod.solver, "newton");
+  for (const auto& s : pod.snapshots) EXPECT_LE(s.iterations, 12);
+  std::ifstream in(dir.file("p/offline.json"));
+  EXPECT_EQ(nlohmann::json::parse(in)["snapshot_solver"], "newton");
+  // --solver belongs to the snapshots computed here: with --snapshots it is a usage error.
+  const CliResult x = run_cli("offline --snapshots " + shell_quote(dir.file("p/snapshots.h5")) +
+                              " --solver newton --out " + shell_quote(dir.file("x/model.h5")));
+  EXPECT_NE(x.exit_code, 0);
+  EXPECT_NE(x.err.find("--solver excludes --snapshots"), std::string::npos) << x.err;
+}
+
 TEST(CliOfflineGreedy, BadInputIsOneClearError) {
   const contactrb::test::TempDir dir("offline_greedy_bad");
   const std::string out = shell_quote(dir.file("model.h5"));
@@ -77,6 +106,7 @@ TEST(CliOfflineGreedy, BadInputIsOneClearError) {
   user_error("--greedy-tol -1e-3", "--greedy-tol must be a finite number > 0");
   user_error("--set nosuchset", "nosuchset");
   user_error("--greedy-batch 0", "--greedy-batch must be >= 1");
+  user_error("--solver qr", "--solver: unknown HF solver 'qr' (expected newton or kacanov)");
   // Greedy options without --greedy, and --greedy with a snapshot file: usage errors (CLI11).
   const CliResult a = run_cli("offline --case hertz-a --max-hf 3 --out " + out);
   EXPECT_NE(a.exit_code, 0);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli_runner.hpp"
+#include "contactrb/io/snapshot_file.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -88,6 +89,9 @@ TEST(CliSnapshots, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("snapshots --case hertz-a --jobs 0" + out), "--jobs");
   expect_user_error(run_cli("snapshots --case hertz-a --set nope" + out), "nope");
   expect_user_error(run_cli("snapshots --case hertz-a --values 0.1" + out), "outside");
+  expect_user_error(run_cli("snapshots --case hertz-a --solver gauss-seidel" + out),
+                    "--solver: unknown HF solver 'gauss-seidel' (expected newton or kacanov)");
+  expect_user_error(run_cli("snapshots --case hertz-a --solver ''" + out), "--solver: unknown HF solver ''");
   // A file where the directory of --out should be.
   { std::ofstream((dir.path() / "plain").string()) << "x"; }
   expect_user_error(run_cli("snapshots --case hertz-a --out " + shell_quote((dir.path() / "plain/dir/s.h5").string())),
@@ -110,4 +114,51 @@ TEST(CliSnapshots, ProgressLinesPrintMuWithSixSignificantDigits) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("mu = 1.01 "), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("1.0100000000000002"), std::string::npos) << r.err;
+}
+
+// --solver picks the HF method of every solve; the summary names it and the file records it.
+// The two methods' answers agree to Kacanov's tolerance eps_KA = 1e-3 (Newton: KKT 1e-10).
+TEST(CliSnapshots, SolverOptionChoosesAndRecordsTheMethod) {
+  contactrb::test::TempDir dir("snapshots_solver");
+  const std::string values = " --values 0.2,0.3,0.4 -q --out ";
+  const std::string newton = (dir.path() / "n.h5").string();
+  const std::string kacanov = (dir.path() / "k.h5").string();
+  const CliResult n = run_cli("snapshots --case hertz-a --solver newton" + values + shell_quote(newton));
+  ASSERT_EQ(n.exit_code, 0) << n.out << n.err;
+  EXPECT_EQ(field_value(n.out, "solver"), "newton") << n.out;
+  const CliResult k = run_cli("snapshots --case hertz-a" + values + shell_quote(kacanov));  // 2D default
+  ASSERT_EQ(k.exit_code, 0) << k.out << k.err;
+  EXPECT_EQ(field_value(k.out, "solver"), "kacanov") << k.out;
+  const contactrb::io::SnapshotSet a = contactrb::io::read_snapshot_file(newton);
+  const contactrb::io::SnapshotSet b = contactrb::io::read_snapshot_file(kacanov);
+  EXPECT_EQ(a.solver, "newton");
+  EXPECT_EQ(b.solver, "kacanov");
+  ASSERT_EQ(a.snapshots.size(), 3u);
+  ASSERT_EQ(b.snapshots.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_LE(a.snapshots[i].iterations, 12);
+    EXPECT_GE(b.snapshots[i].iterations, 13);  // Kacanov: 21-25 on hertz-a
+    const double du = (a.snapshots[i].u - b.snapshots[i].u).lpNorm<Eigen::Infinity>() /
+                      a.snapshots[i].u.lpNorm<Eigen::Infinity>();
+    const double dl = (a.snapshots[i].lambda - b.snapshots[i].lambda).lpNorm<Eigen::Infinity>() /
+                      a.snapshots[i].lambda.lpNorm<Eigen::Infinity>();
+    EXPECT_LT(du, 1e-2) << i;
+    EXPECT_LT(dl, 1e-2) << i;
+  }
+}
+
+// A bad --solver is one clear error, the same words, in every command that solves HF; nothing
+// is written.
+TEST(CliSnapshots, BadSolverValuesAreOneClearErrorInEveryCommand) {
+  contactrb::test::TempDir dir("solver_bad");
+  const std::string out = shell_quote((dir.path() / "o").string());
+  for (const std::string& command :
+       {"snapshots --case hertz-a --out " + out + ".h5", "offline --case hertz-a --out " + out + ".h5",
+        "offline --greedy --case hertz-a --out " + out + ".h5", "report --case hertz-a --no-plots --out " + out,
+        "solve --case hertz-a --mu 0.3 --out " + out}) {
+    const CliResult r = run_cli(command + " --solver Newton");
+    expect_user_error(r, "--solver: unknown HF solver 'Newton' (expected newton or kacanov)");
+    EXPECT_EQ(count(r.err, "\n"), 1) << command << "\n" << r.err;
+  }
+  EXPECT_EQ(entries(dir.path()), 0);
 }

@@ -101,8 +101,9 @@ def check_strings(cli, work):
     """The string attributes read by h5py alone hold what the CLI wrote."""
     version = run(cli, ["--version"], work).split()[-1]
     with h5py.File(os.path.join(work, "s.h5"), "r") as s, h5py.File(os.path.join(work, "m.h5"), "r") as m:
-        check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 6
+        check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 7
               and int(s.attrs["dimension"]) == 2, "snapshot format attributes (bytes decoded), dimension 2")
+        check(text(s["settings"], "solver") == "kacanov", "snapshot /settings solver (the default on 2D level 0)")
         check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 7,
               "model format attributes (bytes decoded)")
         check(text(s, "contactrb_version") == version and text(m, "contactrb_version") == version,

@@ -248,22 +248,34 @@ TEST(SnapshotFile, DimensionIsRecordedAndChecked) {
   EXPECT_THROW(write_snapshot_file(three, dir.file("t.h5")), contactrb::Error);
 }
 
-// A format 5 file (no `dimension`; tests/io/snapshot_as_format5.py rewrites a 2D format 6 file
-// as the format 5 writer wrote it, its checksum recomputed by an independent implementation)
-// is still read, as 2D, with every field as written.
-TEST(SnapshotFile, AFormat5FileIsReadAsTwoDimensional) {
+namespace {
+
+// `path` rewritten as format `version` by tests/io/snapshot_as_older_format.py (the layout of that
+// writer, its checksum recomputed by an independent implementation), then sealed again; false
+// when h5py or numpy is missing.
+bool rewrite_as_format(const std::string& path, int version) {
   const std::string python = "/usr/bin/python3";
   if (!fs::exists(python) || std::system((python + " -c 'import h5py, numpy' >/dev/null 2>&1").c_str()) != 0) {
-    GTEST_SKIP() << "no h5py or numpy under " << python;
+    return false;
   }
+  const std::string cmd = python + " " + CONTACTRB_SOURCE_DIR + "/tests/io/snapshot_as_older_format.py '" + path +
+                          "' " + std::to_string(version);
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  contactrb::seal_file(path);
+  return true;
+}
+
+}  // namespace
+
+// A format 5 file (no `dimension`, no `solver`) is still read, as 2D Kacanov, with every field as written.
+TEST(SnapshotFile, AFormat5FileIsReadAsTwoDimensional) {
   TempDir dir("format5");
   const SnapshotSet set = synthetic_set();
   write_snapshot_file(set, dir.file("v5.h5"));
-  const std::string cmd = python + " " + CONTACTRB_SOURCE_DIR + "/tests/io/snapshot_as_format5.py '" + dir.file("v5.h5") + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  contactrb::seal_file(dir.file("v5.h5"));
+  if (!rewrite_as_format(dir.file("v5.h5"), 5)) GTEST_SKIP() << "no h5py or numpy under /usr/bin/python3";
   const SnapshotSet read = read_snapshot_file(dir.file("v5.h5"));
   EXPECT_EQ(read.dimension, 2);
+  EXPECT_EQ(read.solver, "kacanov");
   contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
   // The same file without its `dimension` but still marked format 6 is damaged.
   edit_file(dir.file("v5.h5"), [](hid_t f) {
@@ -273,6 +285,42 @@ TEST(SnapshotFile, AFormat5FileIsReadAsTwoDimensional) {
     H5Aclose(attr);
   });
   expect_error_naming(dir.file("v5.h5"), "dimension");
+}
+
+// A format 6 file (no /settings `solver`) is read as Kacanov, the only method of that format;
+// the same file still marked format 7 is damaged.
+TEST(SnapshotFile, AFormat6FileIsReadAsKacanov) {
+  TempDir dir("format6");
+  const SnapshotSet set = synthetic_set();
+  write_snapshot_file(set, dir.file("v6.h5"));
+  if (!rewrite_as_format(dir.file("v6.h5"), 6)) GTEST_SKIP() << "no h5py or numpy under /usr/bin/python3";
+  const SnapshotSet read = read_snapshot_file(dir.file("v6.h5"));
+  EXPECT_EQ(read.solver, "kacanov");
+  contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
+  edit_file(dir.file("v6.h5"), [](hid_t f) {
+    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const int version = 7;
+    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
+    H5Aclose(attr);
+  });
+  expect_error_naming(dir.file("v6.h5"), "solver");
+}
+
+// The solver is written and read back (h5py reads it too: tests/io, ctest io_snapshots_3d_h5py
+// reads files of the CLI); an unknown method is refused by the writer's check.
+TEST(SnapshotFile, SolverIsRecorded) {
+  TempDir dir("solver");
+  SnapshotSet set = synthetic_set();
+  set.solver = "newton";
+  write_snapshot_file(set, dir.file("n.h5"));
+  EXPECT_EQ(read_snapshot_file(dir.file("n.h5")).solver, "newton");
+  set.solver = "gauss-seidel";
+  try {
+    write_snapshot_file(set, dir.file("x.h5"));
+    ADD_FAILURE() << "an unknown solver was written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("solver (/settings solver) is 'gauss-seidel'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SnapshotFile, IncompleteFileIsRejected) {

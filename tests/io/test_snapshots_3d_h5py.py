@@ -1,7 +1,8 @@
 """3D snapshot files read by an independent reader (h5py + numpy only), against the analytic
 patch answer and the direct solves of `contactrb solve` (docs/file-formats.md, "Snapshot file"):
 
-1. The file says its dimension (root attribute `dimension` = 3, format 6); /mesh holds the
+1. The file says its dimension (root attribute `dimension` = 3, format 7) and its HF method
+   (/settings `solver` = newton, the 3D default); /mesh holds the
    tetrahedra (num_nodes x 3 nodes, num_tetrahedra x 4 cells, boundary triangles x 3);
    num_dofs = 3 x nodes, contact_dofs the three components of every contact node, ascending,
    u has 3 components per node.
@@ -9,8 +10,8 @@ patch answer and the direct solves of `contactrb solve` (docs/file-formats.md, "
    answer p = E mu (E = 10) at every row to round-off, and the rows' weights add up to the unit
    interface.
 3. patch-3d and hertz-3d (level 0, collocation): the stored displacement equals the one a
-   direct `contactrb solve` at the same mu writes to solution.vtu (same solver, same settings:
-   to round-off), the stored pressures equal its multipliers.csv, /mesh/nodes its VTU points.
+   direct `contactrb solve --solver newton` at the same mu writes to solution.vtu (same solver,
+   same settings, both from a cold start: to round-off), the stored pressures equal its multipliers.csv, /mesh/nodes its VTU points.
 
 Usage: /usr/bin/python3 test_snapshots_3d_h5py.py CONTACTRB_CLI WORK_DIR
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
@@ -39,7 +40,8 @@ def relative(a, b):
 
 def check_layout(f, name):
     check(int(f.attrs["dimension"]) == 3, f"{name}: root attribute dimension is 3")
-    check(int(f.attrs["format_version"]) == 6, f"{name}: format_version is 6")
+    check(int(f.attrs["format_version"]) == 7, f"{name}: format_version is 7")
+    check(f["settings"].attrs["solver"] == b"newton", f"{name}: /settings solver is newton (the 3D default)")
     nodes = f["mesh/nodes"][()]
     tets = f["mesh/tetrahedra"][()]
     n = nodes.shape[0]
@@ -68,7 +70,7 @@ def check_layout(f, name):
 def compare_with_solve(cli, work, f, index, case, mu, extra, nodes):
     """Snapshot `index` against `contactrb solve` at the same mu."""
     out = os.path.join(work, f"solve-{case}-{mu}")
-    run(cli, ["solve", "--case", case, "--mu", mu, "--out", out] + extra, work)
+    run(cli, ["solve", "--case", case, "--mu", mu, "--solver", "newton", "--out", out] + extra, work)
     arrays = vtu_arrays(os.path.join(out, "solution.vtu"))
     s = f["snapshots"][f"{index:06d}"]
     u = s["u"][()].reshape(-1, 3)
@@ -89,7 +91,8 @@ def main():
     os.makedirs(work)
 
     patch = os.path.join(work, "patch-3d.h5")
-    run(cli, ["snapshots", "--case", "patch-3d", "--values", "0.01,0.02", "--jobs", "2", "-q", "--out", patch], work)
+    run(cli, ["snapshots", "--case", "patch-3d", "--values", "0.01,0.02", "--jobs", "2",
+              "--warm-start", "off", "-q", "--out", patch], work)
     with h5py.File(patch, "r") as f:
         nodes = check_layout(f, "patch-3d")
         mus = f["parameter/values"][()][:, 0]

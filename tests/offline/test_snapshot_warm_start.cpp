@@ -33,7 +33,7 @@ int total_iterations(const SnapshotSet& s) {
   return n;
 }
 
-// Max over snapshots of |a - b|_inf / |b|_inf for u and lambda.
+// Max over snapshots of |a - b|_inf / |b|_inf for u and lambda (a: warm or Kacanov, b: the reference).
 void expect_close(const SnapshotSet& a, const SnapshotSet& b, double u_tol, double lambda_tol, const std::string& label) {
   ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
   double du = 0.0, dl = 0.0;
@@ -47,8 +47,8 @@ void expect_close(const SnapshotSet& a, const SnapshotSet& b, double u_tol, doub
   }
   EXPECT_LT(du, u_tol) << label;
   EXPECT_LT(dl, lambda_tol) << label;
-  std::cout << "[ info     ] " << label << ": max relative difference warm vs cold: u " << du << ", lambda " << dl
-            << "; iterations warm " << total_iterations(a) << ", cold " << total_iterations(b) << "\n";
+  std::cout << "[ info     ] " << label << ": max relative difference: u " << du << ", lambda " << dl
+            << "; iterations " << total_iterations(a) << " against " << total_iterations(b) << "\n";
 }
 
 }  // namespace
@@ -81,4 +81,33 @@ TEST(SnapshotWarmStart, KacanovSameAnswerToItsToleranceFewerIterations) {
   // runs from different starts stop at different points of the same contraction.
   expect_close(w, c, 1e-2, 1e-2, "kacanov");
   EXPECT_LT(total_iterations(w), total_iterations(c));
+}
+
+// The two HF methods on one snapshot set (cold starts): the same u and lambda to Kacanov's
+// tolerance (Newton's KKT residual 1e-10 makes it the reference), each set recording its method.
+TEST(SnapshotSolver, NewtonAndKacanovAgreeToKacanovsTolerance) {
+  SnapshotRunOptions cold;
+  cold.warm_start = SnapshotRunOptions::WarmStart::Off;
+  const SnapshotSet n = generate_snapshots(request(contactrb::hf::HFMethod::Newton), cold);
+  const SnapshotSet k = generate_snapshots(request(contactrb::hf::HFMethod::Kacanov), cold);
+  EXPECT_EQ(n.solver, "newton");
+  EXPECT_EQ(k.solver, "kacanov");
+  // eps_KA = 1e-3 on the relative increment of the relaxed iteration (63): u within 1e-2, as
+  // two Kacanov runs from different starts (above).
+  expect_close(k, n, 1e-2, 1e-2, "kacanov against newton");
+  EXPECT_LT(total_iterations(n), total_iterations(k));
+  for (const auto& snap : n.snapshots) EXPECT_LE(snap.iterations, 12);
+}
+
+// The method when none is asked for (docs/solvers.md, "Which solver for snapshots").
+TEST(SnapshotSolver, DefaultIsKacanovOnlyOnThe2dLevel0Meshes) {
+  using contactrb::cases::builtin_case_spec;
+  using contactrb::hf::HFMethod;
+  using contactrb::offline::make_snapshot_request;
+  EXPECT_EQ(make_snapshot_request(builtin_case_spec("hertz-a"), "training").settings.method, HFMethod::Kacanov);
+  EXPECT_EQ(make_snapshot_request(builtin_case_spec("hertz-a"), "training", 1).settings.method, HFMethod::Newton);
+  EXPECT_EQ(make_snapshot_request(builtin_case_spec("patch-3d"), "training").settings.method, HFMethod::Newton);
+  EXPECT_EQ(contactrb::offline::default_snapshot_method(3, 0), HFMethod::Newton);
+  EXPECT_EQ(contactrb::offline::default_snapshot_method(2, 0), HFMethod::Kacanov);
+  EXPECT_EQ(contactrb::offline::default_snapshot_method(2, 4), HFMethod::Newton);
 }

@@ -104,6 +104,31 @@ def test_snapshots_equal_cli_snapshots(cli_snapshots, tmp_path):
     assert np.array_equal(again.u, mine.u)
 
 
+def test_newton_snapshots_and_offline_equal_cli(tmp_path):
+    # solver= reaches the HF solves as the CLI's --solver: the same arrays, the method recorded.
+    values = np.array([float(v) for v in VALUES.split(",")])
+    cli_file = tmp_path / "newton.h5"
+    run_cli("snapshots", "--case", "hertz-a", "--values", VALUES, "--solver", "newton", "-q", "--out", cli_file)
+    mine = contactrb.snapshots("hertz-a", values, solver="newton")
+    theirs = contactrb.Snapshots.load(str(cli_file))
+    assert mine.solver == theirs.solver == "newton"
+    assert contactrb.snapshots("hertz-a", values[:1]).solver == "kacanov"  # the default on 2D level 0
+    assert np.array_equal(mine.u, theirs.u)
+    assert np.array_equal(mine.multipliers, theirs.multipliers)
+    assert np.array_equal(mine.iterations, theirs.iterations)
+    assert mine.iterations.max() <= 12  # Newton; Kacanov takes 21-25 on hertz-a
+    out = tmp_path / "pod" / "model.h5"
+    out.parent.mkdir()
+    run_cli("offline", "--case", "hertz-a", "--values", VALUES, "--solver", "newton", "-q", "--out", out)
+    model = contactrb.offline("hertz-a", set=values, solver="newton")
+    assert model.report["snapshot_solver"] == "newton"
+    assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
+    greedy = contactrb.offline("hertz-a", "greedy", set=values, max_hf=2, solver="newton")
+    assert greedy.greedy["snapshots"].solver == "newton"
+    with pytest.raises(contactrb.Error, match=r"unknown HF solver 'qr' \(expected newton or kacanov\)"):
+        contactrb.snapshots("hertz-a", values, solver="qr")
+
+
 def test_greedy_offline_equals_cli(tmp_path):
     out = tmp_path / "greedy" / "model.h5"
     out.parent.mkdir()

@@ -39,6 +39,7 @@ inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b,
     EXPECT_EQ(a.parameters[k].max, b.parameters[k].max);
   }
   EXPECT_EQ(a.set_name, b.set_name);
+  EXPECT_EQ(a.solver, b.solver);
   EXPECT_EQ(a.kacanov_alpha, b.kacanov_alpha);
   EXPECT_EQ(a.kacanov_tolerance, b.kacanov_tolerance);
   EXPECT_EQ(a.kacanov_max_iterations, b.kacanov_max_iterations);

@@ -98,6 +98,9 @@ void check_header(const SnapshotSet& set) {
       !(std::isfinite(set.kacanov_tolerance) && set.kacanov_tolerance > 0.0) || set.kacanov_max_iterations < 1) {
     invalid("the Kacanov settings (/settings) are invalid (alpha in (0, 1], tolerance > 0, max_iterations >= 1)");
   }
+  if (set.solver != "kacanov" && set.solver != "newton") {
+    invalid("the solver (/settings solver) is '" + set.solver + "' (expected kacanov or newton)");
+  }
 }
 
 // contact_dofs is derived from the chains (every component of each contact node, ascending):

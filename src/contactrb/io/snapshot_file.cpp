@@ -139,9 +139,14 @@ void visit_parameters(V& v, const Loc& root, Set& set, Eigen::MatrixXd& mu) {
 }
 
 template <typename V, typename Set>
-void visit_settings(V& v, const Loc& root, Set& set) {
-  Handle g = v.group(root, "settings", "the Kacanov settings of the HF solves");
+void visit_settings(V& v, const Loc& root, Set& set, int version) {
+  Handle g = v.group(root, "settings", "the HF method (solver: kacanov | newton) and the Kacanov settings of the HF solves");
   const Loc s{g.get(), "/settings"};
+  if (version >= 7) {
+    v.str(s, "solver", set.solver);
+  } else if constexpr (!V::kWriting) {
+    set.solver = "kacanov";  // the only method of formats 5 and 6
+  }
   v.num(s, "kacanov_alpha", set.kacanov_alpha);
   v.num(s, "kacanov_tolerance", set.kacanov_tolerance);
   v.integer(s, "kacanov_max_iterations", set.kacanov_max_iterations);
@@ -237,7 +242,7 @@ void visit(V& v, const Loc& root, Set& set, SnapshotTables& tables) {
   visit_dimension(v, root, set, version);
   visit_case(v, root, set);
   visit_parameters(v, root, set, tables.mu);
-  visit_settings(v, root, set);
+  visit_settings(v, root, set, version);
   visit_discretization(v, root, set);
   visit_reference_mesh(v, root, set);
   visit_snapshots(v, root, set, tables);

@@ -22,8 +22,10 @@ inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
 // (docs/file-formats.md). Version 5: every string a fixed-length UTF-8 attribute (no
 // variable-length data, which HDF5 1.10 cannot read safely from a damaged file). Version 6: the
 // root attribute `dimension` (2 or 3) and a 3D mesh in /mesh; a version 5 file is read as 2D.
+// Version 7: /settings `solver` (the HF method of the solves); a version 5 or 6 file is read as
+// Kacanov, the only method those versions were written with.
 // Older versions are refused with their version named: generate them again.
-inline constexpr int kSnapshotFormatVersion = 6;
+inline constexpr int kSnapshotFormatVersion = 7;
 // The oldest version this build reads (kSnapshotFormatVersion and this one).
 inline constexpr int kSnapshotFormatOldestRead = 5;
 
@@ -72,7 +74,9 @@ struct SnapshotSet {
   std::vector<SnapshotParameter> parameters;  // p >= 1, in the order of each snapshot's mu
   std::string set_name;  // "training", "verification" or "custom"
 
-  // Kacanov settings the solves used.
+  // The HF method of the solves: "kacanov" | "newton" (hf::to_string(hf::HFMethod)).
+  std::string solver = "kacanov";
+  // Kacanov settings the solves used (recorded whatever the method).
   double kacanov_alpha = 0.0;
   double kacanov_tolerance = 0.0;
   int kacanov_max_iterations = 0;
@@ -119,7 +123,7 @@ SnapshotSet read_snapshot_file(const std::string& path);
 // array size against num_dofs, free_dofs, contact_dofs or the slave chain; a non-finite value
 // in an array of a converged snapshot; no parameter, a mu of the wrong size or outside the
 // stored domains, a domain that is not an interval; a status that disagrees with `converged`; invalid Kacanov
-// settings. Run by the writer, the reader and offline::build_reduced_model.
+// settings; a solver other than kacanov or newton. Run by the writer, the reader and offline::build_reduced_model.
 void check_snapshot_set(const SnapshotSet& set);
 
 // True when `path` is an HDF5 file whose root attribute `format` is kSnapshotFormatName

@@ -42,6 +42,7 @@ nlohmann::json snapshot_set_json(const io::SnapshotSet& set) {
     }
   }
   j["training"] = {{"set", set.set_name}, {"values", mus}, {"count", set.snapshots.size()}};
+  j["snapshot_solver"] = set.solver;
   j["snapshot_kacanov"] = {{"alpha", set.kacanov_alpha},
                            {"tolerance", set.kacanov_tolerance},
                            {"max_iterations", set.kacanov_max_iterations}};

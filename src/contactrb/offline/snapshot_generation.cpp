@@ -23,6 +23,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 
 namespace contactrb::offline {
 
@@ -221,12 +222,13 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   }
   r.level = level;
   r.parameters = snapshot_parameters(spec);
+  r.dimension = cases::case_dimension(spec);
+  r.settings.method = default_snapshot_method(r.dimension, level);
   r.set_name = values ? "custom" : set_name;
   r.mu = values ? *values : spec.set(set_name);
   for (const cases::Mu& mu : r.mu) spec.check_mu(mu);
   if (values) cases::check_points(spec.parameters, *values, "the explicit parameter values");
   // One reference mesh, shared read-only by every worker.
-  r.dimension = cases::case_dimension(spec);
   if (r.dimension == 3) {
     auto reference = std::make_shared<const mesh::Mesh3>(cases::reference_mesh3(spec, level));
     r.make_problem3 = [spec, reference, constraint](const cases::Mu& mu) {
@@ -241,6 +243,10 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
     r.reference = reference;
   }
   return r;
+}
+
+hf::HFMethod default_snapshot_method(int dimension, int level) {
+  return dimension == 2 && level == 0 ? hf::HFMethod::Kacanov : hf::HFMethod::Newton;
 }
 
 bool has_problem_factory(const SnapshotRequest& request) {
@@ -331,6 +337,7 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
   require(!request.mu.empty(), "the parameter set '" + request.set_name + "' is empty");
   require(has_problem_factory(request), "no problem factory given");
 
+  const solve::ScopedBlasThreads blas(kSnapshotBlasThreads);
   const std::size_t n = request.mu.size();
   std::vector<io::Snapshot> snapshots(n);
   std::vector<Layout> layouts(n);
@@ -363,6 +370,7 @@ io::SnapshotSet assemble_snapshot_set(const SnapshotRequest& request, std::vecto
   set.level = request.level;
   set.parameters = request.parameters;
   set.set_name = request.set_name;
+  set.solver = hf::to_string(request.settings.method);
   set.kacanov_alpha = request.settings.kacanov.alpha;
   set.kacanov_tolerance = request.settings.kacanov.tolerance;
   set.kacanov_max_iterations = request.settings.kacanov.max_iterations;

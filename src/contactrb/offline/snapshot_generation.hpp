@@ -45,6 +45,8 @@ struct SnapshotRequest {
   int dimension = 2;
   ProblemFactory make_problem;
   ProblemFactory3 make_problem3;
+  // The HF method (settings.method: default_snapshot_method of the dimension and level, from
+  // make_snapshot_request) and its settings; recorded in the set (SnapshotSet::solver).
   hf::HFSettings settings;
   // The reference mesh the factory maps, recorded in the set (SnapshotSet::mesh or mesh3, /mesh
   // of the file); null: not recorded.
@@ -59,6 +61,12 @@ struct SnapshotRequest {
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
                                       std::optional<contact::Discretization> constraint = std::nullopt,
                                       const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
+
+// The HF method of snapshot solves when none is asked for (docs/solvers.md, "Which solver for
+// snapshots"): Newton, 1.5-7x faster per solve from mesh level 1 in 2D and at every level in 3D
+// (measured on the training sets); Kacanov on the paper's 2D meshes (level 0), where Newton saves
+// 2-3 ms per solve and the paper's tables are Kacanov snapshots.
+hf::HFMethod default_snapshot_method(int dimension, int level);
 
 // True when the request holds the problem factory of its dimension.
 bool has_problem_factory(const SnapshotRequest& request);
@@ -96,8 +104,15 @@ struct SnapshotRunOptions {
 const char* to_string(SnapshotRunOptions::WarmStart value);  // "auto" | "on" | "off"
 SnapshotRunOptions::WarmStart warm_start_from_string(const std::string& name);  // throws contactrb::Error
 
+// The BLAS threads of a snapshot run (solve/blas_threads.hpp), set for the whole run: the solves
+// run in parallel over the values (threads, MPI ranks), and the Newton solver's BLAS-3 results
+// depend on the BLAS's thread count in the last bits, so one count makes the data the same under
+// any launcher (mpirun binds a rank to one core: OpenBLAS then runs one thread) and any
+// OPENBLAS_NUM_THREADS.
+inline constexpr int kSnapshotBlasThreads = 1;
+
 // Runs the HF solves of `request` and returns the snapshot set (one Snapshot per value of
-// request.mu, in order). Throws contactrb::Error for jobs < 1, an empty set, a missing
+// request.mu, in order), with kSnapshotBlasThreads BLAS threads. Throws contactrb::Error for jobs < 1, an empty set, a missing
 // factory, or solvers that disagree on the discretization (different DOF maps or contact
 // chains at different mu: the snapshots would not live in one space).
 io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const SnapshotRunOptions& options = {});

@@ -49,6 +49,7 @@ std::vector<std::pair<std::string, std::string>> run_fields(const io::SnapshotSe
           {"mesh level", std::to_string(s.level)},
           {"dimension", std::to_string(s.dimension)},
           {"parameters", params.str()},
+          {"HF solver", s.solver},
           {"Kacanov settings", kacanov.str()},
           {"parameter set", tag.set},
           {"number of parts", std::to_string(tag.part.count)},

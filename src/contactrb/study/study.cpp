@@ -194,7 +194,8 @@ io::SnapshotSet training_snapshots(const cases::CaseSpec& spec, const StudySetti
   log.line("training snapshots of " + spec.name + ": " + std::to_string(r.training_mus.size()) + " values, " +
            std::to_string(s.jobs) + " job(s)");
   const auto t0 = Clock::now();
-  const SnapshotRequest request = make_snapshot_request(spec, "training", s.level, s.constraint, values);
+  SnapshotRequest request = make_snapshot_request(spec, "training", s.level, s.constraint, values);
+  if (s.snapshot_method) request.settings.method = *s.snapshot_method;
   SnapshotRunOptions run;
   run.jobs = s.jobs;
   run.progress = s.progress;

@@ -52,6 +52,8 @@ constexpr double kStudyErrorWarning = 1e-2;
 struct StudySettings {
   int level = 0;                                    // mesh refinement level (0: the paper's mesh)
   std::optional<contact::Discretization> constraint;  // empty: the case's
+  // The HF method of the training snapshots; empty: offline::default_snapshot_method.
+  std::optional<hf::HFMethod> snapshot_method;
   StudyTolerances tolerances;
   offline::InnerProduct inner_product = offline::InnerProduct::Energy;
   bool compression = true;

@@ -1,13 +1,15 @@
-"""Rewrites a 2D snapshot file of format 6 as format 5 (no root attribute `dimension`), the
-layout the format 5 writer produced, with the checksum recomputed here (docs/file-formats.md,
+"""Rewrites a 2D Kacanov snapshot file of format 7 as format 6 (no /settings attribute `solver`)
+or 5 (neither `solver` nor the root attribute `dimension`), the layout those writers produced,
+with the checksum recomputed here (docs/file-formats.md,
 "Integrity": FNV-1a over (path, digest) in path order, each field's digest FNV-1a over its kind,
 shape and bytes). The file is left unsealed: the caller seals it (contactrb::seal_file).
 
 The checksum of the file as given is recomputed first and must equal the stored one, so a
 rewrite never rests on a checksum this script gets wrong.
 
-Usage: /usr/bin/python3 snapshot_as_format5.py FILE.h5
-Exit codes: 0 rewritten, 1 the recomputed checksum differs (or the file is not 2D format 6),
+Usage: /usr/bin/python3 snapshot_as_older_format.py FILE.h5 VERSION   (VERSION: 5 or 6)
+Exit codes: 0 rewritten, 1 the recomputed checksum differs (or the file is not a 2D Kacanov
+file of format 7, or VERSION is not 5 or 6),
 77 h5py or numpy missing.
 """
 import sys
@@ -84,16 +86,23 @@ def checksum(table):
 
 
 def main():
+    version = int(sys.argv[2]) if len(sys.argv) > 2 else 0
+    if version not in (5, 6):
+        print("the target version must be 5 or 6")
+        return 1
     with h5py.File(sys.argv[1], "r+") as f:
-        if int(f.attrs["format_version"]) != 6 or int(f.attrs["dimension"]) != 2:
-            print("not a 2D snapshot file of format 6")
+        if (int(f.attrs["format_version"]) != 7 or int(f.attrs["dimension"]) != 2
+                or f["settings"].attrs["solver"] != b"kacanov"):
+            print("not a 2D Kacanov snapshot file of format 7")
             return 1
         table = fields(f)
         if checksum(table) != int(f.attrs["checksum"]):
             print(f"recomputed checksum {checksum(table)} differs from the stored {int(f.attrs['checksum'])}")
             return 1
-        del f.attrs["dimension"]
-        f.attrs.modify("format_version", np.int32(5))
+        del f["settings"].attrs["solver"]
+        if version == 5:
+            del f.attrs["dimension"]
+        f.attrs.modify("format_version", np.int32(version))
         f.attrs.modify("checksum", np.uint64(checksum(fields(f))))
     return 0
 

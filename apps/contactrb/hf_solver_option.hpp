@@ -1,0 +1,20 @@
+#pragma once
+// --solver of the commands that solve HF snapshots (snapshots, offline, report): the HF method of
+// offline::SnapshotRequest::settings (docs/solvers.md, "Which solver for snapshots").
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "contactrb/hf/hf_solver.hpp"
+
+namespace contactrb::app {
+
+// Adds --solver to `sub`, stored in `solver` (nullopt when not given); `prefix` opens its help
+// ("With --case: ").
+CLI::Option* add_snapshot_solver_option(CLI::App* sub, std::optional<std::string>& solver, const std::string& prefix = "");
+
+// The method of --solver as given (nullopt: not given, the request's default stays). Throws
+// contactrb::Error naming --solver and the accepted values for anything else.
+std::optional<hf::HFMethod> snapshot_solver_option(const std::optional<std::string>& solver);
+
+}  // namespace contactrb::app
