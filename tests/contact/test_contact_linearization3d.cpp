@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,18 @@ Difference compare(const StackedPair& s, const Eigen::VectorXd& u, const Eigen::
   return out;
 }
 
+// A random deformed configuration (displacements up to 0.01, master normals tilted by ~0.05) and
+// multipliers in [0.5, 1.5].
+std::pair<Eigen::VectorXd, Eigen::VectorXd> random_state(const StackedPair& s, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unif(-1.0, 1.0);
+  Eigen::VectorXd u(s.mesh.num_dofs());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u(i) = 0.01 * unif(rng);
+  Eigen::VectorXd lambda(static_cast<Eigen::Index>(s.quadrature.weight.size()));
+  for (Eigen::Index r = 0; r < lambda.size(); ++r) lambda(r) = 1.0 + 0.5 * unif(rng);
+  return {u, lambda};
+}
+
 }  // namespace
 
 // Both methods against plain differences on a random deformed configuration (master normals
@@ -75,13 +88,7 @@ Difference compare(const StackedPair& s, const Eigen::VectorXd& u, const Eigen::
 // here); a missing or wrong entry would be of the order of the largest one.
 TEST(ContactLinearization3D, BothMethodsEqualPlainDifferences) {
   const StackedPair s = stacked(0.01);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unif(-1.0, 1.0);
-  Eigen::VectorXd u(s.mesh.num_dofs());
-  for (Eigen::Index i = 0; i < u.size(); ++i) u(i) = 0.01 * unif(rng);
-  const int R = static_cast<int>(s.quadrature.weight.size());
-  Eigen::VectorXd lambda(R);
-  for (int r = 0; r < R; ++r) lambda(r) = 1.0 + 0.5 * unif(rng);
+  const auto [u, lambda] = random_state(s, 7);
   const ContactLinearization3 coloured =
       linearize_contact(s.mesh, s.pair, s.quadrature, u, lambda, s.movable, finite_differences());
   EXPECT_GT(coloured.colours, 0);
@@ -127,13 +134,7 @@ TEST(ContactLinearization3D, FlatMasterGivesMinusK) {
 // coloured differences (the clipped rows have no analytic linearization).
 TEST(ContactLinearization3D, LacRowsEqualPlainDifferences) {
   const StackedPair s = stacked(0.01, Discretization::LAC);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unif(-1.0, 1.0);
-  Eigen::VectorXd u(s.mesh.num_dofs());
-  for (Eigen::Index i = 0; i < u.size(); ++i) u(i) = 0.01 * unif(rng);
-  const int R = static_cast<int>(s.quadrature.weight.size());
-  Eigen::VectorXd lambda(R);
-  for (int r = 0; r < R; ++r) lambda(r) = 1.0 + 0.5 * unif(rng);
+  const auto [u, lambda] = random_state(s, 11);
   const ContactLinearization3 coloured =
       linearize_contact(s.mesh, s.pair, s.quadrature, u, lambda, s.movable, finite_differences());
   EXPECT_GT(coloured.colours, 0);
