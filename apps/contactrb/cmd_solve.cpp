@@ -31,6 +31,7 @@
 #include "contactrb/io/json_file.hpp"
 #include "contactrb/study/solution_fields.hpp"
 #include "contactrb/study/solution_fields_3d.hpp"
+#include "hf_solver_option.hpp"
 
 namespace contactrb::app {
 
@@ -59,7 +60,7 @@ struct SolveOptions {
   // Grid sequencing: coarse levels level - 2k, ..., level - 2 (cases/level_sequence.hpp); -1: automatic
   // (kAutoSequence with the Newton solver from kAutoSequenceFromLevel on, 0 otherwise).
   int sequence = -1;
-  std::string solver = "kacanov";  // hf::HFMethod (docs/solvers.md)
+  std::optional<std::string> solver;  // --solver (nullopt: hf::default_method of the mesh)
   int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
   std::string out_dir;
 };
@@ -204,7 +205,7 @@ int run_solve(SolveOptions opt) {
   settings.kacanov.tolerance = opt.tolerance;
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
-  settings.method = option_enum("--solver", opt.solver, hf::hf_method_from_string);
+  settings.method = snapshot_solver_option(opt.solver).value_or(hf::default_method(dimension, opt.level));
   settings.newton.max_iterations = opt.newton_max_iterations;
   hf::check_settings(settings.newton);
   std::optional<contact::Discretization> constraint;
@@ -247,8 +248,9 @@ Command add_solve_command(CLI::App& app) {
   sub->add_option("--alpha", opt->alpha, "Kacanov relaxation in (0, 1]")->capture_default_str();
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
-  sub->add_option("--solver", opt->solver, "HF solver: kacanov (the paper's) | newton (semi-smooth Newton)")
-      ->capture_default_str();
+  sub->add_option("--solver", opt->solver,
+                  "HF solver: kacanov (the paper's) | newton (semi-smooth Newton); default: kacanov on 2D level 0, "
+                  "newton otherwise (docs/solvers.md)");
   sub->add_option("--newton-max-iterations", opt->newton_max_iterations, "Semi-smooth Newton iteration limit")
       ->capture_default_str();
   sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")

@@ -35,6 +35,10 @@ HFMethod hf_method_from_string(const std::string& name) {
   return enum_from_string(name, "HF solver", std::array{HFMethod::Newton, HFMethod::Kacanov});
 }
 
+HFMethod default_method(int dimension, int level) {
+  return dimension == 2 && level == 0 ? HFMethod::Kacanov : HFMethod::Newton;
+}
+
 double HFKKT::max() const { return std::max({stationarity, primal, dual, complementarity}); }
 
 template <int Dim>

@@ -30,6 +30,11 @@ namespace contactrb::hf {
 enum class HFMethod { Newton, Kacanov };
 const char* to_string(HFMethod method);
 HFMethod hf_method_from_string(const std::string& name);  // "newton" | "kacanov"
+// The faster method for a mesh when none is asked for (docs/solvers.md, "Which solver for
+// snapshots"): Newton, 1.5-7x faster per solve from mesh level 1 in 2D and at every level in 3D;
+// Kacanov on the paper's 2D meshes (level 0), where Newton saves 2-3 ms per solve and the paper's
+// tables are Kacanov solves.
+HFMethod default_method(int dimension, int level);
 
 struct HFSettings {
   solve::KacanovSettings kacanov;  // alpha = 0.3, eps_KA = 1e-3 (paper Section 6.2.2)

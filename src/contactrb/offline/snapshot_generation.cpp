@@ -246,7 +246,7 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
 }
 
 hf::HFMethod default_snapshot_method(int dimension, int level) {
-  return dimension == 2 && level == 0 ? hf::HFMethod::Kacanov : hf::HFMethod::Newton;
+  return hf::default_method(dimension, level);
 }
 
 bool has_problem_factory(const SnapshotRequest& request) {

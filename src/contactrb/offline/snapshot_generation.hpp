@@ -62,10 +62,8 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
                                       std::optional<contact::Discretization> constraint = std::nullopt,
                                       const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
 
-// The HF method of snapshot solves when none is asked for (docs/solvers.md, "Which solver for
-// snapshots"): Newton, 1.5-7x faster per solve from mesh level 1 in 2D and at every level in 3D
-// (measured on the training sets); Kacanov on the paper's 2D meshes (level 0), where Newton saves
-// 2-3 ms per solve and the paper's tables are Kacanov snapshots.
+// The HF method of snapshot solves when none is asked for: hf::default_method (measured on the
+// training sets, docs/solvers.md, "Which solver for snapshots").
 hf::HFMethod default_snapshot_method(int dimension, int level);
 
 // True when the request holds the problem factory of its dimension.
