@@ -114,6 +114,15 @@ void edit_file(const std::string& path, F edit) {
   contactrb::seal_file(path);
 }
 
+// Marks a written file as another format version (and seals it again), its contents unchanged.
+void set_format_version(const std::string& path, int version) {
+  edit_file(path, [version](hid_t f) {
+    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
+    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
+    H5Aclose(attr);
+  });
+}
+
 }  // namespace
 
 TEST(SnapshotFile, RoundTripIsBitwise) {
@@ -214,12 +223,7 @@ TEST(SnapshotFile, ForeignHdf5FileIsRejected) {
 TEST(SnapshotFile, WrongVersionIsRejected) {
   TempDir dir("version");
   write_snapshot_file(synthetic_set(), dir.file("v.h5"));
-  edit_file(dir.file("v.h5"), [](hid_t f) {
-    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
-    const int version = contactrb::io::kSnapshotFormatVersion + 1;
-    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
-    H5Aclose(attr);
-  });
+  set_format_version(dir.file("v.h5"), contactrb::io::kSnapshotFormatVersion + 1);
   expect_error_naming(dir.file("v.h5"), "snapshot format " + std::to_string(contactrb::io::kSnapshotFormatVersion + 1) +
                                             " is newer than this build reads (format " +
                                             std::to_string(contactrb::io::kSnapshotFormatVersion) +
@@ -278,12 +282,7 @@ TEST(SnapshotFile, AFormat5FileIsReadAsTwoDimensional) {
   EXPECT_EQ(read.solver, "kacanov");
   contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
   // The same file without its `dimension` but still marked format 6 is damaged.
-  edit_file(dir.file("v5.h5"), [](hid_t f) {
-    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
-    const int version = 6;
-    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
-    H5Aclose(attr);
-  });
+  set_format_version(dir.file("v5.h5"), 6);
   expect_error_naming(dir.file("v5.h5"), "dimension");
 }
 
@@ -297,12 +296,7 @@ TEST(SnapshotFile, AFormat6FileIsReadAsKacanov) {
   const SnapshotSet read = read_snapshot_file(dir.file("v6.h5"));
   EXPECT_EQ(read.solver, "kacanov");
   contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
-  edit_file(dir.file("v6.h5"), [](hid_t f) {
-    const hid_t attr = H5Aopen(f, "format_version", H5P_DEFAULT);
-    const int version = 7;
-    ASSERT_GE(H5Awrite(attr, H5T_NATIVE_INT, &version), 0);
-    H5Aclose(attr);
-  });
+  set_format_version(dir.file("v6.h5"), 7);
   expect_error_naming(dir.file("v6.h5"), "solver");
 }
 
