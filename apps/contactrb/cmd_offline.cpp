@@ -34,6 +34,7 @@
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/offline_builder.hpp"
+#include "contactrb/common/number_text.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
 #include "contactrb/model/reduced_model.hpp"
 #include "contactrb/offline/offline_greedy_json.hpp"
@@ -85,6 +86,7 @@ struct OfflineOptions {
   double greedy_tol = offline::GreedyOfflineSettings{}.tolerance;
   int max_hf = offline::GreedyOfflineSettings{}.max_hf;
   int greedy_batch = offline::GreedyOfflineSettings{}.batch;
+  double greedy_saturation = offline::GreedyOfflineSettings{}.saturation;
   std::string out;
 };
 
@@ -188,6 +190,8 @@ int run_greedy(const OfflineOptions& opt) {
   require(std::isfinite(opt.greedy_tol) && opt.greedy_tol > 0.0, "--greedy-tol must be a finite number > 0");
   require(opt.max_hf >= 1, "--max-hf must be >= 1 (got " + std::to_string(opt.max_hf) + ")");
   require(opt.greedy_batch >= 1, "--greedy-batch must be >= 1 (got " + std::to_string(opt.greedy_batch) + ")");
+  require(opt.greedy_saturation >= 1.0, "--greedy-saturation must be >= 1, or inf (got " +
+                                            number_text(opt.greedy_saturation) + ")");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
   offline::GreedyOfflineSettings gs;
@@ -197,6 +201,7 @@ int run_greedy(const OfflineOptions& opt) {
   gs.tolerance = opt.greedy_tol;
   gs.max_hf = opt.max_hf;
   gs.batch = opt.greedy_batch;
+  gs.saturation = opt.greedy_saturation;
   gs.jobs = opt.jobs;
   gs.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   offline::check_settings(gs);
@@ -442,6 +447,11 @@ Command add_offline_command(CLI::App& app) {
   sub->add_option("--greedy-batch", opt->greedy_batch,
                   "With --greedy: HF solves per step, at the largest estimates (run on --jobs threads, or over the "
                   "MPI ranks under mpirun); 1: the classic greedy")
+      ->capture_default_str()
+      ->needs(greedy_opt);
+  sub->add_option("--greedy-saturation", opt->greedy_saturation,
+                  "With --greedy: saturation constant of the lazy sweep (>= 1): a point whose last estimate times "
+                  "this is below the largest fresh one is not solved again; inf: every point every step")
       ->capture_default_str()
       ->needs(greedy_opt);
   sub->add_option("--out", opt->out,

@@ -138,16 +138,128 @@ Eigen::MatrixXd residual_factor(const Eigen::MatrixXd& S) {
   return Rtop * qr.colsPermutation().transpose();
 }
 
+namespace {
+
+// X = A_00(reference_mu) on the free DOFs.
+Eigen::SparseMatrix<double> energy_product(const EstimateInputs& in, const std::vector<Index>& global_to_free) {
+  const fem::SparseMatrix A_ref = cases::combine(in.terms->A, cases::evaluate(in.thetas->a, in.reference_mu));
+  const Index n_free = ix(in.free_dofs->size());
+  Eigen::SparseMatrix<double> X(n_free, n_free);
+  std::vector<Eigen::Triplet<double>> trip;
+  for (Index k = 0; k < A_ref.outerSize(); ++k) {
+    for (fem::SparseMatrix::InnerIterator it(A_ref, k); it; ++it) {
+      const Index r = global_to_free[sz(it.row())], c = global_to_free[sz(it.col())];
+      if (r >= 0 && c >= 0) trip.emplace_back(r, c, it.value());
+    }
+  }
+  X.setFromTriplets(trip.begin(), trip.end());
+  return X;
+}
+
+Eigen::VectorXd restrict_free(const Eigen::VectorXd& g, const std::vector<int>& free) {
+  Eigen::VectorXd out(ix(free.size()));
+  for (std::size_t i = 0; i < free.size(); ++i) out(ix(i)) = g(free[i]);
+  return out;
+}
+
+// L^-1 P v column by column (Eigen's convention: P X P' = L L').
+Eigen::MatrixXd whiten(const EstimateBase& base, const Eigen::MatrixXd& V) {
+  Eigen::MatrixXd W = base.llt.permutationP() * V;
+  base.llt.matrixL().solveInPlace(W);
+  return W;
+}
+
+// The basis-free columns (layout: model/error_estimate_data.hpp): the loads f_j, the lift terms
+// -A_j u_D,k, and E_c' (contact DOF a -> its free index; a constrained contact DOF has no entry).
+void build_estimate_base(const EstimateInputs& in, EstimateBase& base) {
+  const cases::AffineTerms& terms = *in.terms;
+  const std::vector<int>& free = *in.free_dofs;
+  const Index n_free = ix(free.size()), n_c = ix(in.contact_dofs->size());
+  const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
+  const int JD = static_cast<int>(terms.lift.size());
+  base.global_to_free.assign(sz(terms.A.front().rows()), -1);
+  for (std::size_t i = 0; i < free.size(); ++i) base.global_to_free[sz(free[i])] = ix(i);
+  base.llt.compute(energy_product(in, base.global_to_free));
+  require(base.llt.info() == Eigen::Success,
+          "build_estimate_data: the energy product at the reference value is not positive definite");
+  Eigen::MatrixXd fixed(n_free, Jf + Ja * JD);
+  Index col = 0;
+  for (int j = 0; j < Jf; ++j) fixed.col(col++) = restrict_free(terms.f[sz(j)], free);
+  for (int j = 0; j < Ja; ++j) {
+    for (int k = 0; k < JD; ++k) fixed.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)], free);
+  }
+  Eigen::MatrixXd W(n_free, fixed.cols() + n_c);
+  W.leftCols(fixed.cols()) = fixed;
+  W.rightCols(n_c).setZero();
+  for (Index a = 0; a < n_c; ++a) {
+    const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
+    if (fi >= 0) W(fi, fixed.cols() + a) = 1.0;
+  }
+  W = whiten(base, W);
+  const Index k = std::min(n_free, W.cols());
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
+  base.Q_fixed = qr.householderQ() * Eigen::MatrixXd::Identity(n_free, k);
+  base.R_fixed = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  base.n_fixed = static_cast<int>(fixed.cols());
+  base.built = true;
+}
+
+// L^-1 P of the basis columns -A_j,00 Theta (A_j Theta with Theta extended by zero on the
+// constrained DOFs, restricted to the free ones).
+Eigen::MatrixXd whitened_basis_columns(const EstimateInputs& in, const EstimateBase& base) {
+  const cases::AffineTerms& terms = *in.terms;
+  const std::vector<int>& free = *in.free_dofs;
+  const Eigen::MatrixXd& Theta = *in.Theta;
+  const Index n_free = ix(free.size());
+  const int Ja = static_cast<int>(terms.A.size()), N = static_cast<int>(Theta.cols());
+  Eigen::MatrixXd Theta_global = Eigen::MatrixXd::Zero(terms.A.front().rows(), N);
+  for (Index i = 0; i < n_free; ++i) Theta_global.row(free[sz(i)]) = Theta.row(i);
+  Eigen::MatrixXd cols(n_free, static_cast<Index>(Ja) * N);
+  Index col = 0;
+  for (int j = 0; j < Ja; ++j) {
+    const Eigen::MatrixXd AT = terms.A[sz(j)] * Theta_global;
+    for (int n = 0; n < N; ++n) cols.col(col++) = -restrict_free(AT.col(n), free);
+  }
+  return whiten(base, cols);
+}
+
+// S with |W y| = |S y| for W = L^-1 P [f_j | -A_j u_D,k | -A_j,00 Theta | E_c'] (that column
+// order): the basis columns W_t are split against the problem's fixed columns, W_t = Q_fixed C +
+// Q_t R_t (block Gram-Schmidt, twice for orthogonality; Q_t from a thin QR), so that only the
+// n_free x J^a N basis block is factored per model: S = [[R_f, C, R_c], [0, R_t, 0]].
+Eigen::MatrixXd whitened_residual_factor(const EstimateInputs& in, const EstimateBase& base, Index cols) {
+  const Eigen::MatrixXd Wt = whitened_basis_columns(in, base);
+  Eigen::MatrixXd C = base.Q_fixed.transpose() * Wt;
+  Eigen::MatrixXd rest = Wt - base.Q_fixed * C;
+  const Eigen::MatrixXd again = base.Q_fixed.transpose() * rest;
+  rest.noalias() -= base.Q_fixed * again;
+  C += again;
+  const Index n_free = Wt.rows(), nt = Wt.cols(), kc = base.Q_fixed.cols();
+  const Index kt = std::min(n_free - kc, nt);
+  const Index nf = base.n_fixed, nc = base.R_fixed.cols() - nf;
+  require(cols == nf + nt + nc, "build_estimate_data: inconsistent residual columns");
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kc + kt, cols);
+  S.topLeftCorner(kc, nf) = base.R_fixed.leftCols(nf);
+  S.block(0, nf, kc, nt) = C;
+  S.topRightCorner(kc, nc) = base.R_fixed.rightCols(nc);
+  if (kt > 0) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rest);
+    S.block(kc, nf, kt, nt) = qr.matrixQR().topRows(kt).triangularView<Eigen::Upper>();
+  }
+  return S;
+}
+
+}  // namespace
+
 EstimateData build_estimate_data(const EstimateInputs& in) {
   require(in.terms && in.thetas && in.free_dofs && in.contact_dofs && in.Theta && in.Theta_c && in.Xi && in.Q_kappa &&
               in.Q_gamma && in.set && in.kept_rows && in.lift_c && in.weights_kept && in.kappa_magic &&
               in.B_kappa && in.gamma_magic && in.B_gamma && in.surface,
           "build_estimate_data: a required input is missing");
   const cases::AffineTerms& terms = *in.terms;
-  const std::vector<int>& free = *in.free_dofs;
   const Eigen::MatrixXd& Theta = *in.Theta;
   const Eigen::MatrixXd& Xi = *in.Xi;
-  const Index n_free = ix(free.size());
+  const Index n_free = ix(in.free_dofs->size());
   const Index n_c = ix(in.contact_dofs->size());
   const Index R_kept = Xi.rows();
   const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
@@ -159,40 +271,18 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
           "build_estimate_data: inconsistent sizes (Theta " + std::to_string(Theta.rows()) + " x " +
               std::to_string(N) + ", n_free " + std::to_string(n_free) + ", Q_kappa " +
               std::to_string(in.Q_kappa->rows()) + " rows for R_kept n_c = " + std::to_string(R_kept * n_c) + ")");
-  const Index num_dofs = terms.A.front().rows();
-  std::vector<Index> global_to_free(sz(num_dofs), -1);
-  for (std::size_t i = 0; i < free.size(); ++i) global_to_free[sz(free[i])] = ix(i);
-  auto restrict_free = [&](const Eigen::VectorXd& g) {
-    Eigen::VectorXd out(n_free);
-    for (Index i = 0; i < n_free; ++i) out(i) = g(free[sz(i)]);
-    return out;
-  };
+  EstimateBase own;
+  EstimateBase& base = in.base ? *in.base : own;
+  if (!base.built) build_estimate_base(in, base);
 
-  // The residual terms (layout: model/error_estimate_data.hpp), on the free DOFs. The Mk R contact
-  // columns -E_c' Q_i' Xi_r all lie in the n_c columns of E_c' (the contact DOFs): they are kept
-  // as E_c' times the small n_c x (Mk R) matrix C, so the QR below factors n_free x (d0 + n_c),
-  // not n_free x d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted QR).
+  // The residual terms on the free DOFs, whitened by X's factor: ||r||_{X'}^2 = |L^-1 P r|^2. The
+  // Mk R contact columns -E_c' Q_i' Xi_r all lie in the n_c columns of E_c' (the contact DOFs):
+  // they are kept as E_c' times the small n_c x (Mk R) matrix C, so the factor S has d0 + n_c
+  // columns, not d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted QR).
   const Index d = residual_columns(Jf, Ja, JD, N, Mk, R);
   const Index d0 = d - static_cast<Index>(Mk) * R;
-  Eigen::MatrixXd terms_free(n_free, d0 + n_c);
-  Index col = 0;
-  for (int j = 0; j < Jf; ++j) terms_free.col(col++) = restrict_free(terms.f[sz(j)]);
-  for (int j = 0; j < Ja; ++j) {
-    for (int k = 0; k < JD; ++k) terms_free.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)]);
-  }
-  // A_j,00 Theta: A_j Theta extended by zero on the constrained DOFs, restricted to the free ones.
-  Eigen::MatrixXd Theta_global = Eigen::MatrixXd::Zero(num_dofs, N);
-  for (Index i = 0; i < n_free; ++i) Theta_global.row(free[sz(i)]) = Theta.row(i);
-  for (int j = 0; j < Ja; ++j) {
-    const Eigen::MatrixXd AT = terms.A[sz(j)] * Theta_global;
-    for (int n = 0; n < N; ++n) terms_free.col(col++) = -restrict_free(AT.col(n));
-  }
-  // E_c': contact DOF a -> its free index (a constrained contact DOF has no column entry).
-  terms_free.rightCols(n_c).setZero();
-  for (Index a = 0; a < n_c; ++a) {
-    const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
-    if (fi >= 0) terms_free(fi, d0 + a) = 1.0;
-  }
+  const Index S_cols = d0 + n_c;
+  const Eigen::MatrixXd S = whitened_residual_factor(in, base, S_cols);
   // The contact term -E_c' K' Xi lambda with K ~ sum_i phi_i Q_i (50): column (i, r) of C is
   // -(Q_i' Xi)_r.
   std::vector<Eigen::MatrixXd> Q(sz(Mk));
@@ -201,30 +291,9 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
     Q[sz(i)] = unflatten_column(in.Q_kappa->col(i), R_kept, n_c);
     C.middleCols(static_cast<Index>(i) * R, R) = -(Q[sz(i)].transpose() * Xi);
   }
-
-  // X = A_00(mu_ref) = P L L' P' (Eigen's convention: P X P' = L L'); ||r||_{X'}^2 = |L^-1 P r|^2.
-  const fem::SparseMatrix A_ref = cases::combine(terms.A, cases::evaluate(in.thetas->a, in.reference_mu));
-  Eigen::SparseMatrix<double> X(n_free, n_free);
-  {
-    std::vector<Eigen::Triplet<double>> trip;
-    for (Index k = 0; k < A_ref.outerSize(); ++k) {
-      for (fem::SparseMatrix::InnerIterator it(A_ref, k); it; ++it) {
-        const Index r = global_to_free[sz(it.row())], c = global_to_free[sz(it.col())];
-        if (r >= 0 && c >= 0) trip.emplace_back(r, c, it.value());
-      }
-    }
-    X.setFromTriplets(trip.begin(), trip.end());
-  }
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(X);
-  require(llt.info() == Eigen::Success,
-          "build_estimate_data: the energy product at the reference value is not positive definite");
-  Eigen::MatrixXd W = llt.permutationP() * terms_free;
-  llt.matrixL().solveInPlace(W);
-  // W = [W0 | G] = Q0 [S0 | SG] (thin, unpivoted, blocked); then every residual column is
-  // Q0 times a column of T0 = [S0 | SG C], so |W_full y| = |T0 y| with T0 of d0 + n_c rows at most.
-  const Index k0 = std::min<Index>(n_free, d0 + n_c);
-  Eigen::HouseholderQR<Eigen::MatrixXd> thin(W);
-  const Eigen::MatrixXd S = thin.matrixQR().topRows(k0).triangularView<Eigen::Upper>();
+  // W = [W0 | G] = Q0 [S0 | SG]; every residual column is Q0 times a column of T0 = [S0 | SG C],
+  // so |W_full y| = |T0 y| with T0 of d0 + n_c rows at most.
+  const Index k0 = S.rows();
   Eigen::MatrixXd T0(k0, d);
   T0.leftCols(d0) = S.leftCols(d0);
   T0.rightCols(d - d0) = S.rightCols(n_c) * C;
@@ -233,14 +302,14 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
   e.theta_a_reference = cases::evaluate(in.thetas->a, in.reference_mu);
   e.residual_T = residual_factor(T0);  // W = Q R P': |W y| = |R P' y|
   // The exact contact rows' residual: the unit loads on exact_dofs are columns of S itself.
-  e.exact_dofs = exact_contact_dofs(in, global_to_free);
+  e.exact_dofs = exact_contact_dofs(in, base.global_to_free);
   Eigen::MatrixXd T1(k0, d0 + ix(e.exact_dofs.size()));
   T1.leftCols(d0) = S.leftCols(d0);
   for (std::size_t k = 0; k < e.exact_dofs.size(); ++k) T1.col(d0 + ix(k)) = S.col(d0 + e.exact_dofs[k]);
   e.residual_exact = residual_factor(T1);
   for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
   e.Q_gamma = *in.Q_gamma;
-  calibrate_eim(in, llt, global_to_free, e);
+  calibrate_eim(in, base.llt, base.global_to_free, e);
   return e;
 }
 

@@ -12,6 +12,7 @@
 // accuracy floor is that of T y, about 1e-15 |T| |y|, not the square root of it).
 // Online: ErrorEstimator (online/error_estimator.hpp).
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
 #include <vector>
 
 #include "contactrb/cases/theta.hpp"
@@ -50,6 +51,22 @@ struct EstimateInputs {
   const std::vector<int>* gamma_magic = nullptr;   // Mg_max
   const Eigen::MatrixXd* B_gamma = nullptr;
   const model::ContactSurface* surface = nullptr;  // its chains give the margin of exact_dofs
+  // The basis-free parts, shared by successive builds (nullptr, or not built yet: built here).
+  struct EstimateBase* base = nullptr;
+};
+
+// The parts of the estimate's offline data that depend on the problem only, not on the bases:
+// X = A_00(reference_mu) factored, and the whitened load, lift and contact-DOF columns
+// L^-1 P [f_j | -A_j u_D,k] and L^-1 P E_c'.
+struct EstimateBase {
+  bool built = false;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+  std::vector<Eigen::Index> global_to_free;  // -1 on a Dirichlet DOF
+  int n_fixed = 0;                           // J^f + J^a J^D
+  // [W_fixed | W_contact] = Q_fixed R_fixed, W_fixed = L^-1 P [f_j | -A_j u_D,k] and
+  // W_contact = L^-1 P E_c' (n_free x n_c); Q_fixed thin, with orthonormal columns.
+  Eigen::MatrixXd Q_fixed;
+  Eigen::MatrixXd R_fixed;
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.

@@ -128,11 +128,20 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
 }
 
 double max_geometric_ratio(const io::SnapshotSet& set, const cases::CaseSpec& spec, const mesh::Mesh& reference,
-                           contact::Discretization d) {
+                           contact::Discretization d, GeometricRatios* known) {
   InverseBlocks inverse;
   double eta = 0.0;
   for (const io::Snapshot& s : set.snapshots) {
-    if (s.converged) eta = std::max(eta, geometric_ratio(spec, reference, d, s, inverse));
+    if (!s.converged) continue;
+    const auto seen = known ? std::find_if(known->begin(), known->end(), [&](const auto& k) { return k.first == s.mu; })
+                            : GeometricRatios::iterator{};
+    if (known && seen != known->end()) {
+      eta = std::max(eta, seen->second);
+      continue;
+    }
+    const double eta_p = geometric_ratio(spec, reference, d, s, inverse);
+    if (known) known->emplace_back(s.mu, eta_p);
+    eta = std::max(eta, eta_p);
   }
   return eta;
 }

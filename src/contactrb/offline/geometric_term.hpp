@@ -11,6 +11,9 @@
 //   eta_p = max { v'(-H)v / v'A(mu_p)v : D_A v = 0 },
 // reduced exactly to the DOFs H and D_A touch by the Schur complement of A_00(mu_p) there (the
 // minimum energy of every extension). The estimate then solves (1 - eta)|e|^2 <= 2 c1 |e| + c2.
+#include <utility>
+#include <vector>
+
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/io/snapshot_file.hpp"
@@ -22,9 +25,14 @@ namespace contactrb::offline {
 double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
                        const io::Snapshot& snapshot);
 
+// eta_p of the snapshots already seen, by parameter value (a greedy's builds share them: each
+// snapshot's eta_p is computed once).
+using GeometricRatios = std::vector<std::pair<cases::Mu, double>>;
+
 // max_p eta_p over the converged snapshots of `set` (0 without contact). Its value at the training
-// points is calibrated, not bounded, for other parameter values.
+// points is calibrated, not bounded, for other parameter values. With `known`, the snapshots whose
+// mu it holds are not solved again and the others are added to it.
 double max_geometric_ratio(const io::SnapshotSet& set, const cases::CaseSpec& spec, const mesh::Mesh& reference,
-                           contact::Discretization d);
+                           contact::Discretization d, GeometricRatios* known = nullptr);
 
 }  // namespace contactrb::offline

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -523,11 +524,12 @@ void contact_arrays(const io::SnapshotSet& set, const ReferenceTerms& ref, const
 // --- The a posteriori error estimate's offline data (error_estimate.hpp).
 EstimateData estimate_data_step(const io::SnapshotSet& set, const cases::CaseSpec& spec, const ReferenceTerms& ref,
                                 const Eigen::MatrixXd& Theta, const ReducedModel& m,
-                                const DualSnapshots& dual_snapshots, const EIMResult& eim_k, const EIMResult& eim_g) {
+                                const DualSnapshots& dual_snapshots, const EIMResult& eim_k, const EIMResult& eim_g,
+                                EstimateBase* base) {
   return build_estimate_data({&ref.terms, &ref.thetas, cases::reference_mu(spec.parameters), &set.free_dofs,
                               &set.contact_dofs, &Theta, &m.Theta_c, &m.Xi, &eim_k.Q, &eim_g.Q, &set,
                               &dual_snapshots.kept, &ref.lift_c, &dual_snapshots.weights, &eim_k.magic_points,
-                              &eim_k.B, &eim_g.magic_points, &eim_g.B, &m.surface});
+                              &eim_k.B, &eim_g.magic_points, &eim_g.B, &m.surface, base});
 }
 
 // The training points and their coordinates. Theta is M-orthonormal, so Theta' M u_0 are the
@@ -573,6 +575,50 @@ ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const Refe
 
 }  // namespace
 
+// What a greedy's builds share (offline_builder.hpp), valid for one case, level, discretization
+// and inner product: the first build fills it, the next ones check that their set is of the same
+// problem and reuse it.
+struct OfflineBuildCache::Parts {
+  bool matches(const io::SnapshotSet& set, const cases::CaseSpec& spec, InnerProduct product) const {
+    return ref.has_value() && case_name == spec.name && level == set.level && constraint == set.constraint &&
+           this->product == product && num_dofs == set.num_dofs && free_dofs == set.free_dofs &&
+           contact_dofs == set.contact_dofs;
+  }
+  std::string case_name, constraint;
+  int level = -1, num_dofs = -1;
+  InnerProduct product = InnerProduct::Energy;
+  std::vector<int> free_dofs, contact_dofs;
+  std::optional<ReferenceTerms> ref;
+  EstimateBase estimate;
+  GeometricRatios geometric;
+};
+
+OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
+OfflineBuildCache::~OfflineBuildCache() = default;
+
+namespace {
+
+// The reference terms of `set`: from the cache when it holds this problem's, else assembled (and
+// the cache, if any, restarted on this problem).
+const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const cases::CaseSpec& spec,
+                                             InnerProduct product, OfflineReport& report,
+                                             OfflineBuildCache::Parts& parts) {
+  if (parts.matches(set, spec, product)) return *parts.ref;
+  parts.estimate.built = false;
+  parts.geometric.clear();
+  parts.ref = assemble_reference_terms(set, spec, product, report);
+  parts.case_name = spec.name;
+  parts.constraint = set.constraint;
+  parts.level = set.level;
+  parts.num_dofs = set.num_dofs;
+  parts.product = product;
+  parts.free_dofs = set.free_dofs;
+  parts.contact_dofs = set.contact_dofs;
+  return *parts.ref;
+}
+
+}  // namespace
+
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
 
 void check_settings(const OfflineSettings& s) {
@@ -590,7 +636,7 @@ void check_settings(const OfflineSettings& s) {
 // The offline stage, paper Section 5 (docs/theory.md, "POD, dual cones, EIM"): (T2) POD,
 // (T3) dual cone, (T1) EIM of kappa and gamma, then the arrays (49), (54)-(55) of Algorithm 1.
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
-                                  const OfflineSettings& settings) {
+                                  const OfflineSettings& settings, OfflineBuildCache* cache) {
   const auto t_total = Clock::now();
   check_settings(settings);
   check_set_matches_case(set, spec);
@@ -599,7 +645,9 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
 
   OfflineResult out;
   OfflineReport& rep = out.report;
-  const ReferenceTerms ref = assemble_reference_terms(set, spec, settings.inner_product, rep);
+  OfflineBuildCache own;
+  OfflineBuildCache::Parts& parts = cache ? *cache->parts_ : *own.parts_;
+  const ReferenceTerms& ref = cached_reference_terms(set, spec, settings.inner_product, rep, parts);
   const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
   const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
   const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
@@ -619,10 +667,10 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
   m.surface = contact_surface(set, ref.mesh);
   contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
-  m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g);
+  m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate);
   if (settings.dual_method == DualConeMethod::Rows) {  // its online default: the exact rows' estimate
-    m.estimate.geometric_ratio =
-        max_geometric_ratio(set, spec, ref.mesh, contact::discretization_from_string(set.constraint));
+    m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
+                                                     contact::discretization_from_string(set.constraint), &parts.geometric);
   }
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);

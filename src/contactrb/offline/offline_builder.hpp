@@ -6,6 +6,7 @@
 // except contact-surface rows. The HF-size data needed to reconstruct fields are returned
 // apart (ReducedReconstruction), for tests, VTU output and error indicators.
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -105,7 +106,27 @@ struct OfflineResult {
 // negative or repeated, inconsistent sizes, a non-finite value: checked before any index is
 // used), a set with a failed snapshot or a repeated training value, a set that does not match
 // the spec (DOF counts), or invalid settings.
+//
+// `cache`: what successive builds on growing sets of one case, level and discretization share (a
+// greedy's steps): the reference terms, the energy product's factor and the constant residual
+// columns of the estimate, and each snapshot's geometric ratio, computed at the first build that
+// needs them. The model is the same bits as without it.
+class OfflineBuildCache;
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
-                                  const OfflineSettings& settings = {});
+                                  const OfflineSettings& settings = {}, OfflineBuildCache* cache = nullptr);
+
+class OfflineBuildCache {
+ public:
+  OfflineBuildCache();
+  ~OfflineBuildCache();
+  OfflineBuildCache(const OfflineBuildCache&) = delete;
+  OfflineBuildCache& operator=(const OfflineBuildCache&) = delete;
+  struct Parts;
+
+ private:
+  friend OfflineResult build_reduced_model(const io::SnapshotSet&, const cases::CaseSpec&, const OfflineSettings&,
+                                           OfflineBuildCache*);
+  std::unique_ptr<Parts> parts_;
+};
 
 }  // namespace contactrb::offline

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -18,8 +17,8 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
-#include "contactrb/common/run_threads.hpp"
 #include "contactrb/io/csv_writer.hpp"
+#include "contactrb/offline/greedy_sweep.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/common/number_text.hpp"
 
@@ -42,83 +41,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string mu_text(const GreedyMu& mu) { return cases::mu_values_text(mu); }
 
-// The criterion at every training point for one model (online solves only), `jobs` threads with
-// one OnlineSolver each; every point writes its own slot, so the result does not depend on jobs.
-struct Sweep {
-  std::vector<double> criterion;
-  std::vector<double> failed;  // 1: the online solve at that point did not converge
-  int failures = 0;            // online solves that did not converge
-};
-
-// Only the points [begin, end) are solved (one process's block); the others keep +inf / not failed.
-Sweep sweep_estimate(const ReducedModel& model, const std::vector<GreedyMu>& mus, const OnlineSettings& online,
-                     int jobs, std::size_t begin, std::size_t end) {
-  const std::size_t n = end;
-  Sweep out;
-  out.criterion.assign(mus.size(), kInf);
-  out.failed.assign(mus.size(), 0.0);
-  std::vector<char> failed(mus.size(), 0);
-  std::vector<std::exception_ptr> errors(mus.size());
-  std::atomic<std::size_t> next{begin};
-  std::atomic<bool> stop{false};
-  const auto work = [&](std::exception_ptr& own_setup_error) {
-    try {
-      OnlineSolver solver(model);
-      for (std::size_t i = next.fetch_add(1); i < n && !stop; i = next.fetch_add(1)) {
-        try {
-          const OnlineSolution s = solver.solve(mus[i], online);
-          failed[i] = s.converged() ? 0 : 1;
-          out.criterion[i] = relative_estimate(model, mus[i], s);
-        } catch (...) {  // nothing may escape a worker thread
-          errors[i] = std::current_exception();
-          stop = true;
-        }
-      }
-    } catch (...) {
-      own_setup_error = std::current_exception();
-      stop = true;
-    }
-  };
-  const std::size_t threads_count = std::max<std::size_t>(1, std::min(end - begin, static_cast<std::size_t>(jobs)));
-  std::vector<std::exception_ptr> setup_errors(threads_count);
-  run_threads(threads_count, [&](std::size_t t) { work(setup_errors[t]); });
-  for (const std::exception_ptr& e : setup_errors) {
-    if (e) std::rethrow_exception(e);
-  }
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
-  for (std::size_t i = 0; i < failed.size(); ++i) {
-    out.failed[i] = failed[i];
-    out.failures += failed[i];
-  }
-  return out;
-}
-
-// The sweep over the whole training set: on this process alone, or its block on each process of
-// a distributed run, then gathered (every process gets the same criterion and failures).
-Sweep sweep_all(const ReducedModel& model, const std::vector<GreedyMu>& mus, const OnlineSettings& online, int jobs,
-                const GreedyDistribution& dist) {
-  if (!dist.active()) return sweep_estimate(model, mus, online, jobs, 0, mus.size());
-  const auto [begin, end] = dist.block(mus.size());
-  Sweep out;
-  std::exception_ptr error;
-  try {
-    out = sweep_estimate(model, mus, online, jobs, begin, end);
-  } catch (...) {  // the other processes wait in the gather: tell them first
-    error = std::current_exception();
-    out.criterion.assign(mus.size(), kInf);
-    out.failed.assign(mus.size(), 0.0);
-  }
-  const bool all_ok = dist.gather(out.criterion, !error);
-  if (error) std::rethrow_exception(error);
-  require(all_ok, "greedy: the estimate sweep failed on another MPI rank (its error is printed there)");
-  dist.gather(out.failed, true);
-  out.failures = 0;
-  for (double f : out.failed) out.failures += f != 0.0 ? 1 : 0;
-  return out;
-}
-
 // Progress: one line per step (ProgressMode conventions of snapshot_generation.hpp; a step is
 // long, so the Terminal mode prints lines as well).
 class GreedyProgress {
@@ -139,7 +61,8 @@ class GreedyProgress {
        << ", Mg " << r.Mg << ", max estimate " << std::setprecision(3) << r.max_estimate << " at mu = "
        << cases::mu_short_text(r.argmax_mu);
     if (r.online_failures > 0) os << " (" << r.online_failures << " online failures)";
-    os << std::fixed << std::setprecision(3) << ", build " << r.build_s << " s, sweep " << r.sweep_s << " s";
+    os << std::fixed << std::setprecision(3) << ", build " << r.build_s << " s, sweep " << r.sweep_s << " s ("
+       << r.sweep_solves << " online solves)";
     if (r.chosen >= 0) {
       os << ", HF " << r.hf_s << " s" << std::defaultfloat << std::setprecision(3);
       if (r.hf_converged) {
@@ -202,6 +125,8 @@ void check_settings(const GreedyOfflineSettings& s) {
   require(s.max_hf >= 1, "greedy: the HF budget must be >= 1, got " + std::to_string(s.max_hf));
   require(s.jobs >= 1, "greedy: the number of jobs must be >= 1, got " + std::to_string(s.jobs));
   require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));
+  require(s.saturation >= 1.0, "greedy: the saturation constant must be >= 1 (+inf: every point every step), got " +
+                                   number_text(s.saturation));
   check_settings(s.offline);
 }
 
@@ -269,7 +194,9 @@ struct Greedy {
   cases::AffineThetas thetas;
   OnlineSettings online;  // with the error estimate
   std::vector<char> selected, excluded;
+  GreedyEstimates estimates;  // each training point's last estimate
   GreedyOfflineResult out;
+  OfflineBuildCache cache;  // what the steps' builds share
 };
 
 // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
@@ -309,7 +236,7 @@ void start(Greedy& g, GreedyProgress& progress) {
 // Extend's counterpart: the reduced model of the selected snapshots.
 void build_model(Greedy& g, GreedyStep& row) {
   const auto t0 = Clock::now();
-  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.settings.offline);
+  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.settings.offline, &g.cache);
   row.build_s = seconds_since(t0);
   const ReducedModel& model = g.out.offline.model;
   row.N = model.N_max;
@@ -318,33 +245,54 @@ void build_model(Greedy& g, GreedyStep& row) {
   row.Mg = model.Mg_max;
 }
 
-// Evaluate: the relative estimate over the training set (the excluded points do not count).
-// Returns the points not selected yet, largest estimate first: the next HF solves.
-std::vector<int> evaluate(const Greedy& g, GreedyStep& row) {
-  const auto t0 = Clock::now();
-  const int P = static_cast<int>(g.training.size());
-  const Sweep sweep = sweep_all(g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution);
-  row.sweep_s = seconds_since(t0);
-  // A point where the online solve fails (or gives no finite estimate) is a point to enrich
-  // first (+inf in the order below), not a maximum: max_estimate is over the points answered,
-  // and argmax is the first failing point when there is one.
+// The step's figures from the fresh estimates: failures, the max over the points answered and
+// its argmax (the first failing point when there is one).
+void summarize_sweep(const Greedy& g, GreedyStep& row) {
+  const GreedyEstimates& e = g.estimates;
   row.online_failures = 0;
   row.max_estimate = -kInf;
   int argmax_answered = -1;
-  std::vector<int> candidates;
-  for (int i = 0; i < P; ++i) {
-    if (g.excluded[sz(i)]) continue;
-    if (!g.selected[sz(i)]) candidates.push_back(i);
-    if (sweep.failed[sz(i)] != 0.0 || !std::isfinite(sweep.criterion[sz(i)])) {
-      if (row.online_failures++ == 0) row.argmax = i;
-    } else if (sweep.criterion[sz(i)] > row.max_estimate) {  // strict: ties to the smallest index
-      row.max_estimate = sweep.criterion[sz(i)];
-      argmax_answered = i;
+  for (std::size_t i = 0; i < g.training.size(); ++i) {
+    if (g.excluded[i] || !e.fresh[i]) continue;
+    if (e.failed[i] || !std::isfinite(e.value[i])) {
+      if (row.online_failures++ == 0) row.argmax = static_cast<int>(i);
+    } else if (e.value[i] > row.max_estimate) {  // strict: ties to the smallest index
+      row.max_estimate = e.value[i];
+      argmax_answered = static_cast<int>(i);
     }
   }
   if (row.online_failures == 0) row.argmax = argmax_answered;
+}
+
+// Evaluate: the relative estimate at the points that may hold the largest ones (greedy_sweep.hpp;
+// every point when GreedyOfflineSettings::saturation is +inf), and at every point before the
+// greedy stops on the tolerance, so that the stop is checked on the whole training set. Online
+// failures and points without a finite estimate are enriched first (+inf in the order below).
+// Returns the points not selected yet, largest estimate first: the next HF solves.
+std::vector<int> evaluate(Greedy& g, GreedyStep& row) {
+  const auto t0 = Clock::now();
+  const int P = static_cast<int>(g.training.size());
+  const SweepContext context{g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution,
+                             g.excluded};
+  std::vector<char> eligible(sz(P), 0);
+  std::vector<int> candidates;
+  for (int i = 0; i < P; ++i) {
+    eligible[sz(i)] = !g.excluded[sz(i)] && !g.selected[sz(i)];
+    if (eligible[sz(i)]) candidates.push_back(i);
+  }
+  sweep_largest(context, eligible, sz(g.settings.batch), g.settings.saturation, g.estimates);
+  row.sweep_solves = g.estimates.solves;
+  summarize_sweep(g, row);
+  const bool partial = std::any_of(candidates.begin(), candidates.end(), [&](int i) { return !g.estimates.fresh[sz(i)]; });
+  if (partial && row.online_failures == 0 && row.max_estimate <= g.settings.tolerance) {
+    sweep_every_point(context, g.estimates);
+    row.sweep_solves += g.estimates.solves;
+    summarize_sweep(g, row);
+  }
+  row.sweep_s = seconds_since(t0);
+  const std::vector<double>& value = g.estimates.value;
   std::stable_sort(candidates.begin(), candidates.end(),  // stable: ties to the smallest index
-                   [&](int a, int b) { return sweep.criterion[sz(a)] > sweep.criterion[sz(b)]; });
+                   [&](int a, int b) { return value[sz(a)] > value[sz(b)]; });
   row.argmax_mu = g.training[sz(row.argmax)];
   return candidates;
 }
@@ -453,7 +401,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
   const std::size_t P = training.size();
   Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
-           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), {}};
+           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}};
   g.online.error_estimate = true;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
@@ -498,7 +446,7 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
   columns.push_back("online_failures");
   for (const io::SnapshotParameter& q : params) columns.push_back("chosen_" + q.name);
   for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s", "batch_solves",
-                        "batch_failures"}) {
+                        "batch_failures", "sweep_solves"}) {
     columns.push_back(c);
   }
   io::CsvWriter csv(columns);
@@ -515,7 +463,8 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
     for (std::size_t k = 0; k < params.size(); ++k) row.emplace_back(value(r.chosen_mu, k));
     for (const io::CsvCell& c : std::vector<io::CsvCell>{r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s,
                                                          r.hf_s, r.step_s, static_cast<long long>(r.batch_points.size()),
-                                                         static_cast<long long>(r.batch_failures)}) {
+                                                         static_cast<long long>(r.batch_failures),
+                                                         static_cast<long long>(r.sweep_solves)}) {
       row.push_back(c);
     }
     csv.add_row(row);

@@ -84,6 +84,11 @@ struct GreedyOfflineSettings {
   // processes). 1: the classic weak greedy, one solve per model build. Larger batches spend fewer
   // builds and sweeps per HF solve, and may select points a one-at-a-time greedy would not.
   int batch = 1;
+  // The saturation constant tau of the lazy sweep (greedy_sweep.hpp): a point whose last estimate
+  // times tau is below the batch-th largest fresh estimate is not solved again this step. 1
+  // assumes the estimate of a point never grows as the model is enriched; +inf solves every point
+  // every step. Before the greedy stops on the tolerance every point is solved, whatever tau.
+  double saturation = 1.0;
   // Of every build_reduced_model call: the defaults of `contactrb offline`, compression (Remark 7)
   // included. Measured both ways (docs/offline-online.md, "Greedy sampling"): with few snapshots
   // the kept rows can miss a row the reduced solution then penetrates (hertz-a, 61 points, eps_KA
@@ -99,7 +104,7 @@ struct GreedyOfflineSettings {
   GreedyDistribution distribution;             // empty: one process
 };
 // Throws contactrb::Error naming the first invalid setting (tolerance <= 0 or not finite,
-// max_hf < 1, jobs < 1, batch < 1, invalid offline settings).
+// max_hf < 1, jobs < 1, batch < 1, saturation < 1 or NaN, invalid offline settings).
 void check_settings(const GreedyOfflineSettings& settings);
 
 // One step: the reduced model built from the `snapshots` selected so far, its estimate sweep,
@@ -110,9 +115,10 @@ struct GreedyStep {
   int snapshots = 0;  // snapshots of this step's model
   int hf_solves = 0;  // HF solves spent before this step's own one (failed ones included)
   int N = 0, R = 0, Mk = 0, Mg = 0;
-  // Max of relative_estimate over the usable training points where the online solve converged
-  // with a finite estimate (-inf when there is none); the others are counted in online_failures
-  // and are the first points the step enriches.
+  // Max of relative_estimate over the usable training points the sweep solved (every point when the
+  // greedy stops on the tolerance; under the saturation assumption, the max over every point) where
+  // the online solve converged with a finite estimate (-inf when there is none); the others are
+  // counted in online_failures and are the first points the step enriches.
   double max_estimate = 0.0;
   int argmax = -1;            // training index of the max, or of the first online failure when there is one
   GreedyMu argmax_mu;
@@ -132,6 +138,7 @@ struct GreedyStep {
   // when the greedy stopped here) and how many of them failed (those points are excluded).
   std::vector<int> batch_points;
   int batch_failures = 0;
+  int sweep_solves = 0;  // online solves of the sweep (the training points solved)
   // Wall times (s): build_reduced_model, the sweep, the step's HF solves, the whole step.
   double build_s = 0.0, sweep_s = 0.0, hf_s = 0.0, step_s = 0.0;
 };
@@ -176,7 +183,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
 // The per-step table as CSV (one line per step: step,snapshots,hf_solves,N,R,Mk,Mg,max_estimate,
 // argmax_<name>...,online_failures,chosen_<name>...,hf_status,true_error,true_e_press,build_s,sweep_s,
-// hf_s,step_s,batch_solves,batch_failures; one argmax_ and one chosen_ column per parameter, chosen_
+// hf_s,step_s,batch_solves,batch_failures,sweep_solves; one argmax_ and one chosen_ column per parameter, chosen_
 // empty (NaN) when the greedy stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 

@@ -47,6 +47,7 @@ nlohmann::json to_json(const GreedyStep& r, const SnapshotRequest& request) {
           {"true_e_press", finite_or_null(r.true_e_press)},
           {"batch_mu", points_json(request, r.batch_points)},
           {"batch_failures", r.batch_failures},
+          {"sweep_solves", r.sweep_solves},
           {"times_s", {{"build", r.build_s}, {"sweep", r.sweep_s}, {"hf", r.hf_s}, {"step", r.step_s}}}};
 }
 
@@ -59,6 +60,7 @@ nlohmann::json greedy_json(const GreedyOfflineResult& g, const SnapshotRequest& 
   j["tolerance"] = settings.tolerance;
   j["max_hf"] = settings.max_hf;
   j["batch"] = settings.batch;
+  j["saturation"] = finite_or_null(settings.saturation);
   j["status"] = to_string(g.status);
   j["hf_solves"] = g.hf_solves;
   j["start"] = point_json(request, request.mu[static_cast<std::size_t>(g.start)]);

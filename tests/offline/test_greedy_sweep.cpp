@@ -1,0 +1,153 @@
+// The lazy estimate sweep of the greedy (offline/greedy_sweep.hpp), on a hertz-a model and its 61
+// training values: with valid bounds (each point's last estimate at least its new one) the lazy
+// sweep finds the same largest estimates as the full sweep, at the same values, and solves fewer
+// points; saturation +inf is the full sweep; an exact bound of every point costs one chunk.
+// The greedy with the lazy sweep stops only when every training point is below the tolerance,
+// checked here by an independent loop of online solves.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/parameter.hpp"
+#include "contactrb/offline/greedy_sweep.hpp"
+#include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/online/online_solver.hpp"
+
+namespace {
+
+using contactrb::offline::GreedyDistribution;
+using contactrb::offline::GreedyEstimates;
+using contactrb::offline::SweepContext;
+
+const contactrb::cases::CaseSpec& spec() {
+  static const contactrb::cases::CaseSpec s = contactrb::cases::builtin_case_spec("hertz-a");
+  return s;
+}
+
+std::vector<contactrb::cases::Mu> training() {
+  std::vector<contactrb::cases::Mu> points;
+  for (int i = 0; i < 61; ++i) points.push_back(contactrb::cases::Mu::Constant(1, 0.15 + 0.3 * i / 60.0));
+  return points;
+}
+
+const contactrb::offline::SnapshotRequest& request() {
+  static const contactrb::offline::SnapshotRequest r =
+      contactrb::offline::make_snapshot_request(spec(), "training", 0, std::nullopt, training());
+  return r;
+}
+
+// A small model (budget 3) whose estimates vary over the training set.
+const contactrb::offline::GreedyOfflineResult& small_greedy() {
+  static const contactrb::offline::GreedyOfflineResult g = [] {
+    contactrb::offline::GreedyOfflineSettings s;
+    s.max_hf = 3;
+    s.tolerance = 1e-12;
+    return contactrb::offline::run_offline_greedy(spec(), request(), s);
+  }();
+  return g;
+}
+
+contactrb::online::OnlineSettings sweep_settings() {
+  contactrb::online::OnlineSettings online;
+  online.error_estimate = true;
+  return online;
+}
+
+// The indices of the `k` largest values, largest first (ties to the smaller index).
+std::vector<std::size_t> top(const std::vector<double>& v, std::size_t k) {
+  std::vector<std::size_t> idx(v.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] > v[b]; });
+  idx.resize(k);
+  return idx;
+}
+
+TEST(GreedySweep, ValidBoundsGiveTheFullSweepsLargestEstimates) {
+  const auto& model = small_greedy().offline.model;
+  const auto mus = training();
+  const auto online = sweep_settings();
+  const GreedyDistribution one_process;
+  const std::vector<char> skip(mus.size(), 0), eligible(mus.size(), 1);
+  const SweepContext context{model, mus, online, 1, one_process, skip};
+  GreedyEstimates full(mus.size());
+  contactrb::offline::sweep_every_point(context, full);
+  ASSERT_EQ(full.solves, 61);
+  for (double v : full.value) ASSERT_TRUE(std::isfinite(v) && v > 0.0);
+
+  // Bounds: each true value times a random factor in [1, 3] (a model that only improves).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> factor(1.0, 3.0);
+  GreedyEstimates lazy(mus.size());
+  for (std::size_t i = 0; i < mus.size(); ++i) lazy.value[i] = full.value[i] * factor(rng);
+  contactrb::offline::sweep_largest(context, eligible, 3, 1.0, lazy);
+  EXPECT_LT(lazy.solves, 61);
+  for (std::size_t i : top(full.value, 3)) {
+    EXPECT_TRUE(lazy.fresh[i]) << i;
+    EXPECT_EQ(lazy.value[i], full.value[i]) << i;  // the same online solve
+  }
+  EXPECT_EQ(top(lazy.value, 3), top(full.value, 3));
+
+  // Exact bounds: the first chunk holds the 3 largest, nothing after it is solved.
+  GreedyEstimates exact(mus.size());
+  exact.value = full.value;
+  contactrb::offline::sweep_largest(context, eligible, 3, 1.0, exact);
+  EXPECT_EQ(exact.solves, 8);
+
+  // Saturation +inf: every point.
+  GreedyEstimates every(mus.size());
+  every.value = full.value;
+  contactrb::offline::sweep_largest(context, eligible, 1, std::numeric_limits<double>::infinity(), every);
+  EXPECT_EQ(every.solves, 61);
+  EXPECT_EQ(every.value, full.value);
+}
+
+TEST(GreedySweep, SkippedPointsAreNeverSolved) {
+  const auto& model = small_greedy().offline.model;
+  const auto mus = training();
+  const auto online = sweep_settings();
+  const GreedyDistribution one_process;
+  std::vector<char> skip(mus.size(), 0);
+  for (std::size_t i = 0; i < mus.size(); i += 2) skip[i] = 1;
+  const SweepContext context{model, mus, online, 2, one_process, skip};
+  GreedyEstimates e(mus.size());
+  contactrb::offline::sweep_every_point(context, e);
+  EXPECT_EQ(e.solves, 30);
+  for (std::size_t i = 0; i < mus.size(); ++i) EXPECT_EQ(e.fresh[i] != 0, skip[i] == 0) << i;
+}
+
+// The greedy stops on the tolerance only when every training point is below it: an independent
+// loop over the 61 values with the returned model.
+TEST(GreedySweep, LazyGreedyStopsOnlyBelowTheToleranceEverywhere) {
+  contactrb::offline::GreedyOfflineSettings s;
+  s.tolerance = 1e-3;
+  s.max_hf = 20;
+  const auto g = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  ASSERT_EQ(g.status, contactrb::offline::GreedyOfflineStatus::ToleranceReached);
+  ASSERT_EQ(g.model_step, static_cast<int>(g.steps.size()));
+  EXPECT_EQ(g.steps.front().sweep_solves, 61);
+  EXPECT_GE(g.steps.back().sweep_solves, 61);  // the stop is checked on every point
+  int total = 0;
+  for (const auto& step : g.steps) total += step.sweep_solves;
+  EXPECT_LT(total, 61 * static_cast<int>(g.steps.size()));
+  contactrb::online::OnlineSolver solver(g.offline.model);
+  auto online = sweep_settings();
+  online.iteration = contactrb::online::OnlineIteration::Newton;
+  online.kacanov = contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepTolerance,
+                                                     contactrb::offline::kRowConeSweepIterations};
+  double worst = 0.0;
+  for (const auto& mu : training()) {
+    const auto answer = solver.solve(mu, online);
+    ASSERT_TRUE(answer.converged());
+    worst = std::max(worst, contactrb::offline::relative_estimate(g.offline.model, mu, answer));
+  }
+  EXPECT_LE(worst, s.tolerance);
+  EXPECT_EQ(worst, g.steps.back().max_estimate);
+}
+
+}  // namespace
