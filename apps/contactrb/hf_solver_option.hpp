@@ -17,4 +17,13 @@ CLI::Option* add_snapshot_solver_option(CLI::App* sub, std::optional<std::string
 // contactrb::Error naming --solver and the accepted values for anything else.
 std::optional<hf::HFMethod> snapshot_solver_option(const std::optional<std::string>& solver);
 
+// Adds --sequence K to `sub`, stored in `sequence` (-1: automatic, cases::resolve_sequence), the
+// grid sequencing of `solve` (docs/solvers.md, "Grid sequencing"); `prefix` opens its help, `what`
+// names the solves it applies to.
+CLI::Option* add_sequence_option(CLI::App* sub, int& sequence, const std::string& prefix = "",
+                                 const std::string& what = "");
+
+// Throws contactrb::Error naming --sequence for a value below -1 (the cheap check before any mesh).
+void check_sequence_option(int sequence);
+
 }  // namespace contactrb::app
