@@ -2,26 +2,26 @@
 # Warm starts and grid sequencing in snapshot sweeps (docs/performance.md, "Warm starts and grid
 # sequencing in snapshot sweeps"): `contactrb snapshots --solver newton` over a case's training set,
 # one thread, in four starts: cold (--warm-start off --sequence 0), every solve sequenced
-# (--warm-start off --sequence 2), warm from the nearest solved point (--warm-start on --sequence 0)
+# (--warm-start off --sequence K), warm from the nearest solved point (--warm-start on --sequence 0)
 # and the default (--warm-start on --sequence -1: warm, the first wave sequenced where the automatic
 # rule sequences). One CSV line per case and start: Newton iterations (mean, median, max) and wall
 # time per solve, for the first solve (the only cold one of a warm sweep) and the others apart; the
 # mean thread CPU time per solve (the figure to compare on a busy machine).
-#   bench/snapshot_warm_start.sh BUILD_DIR [CASE:LEVEL ...] > warm.csv
-# Default cases: hertz-a:4 ring-block:2 hertz-3d:1.
+#   bench/snapshot_warm_start.sh BUILD_DIR [CASE:LEVEL[:K] ...] > warm.csv
+# K: the coarse levels of the sequenced run (default 2; levels below 0 are skipped, so hertz-3d:1
+# has none). Default cases: hertz-a:4 ring-block:2 hertz-3d:1 hertz-3d:2:1.
 set -uo pipefail
 build=${1:-build}
 shift || true
 cases=("$@")
-[ ${#cases[@]} -eq 0 ] && cases=(hertz-a:4 ring-block:2 hertz-3d:1)
+[ ${#cases[@]} -eq 0 ] && cases=(hertz-a:4 ring-block:2 hertz-3d:1 hertz-3d:2:1)
 bin="$build/apps/contactrb/contactrb"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "case,level,warm_start,sequence,solves,first_iterations,first_s,others_mean_iterations,others_median_iterations,others_max_iterations,others_mean_s,mean_s,mean_cpu_s"
 for c in "${cases[@]}"; do
-  name=${c%%:*}
-  level=${c##*:}
-  for start in "off 0" "off 2" "on 0" "on -1"; do
+  IFS=: read -r name level k <<<"$c"
+  for start in "off 0" "off ${k:-2}" "on 0" "on -1"; do
     set -- $start
     # -j 1: the progress lines come in the schedule's order (the first is the first wave's).
     if ! "$bin" snapshots --case "$name" --level "$level" --solver newton --jobs 1 --warm-start "$1" --sequence "$2" \

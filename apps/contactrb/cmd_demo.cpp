@@ -135,7 +135,7 @@ int run_demo(const DemoOptions& opt) {
   std::cout << "e_displ: relative H1 error (65); e_inter: interpenetration (66); e_ener: energy error (64);\n"
             << "e_press: relative L2 error of the contact pressure; e_force: relative error of the contact force;\n"
             << "speed-up: median over mu of HF time / online time (HF: the " << ev.hf_solver
-            << " solver, the fastest, setup and solve; online: median of " << eo.online_repeats << " solves)\n"
+            << " solver, setup and solve; online: median of " << eo.online_repeats << " solves)\n"
             << "wrote " << model_path << "\nwrote " << csv_path << "\n";
   return su.hf_failures + su.rb_failures > 0 ? 3 : 0;
 }
