@@ -1,6 +1,7 @@
 #pragma once
 // --solver of the commands that solve HF snapshots (snapshots, offline, report): the HF method of
-// offline::SnapshotRequest::settings (docs/solvers.md, "Which solver for snapshots").
+// offline::SnapshotRequest::settings (docs/solvers.md, "Which solver for snapshots"); --sequence of
+// every command that solves HF (docs/solvers.md, "Grid sequencing").
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
