@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "hf_solver_option.hpp"
 #include "contactrb/cases/case_record.hpp"
 #include "contactrb/cases/recorded_mesh.hpp"
 #include "contactrb/common/error.hpp"
@@ -43,6 +44,7 @@ struct EvaluateOptions {
   int jobs = 1;
   int repeats = 5;
   std::string solver = "newton";
+  int sequence = -1;  // --sequence (study::EvaluationOptions::sequence; -1: automatic)
   std::string iteration = "automatic";  // --iteration: the reduced iteration, as `online`'s
   std::vector<double> multipliers;
   bool quiet = false;
@@ -88,6 +90,13 @@ std::string value_text(double mu) {
   return os.str();
 }
 
+// ", grid sequencing from levels 0, 2" (empty: none).
+std::string sequence_text(const std::vector<int>& levels) {
+  std::string text;
+  for (std::size_t k = 0; k < levels.size(); ++k) text += (k == 0 ? ", grid sequencing from levels " : ", ") + std::to_string(levels[k]);
+  return text;
+}
+
 void print_table(const study::Evaluation& e) {
   if (e.parameter_names.size() > 1) {
     for (const std::string& name : e.parameter_names) std::cout << std::setw(std::max<int>(10, static_cast<int>(name.size()) + 1)) << name;
@@ -130,8 +139,9 @@ void print_table(const study::Evaluation& e) {
             << "  best pressure in the model's cone: max " << s.max_e_press_cone << " (e_press cannot go below it)\n"
             << "  estimate / |u_rb - u_hf|_A effectivity over " << s.effectivity_count << " values: min "
             << s.min_effectivity << ", median " << s.median_effectivity << ", max " << s.max_effectivity << "\n"
-            << std::fixed << std::setprecision(1) << "  median HF " << s.median_hf_time_s * 1e3 << " ms, online "
-            << s.median_online_time_s * 1e6 << " us, speed-up " << std::setprecision(0) << s.median_speedup
+            << std::fixed << std::setprecision(1) << "  median HF (" << e.hf_solver << ") " << s.median_hf_time_s * 1e3
+            << " ms, online " << s.median_online_time_s * 1e6 << " us, speed-up against " << e.hf_solver << " "
+            << std::setprecision(0) << s.median_speedup
             << std::defaultfloat << std::setprecision(6) << "\n";
 }
 
@@ -139,6 +149,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   const online::OnlineSizes sizes = checked_size_flags(opt.sizes);
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
   require(opt.repeats >= 1, "--repeats must be >= 1 (got " + std::to_string(opt.repeats) + ")");
+  check_sequence_option(opt.sequence);
   const contactrb::model::ReducedModel model = io::read_reduced_model_file(opt.model);
   check_sizes_against(sizes, model, opt.model);
   const online::OnlineIteration iteration = checked_iteration_flag(opt.iteration, model);
@@ -163,6 +174,7 @@ int run_evaluate(const EvaluateOptions& opt) {
   options.online_repeats = opt.repeats;
   options.jobs = opt.jobs;
   options.hf_method = hf::hf_method_from_string(opt.solver);
+  options.sequence = opt.sequence;
   options.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   require(opt.multipliers.empty() || spec.num_parameters() == 1,
           "--multipliers is for one-parameter models (this one has " + std::to_string(spec.num_parameters()) + ")");
@@ -190,8 +202,8 @@ int run_evaluate(const EvaluateOptions& opt) {
   io::write_json(j, json_path);
 
   std::cout << "case " << model.case_name << ", set " << opt.set << " (" << mus.size() << " values), sizes N "
-            << e.N << ", R " << e.R << ", Mk " << e.Mk << ", Mg " << e.Mg << ", HF reference " << opt.solver
-            << " (speed-ups against it)\n";
+            << e.N << ", R " << e.R << ", Mk " << e.Mk << ", Mg " << e.Mg << ", HF reference " << e.hf_solver
+            << sequence_text(e.hf_sequence) << " (speed-ups against it)\n";
   print_table(e);
   for (const std::string& p : written) std::cout << "wrote " << p << "\n";
   if (e.summary.hf_failures + e.summary.rb_failures > 0) {
@@ -220,6 +232,7 @@ Command add_evaluate_command(CLI::App& app) {
   sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
   sub->add_option("--solver", opt->solver, "HF reference solver: newton (KKT residual 1e-10) | kacanov (the snapshots' eps_KA)")
       ->capture_default_str();
+  add_sequence_option(sub, opt->sequence, "", " of the HF reference solves (timed with them)");
   sub->add_option("--repeats", opt->repeats, "Online solves per value (the time is their median)")
       ->capture_default_str();
   sub->add_option("--iteration", opt->iteration,

@@ -63,6 +63,7 @@ struct OfflineOptions {
   double tolerance = solve::KacanovSettings{}.tolerance;
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   std::optional<std::string> solver;  // --solver (nullopt: offline::default_snapshot_method)
+  int sequence = -1;                  // --sequence (offline::set_snapshot_sequence; -1: automatic)
   bool quiet = false;
   double eps_pod = offline::OfflineSettings{}.eps_pod;
   std::optional<int> n;  // absent: --eps-pod decides
@@ -96,8 +97,9 @@ std::string sibling_path(const std::string& model_path, const char* name) {
 }
 
 // The HF solves the options ask for: the case's set (or --values), level, constraint and the
-// Kacanov settings (both the POD path and the greedy).
+// Kacanov settings, the HF method and the grid sequencing (both the POD path and the greedy).
 offline::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases::CaseSpec& spec) {
+  check_sequence_option(opt.sequence);
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
@@ -107,6 +109,7 @@ offline::SnapshotRequest snapshot_request(const OfflineOptions& opt, const cases
   request.settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(request.settings.kacanov);
   request.settings.method = snapshot_solver_option(opt.solver).value_or(request.settings.method);
+  offline::set_snapshot_sequence(request, opt.sequence);
   return request;
 }
 
@@ -395,9 +398,12 @@ Command add_offline_command(CLI::App& app) {
       sub->add_option("--max-iterations", opt->max_iterations, "With --case: Kacanov iteration limit")
           ->capture_default_str();
   CLI::Option* solver_opt = add_snapshot_solver_option(sub, opt->solver, "With --case: ");
+  CLI::Option* sequence_opt =
+      add_sequence_option(sub, opt->sequence, "With --case: ", " of the snapshot solves without a warm start");
   CLI::Option* quiet_opt = sub->add_flag("--quiet,-q", opt->quiet, "With --case: no progress report on stderr");
   for (CLI::Option* o :
-       {set_opt, values_opt, level_opt, constraint_opt, jobs_opt, alpha_opt, tol_opt, iterations_opt, solver_opt, quiet_opt}) {
+       {set_opt, values_opt, level_opt, constraint_opt, jobs_opt, alpha_opt, tol_opt, iterations_opt, solver_opt, sequence_opt,
+        quiet_opt}) {
     o->excludes(snapshots_opt);
   }
   CLI::Option* eps_pod =

@@ -52,6 +52,7 @@ struct ReportOptions {
   std::vector<std::string> verification_values;
   std::optional<double> eps_pod, eps_du, eps_eim_k, eps_eim_g;
   std::optional<std::string> solver;  // --solver (nullopt: offline::default_snapshot_method)
+  int sequence = -1;                  // --sequence (study::StudySettings::sequence; -1: automatic)
   int history_r = study::StudySettings{}.history_max_R;
   int profiles = study::StudySettings{}.multiplier_profiles;
   int deformed = study::StudySettings{}.deformed_configurations;
@@ -126,6 +127,8 @@ int run_report(const ReportOptions& opt) {
   s.level = opt.level;
   if (!opt.constraint.empty()) s.constraint = contact::discretization_from_string(opt.constraint);
   s.snapshot_method = snapshot_solver_option(opt.solver);
+  check_sequence_option(opt.sequence);
+  s.sequence = opt.sequence;
   // A case file gets `contactrb offline`'s defaults whatever its name (a user case named like a
   // built-in one is not that case).
   s.tolerances = opt.case_file.empty() ? study::default_study_tolerances(spec.name) : study::StudyTolerances{};
@@ -184,7 +187,8 @@ int run_report(const ReportOptions& opt) {
   std::cout << "case " << r.case_name << ": " << r.training_mus.size() << " training values, "
             << r.verification_mus.size() << " verification values, " << r.constraint << "\n"
             << "| method | N | R | Mk | Mg | max e_displ (train) | max e_inter (train) | max e_displ (verif) | "
-               "median speed-up |\n";
+               "median speed-up against "
+            << (r.models.empty() ? std::string("HF") : r.models.front().training.hf_solver) << " |\n";
   for (const study::StudyModel& m : r.models) {
     const study::EvaluationSummary& t = m.training.summary;
     std::cout << "| " << m.label << " | " << m.N << " | " << m.R << " | " << m.Mk << " | " << m.Mg << " | "
@@ -215,6 +219,7 @@ Command add_report_command(CLI::App& app) {
   sub->add_option("--out", opt->out, "Output directory (default: out/report-<case>)");
   sub->add_option("--jobs,-j", opt->jobs, "Worker threads for the HF solves")->capture_default_str();
   add_snapshot_solver_option(sub, opt->solver);
+  add_sequence_option(sub, opt->sequence, "", " of the training snapshots' cold solves and of the HF reference solves");
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr, no plotting messages");
   sub->add_flag("--no-plots", opt->no_plots, "Write the CSV files and report.md only (no Python needed)");
   sub->add_option("--max-training", opt->max_training,

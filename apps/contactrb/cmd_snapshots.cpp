@@ -53,6 +53,7 @@ struct SnapshotsOptions {
   bool quiet = false;
   std::string part;  // "k/K": part k of K of the values (offline/snapshot_parts.hpp)
   std::string warm_start = "auto";  // --warm-start (SnapshotRunOptions::warm_start)
+  int sequence = -1;                // --sequence (offline::set_snapshot_sequence; -1: automatic)
   std::string out;
 };
 
@@ -82,6 +83,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   settings.kacanov.max_iterations = opt.max_iterations;
   solve::check_settings(settings.kacanov);
   const std::optional<hf::HFMethod> method = snapshot_solver_option(opt.solver);
+  check_sequence_option(opt.sequence);
   check_output_file(opt.out);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}}, {{"--out", opt.out}});
   const std::optional<std::vector<cases::Mu>> values = parse_values_points(opt.values, "--values", spec.parameters);
@@ -93,6 +95,7 @@ Setup make_setup(const SnapshotsOptions& opt, bool mpi) {
   p.request = offline::make_snapshot_request(spec, opt.set_name, opt.level, constraint, values);
   settings.method = method.value_or(p.request.settings.method);
   p.request.settings = settings;
+  offline::set_snapshot_sequence(p.request, opt.sequence);
   if (part) offline::restrict_to_part(p.request, *part);
   offline::SnapshotRunOptions& run = p.run;
   run.jobs = opt.jobs;
@@ -194,8 +197,14 @@ int run_snapshots(const SnapshotsOptions& opt) {
             << set.parameters.front().name << (set.parameters.size() > 1 ? " and others" : "") << "), " << set.constraint << ", " << set.num_dofs << " DOFs, " << rows
             << " constraints, "
             << (ranks > 0 ? std::to_string(ranks) + " MPI ranks\n" : std::to_string(opt.jobs) + (opt.jobs == 1 ? " job\n" : " jobs\n"));
-  std::cout << "solver: " << set.solver << "\n"
-            << "solves: " << s.solves << "\n"
+  std::cout << "solver: " << set.solver << "\n";
+  if (request.coarse || request.coarse3) {
+    const std::vector<int>& levels = request.coarse ? request.coarse->levels : request.coarse3->levels;
+    std::cout << "grid sequencing: levels";
+    for (std::size_t k = 0; k < levels.size(); ++k) std::cout << (k == 0 ? " " : ", ") << levels[k];
+    std::cout << " (the solves without a warm start)\n";
+  }
+  std::cout << "solves: " << s.solves << "\n"
             << "failures: " << s.failures << "\n";
   if (s.failures < s.solves) {
     std::cout << "iterations: min " << s.iterations_min << ", median " << s.iterations_median << ", max "
@@ -246,6 +255,7 @@ Command add_snapshots_command(CLI::App& app) {
   sub->add_option("--tol", opt->tolerance, "Kacanov stopping tolerance eps_KA of (63), > 0")->capture_default_str();
   sub->add_option("--max-iterations", opt->max_iterations, "Kacanov iteration limit")->capture_default_str();
   add_snapshot_solver_option(sub, opt->solver);
+  add_sequence_option(sub, opt->sequence, "", " of the solves without a warm start");
   sub->add_flag("--allow-failures", opt->allow_failures, "Exit 0 even when some solves failed (they are recorded)");
   sub->add_flag("--quiet,-q", opt->quiet, "No progress report on stderr");
   sub->add_option("--warm-start", opt->warm_start,

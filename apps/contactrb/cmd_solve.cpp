@@ -37,14 +37,6 @@ namespace contactrb::app {
 
 namespace {
 
-// Measured (docs/performance.md, "Why the defaults are what they are", "Grid sequencing from level 4"): with Newton,
-// two coarse stages (levels L - 4, L - 2) cut hertz-a's time from level 5 on (level 5: -14 % at
-// mu 0.3, -25 % at mu 0.45; level 7: -15 to -30 %) and break even on level 4 over the mu range
-// (+17 % / +6 % / -13 % at mu 0.15 / 0.3 / 0.45, 0.01-0.03 s), where they take the fine solve from
-// 5 / 8 / 9 Newton iterations to 3 / 4 / 4 (every coarse stage <= 7). Kacanov: never automatic (its
-// answer depends on the start to its tolerance eps_KA, docs/solvers.md "Warm start").
-constexpr int kAutoSequence = 2;
-constexpr int kAutoSequenceFromLevel = 4;
 
 struct SolveOptions {
   std::string case_name;
@@ -58,7 +50,7 @@ struct SolveOptions {
   int max_iterations = solve::KacanovSettings{}.max_iterations;
   int level = 0;
   // Grid sequencing: coarse levels level - 2k, ..., level - 2 (cases/level_sequence.hpp); -1: automatic
-  // (kAutoSequence with the Newton solver from kAutoSequenceFromLevel on, 0 otherwise).
+  // (cases::default_sequence).
   int sequence = -1;
   std::optional<std::string> solver;  // --solver (nullopt: hf::default_method of the mesh)
   int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
@@ -211,12 +203,7 @@ int run_solve(SolveOptions opt) {
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
   require(opt.level >= 0, "--level must be >= 0 (got " + std::to_string(opt.level) + ")");
-  require(opt.sequence >= -1, "--sequence must be >= 0, or -1 for automatic (got " + std::to_string(opt.sequence) + ")");
-  if (opt.sequence < 0) {
-    opt.sequence = dimension == 2 && settings.method == hf::HFMethod::Newton && opt.level >= kAutoSequenceFromLevel
-                       ? kAutoSequence
-                       : 0;
-  }
+  opt.sequence = cases::resolve_sequence(opt.sequence, dimension, settings.method, opt.level);
   const SolvePaths paths(opt.out_dir);
   check_file_roles({{"--case-file", opt.case_file}, {"the case's mesh file", spec.mesh.msh_file}},
                    {{"solution.json in --out", paths.json},
@@ -255,11 +242,7 @@ Command add_solve_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")
       ->capture_default_str();
-  sub->add_option("--sequence", opt->sequence,
-                  "Grid sequencing: solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 "
-                  "skipped) and start from the last one's solution; -1: 2 with --solver newton on level >= 4 in 2D, "
-                  "0 otherwise (docs/solvers.md)")
-      ->capture_default_str();
+  add_sequence_option(sub, opt->sequence);
   sub->add_option("--out", opt->out_dir, "Output directory (created if missing)")->required();
   return {sub, [opt] { return run_solve(*opt); }};
 }

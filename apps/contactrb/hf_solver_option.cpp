@@ -1,6 +1,7 @@
 #include "hf_solver_option.hpp"
 
 #include "commands.hpp"
+#include "contactrb/common/error.hpp"
 
 namespace contactrb::app {
 
@@ -13,6 +14,20 @@ CLI::Option* add_snapshot_solver_option(CLI::App* sub, std::optional<std::string
 std::optional<hf::HFMethod> snapshot_solver_option(const std::optional<std::string>& solver) {
   if (!solver) return std::nullopt;
   return option_enum("--solver", *solver, hf::hf_method_from_string);
+}
+
+CLI::Option* add_sequence_option(CLI::App* sub, int& sequence, const std::string& prefix, const std::string& what) {
+  return sub
+      ->add_option("--sequence", sequence,
+                   prefix + "Grid sequencing" + what +
+                       ": solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 skipped) and "
+                       "start from the last one's solution; -1: 2 with the newton solver on level >= 4 in 2D, 0 "
+                       "otherwise (docs/solvers.md)")
+      ->capture_default_str();
+}
+
+void check_sequence_option(int sequence) {
+  require(sequence >= -1, "--sequence must be >= 0, or -1 for automatic (got " + std::to_string(sequence) + ")");
 }
 
 }  // namespace contactrb::app

@@ -18,8 +18,9 @@ namespace {
 contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::object& set, int level,
                                                      const std::optional<std::string>& constraint_name, double alpha,
                                                      double tolerance, int max_iterations,
-                                                     const std::optional<std::string>& solver) {
+                                                     const std::optional<std::string>& solver, int sequence) {
   require(level >= 0, "level must be >= 0 (got " + std::to_string(level) + ")");
+  require(sequence >= -1, "sequence must be >= 0, or -1 for automatic (got " + std::to_string(sequence) + ")");
   std::optional<contact::Discretization> constraint;
   if (constraint_name) constraint = contact::discretization_from_string(*constraint_name);
   std::string set_name = "training";
@@ -39,6 +40,7 @@ contactrb::offline::SnapshotRequest snapshot_request(const PyCase& c, const py::
   solve::check_settings(request.settings.kacanov);
   // None: the request's default (offline::default_snapshot_method), as the CLI's --solver.
   if (solver) request.settings.method = contactrb::hf::hf_method_from_string(*solver);
+  contactrb::offline::set_snapshot_sequence(request, sequence);  // as the CLI's --sequence
   return request;
 }
 
@@ -63,10 +65,10 @@ io::SnapshotSet run_snapshots(const contactrb::offline::SnapshotRequest& request
 
 PySnapshots make_snapshots(PyCase& c, const py::object& set, int jobs, int level,
                            const std::optional<std::string>& constraint, double alpha, double tolerance,
-                           int max_iterations, const std::optional<std::string>& solver,
+                           int max_iterations, const std::optional<std::string>& solver, int sequence,
                            const std::optional<std::string>& path, const std::optional<bool>& progress) {
   const contactrb::offline::SnapshotRequest request =
-      snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
+      snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver, sequence);
   PySnapshots s{run_snapshots(request, jobs, progress), {}};
   if (path) {
     io::write_snapshot_file(s.set, *path);
@@ -165,7 +167,7 @@ py::object as_case(const py::object& source) {
 std::shared_ptr<PyModel> offline(const py::object& source, const std::string& method, const py::object& set, int jobs,
                                  int level, const std::optional<std::string>& constraint, double alpha,
                                  double tolerance, int max_iterations, const std::optional<std::string>& solver,
-                                 double greedy_tol, int max_hf, int greedy_batch,
+                                 int sequence, double greedy_tol, int max_hf, int greedy_batch,
                                  const std::optional<std::string>& path, const std::optional<bool>& progress,
                                  const py::kwargs& kw) {
   for (const auto& item : kw) {
@@ -189,7 +191,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
       const py::object case_object = as_case(source);
       PyCase& c = case_object.cast<PyCase&>();
       const contactrb::offline::SnapshotRequest request =
-          snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
+          snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver, sequence);
       m = offline_from_set(run_snapshots(request, jobs, progress), "snapshot set", settings);
     }
   } else if (method == "greedy") {
@@ -209,7 +211,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     gs.progress = progress_mode(progress);
     contactrb::offline::check_settings(gs);
     const contactrb::offline::SnapshotRequest request =
-        snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver);
+        snapshot_request(c, set, level, constraint, alpha, tolerance, max_iterations, solver, sequence);
     std::optional<contactrb::offline::GreedyOfflineResult> g;
     {
       py::gil_scoped_release release;
@@ -301,15 +303,17 @@ void bind_offline(py::module_& m) {
   const solve::KacanovSettings k{};
   m.def("snapshots", &make_snapshots, py::arg("case"), py::arg("set") = "training", py::kw_only(), py::arg("jobs") = 1,
         py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha, py::arg("tol") = k.tolerance,
-        py::arg("max_iterations") = k.max_iterations, py::arg("solver") = py::none(), py::arg("path") = py::none(),
-        py::arg("progress") = py::none(),
+        py::arg("max_iterations") = k.max_iterations, py::arg("solver") = py::none(), py::arg("sequence") = -1,
+        py::arg("path") = py::none(), py::arg("progress") = py::none(),
         "HF snapshots of a case (a Case, or its name or TOML path) over a named parameter set or an (n, p)\n"
         "array of points, on `jobs` threads, as `contactrb snapshots`. solver: 'kacanov' | 'newton' (None:\n"
-        "kacanov on 2D level 0, newton otherwise). Returns a Snapshots; with path=, also writes the snapshot file.");
+        "kacanov on 2D level 0, newton otherwise); sequence: the grid sequencing of the cold solves, as\n"
+        "--sequence (-1: 2 with newton on 2D level >= 4, else 0). Returns a Snapshots; with path=, also\n"
+        "writes the snapshot file.");
   m.def("offline", &offline, py::arg("source"), py::arg("method") = "pod", py::kw_only(), py::arg("set") = "training",
         py::arg("jobs") = 1, py::arg("level") = 0, py::arg("constraint") = py::none(), py::arg("alpha") = k.alpha,
         py::arg("tol") = k.tolerance, py::arg("max_iterations") = k.max_iterations, py::arg("solver") = py::none(),
-        py::arg("greedy_tol") = contactrb::offline::GreedyOfflineSettings{}.tolerance,
+        py::arg("sequence") = -1, py::arg("greedy_tol") = contactrb::offline::GreedyOfflineSettings{}.tolerance,
         py::arg("max_hf") = contactrb::offline::GreedyOfflineSettings{}.max_hf,
         py::arg("greedy_batch") = contactrb::offline::GreedyOfflineSettings{}.batch, py::arg("path") = py::none(),
         py::arg("progress") = py::none(),
@@ -318,7 +322,8 @@ void bind_offline(py::module_& m) {
         "computed first). method='greedy': source is a case; the weak greedy on the error estimate over\n"
         "the set's points (greedy_tol, max_hf; greedy_batch HF solves per step, on `jobs` threads);\n"
         "model.greedy holds its table and selected snapshots. solver: the HF method of the snapshots\n"
-        "('kacanov' | 'newton'; None: kacanov on 2D level 0, newton otherwise).\n"
+        "('kacanov' | 'newton'; None: kacanov on 2D level 0, newton otherwise); sequence: their grid\n"
+        "sequencing, as --sequence (-1: automatic).\n"
         "Offline settings (keywords, the CLI's defaults): eps_pod, N, inner_product ('energy'|'h1'),\n"
         "dual ('cpg'|'angle'|'nmf'|'rows'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
         "compression, supremizers.");

@@ -55,7 +55,7 @@ long vtu_points(const std::string& path) {
 
 
 constexpr const char* kHeader =
-    "mu,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"
+    "mu,hf_solver,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,rb_iterations,online_time_s,speedup,e_ener,"
     "e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,peak_hf,peak_rb,energy_hf,energy_rb,"
     "e_energy_norm,estimate,effectivity";
 
@@ -93,9 +93,9 @@ TEST_F(CliEvaluate, SetFileGivesOneCsvLinePerValueAndASummary) {
   const auto lines = file_lines(out + "/evaluation.csv");
   ASSERT_EQ(lines.size(), 4u);
   EXPECT_EQ(lines[0], kHeader);
-  EXPECT_EQ(lines[1].rfind("0.2,1,", 0), 0u) << lines[1];
-  EXPECT_EQ(lines[2].rfind("0.3,1,", 0), 0u) << lines[2];
-  EXPECT_EQ(lines[3].rfind("0.4,1,", 0), 0u) << lines[3];
+  EXPECT_EQ(lines[1].rfind("0.2,newton,1,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("0.3,newton,1,", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[3].rfind("0.4,newton,1,", 0), 0u) << lines[3];
 
   std::ifstream in(out + "/evaluation.json");
   const json j = json::parse(in);
@@ -104,6 +104,11 @@ TEST_F(CliEvaluate, SetFileGivesOneCsvLinePerValueAndASummary) {
   EXPECT_EQ(j.at("values").size(), 3u);
   EXPECT_EQ(j.at("model"), model_);
   EXPECT_EQ(j.at("set"), values);
+  // The HF reference is the Newton solver (the fastest), unsequenced on level 0 (cases::default_sequence).
+  EXPECT_EQ(j.at("hf_solver"), "newton");
+  EXPECT_EQ(j.at("hf_sequence"), json::array());
+  EXPECT_NE(r.out.find("HF reference newton (speed-ups against it)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("speed-up against newton"), std::string::npos) << r.out;
   const double e = j.at("summary").at("e_displ").at("max").get<double>();
   EXPECT_GT(e, 0.0);
   EXPECT_LT(e, 0.1);  // three training values span the Hertz family well

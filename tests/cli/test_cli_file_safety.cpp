@@ -194,6 +194,39 @@ TEST_F(CliFileSafety, OutputEqualToAnInputIsRefusedAndTheInputKept) {
   EXPECT_EQ(read_bytes(msh), read_bytes(data("msh/two_squares.msh")));
 }
 
+// `offline --out d/m.h5` stopped with "the directory of --out does not exist". Every command
+// creates the missing parents of its --out (a file's directory, or the output directory itself),
+// as `mkdir -p` would; what it writes lands there.
+TEST_F(CliFileSafety, OutCreatesEveryMissingParentInEveryCommand) {
+  const contactrb::test::TempDir dir("out_parents");
+  const auto in = [&](const std::string& path) { return (dir.path() / path).string(); };
+  const std::string model = " --model " + shell_quote(model_);
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"solve --case hertz-a --mu 0.3 --out " + shell_quote(in("solve/a/b")), "solve/a/b/solution.json"},
+      {"mesh --case hertz-a --out " + shell_quote(in("mesh/a/b")), "mesh/a/b/mesh.msh"},
+      {"snapshots --case hertz-a --values 0.2,0.4 --part 1/1 -q --out " + shell_quote(in("snapshots/a/s.h5")),
+       "snapshots/a/s.h5"},
+      {"merge " + shell_quote(in("snapshots/a/s.h5")) + " --out " + shell_quote(in("merge/a/m.h5")), "merge/a/m.h5"},
+      {"offline --snapshots " + shell_quote(snapshots_) + " --out " + shell_quote(in("offline/a/m.h5")),
+       "offline/a/offline.json"},
+      {"online" + model + " --mu 0.3 --out " + shell_quote(in("online/a/b")), "online/a/b/solution.vtu"},
+      {"sample" + model + " --n 5 --no-plot --points " + shell_quote(in("points/a/p.csv")) + " --out " +
+           shell_quote(in("sample/a/s.csv")),
+       "sample/a/s.csv"},
+      {"evaluate" + model + " --set training --repeats 1 -q --out " + shell_quote(in("evaluate/a/b")),
+       "evaluate/a/b/evaluation.csv"},
+      {"report --case hertz-a --max-training 3 --max-verification 0 --no-plots -q --out " +
+           shell_quote(in("report/a/b")),
+       "report/a/b/report.md"},
+  };
+  for (const auto& [command, written] : runs) {
+    const CliResult r = run_cli(command);
+    ASSERT_EQ(r.exit_code, 0) << command << "\n" << r.out << r.err;
+    EXPECT_TRUE(fs::is_regular_file(dir.path() / written)) << command;
+  }
+  EXPECT_TRUE(fs::is_regular_file(dir.path() / "points/a/p.csv"));
+}
+
 // The model named like its sibling offline.json or snapshots.h5 was overwritten by it,
 // and "wrote" was printed for both.
 TEST(CliOutputSafety, ModelNamedLikeItsSiblingIsRefused) {

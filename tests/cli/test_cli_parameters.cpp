@@ -112,7 +112,7 @@ TEST(CliParameters, TwoParameterCaseEndToEnd) {
   std::ifstream csv(ev / "evaluation.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("delta,q,hf_converged", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("delta,q,hf_solver,hf_converged", 0), 0u) << header;
   const nlohmann::json j = read_json(ev / "evaluation.json");
   EXPECT_EQ(j["summary"]["count"], 10);
   // The patch test's solution is in the span of the training solutions: the model is exact

@@ -108,7 +108,8 @@ TEST_F(CliReport, ReportMarkdownHasTheTablesAndLinks) {
   ASSERT_EQ(result_.exit_code, 0) << result_.out << result_.err;
   const std::string md = read_text(fs::path(out_) / "report.md");
   for (const char* s : {"# contactrb report: hertz-a", "## Sizes per method", "| CPG |", "| angle-greedy |",
-                        "| NMF |", "| NMF (R = R_CPG) |", "| row cone |", "verification set", "median speed-up",
+                        "| NMF |", "| NMF (R = R_CPG) |", "| row cone |", "verification set", "median speed-up against newton",
+                        "median HF time (s, newton)",
                         "## Offline step times", "| eps_DU | 0.1 | 0.01 | 0.005 |", "| CPG R |", "| NMF R |",
                         "| eps_POD |", "![dual_cone_error.png](dual_cone_error.png)",
                         "![errors_verification.png](errors_verification.png)", "![multipliers.png](multipliers.png)"}) {
@@ -129,6 +130,7 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   ASSERT_EQ(j.at("models").size(), 5u);
   const json& cpg = j.at("models").at(0);
   EXPECT_EQ(cpg.at("key"), "cpg");
+  EXPECT_EQ(cpg.at("hf_solver"), "newton");
   EXPECT_GE(cpg.at("N").get<int>(), 1);
   EXPECT_GE(cpg.at("R").get<int>(), 1);
   EXPECT_LE(cpg.at("R").get<int>(), 6);
@@ -164,8 +166,22 @@ TEST_F(CliReport, StudyJsonAndCsvHoldRealNumbers) {
   EXPECT_EQ(first_line(fs::path(out_) / "pod_singular_values.csv"), "index,sigma");
   EXPECT_EQ(first_line(fs::path(out_) / "multipliers.csv"), "mu,abscissa,lambda_hf,lambda_rb");
   EXPECT_EQ(first_line(fs::path(out_) / "errors_training.csv").rfind("model,mu,", 0), 0u);
-  EXPECT_NE(first_line(fs::path(out_) / "errors_training.csv").find(",e_press,e_force,e_peak,e_press_cone,"),
+  EXPECT_NE(first_line(fs::path(out_) / "errors_training.csv").find(",e_press,e_force,e_peak,e_press_cone,hf_solver,hf_time_s,"),
             std::string::npos);
+  // The speed-ups are against the Newton HF solver (study::EvaluationOptions::hf_method), named in
+  // every row, in study.json and in the printed table.
+  {
+    std::ifstream errors(fs::path(out_) / "errors_training.csv");
+    std::string row;
+    std::getline(errors, row);
+    int rows = 0;
+    while (std::getline(errors, row)) {
+      EXPECT_NE(row.find(",newton,"), std::string::npos) << row;
+      ++rows;
+    }
+    EXPECT_GT(rows, 0);
+  }
+  EXPECT_NE(result_.out.find("median speed-up against newton |"), std::string::npos) << result_.out;
   // Dual histories: errors[0] = max |lambda| is the same for every method; the CPG error never
   // increases (nested cones) and reaches 0 once every snapshot is in the cone (R <= P = 6).
   const fs::path dual = fs::path(out_) / "dual_cone_error.csv";
@@ -434,6 +450,9 @@ TEST(CliDemo, RunsHertzBEndToEndAndPrintsThePaperTable) {
     }
   }
   ASSERT_EQ(cells.size(), 13u) << r.out;  // leading empty cell + 12 columns
+  // The HF times and speed-ups are the Newton solver's (the fastest), named in the header.
+  EXPECT_NE(r.out.find("| median HF time (newton) |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("HF: the newton solver"), std::string::npos) << r.out;
   // N: the numerical rank of the 22 snapshots at eps_POD 1e-5 (11), plus one supremizer per
   // dual generator (R).
   const int R = std::stoi(cells[2]);

@@ -101,6 +101,26 @@ TEST(SnapshotMpi, WarmStartedRanksGatherTheSerialFile) {
 // Each rank solves its first value (the rank-th of the set) while MPI_Init waits, before any
 // message (mpi_snapshots.hpp, first_task): with more ranks than values, the ranks without one
 // ask the coordinator and get none; the file is still the serial one.
+// Grid sequencing (--sequence 1 on hertz-a level 2, Newton): every rank builds the same coarse
+// mesh before its solves; the gathered file is the serial one, warm-started (the first wave
+// sequenced) or cold (every value sequenced).
+TEST(SnapshotMpi, SequencedRanksGatherTheSerialFile) {
+  SKIP_WITHOUT_MPI();
+  contactrb::test::TempDir dir("mpi_sequence");
+  const std::string values = "--case hertz-a --level 2 --solver newton --values 0.2,0.25,0.3,0.35,0.4 --sequence 1 -q";
+  for (const std::string warm : {"on", "off"}) {
+    SCOPED_TRACE("--warm-start " + warm);
+    const std::string run = "snapshots " + values + " --warm-start " + warm;
+    const CliResult serial = contactrb::test::run_cli(run + " --out " + shell_quote(dir.file("serial.h5")));
+    ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+    EXPECT_NE(serial.out.find("grid sequencing: levels 0"), std::string::npos) << serial.out;
+    const CliResult r = mpirun(2, run + " --out " + shell_quote(dir.file("mpi.h5")));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    contactrb::test::expect_same_data(contactrb::io::read_snapshot_file(dir.file("serial.h5")),
+                                      contactrb::io::read_snapshot_file(dir.file("mpi.h5")), false);
+  }
+}
+
 TEST(SnapshotMpi, MoreRanksThanValuesGatherTheSerialFile) {
   SKIP_WITHOUT_MPI();
   contactrb::test::TempDir dir("mpi_few");

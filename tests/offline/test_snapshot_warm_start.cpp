@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/level_sequence.hpp"
+#include "contactrb/common/error.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/snapshot_generation.hpp"
 #include "support/snapshot_fixtures.hpp"
@@ -110,4 +112,53 @@ TEST(SnapshotSolver, DefaultIsKacanovOnlyOnThe2dLevel0Meshes) {
   EXPECT_EQ(contactrb::offline::default_snapshot_method(3, 0), HFMethod::Newton);
   EXPECT_EQ(contactrb::offline::default_snapshot_method(2, 0), HFMethod::Kacanov);
   EXPECT_EQ(contactrb::offline::default_snapshot_method(2, 4), HFMethod::Newton);
+}
+
+// Grid sequencing of the cold solves (offline::set_snapshot_sequence, docs/solvers.md "Grid sequencing"):
+// the answers of the unsequenced cold solves to Newton's tolerance, fewer iterations, data
+// independent of the number of threads; in a warm sweep only the first wave is sequenced.
+// hertz-a level 2 (coarse level 0), 7 values of mu.
+TEST(SnapshotSequence, ColdSolvesStartFromTheCoarseLevel) {
+  const std::vector<double> values{0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45};
+  SnapshotRequest plain = contactrb::offline::make_snapshot_request(
+      contactrb::cases::builtin_case_spec("hertz-a"), "training", 2, std::nullopt, contactrb::cases::points_1d(values));
+  plain.settings.method = contactrb::hf::HFMethod::Newton;
+  EXPECT_EQ(contactrb::offline::set_snapshot_sequence(plain, -1), 0);  // automatic: none below level 4
+  EXPECT_FALSE(plain.coarse);
+  SnapshotRequest sequenced = plain;
+  EXPECT_EQ(contactrb::offline::set_snapshot_sequence(sequenced, 1), 1);
+  ASSERT_TRUE(sequenced.coarse);
+  EXPECT_EQ(sequenced.coarse->levels, std::vector<int>{0});
+  EXPECT_THROW(contactrb::offline::set_snapshot_sequence(sequenced, -2), contactrb::Error);
+
+  SnapshotRunOptions cold;
+  cold.warm_start = SnapshotRunOptions::WarmStart::Off;
+  const SnapshotSet c = generate_snapshots(plain, cold);
+  const SnapshotSet s = generate_snapshots(sequenced, cold);
+  expect_close(s, c, 1e-8, 1e-6, "sequenced against cold");
+  EXPECT_LT(total_iterations(s), total_iterations(c));
+  SnapshotRunOptions cold2 = cold;
+  cold2.jobs = 2;
+  contactrb::test::expect_same_data(s, generate_snapshots(sequenced, cold2), /*with_timings=*/false);
+
+  // Warm (automatic with Newton): the first wave (the first point alone) starts from the coarse
+  // level, exactly as in the sequenced cold run; the others from their neighbours.
+  const SnapshotSet w = generate_snapshots(sequenced, SnapshotRunOptions{});
+  EXPECT_EQ(w.snapshots[0].iterations, s.snapshots[0].iterations);
+  EXPECT_EQ(w.snapshots[0].u, s.snapshots[0].u);
+  EXPECT_EQ(w.snapshots[0].lambda, s.snapshots[0].lambda);
+  expect_close(w, c, 1e-8, 1e-6, "warm and sequenced against cold");
+}
+
+// The automatic count of coarse levels, as `solve --sequence -1` (cases::default_sequence).
+TEST(SnapshotSequence, AutomaticRuleIsSolves) {
+  using contactrb::cases::default_sequence;
+  using contactrb::hf::HFMethod;
+  EXPECT_EQ(default_sequence(2, HFMethod::Newton, 4), 2);
+  EXPECT_EQ(default_sequence(2, HFMethod::Newton, 7), 2);
+  EXPECT_EQ(default_sequence(2, HFMethod::Newton, 3), 0);
+  EXPECT_EQ(default_sequence(2, HFMethod::Kacanov, 6), 0);
+  EXPECT_EQ(default_sequence(3, HFMethod::Newton, 4), 0);
+  EXPECT_EQ(contactrb::cases::resolve_sequence(3, 2, HFMethod::Kacanov, 0), 3);
+  EXPECT_THROW(contactrb::cases::resolve_sequence(-2, 2, HFMethod::Newton, 4), contactrb::Error);
 }

@@ -129,6 +129,24 @@ def test_newton_snapshots_and_offline_equal_cli(tmp_path):
         contactrb.snapshots("hertz-a", values, solver="qr")
 
 
+def test_sequenced_snapshots_equal_cli(tmp_path):
+    # sequence= reaches the HF solves as the CLI's --sequence: the same arrays, fewer iterations
+    # than the unsequenced cold solves (hertz-a level 2, coarse level 0).
+    values = np.array([0.2, 0.3, 0.4])
+    cli_file = tmp_path / "sequenced.h5"
+    run_cli("snapshots", "--case", "hertz-a", "--level", 2, "--values", "0.2,0.3,0.4", "--solver", "newton",
+            "--sequence", 1, "-q", "--out", cli_file)
+    mine = contactrb.snapshots("hertz-a", values, level=2, solver="newton", sequence=1)
+    theirs = contactrb.Snapshots.load(str(cli_file))
+    assert np.array_equal(mine.u, theirs.u)
+    assert np.array_equal(mine.iterations, theirs.iterations)
+    plain = contactrb.snapshots("hertz-a", values[:1], level=2, solver="newton", sequence=0)
+    assert mine.iterations[0] <= plain.iterations[0]
+    assert np.abs(mine.u[0] - plain.u[0]).max() < 1e-8 * np.abs(plain.u[0]).max()
+    with pytest.raises(contactrb.Error, match=r"sequence must be >= 0, or -1 for automatic \(got -2\)"):
+        contactrb.snapshots("hertz-a", values, sequence=-2)
+
+
 def test_greedy_offline_equals_cli(tmp_path):
     out = tmp_path / "greedy" / "model.h5"
     out.parent.mkdir()

@@ -46,6 +46,16 @@ std::vector<int> sequence_levels(int level, int count, int step) {
   return levels;
 }
 
+int default_sequence(int dimension, hf::HFMethod method, int level) {
+  return dimension == 2 && method == hf::HFMethod::Newton && level >= kAutoSequenceFromLevel ? kAutoSequence : 0;
+}
+
+int resolve_sequence(int requested, int dimension, hf::HFMethod method, int level, const std::string& option) {
+  require(requested >= -1,
+          option + " must be >= 0, or -1 for automatic (got " + std::to_string(requested) + ")");
+  return requested < 0 ? default_sequence(dimension, method, level) : requested;
+}
+
 template <int Dim>
 CoarseMeshes<Dim> coarse_meshes(const CaseSpec& spec, const std::vector<int>& levels) {
   for (std::size_t k = 1; k < levels.size(); ++k) {

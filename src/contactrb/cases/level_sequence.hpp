@@ -5,6 +5,7 @@
 // solution is the initial guess of the fine solve. The answer is the fine solve's, to its own
 // tolerance: the coarse solves only choose where it starts.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
@@ -15,6 +16,23 @@ namespace contactrb::cases {
 // The coarse levels of a sequence towards `level`: level - count * step, ..., level - step,
 // without the negative ones (count 0: none). Throws contactrb::Error for count < 0 or step < 1.
 std::vector<int> sequence_levels(int level, int count, int step = 2);
+
+// The number of coarse levels when none is asked for (`--sequence -1`, docs/solvers.md, "Grid
+// sequencing"): kAutoSequence with the Newton method in 2D from level kAutoSequenceFromLevel on,
+// 0 otherwise. Measured (docs/performance.md, "Grid sequencing from level 4"): with Newton, two
+// coarse stages (levels L - 4, L - 2) cut hertz-a's time from level 5 on (level 5: -14 % at mu
+// 0.3, -25 % at mu 0.45; level 7: -15 to -30 %) and break even on level 4 over the mu range (+17 %
+// / +6 % / -13 % at mu 0.15 / 0.3 / 0.45), where they take the fine solve from 5 / 8 / 9 Newton
+// iterations to 3 / 4 / 4. Kacanov: never automatic (its answer depends on the start to its
+// tolerance eps_KA, docs/solvers.md "Warm start").
+inline constexpr int kAutoSequence = 2;
+inline constexpr int kAutoSequenceFromLevel = 4;
+int default_sequence(int dimension, hf::HFMethod method, int level);
+
+// `requested` (>= 0: as given; -1: default_sequence). Throws contactrb::Error naming `option`
+// for anything below -1.
+int resolve_sequence(int requested, int dimension, hf::HFMethod method, int level,
+                     const std::string& option = "--sequence");
 
 struct SequenceStage {
   int level = 0;

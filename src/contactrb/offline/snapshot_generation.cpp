@@ -101,6 +101,33 @@ Eigen::MatrixXd contact_columns(const Eigen::SparseMatrix<double, Eigen::RowMajo
   return D;
 }
 
+// The coarse meshes of the request's dimension (null: no sequencing).
+template <int Dim>
+const cases::CoarseMeshes<Dim>* coarse_of(const SnapshotRequest& request) {
+  if constexpr (Dim == 2) {
+    return request.coarse.get();
+  } else {
+    return request.coarse3.get();
+  }
+}
+
+// Where the solve at `mu` starts: `start` when it is a converged snapshot of the solver's sizes,
+// else the grid sequencing's guess (SnapshotRequest::coarse), else cold.
+template <int Dim>
+hf::HFInitialGuess initial_guess(const SnapshotRequest& request, const cases::Mu& mu,
+                                 const hf::BasicHFSolver<Dim>& solver, const io::Snapshot* start) {
+  hf::HFInitialGuess guess;
+  if (start != nullptr && start->converged && start->u.size() == solver.problem().mesh.num_dofs() &&
+      start->lambda.size() == solver.quadrature().weight.size()) {
+    guess.u = start->u;
+    guess.lambda = start->lambda;
+    return guess;
+  }
+  const cases::CoarseMeshes<Dim>* coarse = coarse_of<Dim>(request);
+  if (coarse == nullptr || coarse->levels.empty() || !request.spec) return guess;
+  return cases::sequence_start(*request.spec, mu, *coarse, request.constraint, request.settings, solver).guess;
+}
+
 // One parameter value: build, solve, extract. Exceptions become a failed snapshot.
 template <int Dim>
 void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
@@ -111,12 +138,7 @@ void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& 
   try {
     const hf::BasicHFSolver<Dim> solver(factory_of<Dim>(request)(out.mu));
     layout = layout_of(solver);
-    hf::HFInitialGuess guess;
-    if (start != nullptr && start->converged && start->u.size() == solver.problem().mesh.num_dofs() &&
-        start->lambda.size() == solver.quadrature().weight.size()) {
-      guess.u = start->u;
-      guess.lambda = start->lambda;
-    }
+    const hf::HFInitialGuess guess = initial_guess(request, out.mu, solver, start);
     hf::BasicHFSolution<Dim> s = solver.solve(request.settings, guess);
     out.converged = s.converged;
     out.status = solve::to_string(s.status);
@@ -223,6 +245,8 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
   r.level = level;
   r.parameters = snapshot_parameters(spec);
   r.dimension = cases::case_dimension(spec);
+  r.spec = std::make_shared<const cases::CaseSpec>(spec);
+  r.constraint = constraint;
   r.settings.method = default_snapshot_method(r.dimension, level);
   r.set_name = values ? "custom" : set_name;
   r.mu = values ? *values : spec.set(set_name);
@@ -243,6 +267,21 @@ SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::st
     r.reference = reference;
   }
   return r;
+}
+
+int set_snapshot_sequence(SnapshotRequest& request, int count) {
+  count = cases::resolve_sequence(count, request.dimension, request.settings.method, request.level);
+  request.coarse.reset();
+  request.coarse3.reset();
+  const std::vector<int> levels = cases::sequence_levels(request.level, count);
+  if (levels.empty()) return count;
+  require(request.spec != nullptr, "grid sequencing of snapshots: the request has no case specification");
+  if (request.dimension == 3) {
+    request.coarse3 = std::make_shared<const cases::CoarseMeshes<3>>(cases::coarse_meshes<3>(*request.spec, levels));
+  } else {
+    request.coarse = std::make_shared<const cases::CoarseMeshes<2>>(cases::coarse_meshes<2>(*request.spec, levels));
+  }
+  return count;
 }
 
 hf::HFMethod default_snapshot_method(int dimension, int level) {

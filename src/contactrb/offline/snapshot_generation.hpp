@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
+#include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/hf/contact_problem.hpp"
 #include "contactrb/hf/hf_solver.hpp"
@@ -52,6 +53,14 @@ struct SnapshotRequest {
   // of the file); null: not recorded.
   std::shared_ptr<const mesh::Mesh> reference;
   std::shared_ptr<const mesh::Mesh3> reference3;
+  // The case and constraint the factory builds (make_snapshot_request), for the coarse problems
+  // of the grid sequencing; null: no sequencing possible.
+  std::shared_ptr<const cases::CaseSpec> spec;
+  std::optional<contact::Discretization> constraint;
+  // Grid sequencing of the cold solves (set_snapshot_sequence; docs/solvers.md, "Grid
+  // sequencing"): the coarse meshes of the request's level; empty: none.
+  std::shared_ptr<const cases::CoarseMeshes<2>> coarse;
+  std::shared_ptr<const cases::CoarseMeshes<3>> coarse3;
 };
 
 // A request for a case specification (2D or 3D, cases::case_dimension) over one of its named
@@ -61,6 +70,16 @@ struct SnapshotRequest {
 SnapshotRequest make_snapshot_request(const cases::CaseSpec& spec, const std::string& set_name, int level = 0,
                                       std::optional<contact::Discretization> constraint = std::nullopt,
                                       const std::optional<std::vector<cases::Mu>>& values = std::nullopt);
+
+// Grid sequencing of the request's cold solves: `count` coarse levels (cases::sequence_levels of
+// request.level; -1: cases::default_sequence of the request's dimension, method and level), whose
+// meshes are generated here, before any worker thread (cases::CoarseMeshes). A solve without a
+// converged start (the first wave of a warm-started sweep, every solve of a cold one, a part)
+// starts from the coarse chain's transferred solution; a warm-started solve starts from its
+// neighbour (measured: docs/performance.md, "Warm starts and grid sequencing in snapshot
+// sweeps"). Returns the count used. Throws contactrb::Error for count < -1 or a request without
+// its case (spec).
+int set_snapshot_sequence(SnapshotRequest& request, int count);
 
 // The HF method of snapshot solves when none is asked for: hf::default_method (measured on the
 // training sets, docs/solvers.md, "Which solver for snapshots").

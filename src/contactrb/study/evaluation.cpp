@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/level_sequence.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/run_threads.hpp"
 #include "contactrb/contact/projection.hpp"
@@ -105,9 +106,10 @@ class Progress {
 };
 
 // The HF solve at row.mu and the three errors of the reconstructed online solution.
+// `coarse`: the grid sequencing's meshes (EvaluationOptions::sequence), whose stages are timed with the solve.
 void evaluate_one(hf::HFMethod method, const ReducedModel& model, const ReducedReconstruction& rec, const cases::CaseSpec& spec,
-                  const mesh::Mesh& reference, const OnlineRun& online, const std::vector<cases::Mu>& multiplier_mus,
-                  EvaluationRow& row) {
+                  const mesh::Mesh& reference, const cases::CoarseMeshes<2>& coarse, const OnlineRun& online,
+                  const std::vector<cases::Mu>& multiplier_mus, EvaluationRow& row) {
   hf::HFSettings settings;
   settings.kacanov = solve::KacanovSettings{model.kacanov_alpha, model.kacanov_tolerance, model.kacanov_max_iterations};
   settings.method = method;
@@ -116,7 +118,9 @@ void evaluate_one(hf::HFMethod method, const ReducedModel& model, const ReducedR
   const auto t0 = Clock::now();
   const hf::HFSolver solver(cases::make_problem(spec, reference, row.mu, model.surface.discretization),
                             hf::setup_options_for(settings));
-  const hf::HFSolution hf_solution = solver.solve(settings);
+  const cases::SequenceStart start =
+      cases::sequence_start(spec, row.mu, coarse, model.surface.discretization, settings, solver);
+  const hf::HFSolution hf_solution = solver.solve(settings, start.guess);
   row.hf_time_s = seconds_since(t0);
   row.hf_converged = hf_solution.converged;
   row.hf_status = solve::to_string(hf_solution.status);
@@ -308,6 +312,13 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
           "evaluation: the mesh of case '" + spec.name + "' at level " + std::to_string(model.level) + " has " +
               std::to_string(reference.num_dofs()) + " DOFs, the model's reconstruction data " +
               std::to_string(reconstruction.num_dofs));
+  // The coarse meshes before the worker threads (cases::CoarseMeshes); none on a mesh read from a file.
+  const int sequence = cases::resolve_sequence(options.sequence, 2, options.hf_method, model.level,
+                                               "evaluation: the grid sequencing");
+  const cases::CoarseMeshes<2> coarse = cases::coarse_meshes<2>(
+      spec, spec.mesh.msh_file.empty() ? cases::sequence_levels(model.level, sequence) : std::vector<int>{});
+  out.hf_solver = hf::to_string(options.hf_method);
+  out.hf_sequence = coarse.levels;
   out.rows.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     EvaluationRow& row = out.rows[i];
@@ -324,7 +335,8 @@ Evaluation evaluate_model(const ReducedModel& model, const ReducedReconstruction
   const auto work = [&] {
     for (std::size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
       try {
-        evaluate_one(options.hf_method, model, reconstruction, spec, reference, online[i], options.multiplier_mus, out.rows[i]);
+        evaluate_one(options.hf_method, model, reconstruction, spec, reference, coarse, online[i], options.multiplier_mus,
+                     out.rows[i]);
         out.rows[i].speedup = out.rows[i].online_time_s > 0.0 ? out.rows[i].hf_time_s / out.rows[i].online_time_s : 0.0;
       } catch (...) {  // nothing may escape a worker thread
         errors[i] = std::current_exception();
@@ -344,7 +356,7 @@ void write_evaluation_csv(const Evaluation& evaluation, const std::string& path)
   std::vector<std::string> columns = evaluation.parameter_names.size() > 1 ? evaluation.parameter_names
                                                                           : std::vector<std::string>{"mu"};
   const std::size_t p = columns.size();
-  const std::vector<std::string> rest{"hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
+  const std::vector<std::string> rest{"hf_solver", "hf_converged", "hf_iterations", "hf_time_s", "rb_converged", "rb_status", "rb_iterations",
                      "online_time_s", "speedup", "e_ener", "e_displ", "e_inter", "e_press", "e_force", "e_peak",
                      "e_press_cone", "force_hf", "force_rb", "peak_hf", "peak_rb", "energy_hf", "energy_rb",
                      "e_energy_norm", "estimate", "effectivity"};
@@ -356,7 +368,7 @@ void write_evaluation_csv(const Evaluation& evaluation, const std::string& path)
                                                             std::to_string(p) + " parameter columns");
     std::vector<io::CsvCell> cells;
     for (Eigen::Index k = 0; k < r.mu.size(); ++k) cells.emplace_back(r.mu(k));
-    const std::vector<io::CsvCell> values{static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
+    const std::vector<io::CsvCell> values{evaluation.hf_solver, static_cast<long long>(r.hf_converged), static_cast<long long>(r.hf_iterations), r.hf_time_s,
                  static_cast<long long>(r.rb_converged), r.rb_status, static_cast<long long>(r.rb_iterations),
                  r.online_time_s, r.speedup, r.e_ener, r.e_displ, r.e_inter, r.e_press, r.e_force, r.e_peak,
                  r.e_press_cone, r.force_hf, r.force_rb, r.peak_hf, r.peak_rb, r.energy_hf, r.energy_rb,

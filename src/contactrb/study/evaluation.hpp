@@ -29,6 +29,10 @@ struct EvaluationOptions {
   // and an accurate truth; Kacanov stops at the snapshots' eps_KA (1e-3 on the increments), whose
   // error on hertz-3p is as large as the reduced model's (docs/offline-online.md, "Error estimate").
   hf::HFMethod hf_method = hf::HFMethod::Newton;
+  // Grid sequencing of the HF reference solves (docs/solvers.md, "Grid sequencing"), inside their
+  // timed region: coarse levels of the model's level; -1: cases::default_sequence (2 with Newton
+  // on 2D level >= 4, the fastest HF path there), 0: none.
+  int sequence = -1;
   offline::ProgressMode progress = offline::ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
   std::vector<cases::Mu> multiplier_mus;    // mu points (among the evaluated ones) whose
@@ -106,6 +110,8 @@ struct EvaluationSummary {
 
 struct Evaluation {
   std::vector<std::string> parameter_names;  // the model's parameters (CSV columns)
+  std::string hf_solver;            // the HF reference's method, hf::to_string (the hf_solver CSV column)
+  std::vector<int> hf_sequence;     // the coarse levels of its grid sequencing (empty: none)
   std::vector<EvaluationRow> rows;  // in the order of the mu values
   EvaluationSummary summary;        // errors over the rows where both solves converged
   int N = 0, R = 0, Mk = 0, Mg = 0; // the sizes used
@@ -120,7 +126,7 @@ Evaluation evaluate_model(const contactrb::model::ReducedModel& model,
                           const std::vector<cases::Mu>& mus, const EvaluationOptions& options = {});
 
 // CSV (one line per row: mu (p = 1) or one column per parameter, named as the parameter (p > 1),
-// hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
+// hf_solver,hf_converged,hf_iterations,hf_time_s,rb_converged,rb_status,
 // rb_iterations,online_time_s,speedup,e_ener,e_displ,e_inter,e_press,e_force,e_peak,e_press_cone,force_hf,force_rb,
 // peak_hf,peak_rb,energy_hf,energy_rb,e_energy_norm,estimate,effectivity) and
 // multiplier profile CSVs (abscissa,lambda_hf,lambda_rb), both written atomically.

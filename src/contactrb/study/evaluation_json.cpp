@@ -86,6 +86,7 @@ nlohmann::json evaluation_json(const Evaluation& e, const ReducedModel& model, c
   j["online_repeats"] = options.online_repeats;
   j["jobs"] = options.jobs;
   j["hf_solver"] = hf::to_string(options.hf_method);
+  j["hf_sequence"] = e.hf_sequence;
   j["summary"] = to_json(e.summary);
   return j;
 }

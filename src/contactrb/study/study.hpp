@@ -54,6 +54,9 @@ struct StudySettings {
   std::optional<contact::Discretization> constraint;  // empty: the case's
   // The HF method of the training snapshots; empty: offline::default_snapshot_method.
   std::optional<hf::HFMethod> snapshot_method;
+  // Grid sequencing of the training snapshots' cold solves (offline::set_snapshot_sequence) and of
+  // the evaluations' HF reference solves (EvaluationOptions::sequence); -1: automatic.
+  int sequence = -1;
   StudyTolerances tolerances;
   offline::InnerProduct inner_product = offline::InnerProduct::Energy;
   bool compression = true;
