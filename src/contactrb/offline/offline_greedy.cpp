@@ -401,7 +401,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
   const std::size_t P = training.size();
   Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
-           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}};
+           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}, {}};
   g.online.error_estimate = true;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
