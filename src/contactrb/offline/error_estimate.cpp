@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -18,16 +19,42 @@ using model::EstimateData;
 using model::kEstimateRankTolerance;
 using model::residual_columns;
 
+// |L^-1 P E_c' c| for a load c on the contact DOFs: |R_c c_u| from the base's factor when c
+// vanishes off its contact columns (the residual's own columns, to round-off), else a solve.
+double contact_load_norm(const Eigen::VectorXd& c, const EstimateInputs& in, const EstimateBase& base) {
+  const std::vector<Index>& columns = base.contact_columns;
+  Eigen::VectorXd cu(ix(columns.size()));
+  double outside = 0.0;
+  std::size_t next = 0;
+  for (Index a = 0; a < c.size(); ++a) {
+    if (next < columns.size() && columns[next] == a) {
+      cu(ix(next++)) = c(a);
+    } else if (base.global_to_free[sz((*in.contact_dofs)[sz(a)])] >= 0) {
+      outside = std::max(outside, std::abs(c(a)));
+    }
+  }
+  if (outside == 0.0 && base.columns_built) return (base.R_fixed.rightCols(cu.size()) * cu).norm();
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(ix(in.free_dofs->size()));
+  for (Index a = 0; a < c.size(); ++a) {
+    const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
+    if (fi >= 0) v(fi) = c(a);
+  }
+  Eigen::VectorXd pv = base.llt.permutationP() * v;
+  base.llt.matrixL().solveInPlace(pv);
+  return pv.norm();
+}
+
 // The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
-// leading size: I_M F = Q[:, :M] B[:M, :M]^-1 F(magic[:M]) (B lower triangular).
-void calibrate_eim(const EstimateInputs& in, const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>& llt,
-                   const std::vector<Index>& global_to_free, EstimateData& e) {
+// leading size: I_M F = Q[:, :M] a_M, a_M = B[:M, :M]^-1 F(magic[:M]) (B lower triangular). The
+// two products the bound needs are linear in F, so they are formed from the snapshot's and the
+// basis' products once: (K - I_M K)' lambda = K' lambda - [Q_i' lambda]_{i<M} a_M and
+// (K - I_M K) u_0 = K u_0 - [Q_i u_0]_{i<M} a_M.
+void calibrate_eim(const EstimateInputs& in, const EstimateBase& base, EstimateData& e) {
   const Eigen::MatrixXd& Qk = *in.Q_kappa;
   const Eigen::MatrixXd& Qg = *in.Q_gamma;
   const int Mk = static_cast<int>(Qk.cols()), Mg = static_cast<int>(Qg.cols());
   const Index R_kept = Qg.rows();
   const Index n_c = ix(in.contact_dofs->size());
-  const Index n_free = ix(in.free_dofs->size());
   const Eigen::VectorXd& w = *in.weights_kept;
   require(ix(in.kappa_magic->size()) == Mk && ix(in.gamma_magic->size()) == Mg && w.size() == R_kept &&
               in.B_kappa->rows() == Mk && in.B_gamma->rows() == Mg,
@@ -49,34 +76,33 @@ void calibrate_eim(const EstimateInputs& in, const Eigen::SimplicialLLT<Eigen::S
     }
     Eigen::VectorXd u0_c = Eigen::VectorXd::Zero(n_c);
     for (Index a = 0; a < n_c; ++a) {
-      const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
+      const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
       if (fi >= 0) u0_c(a) = snap.u0(fi);
     }
     const double lambda_norm = std::sqrt((w.array() * lambda.array().square()).sum());
-    // Flattened row-major (eim_flatten.hpp): F(r n_c + n) = K(r, n).
+    // Flattened row-major (eim_flatten.hpp): F(r n_c + n) = K(r, n); column i of Q_kappa so
+    // flattened is Q_i, and its column-major n_c x R_kept view is Q_i'.
     const Eigen::MatrixXd Kt = K.transpose();
     const Eigen::Map<const Eigen::VectorXd> F(Kt.data(), Kt.size());
+    Eigen::MatrixXd QtL(n_c, Mk), QU(R_kept, Mk);
+    for (int i = 0; i < Mk; ++i) {
+      const Eigen::Map<const Eigen::MatrixXd> Qit(Qk.col(i).data(), n_c, R_kept);
+      QtL.col(i) = Qit * lambda;
+      QU.col(i) = Qit.transpose() * u0_c;
+    }
+    const Eigen::VectorXd KtL = Kt * lambda, Ku = K * u0_c;
     std::vector<Eigen::VectorXd> dKu(sz(Mk + 1));
     for (int M = 0; M <= Mk; ++M) {
-      Eigen::VectorXd IF = Eigen::VectorXd::Zero(F.size());
+      Eigen::VectorXd coefficients = Eigen::VectorXd::Zero(M);
       if (M > 0) {
         Eigen::VectorXd values(M);
         for (int i = 0; i < M; ++i) values(i) = F((*in.kappa_magic)[sz(i)]);
-        IF = Qk.leftCols(M) * in.B_kappa->topLeftCorner(M, M).triangularView<Eigen::Lower>().solve(values);
+        coefficients = in.B_kappa->topLeftCorner(M, M).triangularView<Eigen::Lower>().solve(values);
       }
-      const Eigen::VectorXd dF = F - IF;
-      const Eigen::Map<const Eigen::MatrixXd> dKt(dF.data(), n_c, R_kept);  // (K - I_M K)'
-      dKu[sz(M)] = dKt.transpose() * u0_c;
+      dKu[sz(M)] = Ku - QU.leftCols(M) * coefficients;
       if (lambda_norm > 0.0) {
-        const Eigen::VectorXd c = dKt * lambda;  // (K - I_M K)' lambda on the contact DOFs
-        Eigen::VectorXd v = Eigen::VectorXd::Zero(n_free);
-        for (Index a = 0; a < n_c; ++a) {
-          const Index fi = global_to_free[sz((*in.contact_dofs)[sz(a)])];
-          if (fi >= 0) v(fi) = c(a);
-        }
-        Eigen::VectorXd pv = llt.permutationP() * v;
-        llt.matrixL().solveInPlace(pv);
-        e.eim_residual(M) = std::max(e.eim_residual(M), pv.norm() / lambda_norm);
+        const Eigen::VectorXd c = KtL - QtL.leftCols(M) * coefficients;  // (K - I_M K)' lambda
+        e.eim_residual(M) = std::max(e.eim_residual(M), contact_load_norm(c, in, base) / lambda_norm);
       }
     }
     for (int Mp = 0; Mp <= Mg; ++Mp) {
@@ -169,39 +195,71 @@ Eigen::MatrixXd whiten(const EstimateBase& base, const Eigen::MatrixXd& V) {
   return W;
 }
 
-// The basis-free columns (layout: model/error_estimate_data.hpp): the loads f_j, the lift terms
-// -A_j u_D,k, and E_c' (contact DOF a -> its free index; a constrained contact DOF has no entry).
-void build_estimate_base(const EstimateInputs& in, EstimateBase& base) {
-  const cases::AffineTerms& terms = *in.terms;
+// X's factor (once per problem).
+void factor_energy_product(const EstimateInputs& in, EstimateBase& base) {
   const std::vector<int>& free = *in.free_dofs;
-  const Index n_free = ix(free.size()), n_c = ix(in.contact_dofs->size());
-  const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
-  const int JD = static_cast<int>(terms.lift.size());
-  base.global_to_free.assign(sz(terms.A.front().rows()), -1);
+  base.global_to_free.assign(sz(in.terms->A.front().rows()), -1);
   for (std::size_t i = 0; i < free.size(); ++i) base.global_to_free[sz(free[i])] = ix(i);
   base.llt.compute(energy_product(in, base.global_to_free));
   require(base.llt.info() == Eigen::Success,
           "build_estimate_data: the energy product at the reference value is not positive definite");
-  Eigen::MatrixXd fixed(n_free, Jf + Ja * JD);
+  base.factored = true;
+}
+
+// The basis-free columns (layout: model/error_estimate_data.hpp): the loads f_j, the lift terms
+// -A_j u_D,k, and the columns of E_c' of the contact DOFs `contact` (contact DOF a -> its free
+// index), whitened and factored: [W_fixed | W_contact] = H [R_fixed; 0].
+void factor_fixed_columns(const EstimateInputs& in, const std::vector<Index>& contact, EstimateBase& base) {
+  const cases::AffineTerms& terms = *in.terms;
+  const std::vector<int>& free = *in.free_dofs;
+  const Index n_free = ix(free.size()), n_u = ix(contact.size());
+  const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
+  const int JD = static_cast<int>(terms.lift.size());
+  const Index n_fixed = Jf + Ja * JD;
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n_free, n_fixed + n_u);
   Index col = 0;
-  for (int j = 0; j < Jf; ++j) fixed.col(col++) = restrict_free(terms.f[sz(j)], free);
+  for (int j = 0; j < Jf; ++j) W.col(col++) = restrict_free(terms.f[sz(j)], free);
   for (int j = 0; j < Ja; ++j) {
-    for (int k = 0; k < JD; ++k) fixed.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)], free);
+    for (int k = 0; k < JD; ++k) W.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)], free);
   }
-  Eigen::MatrixXd W(n_free, fixed.cols() + n_c);
-  W.leftCols(fixed.cols()) = fixed;
-  W.rightCols(n_c).setZero();
-  for (Index a = 0; a < n_c; ++a) {
-    const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
-    if (fi >= 0) W(fi, fixed.cols() + a) = 1.0;
-  }
+  for (Index u = 0; u < n_u; ++u) W(base.global_to_free[sz((*in.contact_dofs)[sz(contact[sz(u)])])], n_fixed + u) = 1.0;
   W = whiten(base, W);
   const Index k = std::min(n_free, W.cols());
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
-  base.Q_fixed = qr.householderQ() * Eigen::MatrixXd::Identity(n_free, k);
-  base.R_fixed = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
-  base.n_fixed = static_cast<int>(fixed.cols());
-  base.built = true;
+  base.qr_fixed.compute(W);
+  base.R_fixed = base.qr_fixed.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  base.n_fixed = static_cast<int>(n_fixed);
+  base.contact_columns = contact;
+}
+
+// The base holding at least the contact DOFs `needed` (sorted): factored once, its columns
+// refactored with the union when a model needs a contact DOF they miss.
+void ensure_estimate_base(const EstimateInputs& in, const std::vector<Index>& needed, EstimateBase& base) {
+  if (!base.factored) factor_energy_product(in, base);
+  if (base.columns_built && std::includes(base.contact_columns.begin(), base.contact_columns.end(), needed.begin(),
+                                          needed.end())) {
+    return;
+  }
+  std::vector<Index> all;
+  std::set_union(base.contact_columns.begin(), base.contact_columns.end(), needed.begin(), needed.end(),
+                 std::back_inserter(all));
+  factor_fixed_columns(in, all, base);
+  base.columns_built = true;
+}
+
+// The contact DOFs the estimate's contact columns touch: the free exact_dofs and the rows of C
+// (the EIM columns -E_c' Q_i' Xi) that are not zero. Only these unit loads enter the residual.
+std::vector<Index> used_contact_dofs(const std::vector<int>& exact_dofs, const Eigen::MatrixXd& C,
+                                     const EstimateInputs& in, const std::vector<Index>& global_to_free) {
+  std::vector<char> used(sz(C.rows()), 0);
+  for (int a : exact_dofs) used[sz(a)] = 1;
+  for (Index a = 0; a < C.rows(); ++a) {
+    if (!used[sz(a)] && (C.row(a).array() != 0.0).any()) used[sz(a)] = 1;
+  }
+  std::vector<Index> out;
+  for (Index a = 0; a < C.rows(); ++a) {
+    if (used[sz(a)] && global_to_free[sz((*in.contact_dofs)[sz(a)])] >= 0) out.push_back(a);
+  }
+  return out;
 }
 
 // L^-1 P of the basis columns -A_j,00 Theta (A_j Theta with Theta extended by zero on the
@@ -224,26 +282,23 @@ Eigen::MatrixXd whitened_basis_columns(const EstimateInputs& in, const EstimateB
 }
 
 // S with |W y| = |S y| for W = L^-1 P [f_j | -A_j u_D,k | -A_j,00 Theta | E_c'] (that column
-// order): the basis columns W_t are split against the problem's fixed columns, W_t = Q_fixed C +
-// Q_t R_t (block Gram-Schmidt, twice for orthogonality; Q_t from a thin QR), so that only the
-// n_free x J^a N basis block is factored per model: S = [[R_f, C, R_c], [0, R_t, 0]].
+// order, E_c' on the base's contact columns only): with the base's Householder factor
+// [W_fixed | W_contact] = H [R_fixed; 0], the basis columns are H' W_t = [C; D], and
+// S = [[R_f, C, R_c], [0, R_t, 0]] with D = Q_t R_t (thin QR): only the n_free x J^a N basis
+// block is factored per model.
 Eigen::MatrixXd whitened_residual_factor(const EstimateInputs& in, const EstimateBase& base, Index cols) {
-  const Eigen::MatrixXd Wt = whitened_basis_columns(in, base);
-  Eigen::MatrixXd C = base.Q_fixed.transpose() * Wt;
-  Eigen::MatrixXd rest = Wt - base.Q_fixed * C;
-  const Eigen::MatrixXd again = base.Q_fixed.transpose() * rest;
-  rest.noalias() -= base.Q_fixed * again;
-  C += again;
-  const Index n_free = Wt.rows(), nt = Wt.cols(), kc = base.Q_fixed.cols();
+  Eigen::MatrixXd Z = whitened_basis_columns(in, base);
+  Z.applyOnTheLeft(base.qr_fixed.householderQ().adjoint());
+  const Index n_free = Z.rows(), nt = Z.cols(), kc = base.R_fixed.rows();
   const Index kt = std::min(n_free - kc, nt);
   const Index nf = base.n_fixed, nc = base.R_fixed.cols() - nf;
   require(cols == nf + nt + nc, "build_estimate_data: inconsistent residual columns");
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kc + kt, cols);
   S.topLeftCorner(kc, nf) = base.R_fixed.leftCols(nf);
-  S.block(0, nf, kc, nt) = C;
+  S.block(0, nf, kc, nt) = Z.topRows(kc);
   S.topRightCorner(kc, nc) = base.R_fixed.rightCols(nc);
   if (kt > 0) {
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rest);
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Z.bottomRows(n_free - kc));
     S.block(kc, nf, kt, nt) = qr.matrixQR().topRows(kt).triangularView<Eigen::Upper>();
   }
   return S;
@@ -273,16 +328,8 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
               std::to_string(in.Q_kappa->rows()) + " rows for R_kept n_c = " + std::to_string(R_kept * n_c) + ")");
   EstimateBase own;
   EstimateBase& base = in.base ? *in.base : own;
-  if (!base.built) build_estimate_base(in, base);
+  if (!base.factored) factor_energy_product(in, base);
 
-  // The residual terms on the free DOFs, whitened by X's factor: ||r||_{X'}^2 = |L^-1 P r|^2. The
-  // Mk R contact columns -E_c' Q_i' Xi_r all lie in the n_c columns of E_c' (the contact DOFs):
-  // they are kept as E_c' times the small n_c x (Mk R) matrix C, so the factor S has d0 + n_c
-  // columns, not d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted QR).
-  const Index d = residual_columns(Jf, Ja, JD, N, Mk, R);
-  const Index d0 = d - static_cast<Index>(Mk) * R;
-  const Index S_cols = d0 + n_c;
-  const Eigen::MatrixXd S = whitened_residual_factor(in, base, S_cols);
   // The contact term -E_c' K' Xi lambda with K ~ sum_i phi_i Q_i (50): column (i, r) of C is
   // -(Q_i' Xi)_r.
   std::vector<Eigen::MatrixXd> Q(sz(Mk));
@@ -291,25 +338,44 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
     Q[sz(i)] = unflatten_column(in.Q_kappa->col(i), R_kept, n_c);
     C.middleCols(static_cast<Index>(i) * R, R) = -(Q[sz(i)].transpose() * Xi);
   }
+  const std::vector<int> exact_dofs = exact_contact_dofs(in, base.global_to_free);
+  ensure_estimate_base(in, used_contact_dofs(exact_dofs, C, in, base.global_to_free), base);
+  const std::vector<Index>& columns = base.contact_columns;
+  const Index n_u = ix(columns.size());
+
+  // The residual terms on the free DOFs, whitened by X's factor: ||r||_{X'}^2 = |L^-1 P r|^2. The
+  // Mk R contact columns -E_c' Q_i' Xi_r all lie in the columns of E_c' of the contact DOFs they
+  // touch: they are kept as E_c' times the rows of the small n_c x (Mk R) matrix C, so the factor
+  // S has d0 + n_u columns, not d (d0 + Mk R: 5400 columns on hertz-3p, 16 s of unblocked pivoted
+  // QR), n_u <= n_c the contact DOFs the estimate uses (the others' unit loads never enter).
+  const Index d = residual_columns(Jf, Ja, JD, N, Mk, R);
+  const Index d0 = d - static_cast<Index>(Mk) * R;
+  const Eigen::MatrixXd S = whitened_residual_factor(in, base, d0 + n_u);
   // W = [W0 | G] = Q0 [S0 | SG]; every residual column is Q0 times a column of T0 = [S0 | SG C],
-  // so |W_full y| = |T0 y| with T0 of d0 + n_c rows at most.
+  // so |W_full y| = |T0 y| with T0 of d0 + n_u rows at most.
   const Index k0 = S.rows();
+  Eigen::MatrixXd C_used(n_u, C.cols());
+  for (Index u = 0; u < n_u; ++u) C_used.row(u) = C.row(columns[sz(u)]);
   Eigen::MatrixXd T0(k0, d);
   T0.leftCols(d0) = S.leftCols(d0);
-  T0.rightCols(d - d0) = S.rightCols(n_c) * C;
+  T0.rightCols(d - d0) = S.rightCols(n_u) * C_used;
 
   EstimateData e;
   e.theta_a_reference = cases::evaluate(in.thetas->a, in.reference_mu);
   e.residual_T = residual_factor(T0);  // W = Q R P': |W y| = |R P' y|
   // The exact contact rows' residual: the unit loads on exact_dofs are columns of S itself.
-  e.exact_dofs = exact_contact_dofs(in, base.global_to_free);
+  e.exact_dofs = exact_dofs;
   Eigen::MatrixXd T1(k0, d0 + ix(e.exact_dofs.size()));
   T1.leftCols(d0) = S.leftCols(d0);
-  for (std::size_t k = 0; k < e.exact_dofs.size(); ++k) T1.col(d0 + ix(k)) = S.col(d0 + e.exact_dofs[k]);
+  for (std::size_t k = 0; k < e.exact_dofs.size(); ++k) {
+    const auto at = std::lower_bound(columns.begin(), columns.end(), static_cast<Index>(e.exact_dofs[k]));
+    require(at != columns.end() && *at == e.exact_dofs[k], "internal: an exact contact DOF has no estimate column");
+    T1.col(d0 + ix(k)) = S.col(d0 + (at - columns.begin()));
+  }
   e.residual_exact = residual_factor(T1);
   for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
   e.Q_gamma = *in.Q_gamma;
-  calibrate_eim(in, base.llt, base.global_to_free, e);
+  calibrate_eim(in, base, e);
   return e;
 }
 

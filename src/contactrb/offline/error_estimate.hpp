@@ -12,6 +12,7 @@
 // accuracy floor is that of T y, about 1e-15 |T| |y|, not the square root of it).
 // Online: ErrorEstimator (online/error_estimator.hpp).
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <Eigen/SparseCholesky>
 #include <vector>
 
@@ -59,13 +60,17 @@ struct EstimateInputs {
 // X = A_00(reference_mu) factored, and the whitened load, lift and contact-DOF columns
 // L^-1 P [f_j | -A_j u_D,k] and L^-1 P E_c'.
 struct EstimateBase {
-  bool built = false;
+  bool factored = false;       // llt and global_to_free
+  bool columns_built = false;  // the rest
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
   std::vector<Eigen::Index> global_to_free;  // -1 on a Dirichlet DOF
   int n_fixed = 0;                           // J^f + J^a J^D
-  // [W_fixed | W_contact] = Q_fixed R_fixed, W_fixed = L^-1 P [f_j | -A_j u_D,k] and
-  // W_contact = L^-1 P E_c' (n_free x n_c); Q_fixed thin, with orthonormal columns.
-  Eigen::MatrixXd Q_fixed;
+  // The free contact DOFs (indices into contact_dofs, ascending) whose unit loads the estimate
+  // uses: the exact rows' DOFs and the support of the EIM contact columns, over the builds so far.
+  std::vector<Eigen::Index> contact_columns;
+  // [W_fixed | W_contact] = H [R_fixed; 0] (Householder), W_fixed = L^-1 P [f_j | -A_j u_D,k] and
+  // W_contact = L^-1 P E_c' on contact_columns.
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_fixed;
   Eigen::MatrixXd R_fixed;
 };
 

@@ -604,7 +604,9 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
                                              InnerProduct product, OfflineReport& report,
                                              OfflineBuildCache::Parts& parts) {
   if (parts.matches(set, spec, product)) return *parts.ref;
-  parts.estimate.built = false;
+  parts.estimate.factored = false;
+  parts.estimate.columns_built = false;
+  parts.estimate.contact_columns.clear();
   parts.geometric.clear();
   parts.ref = assemble_reference_terms(set, spec, product, report);
   parts.case_name = spec.name;
