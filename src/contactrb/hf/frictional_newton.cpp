@@ -1,0 +1,450 @@
+// One load step of the frictional solver: the semi-smooth Newton iteration of docs/solvers.md,
+// "Friction" (steps 1-4 there).
+#include "contactrb/hf/frictional_newton.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "contactrb/common/error.hpp"
+#include "contactrb/contact/tangential_rows.hpp"
+
+namespace contactrb::hf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+inline std::size_t sz(Eigen::Index i) { return static_cast<std::size_t>(i); }
+
+// Armijo constant and the smallest damping factor of the line search (step 4), as the
+// frictionless Newton's defaults (NewtonTuning).
+constexpr double kArmijo = 1e-4;
+constexpr double kMinStep = 1.0 / 1024.0;
+// A row touches at u_prev when its weighted gap d_r is at most this times |I_r| x the mesh's
+// diameter (round-off of a zero gap, e.g. two blocks meshed in contact).
+constexpr double kTouchingGap = 1e-12;
+
+// An iterate and what the method reads at it.
+template <int Dim>
+struct FrictionIterate {
+  static constexpr int M = Dim - 1;  // tangential components per slave node
+  NewtonIterate<Dim> n;              // u_0, lambda, u, the maps, K_0, the normal KKT numbers
+  Eigen::VectorXd lambda_t;          // M R
+  RowSparse T0;                      // T(u) on the free columns
+  Eigen::VectorXd slip;              // M R: contact::tangential_slip since u_prev
+  Eigen::VectorXd delta;             // -|I_r| slip_r: the weighted slip, in the units of the rows
+  Eigen::VectorXd z;                 // lambda_t + c delta
+  Eigen::VectorXd s;                 // R: the slip threshold of each row
+  Eigen::VectorXd Ct;                // M R: the tangential complementarity function
+  std::vector<SlipState> state;      // R
+  Eigen::VectorXd F1;                // A_00 u_0 - b + K_0' lambda + T_0' lambda_t
+  FrictionKKT kkt;
+  double merit = 0.0;
+  bool finite() const { return hf::finite(n) && lambda_t.allFinite() && std::isfinite(merit); }
+  int count(SlipState which) const { return static_cast<int>(std::count(state.begin(), state.end(), which)); }
+};
+
+template <int Dim>
+class FrictionStep {
+ public:
+  static constexpr int M = Dim - 1;
+  FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous, const FrictionSettings& s);
+  // Throws contactrb::Error when the geometry cannot be evaluated at u.
+  FrictionIterate<Dim> evaluate(Eigen::VectorXd u0, Eigen::VectorXd lambda, Eigen::VectorXd lambda_t) const;
+  // Step 2: the generalized Newton system at x; false (message) when it is singular.
+  bool newton_step(const FrictionIterate<Dim>& x, bool consistent, Eigen::VectorXd& du, Eigen::VectorXd& lambda,
+                   Eigen::VectorXd& lambda_t, std::string& message) const;
+  // The largest slip increment of x, relative to max_slip x the mesh's diameter (> 1: divergence).
+  double slip_ratio(const FrictionIterate<Dim>& x) const;
+  Eigen::VectorXd slip_length(const FrictionIterate<Dim>& x) const;
+
+ private:
+  void classify(FrictionIterate<Dim>& x) const;
+  void residuals(FrictionIterate<Dim>& x) const;
+  void add_tangential_rows(const FrictionIterate<Dim>& x, int r, std::vector<Eigen::Triplet<double>>& trip,
+                           Eigen::VectorXd& rhs) const;
+
+  const FrictionAlgebra<Dim>& p_;
+  const FrictionSettings& s_;
+  const NewtonSettings newton_settings_;  // the evaluator's projection options
+  const NewtonEvaluator<Dim> evaluate_;
+  const int n_, R_;
+  std::vector<int> global_to_free_;
+  std::vector<char> movable_;
+  std::vector<Eigen::Triplet<double>> a_trip_;
+  double diameter_ = 0.0;
+  contact::PointwiseContactOf<Dim> previous_projection_;  // at u_prev
+  // Rows in contact at u_prev (lambda_r > 0 or touching): only they carry friction in the step;
+  // a row that closes during the step has no slip history yet (docs/solvers.md, "Friction").
+  std::vector<char> frictional_;
+};
+
+NewtonSettings evaluator_settings(const FrictionSettings& s) {
+  NewtonSettings n;
+  n.linearization = s.linearization;
+  return n;
+}
+
+template <int Dim>
+FrictionStep<Dim>::FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous,
+                                 const FrictionSettings& s)
+    : p_(p),
+      s_(s),
+      newton_settings_(evaluator_settings(s)),
+      evaluate_(p, newton_settings_),
+      n_(p.dofs->num_free()),
+      R_(static_cast<int>(p.quadrature->weight.size())),
+      global_to_free_(sz(p.dofs->num_dofs()), -1),
+      movable_(sz(p.dofs->num_dofs()), 0) {
+  for (int i = 0; i < n_; ++i) {
+    const int g = p.dofs->free_dofs()[sz(i)];
+    global_to_free_[sz(g)] = i;
+    movable_[sz(g)] = 1;
+  }
+  a_trip_.reserve(sz(p.A00->nonZeros()));
+  for (int j = 0; j < p.A00->outerSize(); ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) a_trip_.emplace_back(a.row(), a.col(), a.value());
+  }
+  Eigen::Matrix<double, Dim, 1> lo = p.mesh->nodes.front(), hi = lo;
+  for (const auto& x : p.mesh->nodes) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  diameter_ = (hi - lo).norm();
+  contact::ContactMapsOf<Dim> before =
+      contact::evaluate_contact_maps(*p.mesh, *p.pair, *p.quadrature, previous.u, s.linearization.projection);
+  frictional_.assign(sz(R_), 0);
+  for (int r = 0; r < R_; ++r) {
+    const bool candidate = before.rows.K.outerIndexPtr()[r + 1] > before.rows.K.outerIndexPtr()[r];
+    const double touching = kTouchingGap * p.quadrature->weight(r) * diameter_;
+    frictional_[sz(r)] = candidate && (previous.lambda(r) > 0.0 || before.d(r) <= touching) ? 1 : 0;
+  }
+  previous_projection_ = std::move(before.pointwise);
+}
+
+// Step 1: the states of the rows, read off the complementarity functions at the iterate.
+// Contact where lambda_r - c_r d_r > 0 (the normal law's active set); there the threshold is
+// s_r (Tresca) or f lambda_r (Coulomb), and the row sticks when |lambda_t,r + c_r delta_r| <= s_r.
+template <int Dim>
+void FrictionStep<Dim>::classify(FrictionIterate<Dim>& x) const {
+  const Eigen::VectorXd& c = evaluate_.c();
+  x.z = x.lambda_t;
+  x.Ct = x.lambda_t;
+  x.s = Eigen::VectorXd::Zero(R_);
+  x.state.assign(sz(R_), SlipState::Open);
+  for (int r = 0; r < R_; ++r) {
+    const bool candidate = x.n.K0.outerIndexPtr()[r + 1] > x.n.K0.outerIndexPtr()[r];
+    auto z = x.z.template segment<M>(M * r);
+    z += c(r) * x.delta.template segment<M>(M * r);
+    if (!candidate || !(x.n.lambda(r) - c(r) * x.n.maps.d(r) > 0.0)) continue;  // open: C_t = lambda_t
+    if (!frictional_[sz(r)]) {  // closes in this step: no friction yet, C_t = lambda_t
+      x.state[sz(r)] = SlipState::Stick;
+      continue;
+    }
+    const double s = s_.law == FrictionLaw::Tresca ? s_.threshold : s_.coefficient * x.n.lambda(r);
+    x.s(r) = s;
+    auto Ct = x.Ct.template segment<M>(M * r);
+    if (z.norm() <= s) {
+      x.state[sz(r)] = SlipState::Stick;
+      Ct = -c(r) * x.delta.template segment<M>(M * r);
+    } else {
+      x.state[sz(r)] = SlipState::Slip;
+      Ct = x.lambda_t.template segment<M>(M * r) - (s / z.norm()) * z;
+    }
+  }
+}
+
+// The report (FrictionKKT) and the merit |F| of the whole nonsmooth system, its complementarity
+// rows in force units (|I_r| C).
+template <int Dim>
+void FrictionStep<Dim>::residuals(FrictionIterate<Dim>& x) const {
+  const Eigen::VectorXd Ttl = x.T0.transpose() * x.lambda_t;
+  x.F1 = x.n.F1 + Ttl;
+  const Eigen::VectorXd contact_forces = x.n.F1 - (*p_.A00 * x.n.u0 - *p_.b) + Ttl;
+  const double force_scale = std::max({p_.b->norm(), contact_forces.norm(), 1e-300});
+  x.kkt.normal = HFKKT{x.F1.norm() / force_scale, x.n.primal, x.n.dual, x.n.complementarity};
+  const double lmax = std::max(x.n.lambda.size() > 0 ? x.n.lambda.cwiseAbs().maxCoeff() : 0.0, 1e-300);
+  x.kkt.friction = x.Ct.size() > 0 ? x.Ct.cwiseAbs().maxCoeff() / lmax : 0.0;
+  double ct2 = 0.0;
+  for (int r = 0; r < R_; ++r) ct2 += std::pow(p_.quadrature->weight(r), 2) * x.Ct.template segment<M>(M * r).squaredNorm();
+  x.merit = std::sqrt(x.F1.squaredNorm() + x.n.ncp.cwiseProduct(p_.quadrature->weight).squaredNorm() + ct2);
+}
+
+template <int Dim>
+FrictionIterate<Dim> FrictionStep<Dim>::evaluate(Eigen::VectorXd u0, Eigen::VectorXd lambda,
+                                                 Eigen::VectorXd lambda_t) const {
+  FrictionIterate<Dim> x;
+  x.n = evaluate_(std::move(u0), std::move(lambda));
+  const RowSparse T = contact::tangential_rows<Dim>(*p_.mesh, *p_.pair, *p_.quadrature, x.n.maps.pointwise);
+  x.T0 = p_.dofs->restrict_columns(T);
+  x.slip = contact::tangential_slip<Dim>(x.n.maps.pointwise, previous_projection_);
+  for (int r = 0; r < R_; ++r) {
+    if (!frictional_[sz(r)]) x.slip.template segment<M>(M * r).setZero();
+  }
+  x.delta = -(p_.quadrature->W * x.slip);
+  x.lambda_t = std::move(lambda_t);
+  classify(x);
+  residuals(x);
+  return x;
+}
+
+// The rows of C_t,r linearized (generalized Jacobian): open, lambda_t,r = 0; stick,
+// T_r du = -delta_r; slip, with z^ = z / |z|, P = I - z^ z^' and a = s / |z|,
+//   (I - a P) lambda_t' - f z^ lambda_r' - a c_r P T_r du = (I - a P) lambda_t - f z^ lambda_r - C_t
+// (Tresca: no lambda_r term; 2D: P = 0, the row is lambda_t' = f lambda_r' z^, or s z^).
+template <int Dim>
+void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r,
+                                            std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& rhs) const {
+  const int base = n_ + R_ + M * r;
+  const SlipState state = x.state[sz(r)];
+  if (state == SlipState::Open || !frictional_[sz(r)]) {
+    for (int j = 0; j < M; ++j) trip.emplace_back(base + j, base + j, 1.0);  // rhs 0
+    return;
+  }
+  if (state == SlipState::Stick) {
+    for (int j = 0; j < M; ++j) {
+      for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(base + j, t.col(), t.value());
+      rhs(base + j) = -x.delta(M * r + j);
+    }
+    return;
+  }
+  using Block = Eigen::Matrix<double, M, M>;
+  using Vec = Eigen::Matrix<double, M, 1>;
+  const Vec z = x.z.template segment<M>(M * r);
+  const Vec zh = z / z.norm();
+  const double a = x.s(r) / z.norm();
+  const Block P = Block::Identity() - zh * zh.transpose();
+  const Block Jt = Block::Identity() - a * P;
+  const Vec Jn = s_.law == FrictionLaw::Coulomb ? Vec(-s_.coefficient * zh) : Vec(Vec::Zero());
+  const Vec rhs_r = Jt * x.lambda_t.template segment<M>(M * r) + Jn * x.n.lambda(r) - x.Ct.template segment<M>(M * r);
+  for (int j = 0; j < M; ++j) {
+    for (int l = 0; l < M; ++l) {
+      if (Jt(j, l) != 0.0) trip.emplace_back(base + j, base + l, Jt(j, l));
+      const double pu = -a * evaluate_.c()(r) * P(j, l);
+      if (pu == 0.0) continue;
+      for (RowSparse::InnerIterator t(x.T0, M * r + l); t; ++t) trip.emplace_back(base + j, t.col(), pu * t.value());
+    }
+    if (Jn(j) != 0.0) trip.emplace_back(base + j, n_ + r, Jn(j));
+    rhs(base + j) = rhs_r(j);
+  }
+}
+
+// Step 2: [A_00 + H, K_0', T_0'; normal rows; tangential rows] [du; lambda'; lambda_t'] = rhs, one
+// sparse LU (the multipliers are unknowns of the system, not corrections). Normal rows: in
+// contact, -D_r du = d_r (consistent: D = d'(u), H = (K' lambda)') or K_r du = d_r (frozen:
+// H = 0); open, lambda_r' = 0. The tangential rows are T(u) frozen at the iterate (small sliding).
+template <int Dim>
+bool FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consistent, Eigen::VectorXd& du,
+                                    Eigen::VectorXd& lambda, Eigen::VectorXd& lambda_t, std::string& message) const {
+  std::vector<Eigen::Triplet<double>> trip = a_trip_;
+  RowSparse D0;
+  if (consistent) {
+    const contact::ContactLinearizationOf<Dim> lin = contact::linearize_contact(
+        *p_.mesh, *p_.pair, *p_.quadrature, x.n.u, x.n.lambda, movable_, x.n.maps, s_.linearization);
+    D0 = p_.dofs->restrict_columns(lin.D);
+    for (int j = 0; j < lin.H.outerSize(); ++j) {
+      for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
+        const int fr = global_to_free_[sz(h.row())], fc = global_to_free_[sz(h.col())];
+        if (fr >= 0 && fc >= 0) trip.emplace_back(fr, fc, h.value());
+      }
+    }
+  }
+  const int size = n_ + R_ + M * R_;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
+  rhs.head(n_) = *p_.b - *p_.A00 * x.n.u0;
+  const Eigen::VectorXd& c = evaluate_.c();
+  for (int r = 0; r < R_; ++r) {
+    for (RowSparse::InnerIterator k(x.n.K0, r); k; ++k) trip.emplace_back(k.col(), n_ + r, k.value());
+    for (int j = 0; j < M; ++j) {
+      for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(t.col(), n_ + R_ + M * r + j, t.value());
+    }
+    const bool candidate = x.n.K0.outerIndexPtr()[r + 1] > x.n.K0.outerIndexPtr()[r];
+    if (candidate && x.n.lambda(r) - c(r) * x.n.maps.d(r) > 0.0) {
+      if (consistent) {
+        for (RowSparse::InnerIterator d(D0, r); d; ++d) trip.emplace_back(n_ + r, d.col(), -d.value());
+      } else {
+        for (RowSparse::InnerIterator k(x.n.K0, r); k; ++k) trip.emplace_back(n_ + r, k.col(), k.value());
+      }
+      rhs(n_ + r) = x.n.maps.d(r);
+    } else {
+      trip.emplace_back(n_ + r, n_ + r, 1.0);
+    }
+    add_tangential_rows(x, r, trip, rhs);
+  }
+  Eigen::SparseMatrix<double> J(size, size);
+  J.setFromTriplets(trip.begin(), trip.end());
+  solve::SparseLU lu(s_.lu);
+  if (lu.compute(J) != solve::SparseLUStatus::Success) {
+    message = "the Newton system (" + std::to_string(n_) + " free DOFs, " + std::to_string(R_) + " contact rows) is " +
+              solve::to_string(lu.status());
+    return false;
+  }
+  const Eigen::VectorXd sol = lu.solve(rhs);
+  if (!sol.allFinite()) {
+    message = "the Newton system has no finite solution";
+    return false;
+  }
+  du = sol.head(n_);
+  lambda = sol.segment(n_, R_);
+  lambda_t = sol.tail(M * R_);
+  return true;
+}
+
+template <int Dim>
+Eigen::VectorXd FrictionStep<Dim>::slip_length(const FrictionIterate<Dim>& x) const {
+  return x.slip;
+}
+
+template <int Dim>
+double FrictionStep<Dim>::slip_ratio(const FrictionIterate<Dim>& x) const {
+  const Eigen::VectorXd slip = slip_length(x);
+  return (slip.size() > 0 ? slip.cwiseAbs().maxCoeff() : 0.0) / (s_.max_slip * diameter_);
+}
+
+// The iteration of one load step (docs/solvers.md, "Friction").
+template <int Dim>
+class FrictionDriver {
+ public:
+  FrictionDriver(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous, const FrictionState<Dim>& start,
+                 const FrictionSettings& s)
+      : p_(p), start_(start), s_(s), step_(p, previous, s) {}
+
+  FrictionStepResult<Dim> run() {
+    const auto t0 = Clock::now();
+    if (start()) {
+      for (int k = 0; keep_iterating(k); ++k) {  // step 5: the convergence test at each iterate
+        if (!iterate(k)) break;                  // steps 1-4
+      }
+    }
+    out_.report.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    return std::move(out_);
+  }
+
+ private:
+  bool start() {
+    try {
+      x_ = step_.evaluate(p_.dofs->restrict(start_.u), start_.lambda, start_.lambda_t);
+    } catch (const Error& e) {
+      out_.report.status = FrictionStatus::StepFailed;
+      out_.report.message = std::string("friction: the start of the step cannot be evaluated: ") + e.what();
+      return false;
+    }
+    return true;
+  }
+
+  bool finish(FrictionStatus status, std::string message) {
+    FrictionStepReport& rep = out_.report;
+    rep.status = status;
+    rep.message = std::move(message);
+    rep.stick = x_.count(SlipState::Stick);
+    rep.slip = x_.count(SlipState::Slip);
+    rep.open = x_.count(SlipState::Open);
+    rep.normal_force = x_.n.lambda.dot(p_.quadrature->weight);
+    rep.tangential_force = Eigen::VectorXd::Zero(FrictionIterate<Dim>::M);
+    for (int r = 0; r < x_.n.lambda.size(); ++r) {
+      rep.tangential_force +=
+          p_.quadrature->weight(r) * x_.lambda_t.template segment<FrictionIterate<Dim>::M>(FrictionIterate<Dim>::M * r);
+    }
+    out_.u0 = x_.n.u0;
+    out_.state = FrictionState<Dim>{x_.n.u, x_.n.lambda, x_.lambda_t};
+    out_.slip = step_.slip_length(x_);
+    out_.nodes = x_.state;
+    out_.kkt = x_.kkt;
+    return false;
+  }
+
+  // Step 5: converged, or out of iterations, or not finite.
+  bool keep_iterating(int k) {
+    out_.report.iterations = k;
+    out_.report.residuals.push_back(x_.kkt.max());
+    if (!x_.finite()) return finish(FrictionStatus::NonFinite, "friction iteration " + std::to_string(k) + ": the iterate is not finite");
+    if (x_.kkt.max() <= s_.tolerance) return finish(FrictionStatus::Converged, "");
+    if (k >= s_.max_iterations) {
+      std::ostringstream os;
+      os << "friction: the load step did not converge in " << k << " iterations (tolerance " << s_.tolerance
+         << "); last " << residual_text(x_.kkt.normal.stationarity, x_.kkt.normal.primal, x_.kkt.normal.dual,
+                                        x_.kkt.normal.complementarity)
+         << ", friction " << x_.kkt.friction << "; " << x_.count(SlipState::Stick) << " stick, "
+         << x_.count(SlipState::Slip) << " slip";
+      return finish(FrictionStatus::MaxIterations, os.str());
+    }
+    return true;
+  }
+
+  // A failure of the step: full sliding when no row sticks (nothing holds the body tangentially).
+  bool fail(int k, const std::string& what) {
+    const bool sliding = x_.count(SlipState::Stick) == 0 && x_.count(SlipState::Slip) > 0;
+    std::ostringstream os;
+    os << "friction iteration " << k << ": " << what;
+    if (sliding) os << "; every node in contact slips (" << x_.count(SlipState::Slip) << "): full sliding, no equilibrium";
+    return finish(sliding ? FrictionStatus::FullSliding : FrictionStatus::StepFailed, os.str());
+  }
+
+  // Steps 1-4: the states (evaluated with the iterate), the Newton system (frozen normal geometry
+  // until the states repeat, then consistent), the line search on the merit.
+  bool iterate(int k) {
+    const bool consistent = k > 0 && x_.state == previous_state_;
+    previous_state_ = x_.state;
+    Eigen::VectorXd du, lambda, lambda_t;
+    std::string message;
+    bool solved = false;
+    try {
+      solved = step_.newton_step(x_, consistent, du, lambda, lambda_t, message);
+    } catch (const Error& e) {
+      message = std::string("the contact maps cannot be linearized: ") + e.what();
+    }
+    if (!solved) return fail(k, message);
+    return line_search(k, du, lambda, lambda_t);
+  }
+
+  // Step 4: the first damping alpha = 1, 1/2, ... with an Armijo decrease of the merit; without
+  // one the full step (the states then change: the iteration cap ends a cycle).
+  bool line_search(int k, const Eigen::VectorXd& du, const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t) {
+    std::optional<FrictionIterate<Dim>> full;
+    for (double alpha = 1.0; alpha >= kMinStep; alpha *= 0.5) {
+      FrictionIterate<Dim> trial;
+      try {
+        trial = step_.evaluate(x_.n.u0 + alpha * du, x_.n.lambda + alpha * (lambda - x_.n.lambda),
+                               x_.lambda_t + alpha * (lambda_t - x_.lambda_t));
+      } catch (const Error&) {
+        continue;  // the step leaves what the geometry can evaluate: shorten it
+      }
+      if (alpha == 1.0 && step_.slip_ratio(trial) > 1.0) {
+        return fail(k, "the step slips by more than max_slip x the mesh's diameter");
+      }
+      if (trial.finite() && trial.merit <= (1.0 - kArmijo * alpha) * x_.merit) {
+        x_ = std::move(trial);
+        return true;
+      }
+      if (alpha == 1.0 && trial.finite()) full = std::move(trial);
+    }
+    if (!full) return fail(k, "no step along the Newton direction can be evaluated");
+    x_ = std::move(*full);
+    return true;
+  }
+
+  const FrictionAlgebra<Dim>& p_;
+  const FrictionState<Dim>& start_;
+  const FrictionSettings& s_;
+  FrictionStep<Dim> step_;
+  FrictionIterate<Dim> x_;
+  std::vector<SlipState> previous_state_;
+  FrictionStepResult<Dim> out_;
+};
+
+}  // namespace
+
+template <int Dim>
+FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
+                                            const FrictionState<Dim>& start, const FrictionSettings& settings) {
+  return FrictionDriver<Dim>(algebra, previous, start, settings).run();
+}
+
+template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, const FrictionState<2>&,
+                                                   const FrictionState<2>&, const FrictionSettings&);
+
+}  // namespace contactrb::hf
