@@ -10,6 +10,7 @@
 // node. Row (Dim - 1) r + j of T is tangent j of constraint row r.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/projection.hpp"
@@ -33,16 +34,30 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> tangential_rows(const mesh::Simplex
 
 template <>
 Eigen::Matrix<double, 2, 1> tangent_basis<2>(const Eigen::Matrix<double, 2, 1>& normal);
-// The slip of each slave node relative to the master since a previous configuration, along the
-// tangents at u (Dim - 1 entries per slave node): tau_j . (rho - rho_prev), rho the undeformed
-// position of the master point the node projects on (NodeProjection::rho), now and then. A
-// material measure: zero when slave and master move together, whatever their motion; its
-// derivative at zero gap is -T_r / |I_r| up to the master's stretch (docs/solvers.md, "Friction").
-// Non-candidates: zero. Sizes must match (throws contactrb::Error).
+// The undeformed position of the master point each slave node projects on, with the parameter
+// of its facet not clamped to the facet (2D: rho = X_a + xi (X_b - X_a), xi = (x_s - x_a) .
+// (x_b - x_a) / |x_b - x_a|^2 at the deformed positions x = X + w): a material point of the
+// master, continued past the ends of an open master chain, where the closest point stops.
+// Non-candidates: their record's rho. Throws contactrb::Error on sizes that do not match.
 template <int Dim>
-Eigen::VectorXd tangential_slip(const PointwiseContactOf<Dim>& now, const PointwiseContactOf<Dim>& previous);
+std::vector<Eigen::Matrix<double, Dim, 1>> material_points(const mesh::SimplexMesh<Dim>& mesh,
+                                                           const ContactPairOf<Dim>& pair,
+                                                           const PointwiseContactOf<Dim>& pointwise,
+                                                           const Eigen::VectorXd& w);
 
-extern template Eigen::VectorXd tangential_slip<2>(const PointwiseContact&, const PointwiseContact&);
+// The slip of each slave node relative to the master since a previous configuration, along the
+// tangents at u (Dim - 1 entries per slave node): tau_j . (rho - rho_prev), rho the
+// material_points now and then. A material measure: zero when slave and master move together,
+// whatever their motion; its derivative at zero gap is -T_r / |I_r| up to the master's stretch
+// (docs/solvers.md, "Friction"). Non-candidates: zero. Sizes must match (throws contactrb::Error).
+template <int Dim>
+Eigen::VectorXd tangential_slip(const PointwiseContactOf<Dim>& now, const std::vector<Eigen::Matrix<double, Dim, 1>>& rho,
+                                const std::vector<Eigen::Matrix<double, Dim, 1>>& rho_previous);
+
+extern template std::vector<Eigen::Vector2d> material_points<2>(const mesh::Mesh&, const ContactPair&,
+                                                                const PointwiseContact&, const Eigen::VectorXd&);
+extern template Eigen::VectorXd tangential_slip<2>(const PointwiseContact&, const std::vector<Eigen::Vector2d>&,
+                                                   const std::vector<Eigen::Vector2d>&);
 extern template Eigen::SparseMatrix<double, Eigen::RowMajor> tangential_rows<2>(const mesh::SimplexMesh<2>&,
                                                                                 const ContactPair&,
                                                                                 const ContactQuadrature&,

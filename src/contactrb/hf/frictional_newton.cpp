@@ -60,9 +60,13 @@ class FrictionStep {
                    Eigen::VectorXd& lambda_t, std::string& message) const;
   // The largest slip increment of x, relative to max_slip x the mesh's diameter (> 1: divergence).
   double slip_ratio(const FrictionIterate<Dim>& x) const;
+  double move_ratio(const Eigen::VectorXd& du) const {
+    return (du.size() > 0 ? du.cwiseAbs().maxCoeff() : 0.0) / (s_.max_slip * diameter_);
+  }
   Eigen::VectorXd slip_length(const FrictionIterate<Dim>& x) const;
 
  private:
+  bool in_contact(const FrictionIterate<Dim>& x, int r) const;
   void classify(FrictionIterate<Dim>& x) const;
   void residuals(FrictionIterate<Dim>& x) const;
   void add_tangential_rows(const FrictionIterate<Dim>& x, int r, std::vector<Eigen::Triplet<double>>& trip,
@@ -77,7 +81,7 @@ class FrictionStep {
   std::vector<char> movable_;
   std::vector<Eigen::Triplet<double>> a_trip_;
   double diameter_ = 0.0;
-  contact::PointwiseContactOf<Dim> previous_projection_;  // at u_prev
+  std::vector<Eigen::Matrix<double, Dim, 1>> rho_previous_;  // contact::material_points at u_prev
   // Rows in contact at u_prev (lambda_r > 0 or touching): only they carry friction in the step;
   // a row that closes during the step has no slip history yet (docs/solvers.md, "Friction").
   std::vector<char> frictional_;
@@ -123,7 +127,15 @@ FrictionStep<Dim>::FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionSta
     const double touching = kTouchingGap * p.quadrature->weight(r) * diameter_;
     frictional_[sz(r)] = candidate && (previous.lambda(r) > 0.0 || before.d(r) <= touching) ? 1 : 0;
   }
-  previous_projection_ = std::move(before.pointwise);
+  rho_previous_ = contact::material_points<Dim>(*p.mesh, *p.pair, before.pointwise, previous.u);
+}
+
+// The normal law's active set: a candidate row with lambda_r - c_r d_r >= 0 (a touching row
+// without pressure counts: two bodies meshed in contact start held by their stick rows).
+template <int Dim>
+bool FrictionStep<Dim>::in_contact(const FrictionIterate<Dim>& x, int r) const {
+  const bool candidate = x.n.K0.outerIndexPtr()[r + 1] > x.n.K0.outerIndexPtr()[r];
+  return candidate && x.n.lambda(r) - evaluate_.c()(r) * x.n.maps.d(r) >= 0.0;
 }
 
 // Step 1: the states of the rows, read off the complementarity functions at the iterate.
@@ -137,10 +149,9 @@ void FrictionStep<Dim>::classify(FrictionIterate<Dim>& x) const {
   x.s = Eigen::VectorXd::Zero(R_);
   x.state.assign(sz(R_), SlipState::Open);
   for (int r = 0; r < R_; ++r) {
-    const bool candidate = x.n.K0.outerIndexPtr()[r + 1] > x.n.K0.outerIndexPtr()[r];
     auto z = x.z.template segment<M>(M * r);
     z += c(r) * x.delta.template segment<M>(M * r);
-    if (!candidate || !(x.n.lambda(r) - c(r) * x.n.maps.d(r) > 0.0)) continue;  // open: C_t = lambda_t
+    if (!in_contact(x, r)) continue;  // open: C_t = lambda_t
     if (!frictional_[sz(r)]) {  // closes in this step: no friction yet, C_t = lambda_t
       x.state[sz(r)] = SlipState::Stick;
       continue;
@@ -181,7 +192,8 @@ FrictionIterate<Dim> FrictionStep<Dim>::evaluate(Eigen::VectorXd u0, Eigen::Vect
   x.n = evaluate_(std::move(u0), std::move(lambda));
   const RowSparse T = contact::tangential_rows<Dim>(*p_.mesh, *p_.pair, *p_.quadrature, x.n.maps.pointwise);
   x.T0 = p_.dofs->restrict_columns(T);
-  x.slip = contact::tangential_slip<Dim>(x.n.maps.pointwise, previous_projection_);
+  x.slip = contact::tangential_slip<Dim>(
+      x.n.maps.pointwise, contact::material_points<Dim>(*p_.mesh, *p_.pair, x.n.maps.pointwise, x.n.u), rho_previous_);
   for (int r = 0; r < R_; ++r) {
     if (!frictional_[sz(r)]) x.slip.template segment<M>(M * r).setZero();
   }
@@ -256,14 +268,12 @@ bool FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consiste
   const int size = n_ + R_ + M * R_;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
   rhs.head(n_) = *p_.b - *p_.A00 * x.n.u0;
-  const Eigen::VectorXd& c = evaluate_.c();
   for (int r = 0; r < R_; ++r) {
     for (RowSparse::InnerIterator k(x.n.K0, r); k; ++k) trip.emplace_back(k.col(), n_ + r, k.value());
     for (int j = 0; j < M; ++j) {
       for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(t.col(), n_ + R_ + M * r + j, t.value());
     }
-    const bool candidate = x.n.K0.outerIndexPtr()[r + 1] > x.n.K0.outerIndexPtr()[r];
-    if (candidate && x.n.lambda(r) - c(r) * x.n.maps.d(r) > 0.0) {
+    if (in_contact(x, r)) {
       if (consistent) {
         for (RowSparse::InnerIterator d(D0, r); d; ++d) trip.emplace_back(n_ + r, d.col(), -d.value());
       } else {
@@ -377,10 +387,13 @@ class FrictionDriver {
 
   // A failure of the step: full sliding when no row sticks (nothing holds the body tangentially).
   bool fail(int k, const std::string& what) {
-    const bool sliding = x_.count(SlipState::Stick) == 0 && x_.count(SlipState::Slip) > 0;
+    const bool sliding = x_.count(SlipState::Stick) == 0;
     std::ostringstream os;
     os << "friction iteration " << k << ": " << what;
-    if (sliding) os << "; every node in contact slips (" << x_.count(SlipState::Slip) << "): full sliding, no equilibrium";
+    if (sliding) {
+      os << "; no node sticks (" << x_.count(SlipState::Slip) << " slip, " << x_.count(SlipState::Open)
+         << " open): full sliding, no equilibrium";
+    }
     return finish(sliding ? FrictionStatus::FullSliding : FrictionStatus::StepFailed, os.str());
   }
 
@@ -413,8 +426,8 @@ class FrictionDriver {
       } catch (const Error&) {
         continue;  // the step leaves what the geometry can evaluate: shorten it
       }
-      if (alpha == 1.0 && step_.slip_ratio(trial) > 1.0) {
-        return fail(k, "the step slips by more than max_slip x the mesh's diameter");
+      if (alpha == 1.0 && (step_.slip_ratio(trial) > 1.0 || step_.move_ratio(du) > 1.0)) {
+        return fail(k, "the step moves or slips a node by more than max_slip x the mesh's diameter");
       }
       if (trial.finite() && trial.merit <= (1.0 - kArmijo * alpha) * x_.merit) {
         x_ = std::move(trial);
