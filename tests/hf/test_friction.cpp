@@ -361,3 +361,21 @@ TEST(Friction, InvalidInputIsRefusedWithAMessage) {
   EXPECT_THROW(hf::friction_law_from_string("viscous"), Error);
   EXPECT_EQ(hf::friction_status_from_string(hf::to_string(hf::FrictionStatus::FullSliding)), hf::FrictionStatus::FullSliding);
 }
+// The two linear algebras of the Newton systems (the condensation on the contact DOFs and the
+// sparse LU of the whole system) solve the same equations: the same states, and the answers
+// within the tolerance.
+TEST(Friction, SchurAndSaddleLUGiveTheSameAnswer) {
+  hf::FrictionSettings schur = coulomb(kF), lu = coulomb(kF);
+  lu.linear_solver = hf::FrictionLinearSolver::SaddleLU;
+  const std::vector<hf::LoadStep> path = normal_then_tangential(0.13, 0.01, 2);
+  const hf::FrictionalSolution a = hf::solve_load_path(hertz(241), path, schur);
+  const hf::FrictionalSolution b = hf::solve_load_path(hertz(241), path, lu);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_TRUE(b.converged) << b.message;
+  EXPECT_TRUE(a.state == b.state);
+  const double lmax = a.lambda.cwiseAbs().maxCoeff();
+  EXPECT_LT((a.lambda - b.lambda).cwiseAbs().maxCoeff(), 1e-8 * lmax);
+  EXPECT_LT((a.lambda_t - b.lambda_t).cwiseAbs().maxCoeff(), 1e-8 * lmax);
+  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-8 * a.u.cwiseAbs().maxCoeff());
+  EXPECT_EQ(hf::friction_linear_solver_from_string("lu"), hf::FrictionLinearSolver::SaddleLU);
+}

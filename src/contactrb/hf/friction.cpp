@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
@@ -47,6 +48,20 @@ FrictionStatus friction_status_from_string(const std::string& name) {
   return enum_from_string(name, "friction status",
                           std::array{FrictionStatus::Converged, FrictionStatus::MaxIterations, FrictionStatus::FullSliding,
                                      FrictionStatus::StepFailed, FrictionStatus::NonFinite});
+}
+
+const char* to_string(FrictionLinearSolver solver) {
+  switch (solver) {
+    case FrictionLinearSolver::Schur: return "schur";
+    case FrictionLinearSolver::SaddleLU: return "lu";
+  }
+  return "unknown";
+}
+
+FrictionLinearSolver friction_linear_solver_from_string(const std::string& name) {
+  if (name == "schur") return FrictionLinearSolver::Schur;
+  if (name == "lu") return FrictionLinearSolver::SaddleLU;
+  throw Error("unknown friction linear solver '" + name + "' (expected schur or lu)");
 }
 
 const char* to_string(SlipState state) {
@@ -217,6 +232,16 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
                            Eigen::VectorXd::Zero(M * R)};
   BasicFrictionalSolution<Dim> sol;
   sol.slip = Eigen::VectorXd::Zero(M * R);
+  // A_00 is that of every step (the same free DOFs): factorized once for the path. Not SPD (a
+  // body held by the contact alone): the whole system by a sparse LU at each iteration.
+  std::optional<solve::SelectedInverse> inverse;
+  if (friction.linear_solver == FrictionLinearSolver::Schur) {
+    inverse.emplace();
+    if (inverse->compute(solver.dofs().restrict_matrix(solver.stiffness()), friction.ordering) !=
+        solve::SelectedInverseStatus::Success) {
+      inverse.reset();
+    }
+  }
   for (std::size_t i = 0; i < path.size(); ++i) {
     const StepAlgebra<Dim> a = step_algebra(solver, body_forces, path[i], i);
     FrictionAlgebra<Dim> np;
@@ -227,7 +252,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.A00 = &a.A00;
     np.b = &a.b;
     const FrictionState<Dim> start = start_of_step(solver, path[i], state, frictionless);
-    FrictionStepResult<Dim> step = solve_friction_step(np, state, start, friction);
+    FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
     sol.steps.push_back(step.report);
     sol.slip += step.slip;
     state = step.state;

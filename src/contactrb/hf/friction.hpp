@@ -20,6 +20,7 @@
 #include "contactrb/fem/traction.hpp"
 #include "contactrb/hf/contact_problem.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 #include "contactrb/solve/sparse_lu.hpp"
 
 namespace contactrb::hf {
@@ -37,6 +38,13 @@ FrictionStatus friction_status_from_string(const std::string& name);
 enum class SlipState : signed char { Open, Stick, Slip };
 const char* to_string(SlipState state);  // "open" | "stick" | "slip"
 
+// Schur (default): A_00 factorized once per path (CHOLMOD), each Newton system condensed on the
+// contact DOFs of the rows in contact (a small dense LU); when A_00 is not SPD (a body that only
+// the contact holds), SaddleLU instead. SaddleLU: one sparse LU of the whole system per iteration.
+enum class FrictionLinearSolver { Schur, SaddleLU };
+const char* to_string(FrictionLinearSolver solver);
+FrictionLinearSolver friction_linear_solver_from_string(const std::string& name);  // "schur" | "lu"
+
 struct FrictionSettings {
   FrictionLaw law = FrictionLaw::Coulomb;
   double coefficient = 0.0;  // Coulomb: f >= 0
@@ -47,7 +55,9 @@ struct FrictionSettings {
   // has left small sliding: divergence (FullSliding when no node sticks).
   double max_slip = 1.0;
   contact::LinearizationOptions linearization;  // the normal rows' consistent linearization
-  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;
+  FrictionLinearSolver linear_solver = FrictionLinearSolver::Schur;
+  solve::FactorOrdering ordering = solve::FactorOrdering::Auto;  // Schur: of A_00
+  solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;   // SaddleLU
 };
 // Coulomb with f = 0: the frictionless solver answers (solve_load_path).
 bool friction_is_off(const FrictionSettings& settings);

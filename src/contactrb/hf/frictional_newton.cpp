@@ -12,6 +12,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/tangential_rows.hpp"
+#include "contactrb/hf/friction_system.hpp"
 
 namespace contactrb::hf {
 
@@ -27,6 +28,8 @@ constexpr double kMinStep = 1.0 / 1024.0;
 // A row touches at u_prev when its weighted gap d_r is at most this times |I_r| x the mesh's
 // diameter (round-off of a zero gap, e.g. two blocks meshed in contact).
 constexpr double kTouchingGap = 1e-12;
+// A reduced system with a smaller reciprocal condition estimate is singular (NewtonTuning::min_rcond).
+constexpr double kMinRcond = 1e-14;
 
 // An iterate and what the method reads at it.
 template <int Dim>
@@ -52,12 +55,12 @@ template <int Dim>
 class FrictionStep {
  public:
   static constexpr int M = Dim - 1;
-  FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous, const FrictionSettings& s);
+  FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous, solve::SelectedInverse* inverse,
+               const FrictionSettings& s);
   // Throws contactrb::Error when the geometry cannot be evaluated at u.
   FrictionIterate<Dim> evaluate(Eigen::VectorXd u0, Eigen::VectorXd lambda, Eigen::VectorXd lambda_t) const;
-  // Step 2: the generalized Newton system at x; false (message) when it is singular.
-  bool newton_step(const FrictionIterate<Dim>& x, bool consistent, Eigen::VectorXd& du, Eigen::VectorXd& lambda,
-                   Eigen::VectorXd& lambda_t, std::string& message) const;
+  // Step 2: the generalized Newton system at x.
+  FrictionSystemResult newton_step(const FrictionIterate<Dim>& x, bool consistent) const;
   // The largest slip increment of x, relative to max_slip x the mesh's diameter (> 1: divergence).
   double slip_ratio(const FrictionIterate<Dim>& x) const;
   double move_ratio(const Eigen::VectorXd& du) const {
@@ -69,8 +72,7 @@ class FrictionStep {
   bool in_contact(const FrictionIterate<Dim>& x, int r) const;
   void classify(FrictionIterate<Dim>& x) const;
   void residuals(FrictionIterate<Dim>& x) const;
-  void add_tangential_rows(const FrictionIterate<Dim>& x, int r, std::vector<Eigen::Triplet<double>>& trip,
-                           Eigen::VectorXd& rhs) const;
+  void add_tangential_rows(const FrictionIterate<Dim>& x, int r, FrictionJacobian& J) const;
 
   const FrictionAlgebra<Dim>& p_;
   const FrictionSettings& s_;
@@ -79,7 +81,8 @@ class FrictionStep {
   const int n_, R_;
   std::vector<int> global_to_free_;
   std::vector<char> movable_;
-  std::vector<Eigen::Triplet<double>> a_trip_;
+  solve::SelectedInverse* inverse_;  // A_00 factorized, or nullptr (sparse LU)
+  Eigen::VectorXd z_;                // A_00^-1 b (with inverse_)
   double diameter_ = 0.0;
   std::vector<Eigen::Matrix<double, Dim, 1>> rho_previous_;  // contact::material_points at u_prev
   // Rows in contact at u_prev (lambda_r > 0 or touching): only they carry friction in the step;
@@ -95,7 +98,7 @@ NewtonSettings evaluator_settings(const FrictionSettings& s) {
 
 template <int Dim>
 FrictionStep<Dim>::FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous,
-                                 const FrictionSettings& s)
+                                 solve::SelectedInverse* inverse, const FrictionSettings& s)
     : p_(p),
       s_(s),
       newton_settings_(evaluator_settings(s)),
@@ -103,15 +106,13 @@ FrictionStep<Dim>::FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionSta
       n_(p.dofs->num_free()),
       R_(static_cast<int>(p.quadrature->weight.size())),
       global_to_free_(sz(p.dofs->num_dofs()), -1),
-      movable_(sz(p.dofs->num_dofs()), 0) {
+      movable_(sz(p.dofs->num_dofs()), 0),
+      inverse_(inverse) {
+  if (inverse_ != nullptr) z_ = inverse_->solve(*p.b);
   for (int i = 0; i < n_; ++i) {
     const int g = p.dofs->free_dofs()[sz(i)];
     global_to_free_[sz(g)] = i;
     movable_[sz(g)] = 1;
-  }
-  a_trip_.reserve(sz(p.A00->nonZeros()));
-  for (int j = 0; j < p.A00->outerSize(); ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) a_trip_.emplace_back(a.row(), a.col(), a.value());
   }
   Eigen::Matrix<double, Dim, 1> lo = p.mesh->nodes.front(), hi = lo;
   for (const auto& x : p.mesh->nodes) {
@@ -209,18 +210,21 @@ FrictionIterate<Dim> FrictionStep<Dim>::evaluate(Eigen::VectorXd u0, Eigen::Vect
 //   (I - a P) lambda_t' - f z^ lambda_r' - a c_r P T_r du = (I - a P) lambda_t - f z^ lambda_r - C_t
 // (Tresca: no lambda_r term; 2D: P = 0, the row is lambda_t' = f lambda_r' z^, or s z^).
 template <int Dim>
-void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r,
-                                            std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& rhs) const {
-  const int base = n_ + R_ + M * r;
+void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r, FrictionJacobian& J) const {
+  const int base = n_ + R_ + M * r;  // the rows and the multiplier columns
+  std::vector<Eigen::Triplet<double>>& trip = J.rows;
   const SlipState state = x.state[sz(r)];
   if (state == SlipState::Open || !frictional_[sz(r)]) {
-    for (int j = 0; j < M; ++j) trip.emplace_back(base + j, base + j, 1.0);  // rhs 0
+    for (int j = 0; j < M; ++j) {
+      trip.emplace_back(base + j, base + j, 1.0);  // rhs 0
+      J.zero[sz(R_ + M * r + j)] = 1;
+    }
     return;
   }
   if (state == SlipState::Stick) {
     for (int j = 0; j < M; ++j) {
       for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(base + j, t.col(), t.value());
-      rhs(base + j) = -x.delta(M * r + j);
+      J.rhs(R_ + M * r + j) = -x.delta(M * r + j);
     }
     return;
   }
@@ -241,18 +245,18 @@ void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r
       for (RowSparse::InnerIterator t(x.T0, M * r + l); t; ++t) trip.emplace_back(base + j, t.col(), pu * t.value());
     }
     if (Jn(j) != 0.0) trip.emplace_back(base + j, n_ + r, Jn(j));
-    rhs(base + j) = rhs_r(j);
+    J.rhs(R_ + M * r + j) = rhs_r(j);
   }
 }
 
-// Step 2: [A_00 + H, K_0', T_0'; normal rows; tangential rows] [du; lambda'; lambda_t'] = rhs, one
-// sparse LU (the multipliers are unknowns of the system, not corrections). Normal rows: in
-// contact, -D_r du = d_r (consistent: D = d'(u), H = (K' lambda)') or K_r du = d_r (frozen:
-// H = 0); open, lambda_r' = 0. The tangential rows are T(u) frozen at the iterate (small sliding).
+// Step 2: the generalized Newton system (friction_system.hpp). Normal rows: in contact,
+// -D_r du = d_r (consistent: D = d'(u), H = (K' lambda)') or K_r du = d_r (frozen: H = 0);
+// open, lambda_r = 0. The tangential rows (add_tangential_rows) read T(u) frozen at the iterate
+// (small sliding).
 template <int Dim>
-bool FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consistent, Eigen::VectorXd& du,
-                                    Eigen::VectorXd& lambda, Eigen::VectorXd& lambda_t, std::string& message) const {
-  std::vector<Eigen::Triplet<double>> trip = a_trip_;
+FrictionSystemResult FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consistent) const {
+  FrictionJacobian J;
+  J.A00 = p_.A00;
   RowSparse D0;
   if (consistent) {
     const contact::ContactLinearizationOf<Dim> lin = contact::linearize_contact(
@@ -261,47 +265,37 @@ bool FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consiste
     for (int j = 0; j < lin.H.outerSize(); ++j) {
       for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
         const int fr = global_to_free_[sz(h.row())], fc = global_to_free_[sz(h.col())];
-        if (fr >= 0 && fc >= 0) trip.emplace_back(fr, fc, h.value());
+        if (fr >= 0 && fc >= 0) J.H.emplace_back(fr, fc, h.value());
       }
     }
   }
-  const int size = n_ + R_ + M * R_;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
-  rhs.head(n_) = *p_.b - *p_.A00 * x.n.u0;
+  {
+    std::vector<Eigen::Triplet<double>> b;
+    for (const RowSparse* rows : {&x.n.K0, &x.T0}) {
+      const int offset = rows == &x.n.K0 ? 0 : R_;
+      for (int i = 0; i < rows->outerSize(); ++i) {
+        for (RowSparse::InnerIterator k(*rows, i); k; ++k) b.emplace_back(offset + i, k.col(), k.value());
+      }
+    }
+    J.B.resize(R_ + M * R_, n_);
+    J.B.setFromTriplets(b.begin(), b.end());
+  }
+  J.top = *p_.b - *p_.A00 * x.n.u0;
+  J.rhs = Eigen::VectorXd::Zero(R_ + M * R_);
+  J.zero.assign(sz(R_ + M * R_), 0);
   for (int r = 0; r < R_; ++r) {
-    for (RowSparse::InnerIterator k(x.n.K0, r); k; ++k) trip.emplace_back(k.col(), n_ + r, k.value());
-    for (int j = 0; j < M; ++j) {
-      for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(t.col(), n_ + R_ + M * r + j, t.value());
-    }
     if (in_contact(x, r)) {
-      if (consistent) {
-        for (RowSparse::InnerIterator d(D0, r); d; ++d) trip.emplace_back(n_ + r, d.col(), -d.value());
-      } else {
-        for (RowSparse::InnerIterator k(x.n.K0, r); k; ++k) trip.emplace_back(n_ + r, k.col(), k.value());
-      }
-      rhs(n_ + r) = x.n.maps.d(r);
+      const RowSparse& rows = consistent ? D0 : x.n.K0;
+      const double sign = consistent ? -1.0 : 1.0;
+      for (RowSparse::InnerIterator d(rows, r); d; ++d) J.rows.emplace_back(n_ + r, d.col(), sign * d.value());
+      J.rhs(r) = x.n.maps.d(r);
     } else {
-      trip.emplace_back(n_ + r, n_ + r, 1.0);
+      J.rows.emplace_back(n_ + r, n_ + r, 1.0);
+      J.zero[sz(r)] = 1;
     }
-    add_tangential_rows(x, r, trip, rhs);
+    add_tangential_rows(x, r, J);
   }
-  Eigen::SparseMatrix<double> J(size, size);
-  J.setFromTriplets(trip.begin(), trip.end());
-  solve::SparseLU lu(s_.lu);
-  if (lu.compute(J) != solve::SparseLUStatus::Success) {
-    message = "the Newton system (" + std::to_string(n_) + " free DOFs, " + std::to_string(R_) + " contact rows) is " +
-              solve::to_string(lu.status());
-    return false;
-  }
-  const Eigen::VectorXd sol = lu.solve(rhs);
-  if (!sol.allFinite()) {
-    message = "the Newton system has no finite solution";
-    return false;
-  }
-  du = sol.head(n_);
-  lambda = sol.segment(n_, R_);
-  lambda_t = sol.tail(M * R_);
-  return true;
+  return solve_friction_system(J, inverse_, z_, x.n.u0, s_.lu, kMinRcond);
 }
 
 template <int Dim>
@@ -320,8 +314,8 @@ template <int Dim>
 class FrictionDriver {
  public:
   FrictionDriver(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous, const FrictionState<Dim>& start,
-                 const FrictionSettings& s)
-      : p_(p), start_(start), s_(s), step_(p, previous, s) {}
+                 solve::SelectedInverse* inverse, const FrictionSettings& s)
+      : p_(p), start_(start), s_(s), step_(p, previous, inverse, s) {}
 
   FrictionStepResult<Dim> run() {
     const auto t0 = Clock::now();
@@ -402,16 +396,15 @@ class FrictionDriver {
   bool iterate(int k) {
     const bool consistent = k > 0 && x_.state == previous_state_;
     previous_state_ = x_.state;
-    Eigen::VectorXd du, lambda, lambda_t;
-    std::string message;
-    bool solved = false;
+    FrictionSystemResult sys;
     try {
-      solved = step_.newton_step(x_, consistent, du, lambda, lambda_t, message);
+      sys = step_.newton_step(x_, consistent);
     } catch (const Error& e) {
-      message = std::string("the contact maps cannot be linearized: ") + e.what();
+      sys.message = std::string("the contact maps cannot be linearized: ") + e.what();
     }
-    if (!solved) return fail(k, message);
-    return line_search(k, du, lambda, lambda_t);
+    if (!sys.solved) return fail(k, sys.message);
+    const int R = static_cast<int>(x_.n.lambda.size());
+    return line_search(k, sys.du, sys.mu.head(R), sys.mu.tail(FrictionIterate<Dim>::M * R));
   }
 
   // Step 4: the first damping alpha = 1, 1/2, ... with an Armijo decrease of the merit; without
@@ -453,11 +446,13 @@ class FrictionDriver {
 
 template <int Dim>
 FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
-                                            const FrictionState<Dim>& start, const FrictionSettings& settings) {
-  return FrictionDriver<Dim>(algebra, previous, start, settings).run();
+                                            const FrictionState<Dim>& start, solve::SelectedInverse* inverse,
+                                            const FrictionSettings& settings) {
+  return FrictionDriver<Dim>(algebra, previous, start, inverse, settings).run();
 }
 
 template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, const FrictionState<2>&,
-                                                   const FrictionState<2>&, const FrictionSettings&);
+                                                   const FrictionState<2>&, solve::SelectedInverse*,
+                                                   const FrictionSettings&);
 
 }  // namespace contactrb::hf

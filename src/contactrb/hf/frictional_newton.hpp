@@ -8,6 +8,7 @@
 
 #include "contactrb/hf/friction.hpp"
 #include "contactrb/hf/newton_iterate.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::hf {
 
@@ -34,11 +35,14 @@ struct FrictionStepResult {
 };
 
 // previous: the end of the previous step (u_prev of the slip increments); start: the first
-// iterate (the previous state, or a predictor of it).
+// iterate (the previous state, or a predictor of it); inverse: A_00 factorized (the systems
+// condensed on the contact DOFs), or nullptr (one sparse LU of the whole system per iteration).
 template <int Dim>
 FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
-                                            const FrictionState<Dim>& start, const FrictionSettings& settings);
+                                            const FrictionState<Dim>& start, solve::SelectedInverse* inverse,
+                                            const FrictionSettings& settings);
 extern template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, const FrictionState<2>&,
-                                                          const FrictionState<2>&, const FrictionSettings&);
+                                                          const FrictionState<2>&, solve::SelectedInverse*,
+                                                          const FrictionSettings&);
 
 }  // namespace contactrb::hf
