@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "contactrb/cases/frictional_cases.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/friction.hpp"
 #include "contactrb/mesh/geometries.hpp"
@@ -95,9 +96,12 @@ hf::ContactProblem hertz_with(const hf::LoadStep& step, int arc_nodes) {
 // The level-4 Cattaneo-Mindlin run shared by the cone and Cattaneo tests: delta = 0.13 (hertz-a's
 // Hertz check, a/R about 0.1), f = 0.3, dx = 0.01 (Q / (f P) about 0.6).
 constexpr double kF = 0.3;
+// The built-in cattaneo case at level 4 (481 slave arc nodes) with its defaults.
 const hf::FrictionalSolution& cattaneo_run() {
-  static const hf::FrictionalSolution s =
-      hf::solve_load_path(hertz(481), normal_then_tangential(0.13, 0.01, 1), coulomb(kF));
+  static const hf::FrictionalSolution s = [] {
+    const cases::FrictionalCase c = cases::cattaneo_case(4);
+    return hf::solve_load_path(c.problem, c.path, c.friction);
+  }();
   return s;
 }
 }  // namespace
@@ -378,4 +382,22 @@ TEST(Friction, SchurAndSaddleLUGiveTheSameAnswer) {
   EXPECT_LT((a.lambda_t - b.lambda_t).cwiseAbs().maxCoeff(), 1e-8 * lmax);
   EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-8 * a.u.cwiseAbs().maxCoeff());
   EXPECT_EQ(hf::friction_linear_solver_from_string("lu"), hf::FrictionLinearSolver::SaddleLU);
+}
+
+// The cattaneo case is hertz-a's problem with the path and law of docs/cases.md.
+TEST(Friction, CattaneoCaseIsHertzAWithItsPath) {
+  const cases::FrictionalCase c = cases::cattaneo_case(0, {0.2, 0.004, 0.25, 2});
+  EXPECT_EQ(c.problem.mesh.num_nodes(), hertz(51).mesh.num_nodes());
+  ASSERT_EQ(c.path.size(), 3u);
+  EXPECT_EQ(*c.path[0].dirichlet[0].ux, 0.0);
+  EXPECT_EQ(*c.path[1].dirichlet[0].ux, 0.002);
+  EXPECT_EQ(*c.path[2].dirichlet[0].ux, 0.004);
+  EXPECT_EQ(*c.path[2].dirichlet[0].uy, -0.1);
+  EXPECT_EQ(*c.path[2].dirichlet[1].uy, 0.1);
+  EXPECT_EQ(c.friction.law, hf::FrictionLaw::Coulomb);
+  EXPECT_EQ(c.friction.coefficient, 0.25);
+  EXPECT_EQ(c.problem.materials[0].E, 15.0);
+  EXPECT_THROW(cases::cattaneo_case(0, {0.05, 0.01, 0.3, 1}), Error);   // the gap stays open
+  EXPECT_THROW(cases::cattaneo_case(0, {0.2, 0.01, -0.3, 1}), Error);
+  EXPECT_THROW(cases::cattaneo_case(0, {0.2, 0.01, 0.3, 0}), Error);
 }
