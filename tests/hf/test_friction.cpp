@@ -10,6 +10,7 @@
 #include "contactrb/cases/frictional_cases.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/friction.hpp"
+#include "contactrb/hf/friction_json.hpp"
 #include "contactrb/mesh/geometries.hpp"
 #include "hf_test_meshes.hpp"
 
@@ -400,4 +401,23 @@ TEST(Friction, CattaneoCaseIsHertzAWithItsPath) {
   EXPECT_THROW(cases::cattaneo_case(0, {0.05, 0.01, 0.3, 1}), Error);   // the gap stays open
   EXPECT_THROW(cases::cattaneo_case(0, {0.2, 0.01, -0.3, 1}), Error);
   EXPECT_THROW(cases::cattaneo_case(0, {0.2, 0.01, 0.3, 0}), Error);
+}
+
+// The record serializes itself: the JSON carries the solution's numbers.
+TEST(Friction, SolutionJsonCarriesTheRecord) {
+  const hf::FrictionalSolution& s = cattaneo_run();
+  const nlohmann::json j = hf::to_json(s);
+  EXPECT_EQ(j.at("converged").get<bool>(), s.converged);
+  EXPECT_EQ(j.at("status").get<std::string>(), "converged");
+  EXPECT_EQ(j.at("tangential_force").get<double>(), s.tangential_force(0));
+  EXPECT_EQ(j.at("contact_force").get<double>(), s.contact_force);
+  EXPECT_EQ(j.at("stick_nodes").get<int>(), s.stick_nodes);
+  EXPECT_EQ(j.at("slip_nodes").get<int>(), s.slip_nodes);
+  EXPECT_EQ(j.at("kkt").at("friction").get<double>(), s.kkt.friction);
+  ASSERT_EQ(j.at("steps").size(), s.steps.size());
+  EXPECT_EQ(j.at("steps").back().at("iterations").get<int>(), s.steps.back().iterations);
+  EXPECT_EQ(j.at("steps").back().at("residuals").size(), s.steps.back().residuals.size());
+  const nlohmann::json f = hf::to_json(cases::cattaneo_case(0).friction);
+  EXPECT_EQ(f.at("law").get<std::string>(), "coulomb");
+  EXPECT_EQ(f.at("friction_coefficient").get<double>(), 0.3);
 }
