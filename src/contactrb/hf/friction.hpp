@@ -6,11 +6,12 @@
 // step solves, by a semi-smooth Newton method on the Alart-Curnier complementarity functions,
 //   A_00 u_0 - b + K_0(u)' lambda + T_0(u)' lambda_t = 0,
 //   min(lambda_r, c_r d_r(u)) = 0,                       d = g(u) - K(u) u   (the normal law)
-//   lambda_t,r - P_{B(s_r)}(lambda_t,r + c_r delta_r) = 0, delta = T(u) (u - u_prev)
+//   lambda_t,r - P_{B(s_r)}(lambda_t,r + c_r delta_r) = 0, delta_r = -|I_r| slip_r(u)
 // with B(s) the ball of radius s (2D: [-s, s]), s_r = the Tresca threshold or f lambda_r on rows
-// in contact, 0 on open rows; delta_r is the tangential motion of the master point relative to
-// the slave node during the step (small sliding: T at the iterate). u_prev is the displacement at
-// the end of the previous step, so the slip history is carried from step to step.
+// in contact, 0 on open rows; slip_r is the motion of the slave node over the master's material
+// points since u_prev, the displacement at the end of the previous step
+// (contact::tangential_slip), so the slip history is carried from step to step. A row that
+// closes during a step carries friction from the next step on.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
