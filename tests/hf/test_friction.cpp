@@ -474,3 +474,25 @@ TEST(Friction, ReversedLoadReversesTheTractions) {
   EXPECT_NEAR(*c.path[7].dirichlet[0].ux, 0.002, 1e-15);
   EXPECT_GT(std::abs(q_unloading - q_loading), 0.05 * std::abs(q_loading));
 }
+
+// Under a constant normal load, a monotone tangential loading ends in the same state whatever its
+// increments (every slipping node slips one way): one step or four, here on non-matching meshes
+// (a lower radius 1.05, hertz-b's generator setting).
+TEST(Friction, MonotoneTangentialLoadingDoesNotDependOnItsSteps) {
+  mesh::HertzGeometry g;
+  g.slave_arc_nodes = 121;
+  g.mirror = false;
+  g.R2 = 1.05;
+  hf::ContactProblem p;
+  p.mesh = mesh::generate_hertz(g);
+  p.materials = {kMat, kMat};
+  const hf::FrictionalSolution one = hf::solve_load_path(p, normal_then_tangential(0.2, 0.01, 1), coulomb(kF));
+  const hf::FrictionalSolution four = hf::solve_load_path(p, normal_then_tangential(0.2, 0.01, 4), coulomb(kF));
+  ASSERT_TRUE(one.converged) << one.message;
+  ASSERT_TRUE(four.converged) << four.message;
+  EXPECT_GE(one.slip_nodes, 1);
+  EXPECT_TRUE(one.state == four.state);
+  const double diff = (one.lambda_t - four.lambda_t).cwiseAbs().maxCoeff() / one.lambda_t.cwiseAbs().maxCoeff();
+  std::printf("[ report ] one tangential step against four: max |t1 - t4| / max |t| = %.2e\n", diff);
+  EXPECT_LT(diff, 1e-6);
+}
