@@ -111,3 +111,57 @@ TEST(TangentialRows, FrictionNeedsCollocationRows) {
   const contact::PointwiseContact pw = contact::project_slave_nodes(s.mesh, s.pair, Eigen::VectorXd::Zero(s.mesh.num_dofs()));
   EXPECT_THROW(contact::tangential_rows<2>(s.mesh, s.pair, s.quadrature, pw), Error);
 }
+
+// slip_rows is the derivative of -|I_r| slip_r (tangents held): central differences of the
+// material points along a random direction, on the curved master, at a deformed state.
+TEST(TangentialRows, SlipRowsAreTheDerivativeOfTheWeightedSlip) {
+  const Pair s = make_pair_of(contact_test::join(mesh::rectangle(-0.5, 1.02, 0.5, 1.5, 10, 3, mesh::kSlaveBody),
+                                                 contact_test::half_annulus(0.5, 1.0, 24, 3)));
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  Eigen::VectorXd w(s.mesh.num_dofs()), v(s.mesh.num_dofs());
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    w(i) = 0.005 * uni(gen);
+    v(i) = uni(gen);
+  }
+  const contact::PointwiseContact pw = contact::project_slave_nodes(s.mesh, s.pair, w);
+  const Eigen::VectorXd Dv = contact::slip_rows<2>(s.mesh, s.pair, s.quadrature, pw, w) * v;
+  const double h = 1e-6;
+  auto rho_along = [&](double t) { return contact::material_points<2>(s.mesh, s.pair, pw, w + t * v); };
+  const auto plus = rho_along(h), minus = rho_along(-h);
+  int checked = 0;
+  for (std::size_t q = 0; q < pw.projection.size(); ++q) {
+    if (!pw.projection[q].candidate) continue;
+    const Eigen::Vector2d tau = contact::tangent_basis<2>(pw.projection[q].normal);
+    const double dslip = tau.dot(plus[q] - minus[q]) / (2.0 * h);
+    EXPECT_NEAR(Dv(static_cast<Eigen::Index>(q)), -s.quadrature.weight(static_cast<Eigen::Index>(q)) * dslip, 1e-8) << q;
+    ++checked;
+  }
+  EXPECT_GE(checked, 5);
+}
+
+// tangential_stiffness is the derivative of T(w)' lambda_t when the tangents do not turn: a flat
+// master that moves rigidly, the slave nodes moving freely (central differences).
+TEST(TangentialRows, TangentialStiffnessIsTheDerivativeOfTheForces) {
+  const Pair s = flat();
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  Eigen::VectorXd w = translation(s.mesh, mesh::kSlaveBody, Eigen::Vector2d(0.03, -0.05));
+  Eigen::VectorXd v = translation(s.mesh, mesh::kMasterBody, Eigen::Vector2d(0.3, -0.2));
+  for (int node : s.pair.slave) {
+    w.segment<2>(2 * node) += 0.01 * Eigen::Vector2d(uni(gen), uni(gen));
+    v.segment<2>(2 * node) += Eigen::Vector2d(uni(gen), uni(gen));
+  }
+  Eigen::VectorXd lambda_t(s.quadrature.weight.size());
+  for (Eigen::Index r = 0; r < lambda_t.size(); ++r) lambda_t(r) = uni(gen);
+  const contact::PointwiseContact pw = contact::project_slave_nodes(s.mesh, s.pair, w);
+  const Eigen::VectorXd Hv = contact::tangential_stiffness<2>(s.mesh, s.pair, s.quadrature, pw, w, lambda_t) * v;
+  const double h = 1e-6;
+  auto forces = [&](double t) {
+    const contact::PointwiseContact p = contact::project_slave_nodes(s.mesh, s.pair, w + t * v);
+    return Eigen::VectorXd(contact::tangential_rows<2>(s.mesh, s.pair, s.quadrature, p).transpose() * lambda_t);
+  };
+  const Eigen::VectorXd fd = (forces(h) - forces(-h)) / (2.0 * h);
+  EXPECT_GT(Hv.norm(), 1e-3);
+  EXPECT_LT((Hv - fd).cwiseAbs().maxCoeff(), 1e-7 * Hv.cwiseAbs().maxCoeff());
+}

@@ -54,6 +54,36 @@ template <int Dim>
 Eigen::VectorXd tangential_slip(const PointwiseContactOf<Dim>& now, const std::vector<Eigen::Matrix<double, Dim, 1>>& rho,
                                 const std::vector<Eigen::Matrix<double, Dim, 1>>& rho_previous);
 
+// The derivative of the weighted slip -|I_r| slip_r(w) (the rows of delta in hf/friction.hpp)
+// with respect to w at the projections `pointwise` of w, the tangents held fixed (their change
+// multiplies the slip itself): (Dim - 1) R x num_dofs. In 2D, with e = x_b - x_a and
+// L = X_b - X_a, d slip = (tau . L) / |e|^2 [e . (dw_s - dw_a) + (x_s - x_a - 2 xi e) . (dw_b - dw_a)].
+// At zero gap and without stretch it is T (tangential_rows). Collocation only (throws
+// contactrb::Error otherwise or on sizes that do not match).
+template <int Dim>
+Eigen::SparseMatrix<double, Eigen::RowMajor> slip_rows(const mesh::SimplexMesh<Dim>& mesh,
+                                                       const ContactPairOf<Dim>& pair,
+                                                       const ContactQuadrature& quadrature,
+                                                       const PointwiseContactOf<Dim>& pointwise,
+                                                       const Eigen::VectorXd& w);
+
+// The derivative of the tangential contact forces T(w)' lambda_t through the motion of the
+// projection point (xi), the tangents held fixed: num_dofs x num_dofs (the tangential
+// counterpart of H = (K' lambda)' of contact_linearization.hpp). In 2D the forces
+// |I_r| lambda_t,r ((1 - xi) tau on a, xi tau on b, -tau on s) change by |I_r| lambda_t,r tau
+// (-d xi on a, +d xi on b), d xi as in slip_rows. Collocation only.
+template <int Dim>
+Eigen::SparseMatrix<double> tangential_stiffness(const mesh::SimplexMesh<Dim>& mesh, const ContactPairOf<Dim>& pair,
+                                                 const ContactQuadrature& quadrature,
+                                                 const PointwiseContactOf<Dim>& pointwise, const Eigen::VectorXd& w,
+                                                 const Eigen::VectorXd& lambda_t);
+
+extern template Eigen::SparseMatrix<double> tangential_stiffness<2>(const mesh::Mesh&, const ContactPair&,
+                                                                    const ContactQuadrature&, const PointwiseContact&,
+                                                                    const Eigen::VectorXd&, const Eigen::VectorXd&);
+extern template Eigen::SparseMatrix<double, Eigen::RowMajor> slip_rows<2>(const mesh::Mesh&, const ContactPair&,
+                                                                          const ContactQuadrature&,
+                                                                          const PointwiseContact&, const Eigen::VectorXd&);
 extern template std::vector<Eigen::Vector2d> material_points<2>(const mesh::Mesh&, const ContactPair&,
                                                                 const PointwiseContact&, const Eigen::VectorXd&);
 extern template Eigen::VectorXd tangential_slip<2>(const PointwiseContact&, const std::vector<Eigen::Vector2d>&,

@@ -38,6 +38,7 @@ struct FrictionIterate {
   NewtonIterate<Dim> n;              // u_0, lambda, u, the maps, K_0, the normal KKT numbers
   Eigen::VectorXd lambda_t;          // M R
   RowSparse T0;                      // T(u) on the free columns
+  RowSparse S0;                      // delta'(u) on the free columns (contact::slip_rows)
   Eigen::VectorXd slip;              // M R: contact::tangential_slip since u_prev
   Eigen::VectorXd delta;             // -|I_r| slip_r: the weighted slip, in the units of the rows
   Eigen::VectorXd z;                 // lambda_t + c delta
@@ -199,15 +200,17 @@ FrictionIterate<Dim> FrictionStep<Dim>::evaluate(Eigen::VectorXd u0, Eigen::Vect
     if (!frictional_[sz(r)]) x.slip.template segment<M>(M * r).setZero();
   }
   x.delta = -(p_.quadrature->W * x.slip);
+  x.S0 = p_.dofs->restrict_columns(
+      contact::slip_rows<Dim>(*p_.mesh, *p_.pair, *p_.quadrature, x.n.maps.pointwise, x.n.u));
   x.lambda_t = std::move(lambda_t);
   classify(x);
   residuals(x);
   return x;
 }
 
-// The rows of C_t,r linearized (generalized Jacobian): open, lambda_t,r = 0; stick,
-// T_r du = -delta_r; slip, with z^ = z / |z|, P = I - z^ z^' and a = s / |z|,
-//   (I - a P) lambda_t' - f z^ lambda_r' - a c_r P T_r du = (I - a P) lambda_t - f z^ lambda_r - C_t
+// The rows of C_t,r linearized (generalized Jacobian; S = delta'(u), contact::slip_rows): open,
+// lambda_t,r = 0; stick, S_r du = -delta_r; slip, with z^ = z / |z|, P = I - z^ z^', a = s / |z|,
+//   (I - a P) lambda_t' - f z^ lambda_r' - a c_r P S_r du = (I - a P) lambda_t - f z^ lambda_r - C_t
 // (Tresca: no lambda_r term; 2D: P = 0, the row is lambda_t' = f lambda_r' z^, or s z^).
 template <int Dim>
 void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r, FrictionJacobian& J) const {
@@ -223,7 +226,7 @@ void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r
   }
   if (state == SlipState::Stick) {
     for (int j = 0; j < M; ++j) {
-      for (RowSparse::InnerIterator t(x.T0, M * r + j); t; ++t) trip.emplace_back(base + j, t.col(), t.value());
+      for (RowSparse::InnerIterator t(x.S0, M * r + j); t; ++t) trip.emplace_back(base + j, t.col(), t.value());
       J.rhs(R_ + M * r + j) = -x.delta(M * r + j);
     }
     return;
@@ -242,7 +245,7 @@ void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r
       if (Jt(j, l) != 0.0) trip.emplace_back(base + j, base + l, Jt(j, l));
       const double pu = -a * evaluate_.c()(r) * P(j, l);
       if (pu == 0.0) continue;
-      for (RowSparse::InnerIterator t(x.T0, M * r + l); t; ++t) trip.emplace_back(base + j, t.col(), pu * t.value());
+      for (RowSparse::InnerIterator t(x.S0, M * r + l); t; ++t) trip.emplace_back(base + j, t.col(), pu * t.value());
     }
     if (Jn(j) != 0.0) trip.emplace_back(base + j, n_ + r, Jn(j));
     J.rhs(R_ + M * r + j) = rhs_r(j);
@@ -250,9 +253,9 @@ void FrictionStep<Dim>::add_tangential_rows(const FrictionIterate<Dim>& x, int r
 }
 
 // Step 2: the generalized Newton system (friction_system.hpp). Normal rows: in contact,
-// -D_r du = d_r (consistent: D = d'(u), H = (K' lambda)') or K_r du = d_r (frozen: H = 0);
-// open, lambda_r = 0. The tangential rows (add_tangential_rows) read T(u) frozen at the iterate
-// (small sliding).
+// -D_r du = d_r (consistent: D = d'(u), H = (K' lambda)' + (T' lambda_t)' through xi,
+// contact::tangential_stiffness) or K_r du = d_r (frozen: H = 0); open, lambda_r = 0. The
+// tangential rows: add_tangential_rows (the tangents held at the iterate: small sliding).
 template <int Dim>
 FrictionSystemResult FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& x, bool consistent) const {
   FrictionJacobian J;
@@ -262,10 +265,14 @@ FrictionSystemResult FrictionStep<Dim>::newton_step(const FrictionIterate<Dim>& 
     const contact::ContactLinearizationOf<Dim> lin = contact::linearize_contact(
         *p_.mesh, *p_.pair, *p_.quadrature, x.n.u, x.n.lambda, movable_, x.n.maps, s_.linearization);
     D0 = p_.dofs->restrict_columns(lin.D);
-    for (int j = 0; j < lin.H.outerSize(); ++j) {
-      for (Eigen::SparseMatrix<double>::InnerIterator h(lin.H, j); h; ++h) {
-        const int fr = global_to_free_[sz(h.row())], fc = global_to_free_[sz(h.col())];
-        if (fr >= 0 && fc >= 0) J.H.emplace_back(fr, fc, h.value());
+    const Eigen::SparseMatrix<double> Ht = contact::tangential_stiffness<Dim>(
+        *p_.mesh, *p_.pair, *p_.quadrature, x.n.maps.pointwise, x.n.u, x.lambda_t);
+    for (const Eigen::SparseMatrix<double>* H : {&lin.H, &Ht}) {
+      for (int j = 0; j < H->outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator h(*H, j); h; ++h) {
+          const int fr = global_to_free_[sz(h.row())], fc = global_to_free_[sz(h.col())];
+          if (fr >= 0 && fc >= 0) J.H.emplace_back(fr, fc, h.value());
+        }
       }
     }
   }
