@@ -362,6 +362,14 @@ TEST(Friction, InvalidInputIsRefusedWithAMessage) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("load step 2"), std::string::npos) << e.what();
   }
+  std::vector<hf::LoadStep> nan_step = path;
+  nan_step.back().dirichlet[0].ux = std::nan("");
+  try {
+    hf::solve_load_path(p, nan_step, coulomb(0.3));
+    ADD_FAILURE() << "a non-finite Dirichlet value was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(hf::friction_law_from_string("tresca"), hf::FrictionLaw::Tresca);
   EXPECT_THROW(hf::friction_law_from_string("viscous"), Error);
   EXPECT_EQ(hf::friction_status_from_string(hf::to_string(hf::FrictionStatus::FullSliding)), hf::FrictionStatus::FullSliding);

@@ -161,6 +161,11 @@ StepAlgebra<Dim> step_algebra(const BasicHFSolver<Dim>& solver, const Eigen::Vec
                               const BasicLoadStep<Dim>& step, std::size_t index) {
   const mesh::SimplexMesh<Dim>& mesh = solver.problem().mesh;
   StepAlgebra<Dim> a;
+  for (const fem::DirichletCondition& c : step.dirichlet) {
+    require((!c.ux || std::isfinite(*c.ux)) && (!c.uy || std::isfinite(*c.uy)) && (!c.uz || std::isfinite(*c.uz)),
+            "friction: load step " + std::to_string(index + 1) + ": Dirichlet data on group '" + c.group +
+                "' is not finite");
+  }
   a.dofs = fem::DofMap(mesh, step.dirichlet);
   require(a.dofs.free_dofs() == solver.dofs().free_dofs(),
           "friction: load step " + std::to_string(index + 1) +
