@@ -180,6 +180,27 @@ def test_batched_greedy_offline_equals_cli(tmp_path):
     assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
 
 
+def test_full_sweep_greedy_equals_cli(tmp_path):
+    # greedy_saturation=inf against --greedy-saturation inf: every step solves every point, the
+    # same points and model; the default lazy sweep solves fewer after the first step.
+    out = tmp_path / "full" / "model.h5"
+    out.parent.mkdir()
+    run_cli("offline", "--greedy", "--case", "hertz-a", "--values", VALUES, "--max-hf", 3, "--greedy-saturation", "inf",
+            "-q", "--out", out)
+    values = np.array([float(v) for v in VALUES.split(",")])
+    model = contactrb.offline("hertz-a", "greedy", set=values, max_hf=3, greedy_saturation=float("inf"))
+    g = json.loads((out.parent / "greedy.json").read_text())
+    assert g["saturation"] is None and model.greedy["saturation"] is None  # +inf in JSON
+    assert [step["sweep_solves"] for step in g["steps"]] == [len(values)] * len(g["steps"])
+    assert model.greedy["selected"][:, 0].tolist() == g["selected"]
+    assert_equals_cli(model.solve(0.33), online_json(out, 0.33))
+    lazy = contactrb.offline("hertz-a", "greedy", set=values, max_hf=3)
+    assert lazy.greedy["saturation"] == 1.0
+    assert lazy.greedy["steps"][0]["sweep_solves"] == len(values)
+    with pytest.raises(Exception, match="saturation"):
+        contactrb.offline("hertz-a", "greedy", set=values, max_hf=3, greedy_saturation=0.5)
+
+
 def test_fields_on_the_hf_mesh_match_the_hf_solution(model):
     # At a training value the reduced solution reproduces the snapshot up to the POD and solver
     # tolerances; the mesh of Omega(mu) is the HF solver's, bitwise.
