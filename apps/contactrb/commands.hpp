@@ -79,6 +79,18 @@ Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);
 
+// `contactrb solve` on a frictional built-in case (cmd_solve_friction.cpp): the options as given.
+struct FrictionalSolveRequest {
+  std::string case_name;
+  std::string mu_text;     // --mu: the friction coefficient f
+  std::string constraint;  // --constraint (empty or collocation)
+  std::optional<std::string> solver;  // --solver (absent or newton)
+  int level = 0;
+  std::string out_dir;
+};
+// Exit code 0, or 3 when the load path fails (solution.json says how).
+int run_frictional_solve(const FrictionalSolveRequest& request);
+
 // The case of --case (a built-in name) or --case-file (a TOML file) for `command`, which solves
 // 2D cases only: throws contactrb::Error in one line naming the command, the case and its
 // dimension for a 3D case (case_input.cpp; contactrb-full only).

@@ -20,6 +20,21 @@ const std::vector<CaseInfo>& builtin_cases() {
   return cases;
 }
 
+const std::vector<CaseInfo>& frictional_builtin_cases() {
+  static const std::vector<CaseInfo> cases{
+      {"cattaneo", "frictional (Coulomb, f = mu in [0, 1]): the hertz-a half-disks pressed together, then the upper "
+                   "edge moved sideways; `solve` only"},
+  };
+  return cases;
+}
+
+bool is_frictional_case(const std::string& name) {
+  for (const CaseInfo& c : frictional_builtin_cases()) {
+    if (c.name == name) return true;
+  }
+  return false;
+}
+
 const CaseInfo& find_case(const std::string& name) {
   for (const CaseInfo& c : builtin_cases()) {
     if (c.name == name) return c;
@@ -27,6 +42,8 @@ const CaseInfo& find_case(const std::string& name) {
   std::ostringstream os;
   os << "unknown case '" << name << "' (built-in cases:";
   for (const CaseInfo& c : builtin_cases()) os << " " << c.name;
+  os << "; frictional:";
+  for (const CaseInfo& c : frictional_builtin_cases()) os << " " << c.name;
   os << ")";
   throw Error(os.str());
 }
