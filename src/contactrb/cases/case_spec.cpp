@@ -459,11 +459,6 @@ int CaseSpec::parameter_of_body(ParameterKind kind, int body) const {
 }
 
 CaseSpec builtin_case_spec(const std::string& name) {
-  // A frictional case has no reduced model and no parameter box of this kind: every path that
-  // asks for its CaseSpec (snapshots, offline, online, evaluate, report, Python) refuses it.
-  require(!is_frictional_case(name), "case '" + name +
-                                         "' is frictional: only `contactrb solve` handles friction (docs/cases.md, "
-                                         "\"Frictional cases\")");
   find_case(name);  // throws naming the unknown case
   CaseSpec c = name == "hertz-a"    ? hertz_a()
                : name == "hertz-b"  ? hertz_b()

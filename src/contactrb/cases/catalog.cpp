@@ -36,6 +36,11 @@ bool is_frictional_case(const std::string& name) {
 }
 
 const CaseInfo& find_case(const std::string& name) {
+  // A frictional case has no CaseSpec (no reduced model, no parameter box of this kind): every
+  // path that asks for one (snapshots, offline, report, mesh, Python) refuses it here.
+  require(!is_frictional_case(name), "case '" + name +
+                                         "' is frictional: only `contactrb solve` handles friction (docs/cases.md, "
+                                         "\"Frictional cases\")");
   for (const CaseInfo& c : builtin_cases()) {
     if (c.name == name) return c;
   }

@@ -1,0 +1,149 @@
+// contactrb solve on the frictional built-in case cattaneo: the files read back against the
+// solver's own totals and Coulomb's law, and every command without friction refusing the case.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "csv_text.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using contactrb::test::CliResult;
+using contactrb::test::read_csv;
+using contactrb::test::run_cli;
+using contactrb::test::shell_quote;
+
+namespace {
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+std::vector<double> numbers(const std::vector<std::string>& cells) {
+  std::vector<double> v;
+  for (const std::string& c : cells) v.push_back(std::stod(c));
+  return v;
+}
+
+}  // namespace
+
+TEST(CliFriction, CattaneoFilesAgreeWithTheReportedForcesAndCoulombsLaw) {
+  contactrb::test::TempDir dir("friction_solve");
+  const double f = 0.3;
+  const CliResult r = run_cli("solve --case cattaneo --mu f=0.3 --level 2 --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_EQ(j["case"], "cattaneo");
+  EXPECT_EQ(j["law"], "coulomb");
+  EXPECT_EQ(j["status"], "converged");
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_EQ(j["friction_coefficient"].get<double>(), f);
+  // The path: normal approach, then the tangential displacement; each step converged.
+  ASSERT_EQ(j["steps"].size(), 2u);
+  EXPECT_EQ(j["load_steps"].get<int>(), 2);
+  for (const nlohmann::json& step : j["steps"]) {
+    EXPECT_EQ(step["status"], "converged");
+    EXPECT_LE(step["iterations"].get<int>(), 15);
+  }
+  EXPECT_LT(j["kkt"]["friction"].get<double>(), 1e-9);
+
+  const auto csv = read_csv((dir.path() / "multipliers.csv").string());
+  const std::vector<double> p = numbers(csv.at("pressure")), t = numbers(csv.at("tangential")),
+                            w = numbers(csv.at("weight"));
+  const std::vector<std::string>& state = csv.at("state");
+  ASSERT_EQ(t.size(), p.size());
+  ASSERT_EQ(state.size(), p.size());
+  double normal = 0.0, tangential = 0.0, p_max = 0.0;
+  int stick = 0, slip = 0, open = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    normal += p[i] * w[i];
+    tangential += t[i] * w[i];
+    p_max = std::max(p_max, p[i]);
+    stick += state[i] == "stick";
+    slip += state[i] == "slip";
+    open += state[i] == "open";
+  }
+  EXPECT_EQ(stick + slip + open, static_cast<int>(p.size()));  // no other state
+  EXPECT_EQ(stick, j["stick_nodes"].get<int>());
+  EXPECT_EQ(slip, j["slip_nodes"].get<int>());
+  EXPECT_EQ(open, j["steps"].back()["open_nodes"].get<int>());
+  EXPECT_GT(stick, 0);
+  EXPECT_GT(slip, 0);  // Q / (f P) about 0.6: a stick zone inside slip zones
+  EXPECT_NEAR(normal, j["contact_force"].get<double>(), 1e-12 * normal);
+  EXPECT_NEAR(tangential, j["tangential_force"].get<double>(), 1e-12 * normal);
+  EXPECT_GT(std::abs(tangential), 0.3 * f * normal);
+  EXPECT_LT(std::abs(tangential), f * normal);
+  // Coulomb's cone at every row, equality on the slip rows, nothing on the open ones (the CSV
+  // holds 17 significant digits).
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_LE(std::abs(t[i]), f * p[i] + 1e-12 * p_max) << "row " << i;
+    if (state[i] == "slip") {
+      EXPECT_NEAR(std::abs(t[i]), f * p[i], 1e-12 * p_max) << "row " << i;
+    } else if (state[i] == "open") {
+      EXPECT_EQ(t[i], 0.0) << "row " << i;
+    }
+  }
+  for (const char* vtu : {"solution.vtu", "solution_deformed.vtu", "contact.vtu"}) {
+    EXPECT_GT(fs::file_size(dir.path() / vtu), 1000u) << vtu;
+  }
+  const std::string contact = contactrb::test::file_text((dir.path() / "contact.vtu").string());
+  EXPECT_NE(contact.find("Name=\"tangential_traction\""), std::string::npos);
+  EXPECT_NE(contact.find("Name=\"state\""), std::string::npos);
+}
+
+TEST(CliFriction, ZeroCoefficientGivesNoTangentialForce) {
+  contactrb::test::TempDir dir("friction_zero");
+  const CliResult r = run_cli("solve --case cattaneo --mu 0 --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_EQ(j["tangential_force"].get<double>(), 0.0);
+  EXPECT_EQ(j["stick_nodes"].get<int>(), 0);
+  const auto csv = read_csv((dir.path() / "multipliers.csv").string());
+  for (const std::string& t : csv.at("tangential")) EXPECT_EQ(std::stod(t), 0.0);
+}
+
+TEST(CliFriction, CasesListsCattaneoAsFrictional) {
+  const CliResult r = run_cli("cases");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.out.find("\ncattaneo ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2D  frictional", at), std::string::npos) << r.out;
+}
+
+TEST(CliFriction, BadSolveInputsGiveOneClearError) {
+  contactrb::test::TempDir dir("friction_bad");
+  const std::string out = " --out " + shell_quote(dir.path().string());
+  using contactrb::test::expect_user_error;
+  expect_user_error(run_cli("solve --case cattaneo --mu -0.1" + out), "outside the domain");
+  expect_user_error(run_cli("solve --case cattaneo --mu nan" + out), "is not a number");
+  expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --constraint lac" + out), "collocation only");
+  expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --solver kacanov" + out), "semi-smooth Newton");
+  expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --level -1" + out), "--level must be >= 0");
+  EXPECT_FALSE(fs::exists(dir.path() / "solution.json"));
+}
+
+// Every command without friction refuses the frictional case in one line (never a frictionless
+// answer in its place).
+class CliFrictionRefusal : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CliFrictionRefusal, RefusesTheFrictionalCase) {
+  contactrb::test::TempDir dir("friction_refusal");
+  const std::string command = std::string(GetParam()) + " --out " + shell_quote((dir.path() / "out").string());
+  const CliResult r = run_cli(command);
+  contactrb::test::expect_user_error(r, "case 'cattaneo' is frictional: only `contactrb solve` handles friction");
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Commands, CliFrictionRefusal,
+                         ::testing::Values("snapshots --case cattaneo --set training", "offline --case cattaneo",
+                                           "offline --greedy --case cattaneo --greedy-tol 1e-3",
+                                           "report --case cattaneo", "mesh --case cattaneo"));
