@@ -183,8 +183,11 @@ int solve_case(const SolveOptions& opt, const cases::CaseSpec& spec, const hf::H
 }
 
 int run_solve(SolveOptions opt) {
-  if (opt.case_file.empty() && cases::is_frictional_case(opt.case_name)) {
-    return run_frictional_solve({opt.case_name, opt.mu_text, opt.constraint, opt.solver, opt.level, opt.out_dir});
+  // A frictional case (docs/cases.md, "Frictional cases"): its load path instead.
+  if (opt.case_file.empty() ? cases::is_frictional_case(opt.case_name)
+                            : cases::frictional_case_from_toml_file(opt.case_file).has_value()) {
+    return run_frictional_solve(
+        {opt.case_name, opt.case_file, opt.mu_text, opt.constraint, opt.solver, opt.level, opt.out_dir});
   }
   // Cheap checks first: case (the TOML file is read and checked here), parameter,
   // settings, output directory; the mesh comes later.

@@ -1,5 +1,5 @@
-// `contactrb solve` on a frictional built-in case (cases/frictional_cases.hpp; docs/cases.md,
-// "Frictional cases"): the load path solved step by step (hf::solve_load_path), then
+// `contactrb solve` on a frictional case, built-in or a case file with friction keys
+// (cases/frictional_cases.hpp; docs/cases.md, "Frictional cases"): the load path solved step by step (hf::solve_load_path), then
 // DIR/solution.json (hf::to_json of the solution and of the friction law), DIR/multipliers.csv
 // with the tangential traction and the state of each row, and the VTU files
 // (study::write_friction_fields). A path that fails (not converged, full sliding) still writes
@@ -10,6 +10,8 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "contactrb/cases/case_problem.hpp"
+#include "contactrb/cases/case_toml.hpp"
 #include "contactrb/cases/frictional_cases.hpp"
 #include "contactrb/cases/parameter_json.hpp"
 #include "contactrb/common/error.hpp"
@@ -34,9 +36,43 @@ std::vector<cases::ParameterSpec> cattaneo_parameters() {
   return {f};
 }
 
-void print_summary(const FrictionalSolveRequest& request, double f, const hf::FrictionalSolution& s, int dofs,
-                   int rows) {
-  std::cout << "case " << request.case_name << " (2D, frictional), f = " << f << ", collocation, "
+// The case at --mu: its name, parameters, point and problem with its path and friction law.
+struct LoadedCase {
+  std::string name;
+  std::vector<cases::ParameterSpec> parameters;
+  cases::Mu mu;
+  cases::FrictionalCase c;
+  std::string msh_file;  // a case file's .msh (an input)
+};
+
+LoadedCase load_builtin(const FrictionalSolveRequest& request) {
+  LoadedCase l{request.case_name, cattaneo_parameters(), {}, {}, {}};
+  l.mu = parse_mu_option(request.mu_text, "--mu", l.parameters);
+  cases::check_mu(l.parameters, l.mu, "case '" + l.name + "'");
+  cases::CattaneoData data;
+  data.coefficient = l.mu(0);
+  l.c = cases::cattaneo_case(request.level, data);
+  return l;
+}
+
+LoadedCase load_file(const FrictionalSolveRequest& request) {
+  const std::optional<cases::FrictionalCaseFile> file = cases::frictional_case_from_toml_file(request.case_file);
+  require(file.has_value(), "case file " + request.case_file + " has no friction keys");  // checked by the caller
+  require(cases::case_dimension(file->spec) == 2,
+          file->spec.context() + " is frictional and 3D: friction is solved in 2D only in this build");
+  LoadedCase l{file->spec.name, file->spec.parameters, {}, {}, file->spec.mesh.msh_file};
+  l.mu = parse_mu_option(request.mu_text, "--mu", l.parameters);
+  file->spec.check_mu(l.mu);
+  l.c = cases::frictional_case(*file, cases::reference_mesh(file->spec, request.level), l.mu);
+  return l;
+}
+
+void print_summary(const LoadedCase& l, const hf::FrictionalSolution& s, int dofs, int rows) {
+  const bool coulomb = l.c.friction.law == hf::FrictionLaw::Coulomb;
+  std::cout << "case " << l.name << " (2D, frictional: " << hf::to_string(l.c.friction.law)
+            << (coulomb ? " f = " : " threshold = ") << (coulomb ? l.c.friction.coefficient : l.c.friction.threshold)
+            << "), " << (l.parameters.front().name == "f" && l.mu.size() == 1 ? "" : cases::mu_text(l.parameters, l.mu) + ", ")
+            << "collocation, "
             << dofs << " DOFs, " << rows << " constraints, " << s.steps.size() << " load steps solved\n";
   for (std::size_t i = 0; i < s.steps.size(); ++i) {
     const hf::FrictionStepReport& r = s.steps[i];
@@ -50,29 +86,29 @@ void print_summary(const FrictionalSolveRequest& request, double f, const hf::Fr
 }  // namespace
 
 int run_frictional_solve(const FrictionalSolveRequest& request) {
+  const std::string what =
+      request.case_file.empty() ? "case '" + request.case_name + "'" : "case file " + request.case_file;
   require(request.constraint.empty() || request.constraint == "collocation",
-          "case '" + request.case_name + "' is frictional: --constraint " + request.constraint +
+          what + " is frictional: --constraint " + request.constraint +
               " is not available with friction (collocation only)");
   require(!request.solver || *request.solver == "newton",
-          "case '" + request.case_name + "' is frictional: --solver " + request.solver.value_or("") +
+          what + " is frictional: --solver " + request.solver.value_or("") +
               " is not available with friction (its semi-smooth Newton method only)");
   require(request.level >= 0, "--level must be >= 0 (got " + std::to_string(request.level) + ")");
-  const std::vector<cases::ParameterSpec> parameters = cattaneo_parameters();
-  const cases::Mu mu = parse_mu_option(request.mu_text, "--mu", parameters);
-  cases::check_mu(parameters, mu, "case '" + request.case_name + "'");
+  // The case at --mu (a 2D mesh and its load path: cheap), then --out.
+  const LoadedCase l = request.case_file.empty() ? load_builtin(request) : load_file(request);
+  const cases::FrictionalCase& c = l.c;
   const std::string json_path = request.out_dir + "/solution.json";
   const study::FrictionFiles names{request.out_dir + "/solution.vtu", request.out_dir + "/solution_deformed.vtu",
                                    request.out_dir + "/contact.vtu", request.out_dir + "/multipliers.csv"};
-  check_file_roles({}, {{"solution.json in --out", json_path},
-                        {"multipliers.csv in --out", names.multipliers},
-                        {"solution.vtu in --out", names.vtu},
-                        {"solution_deformed.vtu in --out", names.deformed_vtu},
-                        {"contact.vtu in --out", names.contact_vtu}});
+  check_file_roles({{"--case-file", request.case_file}, {"the case's mesh file", l.msh_file}},
+                   {{"solution.json in --out", json_path},
+                    {"multipliers.csv in --out", names.multipliers},
+                    {"solution.vtu in --out", names.vtu},
+                    {"solution_deformed.vtu in --out", names.deformed_vtu},
+                    {"contact.vtu in --out", names.contact_vtu}});
   ensure_output_directory(request.out_dir);
 
-  cases::CattaneoData data;
-  data.coefficient = mu(0);
-  const cases::FrictionalCase c = cases::cattaneo_case(request.level, data);
   const hf::FrictionalSolution s = hf::solve_load_path(c.problem, c.path, c.friction);
   const contact::ContactPair pair = contact::make_contact_pair(c.problem.mesh);
   const contact::ContactQuadrature quadrature =
@@ -83,8 +119,9 @@ int run_frictional_solve(const FrictionalSolveRequest& request) {
   OutputSet outputs;
   nlohmann::json j = hf::to_json(s);
   j.update(hf::to_json(c.friction));
-  j["case"] = request.case_name;
-  j["mu"] = cases::mu_json(parameters, mu);
+  j["case"] = l.name;
+  if (!request.case_file.empty()) j["case_file"] = request.case_file;
+  j["mu"] = cases::mu_json(l.parameters, l.mu);
   j["level"] = request.level;
   j["dimension"] = 2;
   j["load_steps"] = c.path.size();
@@ -98,7 +135,7 @@ int run_frictional_solve(const FrictionalSolveRequest& request) {
       std::filesystem::remove(stale, ignored);
     }
   }
-  print_summary(request, mu(0), s, c.problem.mesh.num_dofs(), static_cast<int>(quadrature.weight.size()));
+  print_summary(l, s, c.problem.mesh.num_dofs(), static_cast<int>(quadrature.weight.size()));
   if (!s.converged) {
     std::cerr << "contactrb: error: " << hf::to_string(s.status) << ": " << s.message << "\n";
     std::cout << "wrote " << json_path << " (converged = false, status " << hf::to_string(s.status) << ")\n";

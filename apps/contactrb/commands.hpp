@@ -79,10 +79,11 @@ Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);
 
-// `contactrb solve` on a frictional built-in case (cmd_solve_friction.cpp): the options as given.
+// `contactrb solve` on a frictional case (cmd_solve_friction.cpp): the options as given.
 struct FrictionalSolveRequest {
-  std::string case_name;
-  std::string mu_text;     // --mu: the friction coefficient f
+  std::string case_name;   // a frictional built-in case, or empty with case_file
+  std::string case_file;   // a case file with friction keys
+  std::string mu_text;     // --mu: the built-in's friction coefficient f, a case file's parameter point
   std::string constraint;  // --constraint (empty or collocation)
   std::optional<std::string> solver;  // --solver (absent or newton)
   int level = 0;
