@@ -147,3 +147,113 @@ INSTANTIATE_TEST_SUITE_P(Commands, CliFrictionRefusal,
                          ::testing::Values("snapshots --case cattaneo --set training", "offline --case cattaneo",
                                            "offline --greedy --case cattaneo --greedy-tol 1e-3",
                                            "report --case cattaneo", "mesh --case cattaneo"));
+
+namespace {
+
+std::string example_case() { return std::string(CONTACTRB_SOURCE_DIR) + "/examples/cattaneo/case.toml"; }
+
+// The example case file with `from` replaced by `to` (the first occurrence), written to dir/name.
+std::string edited_case(const fs::path& dir, const std::string& name, const std::string& from, const std::string& to) {
+  std::string text = contactrb::test::file_text(example_case());
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+}  // namespace
+
+// examples/cattaneo/case.toml is the built-in cattaneo as a case file: the same files, byte for byte.
+TEST(CliFriction, CaseFileGivesTheBuiltInAnswer) {
+  contactrb::test::TempDir dir("friction_file");
+  const fs::path a = dir.path() / "builtin", b = dir.path() / "file";
+  ASSERT_EQ(run_cli("solve --case cattaneo --mu 0.3 --level 1 --out " + shell_quote(a.string())).exit_code, 0);
+  const CliResult r =
+      run_cli("solve --case-file " + shell_quote(example_case()) + " --mu 0.13 --level 1 --out " + shell_quote(b.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(contactrb::test::file_text((a / "multipliers.csv").string()),
+            contactrb::test::file_text((b / "multipliers.csv").string()));
+  const nlohmann::json ja = read_json(a / "solution.json"), jb = read_json(b / "solution.json");
+  EXPECT_EQ(ja["tangential_force"], jb["tangential_force"]);
+  EXPECT_EQ(jb["case"], "cattaneo-file");
+  EXPECT_EQ(jb["mu"].get<double>(), 0.13);
+}
+
+// Tresca with a threshold below the traction the stick state would need: every row in contact
+// slips at |t| = s, so the tangential force is -s times the contact length (the edge moves +x).
+TEST(CliFriction, TrescaCaseFileSlipsAtTheThreshold) {
+  contactrb::test::TempDir dir("friction_tresca");
+  const std::string file = edited_case(dir.path(), "tresca.toml", "law = \"coulomb\"", "law = \"tresca\"");
+  std::string text = contactrb::test::file_text(file);
+  text.replace(text.find("coefficient = 0.3"), std::string("coefficient = 0.3").size(), "threshold = 0.05");
+  std::ofstream(file) << text;
+  const CliResult r =
+      run_cli("solve --case-file " + shell_quote(file) + " --mu 0.13 --level 2 --out " + shell_quote(dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = read_json(dir.path() / "solution.json");
+  EXPECT_EQ(j["law"], "tresca");
+  EXPECT_EQ(j["slip_threshold"].get<double>(), 0.05);
+  const auto csv = read_csv((dir.path() / "multipliers.csv").string());
+  const std::vector<double> p = numbers(csv.at("pressure")), t = numbers(csv.at("tangential")),
+                            w = numbers(csv.at("weight"));
+  double length = 0.0;
+  int slip = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_LE(std::abs(t[i]), 0.05 + 1e-15) << "row " << i;
+    if (csv.at("state")[i] == "open") continue;
+    EXPECT_EQ(csv.at("state")[i], "slip") << "row " << i;
+    EXPECT_NEAR(t[i], -0.05, 1e-15) << "row " << i;
+    length += w[i];
+    ++slip;
+  }
+  EXPECT_GT(slip, 3);
+  EXPECT_EQ(slip, j["slip_nodes"].get<int>());
+  EXPECT_NEAR(j["tangential_force"].get<double>(), -0.05 * length, 1e-14);
+}
+
+TEST(CliFriction, CaseFileFrictionKeysGiveOneClearError) {
+  contactrb::test::TempDir dir("friction_toml_bad");
+  const std::string out = " --mu 0.13 --out " + shell_quote((dir.path() / "out").string());
+  using contactrb::test::expect_user_error;
+  auto solve = [&](const std::string& name, const std::string& from, const std::string& to) {
+    return run_cli("solve --case-file " + shell_quote(edited_case(dir.path(), name, from, to)) + out);
+  };
+  expect_user_error(solve("neg.toml", "coefficient = 0.3", "coefficient = -0.1"),
+                    ":38: key 'friction.coefficient' must be a finite number >= 0, got -0.1");
+  expect_user_error(solve("nan.toml", "coefficient = 0.3", "coefficient = nan"),
+                    "key 'friction.coefficient' must be a finite number >= 0, got nan");
+  expect_user_error(solve("law.toml", "law = \"coulomb\"", "law = \"amontons\""),
+                    ":37: key 'friction.law' must be coulomb or tresca, got 'amontons'");
+  expect_user_error(solve("other.toml", "coefficient = 0.3", "coefficient = 0.3\nthreshold = 1.0"),
+                    "key 'friction.threshold' does not apply to law = coulomb");
+  expect_user_error(solve("missing.toml", "coefficient = 0.3", ""), "missing key 'friction.coefficient'");
+  // Without the steps (the text up to the first [[load_steps]]), then with an empty list.
+  const std::string full = contactrb::test::file_text(example_case());
+  const std::string head = full.substr(0, full.find("[[load_steps]]"));
+  const std::string no_steps = edited_case(dir.path(), "nosteps.toml", full, head);
+  expect_user_error(run_cli("solve --case-file " + shell_quote(no_steps) + out),
+                    ":36: [friction] needs [[load_steps]] (at least one load step)");
+  const std::string empty = edited_case(dir.path(), "empty.toml", full, "load_steps = []\n" + head);
+  expect_user_error(run_cli("solve --case-file " + shell_quote(empty) + out), "key 'load_steps' has no step");
+  expect_user_error(solve("group.toml", "[[load_steps.dirichlet]]\ngroup = \"top\"",
+                          "[[load_steps.dirichlet]]\ngroup = \"rollers\""),
+                    "[[load_steps[1].dirichlet]] must prescribe the components of [[dirichlet]]");
+  expect_user_error(solve("lac.toml", "name = \"cattaneo-file\"", "name = \"cattaneo-file\"\nconstraint = \"lac\""),
+                    "a frictional case needs constraint = collocation");
+  EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
+// The frictionless readers (snapshots, offline, report) refuse a case file with friction keys
+// at the line of [friction].
+TEST(CliFriction, CommandsWithoutFrictionRefuseAFrictionalCaseFile) {
+  contactrb::test::TempDir dir("friction_file_refusal");
+  for (const std::string command : {"snapshots --set training", "offline", "report"}) {
+    const CliResult r = run_cli(command + " --case-file " + shell_quote(example_case()) + " --out " +
+                                shell_quote((dir.path() / "out").string()));
+    contactrb::test::expect_user_error(
+        r, "case.toml:36: the case is frictional (key 'friction'): only `contactrb solve` handles friction");
+    EXPECT_FALSE(fs::exists(dir.path() / "out")) << command;
+  }
+}

@@ -575,8 +575,8 @@ void Reader::read_friction(const toml::table& root, const CaseSpec& c, FrictionF
                  ")");
   }
   const auto* arr = sn->as_array();
+  if (arr != nullptr && arr->empty()) fail(sn, "key 'load_steps' has no step (at least one [[load_steps]])");
   if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*sn, "load_steps", "an array of tables ([[load_steps]])");
-  if (arr->empty()) fail(sn, "key 'load_steps' has no step (at least one [[load_steps]])");
   for (std::size_t i = 0; i < arr->size(); ++i) {
     f.steps.push_back(read_load_step(*arr->get(i)->as_table(), "load_steps[" + std::to_string(i + 1) + "]", c));
   }
