@@ -4,6 +4,8 @@
 // stresses), DIR/solution_deformed.vtu (the deformed configuration) and DIR/contact.vtu (the
 // slave boundary with pressure and gap) (docs/file-formats.md, "Command outputs"; study/solution_fields.hpp). A solve
 // that does not converge still writes solution.json (converged = false) and exits with code 3.
+// A frictional case (built-in or a case file with friction keys) runs its load path instead
+// (cmd_solve_friction.cpp).
 #include <Eigen/Core>
 #include <filesystem>
 #include <system_error>
