@@ -25,11 +25,11 @@ namespace contactrb::app {
 
 namespace {
 
-// cattaneo's one command-line parameter: its friction coefficient f (docs/cases.md, "Frictional
-// cases"). The kind is not used: f enters the friction law, not the problem's affine terms.
+// cattaneo's one parameter: its friction coefficient f (docs/cases.md, "Frictional cases").
 std::vector<cases::ParameterSpec> cattaneo_parameters() {
   cases::ParameterSpec f;
   f.name = "f";
+  f.kind = cases::ParameterKind::FrictionCoefficient;
   f.min = 0.0;
   f.max = 1.0;
   f.reference = cases::CattaneoData{}.coefficient;

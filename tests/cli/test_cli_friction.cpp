@@ -257,3 +257,48 @@ TEST(CliFriction, CommandsWithoutFrictionRefuseAFrictionalCaseFile) {
     EXPECT_FALSE(fs::exists(dir.path() / "out")) << command;
   }
 }
+
+// A friction-coefficient parameter gives f on the command line (here cattaneo's constant approach
+// 0.13 as numbers): the built-in cattaneo's files, byte for byte; the frictionless readers refuse it.
+TEST(CliFriction, FrictionCoefficientParameterSetsF) {
+  contactrb::test::TempDir dir("friction_parameter");
+  std::string text = contactrb::test::file_text(example_case());
+  auto replace_all = [&text](const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
+    }
+  };
+  replace_all("uy = { b = -0.5 }", "uy = -0.065");
+  replace_all("uy = { b = 0.5 }", "uy = 0.065");
+  replace_all("name = \"approach\"\nkind = \"dirichlet-scale\"\ndomain = [0.11, 0.45]\nreference = 0.13",
+              "name = \"f\"\nkind = \"friction-coefficient\"\ndomain = [0.0, 1.0]\nreference = 0.3");
+  replace_all("training = [0.12, 0.14]", "training = [0.2, 0.4]");
+  const std::size_t c = text.find("coefficient = 0.3");
+  ASSERT_NE(c, std::string::npos);
+  const std::string with_key = text;
+  text.erase(c, text.find('\n', c) - c);
+  const fs::path file = dir.path() / "f.toml";
+  std::ofstream(file) << text;
+  const fs::path a = dir.path() / "builtin", b = dir.path() / "file";
+  ASSERT_EQ(run_cli("solve --case cattaneo --mu 0.2 --level 1 --out " + shell_quote(a.string())).exit_code, 0);
+  const CliResult r =
+      run_cli("solve --case-file " + shell_quote(file.string()) + " --mu f=0.2 --level 1 --out " + shell_quote(b.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(read_json(b / "solution.json")["friction_coefficient"].get<double>(), 0.2);
+  EXPECT_EQ(contactrb::test::file_text((a / "multipliers.csv").string()),
+            contactrb::test::file_text((b / "multipliers.csv").string()));
+  using contactrb::test::expect_user_error;
+  expect_user_error(run_cli("solve --case-file " + shell_quote(file.string()) + " --mu 1.5 --out " +
+                            shell_quote((dir.path() / "out").string())),
+                    "outside the domain [0, 1]");
+  // Both the key and the parameter give f; the parameter without [friction].
+  const fs::path both = dir.path() / "both.toml", plain = dir.path() / "plain.toml";
+  std::ofstream(both) << with_key;
+  std::ofstream(plain) << text.substr(0, text.find("[friction]"));
+  expect_user_error(run_cli("solve --case-file " + shell_quote(both.string()) + " --mu 0.2 --out " +
+                            shell_quote((dir.path() / "out").string())),
+                    "key 'friction.coefficient' and parameter 'f' (friction-coefficient) both give f");
+  expect_user_error(run_cli("snapshots --case-file " + shell_quote(plain.string()) + " --set training --out " +
+                            shell_quote((dir.path() / "out.h5").string())),
+                    "parameter 'f' of kind friction-coefficient needs a [friction] table with law = coulomb");
+}

@@ -79,6 +79,8 @@ class Reader {
   void read_dirichlet(const toml::table& root, CaseSpec& c, const std::string& prefix = "") const;
   void read_tractions(const toml::table& root, CaseSpec& c, const std::string& prefix = "") const;
   void read_friction(const toml::table& root, const CaseSpec& c, FrictionFileSpec& f) const;
+  bool read_coefficient_parameter(const toml::table& t, const CaseSpec& c, FrictionFileSpec& f) const;
+  void read_load_steps(const toml::node& steps, const CaseSpec& c, FrictionFileSpec& f) const;
   FrictionFileSpec::Step read_load_step(const toml::table& t, const std::string& path, const CaseSpec& c) const;
   TractionSpec read_traction(const toml::table& t, const std::string& path, const CaseSpec& c) const;
   void read_sets(const toml::table& root, CaseSpec& c) const;
@@ -332,6 +334,14 @@ CaseSpec Reader::read(const toml::table& root, FrictionFileSpec* friction) const
   } catch (const Error& e) {
     fail(nullptr, e.what());
   }
+  if (root.get("friction") == nullptr) {
+    for (const ParameterSpec& p : c.parameters) {
+      if (p.kind == ParameterKind::FrictionCoefficient) {
+        fail(nullptr, "parameter '" + p.name + "' of kind friction-coefficient needs a [friction] table with law = "
+                      "coulomb (docs/cases.md, \"Frictional case files\")");
+      }
+    }
+  }
   if (friction != nullptr) read_friction(root, c, *friction);
   return c;
 }
@@ -469,8 +479,8 @@ ParameterSpec Reader::read_parameter(const toml::table& par, const std::string& 
   try {
     p.kind = parameter_kind_from_string(kind_name);
   } catch (const Error&) {
-    fail(&kind, "key '" + path + ".kind' must be dirichlet-scale, body-scaling, young-modulus, traction or "
-                "body-force, got '" + kind_name + "'");
+    fail(&kind, "key '" + path + ".kind' must be dirichlet-scale, body-scaling, young-modulus, traction, "
+                "body-force or friction-coefficient, got '" + kind_name + "'");
   }
   const toml::node& domain_node = required(par, path, "domain");
   const std::vector<double> domain = numbers(domain_node, path + ".domain", 2);
@@ -562,18 +572,42 @@ void Reader::read_friction(const toml::table& root, const CaseSpec& c, FrictionF
     fail(other, "key 'friction." + std::string(other_key) + "' does not apply to law = " + f.law + " (it takes '" +
                     value_key + "')");
   }
-  const toml::node& vn = required(t, "friction", value_key);
-  const double v = number(vn, "friction." + std::string(value_key));
-  if (!std::isfinite(v) || v < 0.0) {
-    std::ostringstream got;
-    got << v;
-    fail(&vn, "key 'friction." + std::string(value_key) + "' must be a finite number >= 0, got " + got.str());
-  }
-  (f.law == "coulomb" ? f.coefficient : f.threshold) = v;
   if (c.constraint != contact::Discretization::Collocation) {
     fail(fn, "a frictional case needs constraint = collocation (got " + std::string(contact::to_string(c.constraint)) +
                  ")");
   }
+  if (!read_coefficient_parameter(t, c, f)) {
+    const toml::node& vn = required(t, "friction", value_key);
+    const double v = number(vn, "friction." + std::string(value_key));
+    if (!std::isfinite(v) || v < 0.0) {
+      std::ostringstream got;
+      got << v;
+      fail(&vn, "key 'friction." + std::string(value_key) + "' must be a finite number >= 0, got " + got.str());
+    }
+    (f.law == "coulomb" ? f.coefficient : f.threshold) = v;
+  }
+  read_load_steps(*sn, c, f);
+}
+
+// A friction-coefficient parameter (at most one, Coulomb only, a domain in [0, inf)) gives f in
+// place of friction.coefficient; false when the case has none.
+bool Reader::read_coefficient_parameter(const toml::table& t, const CaseSpec& c, FrictionFileSpec& f) const {
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const ParameterSpec& p = c.parameters[k];
+    if (p.kind != ParameterKind::FrictionCoefficient) continue;
+    if (f.coefficient_parameter >= 0) fail(nullptr, "two parameters of kind friction-coefficient (at most one)");
+    if (f.law != "coulomb") fail(t.get("law"), "parameter '" + p.name + "' of kind friction-coefficient needs law = coulomb");
+    if (const toml::node* v = t.get("coefficient")) {
+      fail(v, "key 'friction.coefficient' and parameter '" + p.name + "' (friction-coefficient) both give f: keep one");
+    }
+    if (!(p.min >= 0.0)) fail(nullptr, "parameter '" + p.name + "' of kind friction-coefficient needs a domain in [0, inf)");
+    f.coefficient_parameter = static_cast<int>(k);
+  }
+  return f.coefficient_parameter >= 0;
+}
+
+void Reader::read_load_steps(const toml::node& steps, const CaseSpec& c, FrictionFileSpec& f) const {
+  const toml::node* sn = &steps;  // for the messages
   const auto* arr = sn->as_array();
   if (arr != nullptr && arr->empty()) fail(sn, "key 'load_steps' has no step (at least one [[load_steps]])");
   if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*sn, "load_steps", "an array of tables ([[load_steps]])");

@@ -36,6 +36,7 @@ struct FrictionFileSpec {
   bool has_friction = false;
   std::string law = "coulomb";  // "coulomb" | "tresca" (hf::friction_law_from_string)
   double coefficient = 0.0;     // coulomb: f >= 0
+  int coefficient_parameter = -1;  // coulomb: the friction-coefficient parameter giving f, -1: `coefficient`
   double threshold = 0.0;       // tresca: s >= 0
   struct Step {
     std::vector<DirichletSpec> dirichlet;  // the groups and components of CaseSpec::dirichlet, in order

@@ -50,7 +50,8 @@ FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh&
     c.path.push_back(hf::LoadStep{dirichlet_at(step, mu), tractions_at(step, mu)});
   }
   c.friction.law = hf::friction_law_from_string(file.friction.law);
-  c.friction.coefficient = file.friction.coefficient;
+  const int k = file.friction.coefficient_parameter;
+  c.friction.coefficient = k >= 0 ? mu(k) : file.friction.coefficient;
   c.friction.threshold = file.friction.threshold;
   return c;
 }
