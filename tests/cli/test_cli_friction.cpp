@@ -302,3 +302,29 @@ TEST(CliFriction, FrictionCoefficientParameterSetsF) {
                             shell_quote((dir.path() / "out.h5").string())),
                     "parameter 'f' of kind friction-coefficient needs a [friction] table with law = coulomb");
 }
+
+// The upper body free along x, held by nothing but friction once in contact: the path has no
+// equilibrium. solution.json says so (status full-sliding, converged false), no field file is
+// left, one error line, exit code 3 (as a frictionless solve that fails).
+TEST(CliFriction, FullSlidingIsAStatusAndExitCodeThree) {
+  contactrb::test::TempDir dir("friction_sliding");
+  const std::string free_top = edited_case(dir.path(), "free.toml", "group = \"top\"\nux = 0.0\n", "group = \"top\"\n");
+  std::string text = contactrb::test::file_text(free_top);
+  text = text.substr(0, text.find("[[load_steps]]")) +
+         "[[load_steps]]\n[[load_steps.dirichlet]]\ngroup = \"top\"\nuy = { b = -0.5 }\n"
+         "[[load_steps.dirichlet]]\ngroup = \"bottom\"\nux = 0.0\nuy = { b = 0.5 }\n";
+  std::ofstream(free_top) << text;
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "multipliers.csv") << "an earlier run's file\n";
+  const CliResult r =
+      run_cli("solve --case-file " + shell_quote(free_top) + " --mu 0.13 --level 1 --out " + shell_quote(out.string()));
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("contactrb: error: full-sliding: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const nlohmann::json j = read_json(out / "solution.json");
+  EXPECT_EQ(j["status"], "full-sliding");
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_EQ(j["steps"].back()["status"], "full-sliding");
+  EXPECT_FALSE(fs::exists(out / "multipliers.csv"));
+}
