@@ -1,6 +1,6 @@
 // `contactrb solve` on a frictional case, built-in or a case file with friction keys
-// (cases/frictional_cases.hpp; docs/cases.md, "Frictional cases"): the load path solved step by step (hf::solve_load_path), then
-// DIR/solution.json (hf::to_json of the solution and of the friction law), DIR/multipliers.csv
+// (cases/frictional_cases.hpp; docs/cases.md, "Frictional cases"): the load path solved step by
+// step (hf::solve_load_path), then DIR/solution.json (hf::to_json of the solution and of the friction law), DIR/multipliers.csv
 // with the tangential traction and the state of each row, and the VTU files
 // (study::write_friction_fields). A path that fails (not converged, full sliding) still writes
 // solution.json, with converged = false and its status, and exits with code 3.
@@ -71,9 +71,14 @@ void print_summary(const LoadedCase& l, const hf::FrictionalSolution& s, int dof
   const bool coulomb = l.c.friction.law == hf::FrictionLaw::Coulomb;
   std::cout << "case " << l.name << " (2D, frictional: " << hf::to_string(l.c.friction.law)
             << (coulomb ? " f = " : " threshold = ") << (coulomb ? l.c.friction.coefficient : l.c.friction.threshold)
-            << "), " << (l.parameters.front().name == "f" && l.mu.size() == 1 ? "" : cases::mu_text(l.parameters, l.mu) + ", ")
+            << "), "
+            // f alone is in the parentheses already
+            << (l.mu.size() == 1 && l.parameters.front().kind == cases::ParameterKind::FrictionCoefficient
+                    ? ""
+                    : cases::mu_text(l.parameters, l.mu) + ", ")
             << "collocation, "
-            << dofs << " DOFs, " << rows << " constraints, " << s.steps.size() << " load steps solved\n";
+            << dofs << " DOFs, " << rows << " constraints, " << s.steps.size() << " of " << l.c.path.size()
+            << " load steps solved\n";
   for (std::size_t i = 0; i < s.steps.size(); ++i) {
     const hf::FrictionStepReport& r = s.steps[i];
     std::cout << "step " << i + 1 << ": " << hf::to_string(r.status) << " in " << r.iterations
