@@ -189,7 +189,8 @@ int run_solve(SolveOptions opt) {
   if (opt.case_file.empty() ? cases::is_frictional_case(opt.case_name)
                             : cases::frictional_case_from_toml_file(opt.case_file).has_value()) {
     return run_frictional_solve(
-        {opt.case_name, opt.case_file, opt.mu_text, opt.constraint, opt.solver, opt.level, opt.out_dir});
+        {opt.case_name, opt.case_file, opt.mu_text, opt.constraint, opt.solver, opt.level, opt.sequence,
+         opt.newton_max_iterations, opt.out_dir});
   }
   // Cheap checks first: case (the TOML file is read and checked here), parameter,
   // settings, output directory; the mesh comes later.

@@ -99,9 +99,13 @@ int run_frictional_solve(const FrictionalSolveRequest& request) {
   require(!request.solver || *request.solver == "newton",
           what + " is frictional: --solver " + request.solver.value_or("") +
               " is not available with friction (its semi-smooth Newton method only)");
+  require(request.sequence <= 0, what + " is frictional: --sequence " + std::to_string(request.sequence) +
+                                     " is not available with friction (no grid sequencing)");
   require(request.level >= 0, "--level must be >= 0 (got " + std::to_string(request.level) + ")");
   // The case at --mu (a 2D mesh and its load path: cheap), then --out.
-  const LoadedCase l = request.case_file.empty() ? load_builtin(request) : load_file(request);
+  LoadedCase l = request.case_file.empty() ? load_builtin(request) : load_file(request);
+  l.c.friction.max_iterations = request.newton_max_iterations;
+  hf::check_settings(l.c.friction);
   const cases::FrictionalCase& c = l.c;
   const std::string json_path = request.out_dir + "/solution.json";
   const study::FrictionFiles names{request.out_dir + "/solution.vtu", request.out_dir + "/solution_deformed.vtu",

@@ -87,6 +87,8 @@ struct FrictionalSolveRequest {
   std::string constraint;  // --constraint (empty or collocation)
   std::optional<std::string> solver;  // --solver (absent or newton)
   int level = 0;
+  int sequence = -1;               // --sequence (-1 or 0: none; grid sequencing has no friction)
+  int newton_max_iterations = 50;  // --newton-max-iterations: per load step
   std::string out_dir;
 };
 // Exit code 0, or 3 when the load path fails (solution.json says how).

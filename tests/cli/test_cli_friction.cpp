@@ -127,6 +127,9 @@ TEST(CliFriction, BadSolveInputsGiveOneClearError) {
   expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --constraint lac" + out), "collocation only");
   expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --solver kacanov" + out), "semi-smooth Newton");
   expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --level -1" + out), "--level must be >= 0");
+  expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --sequence 1" + out), "no grid sequencing");
+  expect_user_error(run_cli("solve --case cattaneo --mu 0.3 --newton-max-iterations 0" + out),
+                    "friction max_iterations must be >= 1 (got 0)");
   EXPECT_FALSE(fs::exists(dir.path() / "solution.json"));
 }
 
