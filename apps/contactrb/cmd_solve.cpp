@@ -4,6 +4,8 @@
 // stresses), DIR/solution_deformed.vtu (the deformed configuration) and DIR/contact.vtu (the
 // slave boundary with pressure and gap) (docs/file-formats.md, "Command outputs"; study/solution_fields.hpp). A solve
 // that does not converge still writes solution.json (converged = false) and exits with code 3.
+// A frictional case (built-in or a case file with friction keys) runs its load path instead
+// (cmd_solve_friction.cpp).
 #include <Eigen/Core>
 #include <filesystem>
 #include <system_error>
@@ -183,6 +185,13 @@ int solve_case(const SolveOptions& opt, const cases::CaseSpec& spec, const hf::H
 }
 
 int run_solve(SolveOptions opt) {
+  // A frictional case (docs/cases.md, "Frictional cases"): its load path instead.
+  if (opt.case_file.empty() ? cases::is_frictional_case(opt.case_name)
+                            : cases::frictional_case_from_toml_file(opt.case_file).has_value()) {
+    return run_frictional_solve(
+        {opt.case_name, opt.case_file, opt.mu_text, opt.constraint, opt.solver, opt.level, opt.sequence,
+         opt.newton_max_iterations, opt.out_dir});
+  }
   // Cheap checks first: case (the TOML file is read and checked here), parameter,
   // settings, output directory; the mesh comes later.
   const cases::CaseSpec spec = read_case(opt.case_name, opt.case_file);

@@ -79,6 +79,21 @@ Command add_evaluate_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_demo_command(CLI::App& app);
 
+// `contactrb solve` on a frictional case (cmd_solve_friction.cpp): the options as given.
+struct FrictionalSolveRequest {
+  std::string case_name;   // a frictional built-in case, or empty with case_file
+  std::string case_file;   // a case file with friction keys
+  std::string mu_text;     // --mu: the built-in's friction coefficient f, a case file's parameter point
+  std::string constraint;  // --constraint (empty or collocation)
+  std::optional<std::string> solver;  // --solver (absent or newton)
+  int level = 0;
+  int sequence = -1;               // --sequence (-1 or 0: none; grid sequencing has no friction)
+  int newton_max_iterations = 50;  // --newton-max-iterations: per load step
+  std::string out_dir;
+};
+// Exit code 0, or 3 when the load path fails (solution.json says how).
+int run_frictional_solve(const FrictionalSolveRequest& request);
+
 // The case of --case (a built-in name) or --case-file (a TOML file) for `command`, which solves
 // 2D cases only: throws contactrb::Error in one line naming the command, the case and its
 // dimension for a 3D case (case_input.cpp; contactrb-full only).

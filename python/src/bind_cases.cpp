@@ -126,7 +126,7 @@ void bind_cases(py::module_& m) {
       .def_readonly("name", &cases::ParameterSpec::name)
       .def_readonly("units", &cases::ParameterSpec::units)
       .def_property_readonly("kind", [](const cases::ParameterSpec& p) { return std::string(cases::to_string(p.kind)); },
-                             "dirichlet-scale | body-scaling | young-modulus | traction | body-force")
+                             "dirichlet-scale | body-scaling | young-modulus | traction | body-force | friction-coefficient")
       .def_readonly("min", &cases::ParameterSpec::min)
       .def_readonly("max", &cases::ParameterSpec::max)
       .def_readonly("reference", &cases::ParameterSpec::reference)

@@ -26,19 +26,20 @@ TEST(Cli, NoSubcommandPrintsHelp) {
   EXPECT_NE(r.out.find("mesh"), std::string::npos) << r.out;
 }
 
-TEST(Cli, CasesListsTheSixCasesOnePerLine) {
+TEST(Cli, CasesListsTheSevenCasesOnePerLine) {
   const auto r = run_cli("cases");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream in(r.out);
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  ASSERT_EQ(lines.size(), 6u) << r.out;
+  ASSERT_EQ(lines.size(), 7u) << r.out;
   EXPECT_EQ(lines[0].rfind("hertz-a ", 0), 0u) << lines[0];
   EXPECT_EQ(lines[1].rfind("hertz-b ", 0), 0u) << lines[1];
   EXPECT_EQ(lines[2].rfind("ring-block ", 0), 0u) << lines[2];
   EXPECT_EQ(lines[3].rfind("hertz-3p ", 0), 0u) << lines[3];
   EXPECT_EQ(lines[4].rfind("hertz-3d ", 0), 0u) << lines[4];
   EXPECT_EQ(lines[5].rfind("patch-3d ", 0), 0u) << lines[5];
+  EXPECT_EQ(lines[6].rfind("cattaneo ", 0), 0u) << lines[6];
 }
 
 TEST(Cli, UnknownSubcommandIsAUsageError) {

@@ -10,8 +10,10 @@ import contactrb
 from conftest import cli_error, run_cli
 
 
-def test_cases_are_the_cli_list(cli):
-    listed = [line.split()[0] for line in run_cli("cases").stdout.splitlines() if line.strip()]
+def test_cases_are_the_cli_list_without_the_frictional_ones(cli):
+    lines = [line for line in run_cli("cases").stdout.splitlines() if line.strip()]
+    listed = [line.split()[0] for line in lines if " frictional " not in line]
+    assert len(listed) == len(lines) - 1  # cattaneo
     assert contactrb.cases() == listed
     assert set(contactrb.case_summaries()) == set(listed)
 
@@ -68,6 +70,14 @@ def test_unknown_case_raises_the_cli_message(cli):
         contactrb.Case("no-such-case")
     assert str(e.value) == message
     assert isinstance(e.value, RuntimeError)
+
+
+def test_frictional_case_raises_the_cli_message(cli):
+    message = cli_error("snapshots", "--case", "cattaneo", "--set", "training", "--out", "unused.h5")
+    assert message.startswith("case 'cattaneo' is frictional: only `contactrb solve` handles friction")
+    with pytest.raises(contactrb.Error) as e:
+        contactrb.Case("cattaneo")
+    assert str(e.value) == message
 
 
 def test_mu_outside_the_domain_raises_the_cli_message(cli, tmp_path):

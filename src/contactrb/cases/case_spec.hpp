@@ -107,7 +107,7 @@ void check_case_spec(const CaseSpec& spec);
 int case_dimension(const CaseSpec& spec);
 
 // The built-in cases (paper Section 6; data in docs/cases.md). Throws contactrb::Error
-// naming an unknown case and listing the known ones.
+// naming an unknown case and listing the known ones, or a frictional case (catalog.hpp, find_case).
 CaseSpec builtin_case_spec(const std::string& name);
 
 // True when some Dirichlet value depends on mu (b != 0).

@@ -62,7 +62,9 @@ class Reader {
   Reader(std::string origin, fs::path base_dir, MeshFile mesh_file)
       : origin_(std::move(origin)), base_dir_(std::move(base_dir)), mesh_file_(mesh_file) {}
 
-  CaseSpec read(const toml::table& root) const;
+  // friction null: a file with friction keys is refused (only `solve` handles friction);
+  // otherwise they are read into *friction (has_friction false when the file has none).
+  CaseSpec read(const toml::table& root, FrictionFileSpec* friction = nullptr) const;
 
  private:
   // The sections of a case file, in the order they are read (docs/cases.md).
@@ -74,8 +76,12 @@ class Reader {
   void read_single_parameter(const toml::table& root, const toml::table& par, CaseSpec& c) const;
   ParameterSpec read_parameter(const toml::table& par, const std::string& path, bool with_sets) const;
   void read_parameter_body(const toml::table& par, const std::string& path, ParameterSpec& p) const;
-  void read_dirichlet(const toml::table& root, CaseSpec& c) const;
-  void read_tractions(const toml::table& root, CaseSpec& c) const;
+  void read_dirichlet(const toml::table& root, CaseSpec& c, const std::string& prefix = "") const;
+  void read_tractions(const toml::table& root, CaseSpec& c, const std::string& prefix = "") const;
+  void read_friction(const toml::table& root, const CaseSpec& c, FrictionFileSpec& f) const;
+  bool read_coefficient_parameter(const toml::table& t, const CaseSpec& c, FrictionFileSpec& f) const;
+  void read_load_steps(const toml::node& steps, const CaseSpec& c, FrictionFileSpec& f) const;
+  FrictionFileSpec::Step read_load_step(const toml::table& t, const std::string& path, const CaseSpec& c) const;
   TractionSpec read_traction(const toml::table& t, const std::string& path, const CaseSpec& c) const;
   void read_sets(const toml::table& root, CaseSpec& c) const;
 
@@ -303,11 +309,18 @@ void Reader::snap_to_domain(std::vector<double>& values, double min, double max)
 
 // --- Sections.
 
-CaseSpec Reader::read(const toml::table& root) const {
+CaseSpec Reader::read(const toml::table& root, FrictionFileSpec* friction) const {
   CaseSpec c;
   c.origin = origin_;
   check_keys(root, "",
-             {"name", "description", "constraint", "mesh", "slave", "master", "dirichlet", "traction", "parameter", "sets"});
+             {"name", "description", "constraint", "mesh", "slave", "master", "dirichlet", "traction", "parameter", "sets",
+              "friction", "load_steps"});
+  for (const char* key : {"friction", "load_steps"}) {
+    if (friction == nullptr && root.get(key) != nullptr) {
+      fail(root.get(key), "the case is frictional (key '" + std::string(key) +
+                              "'): only `contactrb solve` handles friction (docs/cases.md, \"Frictional cases\")");
+    }
+  }
   read_header(root, c);
   read_mesh(root, c);
   read_body(root, "slave", 0, c);
@@ -321,6 +334,15 @@ CaseSpec Reader::read(const toml::table& root) const {
   } catch (const Error& e) {
     fail(nullptr, e.what());
   }
+  if (root.get("friction") == nullptr) {
+    for (const ParameterSpec& p : c.parameters) {
+      if (p.kind == ParameterKind::FrictionCoefficient) {
+        fail(nullptr, "parameter '" + p.name + "' of kind friction-coefficient needs a [friction] table with law = "
+                      "coulomb (docs/cases.md, \"Frictional case files\")");
+      }
+    }
+  }
+  if (friction != nullptr) read_friction(root, c, *friction);
   return c;
 }
 
@@ -457,8 +479,8 @@ ParameterSpec Reader::read_parameter(const toml::table& par, const std::string& 
   try {
     p.kind = parameter_kind_from_string(kind_name);
   } catch (const Error&) {
-    fail(&kind, "key '" + path + ".kind' must be dirichlet-scale, body-scaling, young-modulus, traction or "
-                "body-force, got '" + kind_name + "'");
+    fail(&kind, "key '" + path + ".kind' must be dirichlet-scale, body-scaling, young-modulus, traction, "
+                "body-force or friction-coefficient, got '" + kind_name + "'");
   }
   const toml::node& domain_node = required(par, path, "domain");
   const std::vector<double> domain = numbers(domain_node, path + ".domain", 2);
@@ -493,14 +515,16 @@ void Reader::read_parameter_body(const toml::table& par, const std::string& path
 }
 
 // [[dirichlet]]: a group and ux, uy and/or uz (uz: 3D meshes, checked by reference_mesh).
-void Reader::read_dirichlet(const toml::table& root, CaseSpec& c) const {
+void Reader::read_dirichlet(const toml::table& root, CaseSpec& c, const std::string& prefix) const {
   const toml::node* d = root.get("dirichlet");
   if (d == nullptr) return;
   const auto* arr = d->as_array();
-  if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*d, "dirichlet", "an array of tables ([[dirichlet]])");
+  if (arr == nullptr || !arr->is_array_of_tables()) {
+    wrong_type(*d, prefix + "dirichlet", "an array of tables ([[" + prefix + "dirichlet]])");
+  }
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const toml::table& t = *arr->get(i)->as_table();
-    const std::string path = "dirichlet[" + std::to_string(i + 1) + "]";
+    const std::string path = prefix + "dirichlet[" + std::to_string(i + 1) + "]";
     check_keys(t, path, {"group", "ux", "uy", "uz"});
     DirichletSpec ds;
     ds.group = string(required(t, path, "group"), path + ".group");
@@ -515,14 +539,103 @@ void Reader::read_dirichlet(const toml::table& root, CaseSpec& c) const {
 }
 
 // [[traction]] entries (after the parameters: one may name a parameter of kind traction).
-void Reader::read_tractions(const toml::table& root, CaseSpec& c) const {
+void Reader::read_tractions(const toml::table& root, CaseSpec& c, const std::string& prefix) const {
   const toml::node* d = root.get("traction");
   if (d == nullptr) return;
   const auto* arr = d->as_array();
-  if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*d, "traction", "an array of tables ([[traction]])");
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    c.tractions.push_back(read_traction(*arr->get(i)->as_table(), "traction[" + std::to_string(i + 1) + "]", c));
+  if (arr == nullptr || !arr->is_array_of_tables()) {
+    wrong_type(*d, prefix + "traction", "an array of tables ([[" + prefix + "traction]])");
   }
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    c.tractions.push_back(
+        read_traction(*arr->get(i)->as_table(), prefix + "traction[" + std::to_string(i + 1) + "]", c));
+  }
+}
+
+// [friction] and [[load_steps]] (docs/cases.md, "Frictional case files"): both or neither.
+void Reader::read_friction(const toml::table& root, const CaseSpec& c, FrictionFileSpec& f) const {
+  const toml::node* fn = root.get("friction");
+  const toml::node* sn = root.get("load_steps");
+  if (fn == nullptr && sn == nullptr) return;
+  if (fn == nullptr) fail(sn, "[[load_steps]] needs a [friction] table (law and coefficient or threshold)");
+  if (sn == nullptr) fail(fn, "[friction] needs [[load_steps]] (at least one load step)");
+  f.has_friction = true;
+  const toml::table& t = table(*fn, "friction");
+  check_keys(t, "friction", {"law", "coefficient", "threshold"});
+  f.law = string(required(t, "friction", "law"), "friction.law");
+  if (f.law != "coulomb" && f.law != "tresca") {
+    fail(t.get("law"), "key 'friction.law' must be coulomb or tresca, got '" + f.law + "'");
+  }
+  const char* value_key = f.law == "coulomb" ? "coefficient" : "threshold";
+  const char* other_key = f.law == "coulomb" ? "threshold" : "coefficient";
+  if (const toml::node* other = t.get(other_key)) {
+    fail(other, "key 'friction." + std::string(other_key) + "' does not apply to law = " + f.law + " (it takes '" +
+                    value_key + "')");
+  }
+  if (c.constraint != contact::Discretization::Collocation) {
+    fail(fn, "a frictional case needs constraint = collocation (got " + std::string(contact::to_string(c.constraint)) +
+                 ")");
+  }
+  if (!read_coefficient_parameter(t, c, f)) {
+    const toml::node& vn = required(t, "friction", value_key);
+    const double v = number(vn, "friction." + std::string(value_key));
+    if (!std::isfinite(v) || v < 0.0) {
+      std::ostringstream got;
+      got << v;
+      fail(&vn, "key 'friction." + std::string(value_key) + "' must be a finite number >= 0, got " + got.str());
+    }
+    (f.law == "coulomb" ? f.coefficient : f.threshold) = v;
+  }
+  read_load_steps(*sn, c, f);
+}
+
+// A friction-coefficient parameter (at most one, Coulomb only, a domain in [0, inf)) gives f in
+// place of friction.coefficient; false when the case has none.
+bool Reader::read_coefficient_parameter(const toml::table& t, const CaseSpec& c, FrictionFileSpec& f) const {
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const ParameterSpec& p = c.parameters[k];
+    if (p.kind != ParameterKind::FrictionCoefficient) continue;
+    if (f.coefficient_parameter >= 0) fail(nullptr, "two parameters of kind friction-coefficient (at most one)");
+    if (f.law != "coulomb") fail(t.get("law"), "parameter '" + p.name + "' of kind friction-coefficient needs law = coulomb");
+    if (const toml::node* v = t.get("coefficient")) {
+      fail(v, "key 'friction.coefficient' and parameter '" + p.name + "' (friction-coefficient) both give f: keep one");
+    }
+    if (!(p.min >= 0.0)) fail(nullptr, "parameter '" + p.name + "' of kind friction-coefficient needs a domain in [0, inf)");
+    f.coefficient_parameter = static_cast<int>(k);
+  }
+  return f.coefficient_parameter >= 0;
+}
+
+void Reader::read_load_steps(const toml::node& steps, const CaseSpec& c, FrictionFileSpec& f) const {
+  const toml::node* sn = &steps;  // for the messages
+  const auto* arr = sn->as_array();
+  if (arr != nullptr && arr->empty()) fail(sn, "key 'load_steps' has no step (at least one [[load_steps]])");
+  if (arr == nullptr || !arr->is_array_of_tables()) wrong_type(*sn, "load_steps", "an array of tables ([[load_steps]])");
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    f.steps.push_back(read_load_step(*arr->get(i)->as_table(), "load_steps[" + std::to_string(i + 1) + "]", c));
+  }
+}
+
+// One load step: its [[load_steps.dirichlet]] (the same groups and components as [[dirichlet]],
+// other values) and optional [[load_steps.traction]] loads.
+FrictionFileSpec::Step Reader::read_load_step(const toml::table& t, const std::string& path, const CaseSpec& c) const {
+  check_keys(t, path, {"dirichlet", "traction"});
+  CaseSpec step;
+  step.parameters = c.parameters;
+  read_dirichlet(t, step, path + ".");
+  read_tractions(t, step, path + ".");
+  auto components = [](const DirichletSpec& d) {
+    return std::to_string(d.ux.has_value()) + std::to_string(d.uy.has_value()) + std::to_string(d.uz.has_value());
+  };
+  bool same = step.dirichlet.size() == c.dirichlet.size();
+  for (std::size_t k = 0; same && k < c.dirichlet.size(); ++k) {
+    same = step.dirichlet[k].group == c.dirichlet[k].group && components(step.dirichlet[k]) == components(c.dirichlet[k]);
+  }
+  if (!same) {
+    fail(&t, "[[" + path + ".dirichlet]] must prescribe the components of [[dirichlet]], group by group in the same "
+                 "order (only the values change from step to step)");
+  }
+  return {std::move(step.dirichlet), std::move(step.tractions)};
 }
 
 TractionSpec Reader::read_traction(const toml::table& t, const std::string& path, const CaseSpec& c) const {
@@ -618,7 +731,10 @@ bool same_value(const std::optional<AffineValue>& a, const std::optional<AffineV
 
 }  // namespace
 
-CaseSpec case_from_toml_string(const std::string& text, const std::string& origin, MeshFile mesh_file) {
+namespace {
+
+CaseSpec read_case_text(const std::string& text, const std::string& origin, MeshFile mesh_file,
+                        FrictionFileSpec* friction) {
   fs::path base = fs::path(origin).parent_path();
   if (base.empty()) base = fs::current_path();
   // Absolute, so that the resolved mesh.file (recorded by to_toml in snapshot and model
@@ -633,11 +749,24 @@ CaseSpec case_from_toml_string(const std::string& text, const std::string& origi
        << e.description();
     throw Error(os.str());
   }
-  return Reader(origin, base, mesh_file).read(root);
+  return Reader(origin, base, mesh_file).read(root, friction);
+}
+
+}  // namespace
+
+CaseSpec case_from_toml_string(const std::string& text, const std::string& origin, MeshFile mesh_file) {
+  return read_case_text(text, origin, mesh_file, nullptr);
 }
 
 CaseSpec case_from_toml_file(const std::string& path) {
   return case_from_toml_string(read_text_input(path, "case file"), path);
+}
+
+std::optional<FrictionalCaseFile> frictional_case_from_toml_file(const std::string& path) {
+  FrictionalCaseFile file;
+  file.spec = read_case_text(read_text_input(path, "case file"), path, MeshFile::Required, &file.friction);
+  if (!file.friction.has_friction) return std::nullopt;
+  return file;
 }
 
 std::string to_toml(const CaseSpec& c) {

@@ -2,7 +2,9 @@
 // User cases from TOML files (toml++), and the inverse, so that a CaseSpec can be stored
 // inside other files (e.g. snapshot stores). The format is in docs/cases.md; examples in
 // examples/*/case.toml.
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "contactrb/cases/case_spec.hpp"
 
@@ -26,6 +28,32 @@ const char* to_string(MeshFile value);  // "required" | "optional"
 MeshFile mesh_file_from_string(const std::string& name);  // throws contactrb::Error
 CaseSpec case_from_toml_string(const std::string& text, const std::string& origin,
                                MeshFile mesh_file = MeshFile::Required);
+
+// The friction keys of a case file ([friction], [[load_steps]]; docs/cases.md, "Frictional case
+// files"). case_from_toml_file and case_from_toml_string refuse a file that has them (only
+// `contactrb solve` handles friction).
+struct FrictionFileSpec {
+  bool has_friction = false;
+  std::string law = "coulomb";  // "coulomb" | "tresca" (hf::friction_law_from_string)
+  double coefficient = 0.0;     // coulomb: f >= 0
+  int coefficient_parameter = -1;  // coulomb: the friction-coefficient parameter giving f, -1: `coefficient`
+  double threshold = 0.0;       // tresca: s >= 0
+  struct Step {
+    std::vector<DirichletSpec> dirichlet;  // the groups and components of CaseSpec::dirichlet, in order
+    std::vector<TractionSpec> tractions;
+  };
+  std::vector<Step> steps;  // at least one
+};
+struct FrictionalCaseFile {
+  CaseSpec spec;  // the frictionless keys, checked as case_from_toml_file does
+  FrictionFileSpec friction;
+};
+// nullopt for a file without friction keys; otherwise the case and its friction, each key
+// checked (throws contactrb::Error naming the file, the line and the key: an unknown law, a
+// negative or non-finite coefficient or threshold, the key of the other law, [friction] without
+// [[load_steps]] or the reverse, no step, a step that prescribes other groups or components than
+// [[dirichlet]], a constraint other than collocation).
+std::optional<FrictionalCaseFile> frictional_case_from_toml_file(const std::string& path);
 
 // The TOML text of a spec, read back by case_from_toml_string to an equal spec (doubles
 // are written in their shortest round-trip form; parameter sets as explicit lists; a .msh

@@ -20,13 +20,35 @@ const std::vector<CaseInfo>& builtin_cases() {
   return cases;
 }
 
+const std::vector<CaseInfo>& frictional_builtin_cases() {
+  static const std::vector<CaseInfo> cases{
+      {"cattaneo", "frictional (Coulomb, f = mu in [0, 1]): the hertz-a half-disks pressed together, then the upper "
+                   "edge moved sideways; `solve` only"},
+  };
+  return cases;
+}
+
+bool is_frictional_case(const std::string& name) {
+  for (const CaseInfo& c : frictional_builtin_cases()) {
+    if (c.name == name) return true;
+  }
+  return false;
+}
+
 const CaseInfo& find_case(const std::string& name) {
+  // A frictional case has no CaseSpec (no reduced model, no parameter box of this kind): every
+  // path that asks for one (snapshots, offline, report, mesh, Python) refuses it here.
+  require(!is_frictional_case(name), "case '" + name +
+                                         "' is frictional: only `contactrb solve` handles friction (docs/cases.md, "
+                                         "\"Frictional cases\")");
   for (const CaseInfo& c : builtin_cases()) {
     if (c.name == name) return c;
   }
   std::ostringstream os;
   os << "unknown case '" << name << "' (built-in cases:";
   for (const CaseInfo& c : builtin_cases()) os << " " << c.name;
+  os << "; frictional:";
+  for (const CaseInfo& c : frictional_builtin_cases()) os << " " << c.name;
   os << ")";
   throw Error(os.str());
 }

@@ -14,8 +14,14 @@ struct CaseInfo {
   int dimension = 2;    // 2: triangles (plane strain), 3: tetrahedra
 };
 
+// The parametrized (frictionless) cases: every command and the reduced models take them.
 const std::vector<CaseInfo>& builtin_cases();
-// Throws contactrb::Error naming the unknown case and listing the known ones.
+// The frictional built-in cases (frictional_cases.hpp; docs/cases.md, "Frictional cases"):
+// only `contactrb solve` takes them.
+const std::vector<CaseInfo>& frictional_builtin_cases();
+bool is_frictional_case(const std::string& name);
+// Throws contactrb::Error naming the unknown case and listing the known ones, or saying that a
+// frictional case is for `contactrb solve` only.
 const CaseInfo& find_case(const std::string& name);
 
 // Reference mesh of a built-in case (mu = reference value) at refinement level `level`

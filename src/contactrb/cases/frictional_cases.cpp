@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/number_text.hpp"
@@ -35,6 +36,23 @@ FrictionalCase cattaneo_case(int level, const CattaneoData& d) {
   c.problem.dirichlet = c.path.front().dirichlet;
   c.friction.law = hf::FrictionLaw::Coulomb;
   c.friction.coefficient = d.coefficient;
+  return c;
+}
+
+FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu) {
+  file.spec.check_mu(mu);
+  FrictionalCase c;
+  c.problem = make_problem(file.spec, reference, mu, contact::Discretization::Collocation);
+  for (const FrictionFileSpec::Step& s : file.friction.steps) {
+    CaseSpec step = file.spec;  // the step's loads in place of the case's (its tractions when it has some)
+    step.dirichlet = s.dirichlet;
+    if (!s.tractions.empty()) step.tractions = s.tractions;
+    c.path.push_back(hf::LoadStep{dirichlet_at(step, mu), tractions_at(step, mu)});
+  }
+  c.friction.law = hf::friction_law_from_string(file.friction.law);
+  const int k = file.friction.coefficient_parameter;
+  c.friction.coefficient = k >= 0 ? mu(k) : file.friction.coefficient;
+  c.friction.threshold = file.friction.threshold;
   return c;
 }
 

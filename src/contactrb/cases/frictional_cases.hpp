@@ -1,9 +1,11 @@
 #pragma once
 // Frictional cases: a contact problem, its load path and its friction law (hf/friction.hpp;
-// docs/cases.md, "Frictional cases"). Built from C++; not in the catalog of parametrized cases
-// (builtin_cases), whose reduced models are frictionless.
+// docs/cases.md, "Frictional cases"): the built-in cattaneo (catalog.hpp,
+// frictional_builtin_cases) and case files with friction keys. Reduced models are frictionless.
 #include <vector>
 
+#include "contactrb/cases/case_toml.hpp"
+#include "contactrb/cases/parameter.hpp"
 #include "contactrb/hf/contact_problem.hpp"
 #include "contactrb/hf/friction.hpp"
 
@@ -29,5 +31,12 @@ struct CattaneoData {
 // contactrb::Error for an approach that does not close the gap or exceeds hertz-a's domain (0.45),
 // a negative or non-finite coefficient or displacement, tangential_steps < 1, level < 0.
 FrictionalCase cattaneo_case(int level, const CattaneoData& data = {});
+
+// A frictional case file (case_toml.hpp, frictional_case_from_toml_file) at mu on `reference`
+// (reference_mesh): the problem of make_problem, one load step per [[load_steps]] with its
+// Dirichlet values and tractions at mu (a step without tractions: the case's [[traction]]), the
+// friction law of [friction]. Throws contactrb::Error
+// for mu outside the case's domain.
+FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu);
 
 }  // namespace contactrb::cases

@@ -40,6 +40,8 @@ const char* to_string(ParameterKind kind) {
       return "traction";
     case ParameterKind::BodyForce:
       return "body-force";
+    case ParameterKind::FrictionCoefficient:
+      return "friction-coefficient";
   }
   return "unknown";
 }
@@ -47,7 +49,7 @@ const char* to_string(ParameterKind kind) {
 ParameterKind parameter_kind_from_string(const std::string& name) {
   using enum ParameterKind;
   return enum_from_string(name, "parameter kind",
-                          std::array{DirichletScale, BodyScaling, YoungModulus, Traction, BodyForce});
+                          std::array{DirichletScale, BodyScaling, YoungModulus, Traction, BodyForce, FrictionCoefficient});
 }
 
 bool has_body(ParameterKind kind) {

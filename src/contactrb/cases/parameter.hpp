@@ -22,8 +22,10 @@ using Mu = Eigen::VectorXd;
 //  Traction: the magnitude of the [[traction]] loads that name this parameter (their
 //    vector or pressure times mu_k).
 //  BodyForce: the body load of one body is its `load` vector times mu_k. At most one per body.
-enum class ParameterKind { DirichletScale, BodyScaling, YoungModulus, Traction, BodyForce };
-// "dirichlet-scale" | "body-scaling" | "young-modulus" | "traction" | "body-force"
+//  FrictionCoefficient: Coulomb's f of a frictional case (docs/cases.md, "Frictional cases"); it
+//    enters the friction law, not the affine terms: frictionless cases refuse it. At most one.
+enum class ParameterKind { DirichletScale, BodyScaling, YoungModulus, Traction, BodyForce, FrictionCoefficient };
+// "dirichlet-scale" | "body-scaling" | "young-modulus" | "traction" | "body-force" | "friction-coefficient"
 const char* to_string(ParameterKind kind);
 ParameterKind parameter_kind_from_string(const std::string& name);  // throws contactrb::Error
 // True for the kinds that concern one body (BodyScaling, YoungModulus, BodyForce).
