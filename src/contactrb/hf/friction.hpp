@@ -73,6 +73,7 @@ struct BasicLoadStep {
   std::vector<fem::SurfaceLoad<Dim>> tractions;
 };
 using LoadStep = BasicLoadStep<2>;
+using LoadStep3 = BasicLoadStep<3>;
 
 // The frictionless report (HFKKT) with the residual of the friction law: max_r |C_t,r| / max
 // lambda (C_t the tangential complementarity function above, a traction).
@@ -111,6 +112,7 @@ struct BasicFrictionalSolution {
   double time_s = 0.0;
 };
 using FrictionalSolution = BasicFrictionalSolution<2>;
+using FrictionalSolution3 = BasicFrictionalSolution<3>;
 
 // Solves the load steps in order, each from the state at the end of the previous one (the first
 // from u = 0, no slip). Friction off (friction_is_off): the frictionless solver
@@ -124,6 +126,9 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
                                              const FrictionSettings& friction, const HFSettings& frictionless = {});
 extern template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&,
                                                            const std::vector<BasicLoadStep<2>>&,
+                                                           const FrictionSettings&, const HFSettings&);
+extern template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&,
+                                                           const std::vector<BasicLoadStep<3>>&,
                                                            const FrictionSettings&, const HFSettings&);
 
 }  // namespace contactrb::hf
