@@ -2,6 +2,7 @@
 // Frictional cases: a contact problem, its load path and its friction law (hf/friction.hpp;
 // docs/cases.md, "Frictional cases"). Built from C++; not in the catalog of parametrized cases
 // (builtin_cases), whose reduced models are frictionless.
+#include <Eigen/Core>
 #include <vector>
 
 #include "contactrb/hf/contact_problem.hpp"
@@ -9,11 +10,14 @@
 
 namespace contactrb::cases {
 
-struct FrictionalCase {
-  hf::ContactProblem problem;      // the mesh, materials and constraint rows
-  std::vector<hf::LoadStep> path;  // in order
+template <int Dim>
+struct BasicFrictionalCase {
+  hf::BasicContactProblem<Dim> problem;      // the mesh, materials and constraint rows
+  std::vector<hf::BasicLoadStep<Dim>> path;  // in order
   hf::FrictionSettings friction;
 };
+using FrictionalCase = BasicFrictionalCase<2>;
+using FrictionalCase3 = BasicFrictionalCase<3>;
 
 // cattaneo: hertz-a's half-disks (R = 1, gap 0.1, E = 15, nu = 0.35 for both: the normal and
 // tangential problems decouple), the flat edges brought together by `approach` (top
@@ -29,5 +33,24 @@ struct CattaneoData {
 // contactrb::Error for an approach that does not close the gap or exceeds hertz-a's domain (0.45),
 // a negative or non-finite coefficient or displacement, tangential_steps < 1, level < 0.
 FrictionalCase cattaneo_case(int level, const CattaneoData& data = {});
+
+// block-on-block-3d: a slave box [0.2, 0.8]^2 x [0, 0.4] (6 2^level cells across, 4 2^level high)
+// on a master box [0, 1]^2 x [-0.5, 0] (10 2^level across, 5 2^level high): non-matching
+// interfaces in contact at rest, E = 10, nu = 0.3 for both, collocation rows. The master's bottom
+// is clamped; the slave's top is pressed down by `approach`, then moved by `tangential` (x, y) in
+// `tangential_steps` equal steps; Coulomb friction with `coefficient`. Both meshes are symmetric
+// about the plane x = y (mesh::box cuts every cube around its main diagonal), so a tangential
+// displacement along (1, 1) is a load symmetric about that plane. Groups: "slave", "master",
+// "top" (slave top), "bottom" (master bottom), the sides "left1" ... "back1" (slave) and
+// "left2" ... "back2" (master).
+struct BlockOnBlock3dData {
+  double approach = 0.004;                          // a compressive strain of 1 % in the slave
+  Eigen::Vector2d tangential{0.0005, 0.0};
+  double coefficient = 0.3;
+  int tangential_steps = 1;
+};
+// Throws contactrb::Error for level outside [0, 2], a non-positive or non-finite approach, a
+// non-finite tangential displacement, a negative coefficient or tangential_steps < 1.
+FrictionalCase3 block_on_block_3d_case(int level, const BlockOnBlock3dData& data = {});
 
 }  // namespace contactrb::cases
