@@ -203,3 +203,24 @@ TEST(Friction3D, CaseRefusesBadData) {
   EXPECT_THROW(cases::block_on_block_3d_case(0, {0.004, {0.0, 0.0}, -0.1, 1}), Error);
   EXPECT_THROW(cases::block_on_block_3d_case(0, {0.004, {0.0, 0.0}, 0.3, 0}), Error);
 }
+
+// Level 1 (about 7000 nodes): every load step converges in at most 15 Newton iterations (the
+// figures of docs/solvers.md, "Friction": the step times against the frictionless Newton solve of
+// the last step's data on the same mesh).
+TEST(Friction3D, Level1StepsConvergeInFewIterations) {
+  const cases::FrictionalCase3 c = cases::block_on_block_3d_case(1, {0.004, {0.0006, 0.0003}, 0.3, 2});
+  const hf::FrictionalSolution3 s = hf::solve_load_path(c.problem, c.path, c.friction);
+  print_steps("level 1", s);
+  ASSERT_TRUE(s.converged) << s.message;
+  for (const hf::FrictionStepReport& r : s.steps) EXPECT_LE(r.iterations, 15);
+  EXPECT_GT(s.slip_nodes, 0);
+  EXPECT_GT(s.stick_nodes, 0);
+  hf::ContactProblem3 last = c.problem;
+  last.dirichlet = c.path.back().dirichlet;
+  hf::HFSettings newton;
+  newton.method = hf::HFMethod::Newton;
+  const hf::HFSolution3 h = hf::HFSolver3(last).solve(newton);
+  ASSERT_TRUE(h.converged) << h.message;
+  std::printf("[ report ] level 1: %lld rows; frictionless Newton %d iterations, %.3f s; frictional path %.3f s\n",
+              static_cast<long long>(s.lambda.size()), h.iterations, h.time_s, s.time_s);
+}
