@@ -54,6 +54,34 @@ mesh::Mesh3 named_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int 
 
 }  // namespace
 
+FrictionalCase3 cattaneo_3d_case(int level, const Cattaneo3dData& d) {
+  require(level >= 0 && level <= 2, "cattaneo-3d: level must be in [0, 2] (got " + std::to_string(level) + ")");
+  require(std::isfinite(d.approach) && d.approach > 0.0 && d.approach <= 0.1,
+          "cattaneo-3d: the approach must be in (0, 0.1] (got " + number_text(d.approach) + ")");
+  require(std::isfinite(d.tangential), "cattaneo-3d: the tangential displacement is not finite");
+  require(std::isfinite(d.coefficient) && d.coefficient >= 0.0,
+          "cattaneo-3d: the friction coefficient must be >= 0 (got " + number_text(d.coefficient) + ")");
+  require(d.tangential_steps >= 1, "cattaneo-3d: tangential_steps must be >= 1 (got " + std::to_string(d.tangential_steps) + ")");
+  const CaseSpec hertz_3d = builtin_case_spec("hertz-3d");
+  mesh::Hertz3dGeometry g;
+  g.fine_size = mesh::hertz_3d_fine_size_for_level(level);
+  FrictionalCase3 c;
+  c.problem.mesh = mesh::mirror(mesh::mirror(mesh::generate_hertz_3d(g), 0, "symmetry_x"), 1, "symmetry_y");
+  for (const BodySpec& body : hertz_3d.bodies) c.problem.materials.push_back(fem::Material{body.E, body.nu});
+  c.problem.discretization = contact::Discretization::Collocation;
+  auto step = [&](double dx) {
+    return hf::LoadStep3{{fem::DirichletCondition{"top", dx, 0.0, -d.approach},
+                          fem::DirichletCondition{"bottom", 0.0, 0.0, 0.0}},
+                         {}};
+  };
+  c.path.push_back(step(0.0));
+  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
+  c.problem.dirichlet = c.path.front().dirichlet;
+  c.friction.law = hf::FrictionLaw::Coulomb;
+  c.friction.coefficient = d.coefficient;
+  return c;
+}
+
 FrictionalCase3 block_on_block_3d_case(int level, const BlockOnBlock3dData& d) {
   require(level >= 0 && level <= 2, "block-on-block-3d: level must be in [0, 2] (got " + std::to_string(level) + ")");
   require(std::isfinite(d.approach) && d.approach > 0.0,

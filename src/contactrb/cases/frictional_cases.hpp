@@ -34,6 +34,21 @@ struct CattaneoData {
 // a negative or non-finite coefficient or displacement, tangential_steps < 1, level < 0.
 FrictionalCase cattaneo_case(int level, const CattaneoData& data = {});
 
+// cattaneo-3d: hertz-3d's hemisphere on a block (R = 1, E and nu of hertz-3d for both: the normal
+// and tangential problems decouple) as a full model (the quarter mesh of mesh::generate_hertz_3d
+// mirrored about x = 0 and y = 0, mesh::mirror: a symmetry plane would hold the tangential
+// multipliers of the nodes on it by its rollers alone), the block's bottom clamped, the hemisphere's flat top pressed down by `approach`, then moved by
+// `tangential` along x in `tangential_steps` equal steps; Coulomb friction with `coefficient`.
+struct Cattaneo3dData {
+  double approach = 0.02;     // hertz-3d's reference: a about 0.14
+  double tangential = 0.002;
+  double coefficient = 0.3;
+  int tangential_steps = 1;
+};
+// level: hertz-3d's (mesh::hertz_3d_fine_size_for_level), at most 2. Throws contactrb::Error as
+// block_on_block_3d_case.
+FrictionalCase3 cattaneo_3d_case(int level, const Cattaneo3dData& data = {});
+
 // block-on-block-3d: a slave box [0.2, 0.8]^2 x [0, 0.4] (6 2^level cells across, 4 2^level high)
 // on a master box [0, 1]^2 x [-0.5, 0] (10 2^level across, 5 2^level high): non-matching
 // interfaces in contact at rest, E = 10, nu = 0.3 for both, collocation rows. The master's bottom
