@@ -7,10 +7,10 @@
 //   A_00 u_0 - b + K_0(u)' lambda + T_0(u)' lambda_t = 0,
 //   min(lambda_r, c_r d_r(u)) = 0,                       d = g(u) - K(u) u   (the normal law)
 //   lambda_t,r - P_{B(s_r)}(lambda_t,r + c_r delta_r) = 0, delta_r = -|I_r| slip_r(u)
-// with B(s) the ball of radius s (2D: [-s, s]), s_r = the Tresca threshold or f lambda_r on rows
-// in contact, 0 on open rows; slip_r is the motion of the slave node over the master's material
-// points since u_prev, the displacement at the end of the previous step
-// (contact::tangential_slip), so the slip history is carried from step to step. A row that
+// with B(s) the ball of radius s (2D: [-s, s]; 3D: the disk, P(x) = x or s x / |x|), s_r = the
+// Tresca threshold or f lambda_r on rows in contact, 0 on open rows; slip_r is the motion of the
+// slave node over the master's material points since u_prev, the displacement at the end of the
+// previous step (contact::tangential_slip), so the slip history is carried from step to step. A row that
 // closes during a step carries friction from the next step on.
 #include <Eigen/Core>
 #include <string>
