@@ -10,8 +10,8 @@
 // with B(s) the ball of radius s (2D: [-s, s]; 3D: the disk, P(x) = x or s x / |x|), s_r = the
 // Tresca threshold or f lambda_r on rows in contact, 0 on open rows; slip_r is the motion of the
 // slave node over the master's material points since u_prev, the displacement at the end of the
-// previous step (contact::tangential_slip), so the slip history is carried from step to step. A row that
-// closes during a step carries friction from the next step on.
+// previous step (contact::tangential_slip), so the slip history is carried from step to step. A
+// row that closes during a step carries friction from the next step on.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
