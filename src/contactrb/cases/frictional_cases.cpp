@@ -8,6 +8,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/number_text.hpp"
 #include "contactrb/mesh/geometries.hpp"
+#include "contactrb/mesh/structured.hpp"
 
 namespace contactrb::cases {
 
@@ -53,6 +54,77 @@ FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh&
   const int k = file.friction.coefficient_parameter;
   c.friction.coefficient = k >= 0 ? mu(k) : file.friction.coefficient;
   c.friction.threshold = file.friction.threshold;
+  return c;
+}
+
+namespace {
+
+// One body of block-on-block-3d: a box whose contact face and side faces are renamed.
+mesh::Mesh3 named_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n, int nz, int body) {
+  mesh::Mesh3 m = mesh::box(lo, hi, n, n, nz, body);
+  const bool slave = body == mesh::kSlaveBody;
+  mesh::rename_boundary(m, slave ? "bottom" : "top", slave ? mesh::kSlaveBoundary : mesh::kMasterBoundary);
+  for (const char* side : {"left", "right", "front", "back"}) {
+    mesh::rename_boundary(m, side, std::string(side) + (slave ? "1" : "2"));
+  }
+  return m;
+}
+
+}  // namespace
+
+FrictionalCase3 cattaneo_3d_case(int level, const Cattaneo3dData& d) {
+  require(level >= 0 && level <= 2, "cattaneo-3d: level must be in [0, 2] (got " + std::to_string(level) + ")");
+  require(std::isfinite(d.approach) && d.approach > 0.0 && d.approach <= 0.1,
+          "cattaneo-3d: the approach must be in (0, 0.1] (got " + number_text(d.approach) + ")");
+  require(std::isfinite(d.tangential), "cattaneo-3d: the tangential displacement is not finite");
+  require(std::isfinite(d.coefficient) && d.coefficient >= 0.0,
+          "cattaneo-3d: the friction coefficient must be >= 0 (got " + number_text(d.coefficient) + ")");
+  require(d.tangential_steps >= 1, "cattaneo-3d: tangential_steps must be >= 1 (got " + std::to_string(d.tangential_steps) + ")");
+  const CaseSpec hertz_3d = builtin_case_spec("hertz-3d");
+  mesh::Hertz3dGeometry g;
+  g.fine_size = mesh::hertz_3d_fine_size_for_level(level);
+  FrictionalCase3 c;
+  c.problem.mesh = mesh::mirror(mesh::mirror(mesh::generate_hertz_3d(g), 0, "symmetry_x"), 1, "symmetry_y");
+  for (const BodySpec& body : hertz_3d.bodies) c.problem.materials.push_back(fem::Material{body.E, body.nu});
+  c.problem.discretization = contact::Discretization::Collocation;
+  auto step = [&](double dx) {
+    return hf::LoadStep3{{fem::DirichletCondition{"top", dx, 0.0, -d.approach},
+                          fem::DirichletCondition{"bottom", 0.0, 0.0, 0.0}},
+                         {}};
+  };
+  c.path.push_back(step(0.0));
+  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
+  c.problem.dirichlet = c.path.front().dirichlet;
+  c.friction.law = hf::FrictionLaw::Coulomb;
+  c.friction.coefficient = d.coefficient;
+  return c;
+}
+
+FrictionalCase3 block_on_block_3d_case(int level, const BlockOnBlock3dData& d) {
+  require(level >= 0 && level <= 2, "block-on-block-3d: level must be in [0, 2] (got " + std::to_string(level) + ")");
+  require(std::isfinite(d.approach) && d.approach > 0.0,
+          "block-on-block-3d: the approach must be > 0 (got " + number_text(d.approach) + ")");
+  require(d.tangential.allFinite(), "block-on-block-3d: the tangential displacement is not finite");
+  require(std::isfinite(d.coefficient) && d.coefficient >= 0.0,
+          "block-on-block-3d: the friction coefficient must be >= 0 (got " + number_text(d.coefficient) + ")");
+  require(d.tangential_steps >= 1,
+          "block-on-block-3d: tangential_steps must be >= 1 (got " + std::to_string(d.tangential_steps) + ")");
+  const int k = 1 << level;
+  FrictionalCase3 c;
+  c.problem.mesh = mesh::merge(named_box({0.2, 0.2, 0.0}, {0.8, 0.8, 0.4}, 6 * k, 4 * k, mesh::kSlaveBody),
+                               named_box({0.0, 0.0, -0.5}, {1.0, 1.0, 0.0}, 10 * k, 5 * k, mesh::kMasterBody));
+  c.problem.materials = {fem::Material{10.0, 0.3}, fem::Material{10.0, 0.3}};
+  c.problem.discretization = contact::Discretization::Collocation;
+  auto step = [&](const Eigen::Vector2d& t) {
+    return hf::LoadStep3{{fem::DirichletCondition{"top", t.x(), t.y(), -d.approach},
+                          fem::DirichletCondition{"bottom", 0.0, 0.0, 0.0}},
+                         {}};
+  };
+  c.path.push_back(step(Eigen::Vector2d::Zero()));
+  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
+  c.problem.dirichlet = c.path.front().dirichlet;
+  c.friction.law = hf::FrictionLaw::Coulomb;
+  c.friction.coefficient = d.coefficient;
   return c;
 }
 

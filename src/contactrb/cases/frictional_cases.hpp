@@ -1,7 +1,9 @@
 #pragma once
 // Frictional cases: a contact problem, its load path and its friction law (hf/friction.hpp;
 // docs/cases.md, "Frictional cases"): the built-in cattaneo (catalog.hpp,
-// frictional_builtin_cases) and case files with friction keys. Reduced models are frictionless.
+// frictional_builtin_cases), case files with friction keys, and the 3D cases built from C++.
+// Reduced models are frictionless.
+#include <Eigen/Core>
 #include <vector>
 
 #include "contactrb/cases/case_toml.hpp"
@@ -11,11 +13,14 @@
 
 namespace contactrb::cases {
 
-struct FrictionalCase {
-  hf::ContactProblem problem;      // the mesh, materials and constraint rows
-  std::vector<hf::LoadStep> path;  // in order
+template <int Dim>
+struct BasicFrictionalCase {
+  hf::BasicContactProblem<Dim> problem;      // the mesh, materials and constraint rows
+  std::vector<hf::BasicLoadStep<Dim>> path;  // in order
   hf::FrictionSettings friction;
 };
+using FrictionalCase = BasicFrictionalCase<2>;
+using FrictionalCase3 = BasicFrictionalCase<3>;
 
 // cattaneo: hertz-a's half-disks (R = 1, gap 0.1, E = 15, nu = 0.35 for both: the normal and
 // tangential problems decouple), the flat edges brought together by `approach` (top
@@ -38,5 +43,39 @@ FrictionalCase cattaneo_case(int level, const CattaneoData& data = {});
 // friction law of [friction]. Throws contactrb::Error
 // for mu outside the case's domain.
 FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu);
+
+// cattaneo-3d: hertz-3d's hemisphere on a block (R = 1, E and nu of hertz-3d for both: the normal
+// and tangential problems decouple) as a full model (the quarter mesh of mesh::generate_hertz_3d
+// mirrored about x = 0 and y = 0, mesh::mirror: a symmetry plane would hold the tangential
+// multipliers of the nodes on it by its rollers alone), the block's bottom clamped, the hemisphere's flat top pressed down by `approach`, then moved by
+// `tangential` along x in `tangential_steps` equal steps; Coulomb friction with `coefficient`.
+struct Cattaneo3dData {
+  double approach = 0.02;     // hertz-3d's reference: a about 0.14
+  double tangential = 0.002;
+  double coefficient = 0.3;
+  int tangential_steps = 1;
+};
+// level: hertz-3d's (mesh::hertz_3d_fine_size_for_level), at most 2. Throws contactrb::Error as
+// block_on_block_3d_case.
+FrictionalCase3 cattaneo_3d_case(int level, const Cattaneo3dData& data = {});
+
+// block-on-block-3d: a slave box [0.2, 0.8]^2 x [0, 0.4] (6 2^level cells across, 4 2^level high)
+// on a master box [0, 1]^2 x [-0.5, 0] (10 2^level across, 5 2^level high): non-matching
+// interfaces in contact at rest, E = 10, nu = 0.3 for both, collocation rows. The master's bottom
+// is clamped; the slave's top is pressed down by `approach`, then moved by `tangential` (x, y) in
+// `tangential_steps` equal steps; Coulomb friction with `coefficient`. Both meshes are symmetric
+// about the plane x = y (mesh::box cuts every cube around its main diagonal), so a tangential
+// displacement along (1, 1) is a load symmetric about that plane. Groups: "slave", "master",
+// "top" (slave top), "bottom" (master bottom), the sides "left1" ... "back1" (slave) and
+// "left2" ... "back2" (master).
+struct BlockOnBlock3dData {
+  double approach = 0.004;                          // a compressive strain of 1 % in the slave
+  Eigen::Vector2d tangential{0.0005, 0.0};
+  double coefficient = 0.3;
+  int tangential_steps = 1;
+};
+// Throws contactrb::Error for level outside [0, 2], a non-positive or non-finite approach, a
+// non-finite tangential displacement, a negative coefficient or tangential_steps < 1.
+FrictionalCase3 block_on_block_3d_case(int level, const BlockOnBlock3dData& data = {});
 
 }  // namespace contactrb::cases

@@ -275,5 +275,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
 
 template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&, const std::vector<BasicLoadStep<2>>&,
                                                     const FrictionSettings&, const HFSettings&);
+template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&, const std::vector<BasicLoadStep<3>>&,
+                                                    const FrictionSettings&, const HFSettings&);
 
 }  // namespace contactrb::hf

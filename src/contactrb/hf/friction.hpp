@@ -7,11 +7,11 @@
 //   A_00 u_0 - b + K_0(u)' lambda + T_0(u)' lambda_t = 0,
 //   min(lambda_r, c_r d_r(u)) = 0,                       d = g(u) - K(u) u   (the normal law)
 //   lambda_t,r - P_{B(s_r)}(lambda_t,r + c_r delta_r) = 0, delta_r = -|I_r| slip_r(u)
-// with B(s) the ball of radius s (2D: [-s, s]), s_r = the Tresca threshold or f lambda_r on rows
-// in contact, 0 on open rows; slip_r is the motion of the slave node over the master's material
-// points since u_prev, the displacement at the end of the previous step
-// (contact::tangential_slip), so the slip history is carried from step to step. A row that
-// closes during a step carries friction from the next step on.
+// with B(s) the ball of radius s (2D: [-s, s]; 3D: the disk, P(x) = x or s x / |x|), s_r = the
+// Tresca threshold or f lambda_r on rows in contact, 0 on open rows; slip_r is the motion of the
+// slave node over the master's material points since u_prev, the displacement at the end of the
+// previous step (contact::tangential_slip), so the slip history is carried from step to step. A
+// row that closes during a step carries friction from the next step on.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -73,6 +73,7 @@ struct BasicLoadStep {
   std::vector<fem::SurfaceLoad<Dim>> tractions;
 };
 using LoadStep = BasicLoadStep<2>;
+using LoadStep3 = BasicLoadStep<3>;
 
 // The frictionless report (HFKKT) with the residual of the friction law: max_r |C_t,r| / max
 // lambda (C_t the tangential complementarity function above, a traction).
@@ -111,6 +112,7 @@ struct BasicFrictionalSolution {
   double time_s = 0.0;
 };
 using FrictionalSolution = BasicFrictionalSolution<2>;
+using FrictionalSolution3 = BasicFrictionalSolution<3>;
 
 // Solves the load steps in order, each from the state at the end of the previous one (the first
 // from u = 0, no slip). Friction off (friction_is_off): the frictionless solver
@@ -124,6 +126,9 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
                                              const FrictionSettings& friction, const HFSettings& frictionless = {});
 extern template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&,
                                                            const std::vector<BasicLoadStep<2>>&,
+                                                           const FrictionSettings&, const HFSettings&);
+extern template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&,
+                                                           const std::vector<BasicLoadStep<3>>&,
                                                            const FrictionSettings&, const HFSettings&);
 
 }  // namespace contactrb::hf

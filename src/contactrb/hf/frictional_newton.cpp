@@ -199,7 +199,12 @@ FrictionIterate<Dim> FrictionStep<Dim>::evaluate(Eigen::VectorXd u0, Eigen::Vect
   for (int r = 0; r < R_; ++r) {
     if (!frictional_[sz(r)]) x.slip.template segment<M>(M * r).setZero();
   }
-  x.delta = -(p_.quadrature->W * x.slip);
+  x.delta = Eigen::VectorXd::Zero(M * R_);  // -W slip, W acting on the M components of each node
+  for (int r = 0; r < R_; ++r) {
+    for (RowSparse::InnerIterator w(p_.quadrature->W, r); w; ++w) {
+      x.delta.template segment<M>(M * r) -= w.value() * x.slip.template segment<M>(M * w.col());
+    }
+  }
   x.S0 = p_.dofs->restrict_columns(
       contact::slip_rows<Dim>(*p_.mesh, *p_.pair, *p_.quadrature, x.n.maps.pointwise, x.n.u));
   x.lambda_t = std::move(lambda_t);
@@ -460,6 +465,9 @@ FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra,
 
 template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, const FrictionState<2>&,
                                                    const FrictionState<2>&, solve::SelectedInverse*,
+                                                   const FrictionSettings&);
+template FrictionStepResult<3> solve_friction_step(const FrictionAlgebra<3>&, const FrictionState<3>&,
+                                                   const FrictionState<3>&, solve::SelectedInverse*,
                                                    const FrictionSettings&);
 
 }  // namespace contactrb::hf

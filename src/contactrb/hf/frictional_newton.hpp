@@ -44,5 +44,8 @@ FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra,
 extern template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, const FrictionState<2>&,
                                                           const FrictionState<2>&, solve::SelectedInverse*,
                                                           const FrictionSettings&);
+extern template FrictionStepResult<3> solve_friction_step(const FrictionAlgebra<3>&, const FrictionState<3>&,
+                                                          const FrictionState<3>&, solve::SelectedInverse*,
+                                                          const FrictionSettings&);
 
 }  // namespace contactrb::hf

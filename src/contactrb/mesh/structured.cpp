@@ -206,6 +206,53 @@ void rename_boundary(SimplexMesh<Dim>& mesh, const std::string& from, const std:
 }
 
 template <int Dim>
+SimplexMesh<Dim> mirror(const SimplexMesh<Dim>& mesh, int axis, const std::string& plane_group) {
+  require(axis >= 0 && axis < Dim, "mirror: axis " + std::to_string(axis) + " out of range");
+  double extent = 0.0;
+  for (const auto& x : mesh.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  const double tol = 1e-12 * std::max(extent, 1.0);
+  require(mesh.has_boundary(plane_group), "mirror: no boundary group '" + plane_group + "'");
+  for (const auto& facet : mesh.boundary(plane_group)) {
+    for (int v : facet.vertices()) {
+      require(std::abs(mesh.nodes[static_cast<std::size_t>(v)](axis)) <= tol, 
+              "mirror: a facet of '" + plane_group + "' is off the plane");
+    }
+  }
+  SimplexMesh<Dim> m = mesh;
+  std::vector<int> image(mesh.nodes.size());
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
+    if (std::abs(mesh.nodes[i](axis)) <= tol) {
+      image[i] = static_cast<int>(i);
+      continue;
+    }
+    image[i] = m.num_nodes();
+    auto x = mesh.nodes[i];
+    x(axis) = -x(axis);
+    m.nodes.push_back(x);
+  }
+  auto on_image = [&](int v) { return image[static_cast<std::size_t>(v)]; };
+  for (auto cell : mesh.cells()) {
+    for (int& v : cell) v = on_image(v);
+    std::swap(cell[0], cell[1]);  // a reflection reverses the orientation
+    m.cells().push_back(cell);
+  }
+  m.body.insert(m.body.end(), mesh.body.begin(), mesh.body.end());
+  m.boundaries.erase(plane_group);
+  for (auto& [name, facets] : m.boundaries) {
+    const std::size_t n = facets.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      auto f = facets[k];
+      if constexpr (Dim == 2) {
+        facets.push_back({on_image(f.b), on_image(f.a)});
+      } else {
+        facets.push_back({on_image(f.b), on_image(f.a), on_image(f.c)});
+      }
+    }
+  }
+  return m;
+}
+
+template <int Dim>
 void perturb_interior(SimplexMesh<Dim>& mesh, double fraction, unsigned seed) {
   // Boundary nodes: nodes of facets that belong to exactly one cell.
   std::map<std::array<int, Dim>, int> count;
@@ -245,6 +292,8 @@ template Mesh merge<2>(const Mesh&, const Mesh&);
 template Mesh3 merge<3>(const Mesh3&, const Mesh3&);
 template void rename_boundary<2>(Mesh&, const std::string&, const std::string&);
 template void rename_boundary<3>(Mesh3&, const std::string&, const std::string&);
+template Mesh mirror<2>(const Mesh&, int, const std::string&);
+template Mesh3 mirror<3>(const Mesh3&, int, const std::string&);
 template void perturb_interior<2>(Mesh&, double, unsigned);
 template void perturb_interior<3>(Mesh3&, double, unsigned);
 

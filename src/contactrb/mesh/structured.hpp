@@ -35,6 +35,14 @@ SimplexMesh<Dim> merge(const SimplexMesh<Dim>& a, const SimplexMesh<Dim>& b);
 template <int Dim>
 void rename_boundary(SimplexMesh<Dim>& mesh, const std::string& from, const std::string& to);
 
+// The mesh joined with its mirror image about the plane x_axis = 0 (a full or half model from a
+// symmetric part): the nodes on the plane (|x_axis| <= 1e-12 times the mesh's extent) are shared,
+// the mirrored cells and facets keep their orientation (two vertices swapped), each group holds
+// its facets and their images, and `plane_group` (the facets on the plane, now inside) is dropped.
+// Throws contactrb::Error if `plane_group` is missing or one of its facets is off the plane.
+template <int Dim>
+SimplexMesh<Dim> mirror(const SimplexMesh<Dim>& mesh, int axis, const std::string& plane_group);
+
 // Moves the interior nodes (not on any cell's boundary facet) by a deterministic
 // pseudo-random offset of at most `fraction` times the local edge length, to make a
 // structured mesh unstructured for patch tests. Keeps the cells positive for small fractions
