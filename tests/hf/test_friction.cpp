@@ -10,6 +10,7 @@
 #include "contactrb/cases/frictional_cases.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/friction.hpp"
+#include "support/tied_interface.hpp"
 #include "contactrb/hf/friction_json.hpp"
 #include "contactrb/mesh/geometries.hpp"
 #include "hf_test_meshes.hpp"
@@ -252,39 +253,18 @@ TEST(Friction, LargeCoefficientGivesTheTiedAnswer) {
   const hf::FrictionalSolution s = hf::solve_load_path(p, {step}, coulomb(1e6));
   ASSERT_TRUE(s.converged) << s.message;
   EXPECT_EQ(s.stick_nodes, static_cast<int>(s.lambda.size()));
-  // The tied problem: [A_00 C'; C 0] [u_0; mu] = [b; 0], C u = u_s - u_m per pair and component.
+  // The tied problem: u_s - u_m = 0 per pair of coincident nodes and component.
   const hf::HFSolver solver(p);
-  const fem::DofMap& dofs = solver.dofs();
-  const Eigen::SparseMatrix<double> A00 = dofs.restrict_matrix(solver.stiffness());
-  const Eigen::VectorXd b = dofs.restrict(solver.load() - solver.stiffness() * dofs.lift());
-  std::vector<int> free_index(static_cast<std::size_t>(dofs.num_dofs()), -1);
-  for (int i = 0; i < dofs.num_free(); ++i) free_index[static_cast<std::size_t>(dofs.free_dofs()[static_cast<std::size_t>(i)])] = i;
-  const int n = dofs.num_free();
-  std::vector<Eigen::Triplet<double>> trip;
-  for (int j = 0; j < A00.outerSize(); ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator a(A00, j); a; ++a) trip.emplace_back(a.row(), a.col(), a.value());
-  }
-  int m = 0;
+  std::vector<test_support::Tie> ties;
   for (int sn : solver.pair().slave) {
     for (int mn : solver.pair().master) {
       if ((p.mesh.nodes[static_cast<std::size_t>(sn)] - p.mesh.nodes[static_cast<std::size_t>(mn)]).norm() > 1e-12) continue;
-      for (int c = 0; c < 2; ++c) {
-        const int fs = free_index[static_cast<std::size_t>(2 * sn + c)], fm = free_index[static_cast<std::size_t>(2 * mn + c)];
-        ASSERT_TRUE(fs >= 0 && fm >= 0);
-        trip.emplace_back(n + m, fs, 1.0); trip.emplace_back(fs, n + m, 1.0);
-        trip.emplace_back(n + m, fm, -1.0); trip.emplace_back(fm, n + m, -1.0);
-        ++m;
-      }
+      for (int c = 0; c < 2; ++c) ties.push_back({{2 * sn + c, 1.0}, {2 * mn + c, -1.0}});
     }
   }
-  ASSERT_EQ(m, 2 * static_cast<int>(solver.pair().slave.size()));
-  Eigen::SparseMatrix<double> KKT(n + m, n + m);
-  KKT.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(KKT);
-  ASSERT_EQ(lu.info(), Eigen::Success);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
-  rhs.head(n) = b;
-  const Eigen::VectorXd tied = dofs.lift() + dofs.extend(lu.solve(rhs).head(n));
+  ASSERT_EQ(ties.size(), 2 * solver.pair().slave.size());
+  const Eigen::VectorXd tied = test_support::tied_displacement(solver, ties);
+  ASSERT_EQ(tied.size(), s.u.size());
   const double diff = (s.u - tied).cwiseAbs().maxCoeff() / tied.cwiseAbs().maxCoeff();
   std::printf("[ report ] f = 1e6 against the tied interface: max |u - u_tied| / max |u| = %.2e\n", diff);
   EXPECT_LT(diff, 1e-8);

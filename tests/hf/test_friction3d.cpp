@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/tangential_rows.hpp"
 #include "contactrb/hf/friction.hpp"
+#include "support/tied_interface.hpp"
 
 using namespace contactrb;
 
@@ -122,43 +123,24 @@ TEST(Friction3D, LargeCoefficientGivesTheTiedAnswer) {
   ASSERT_TRUE(s.converged) << s.message;
   EXPECT_EQ(s.stick_nodes, static_cast<int>(s.lambda.size()));
   const hf::HFSolver3 solver(p);
-  const fem::DofMap& dofs = solver.dofs();
-  const Eigen::SparseMatrix<double> A00 = dofs.restrict_matrix(solver.stiffness());
-  const Eigen::VectorXd b = dofs.restrict(solver.load() - solver.stiffness() * dofs.lift());
-  std::vector<int> free_index(static_cast<std::size_t>(dofs.num_dofs()), -1);
-  for (int i = 0; i < dofs.num_free(); ++i) free_index[static_cast<std::size_t>(dofs.free_dofs()[static_cast<std::size_t>(i)])] = i;
-  const int n = dofs.num_free();
-  std::vector<Eigen::Triplet<double>> trip;
-  for (int j = 0; j < A00.outerSize(); ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator a(A00, j); a; ++a) trip.emplace_back(a.row(), a.col(), a.value());
-  }
   const contact::PointwiseContact3 rest =
       contact::project_slave_nodes(p.mesh, solver.pair(), Eigen::VectorXd::Zero(p.mesh.num_dofs()));
-  int m = 0;
+  std::vector<test_support::Tie> ties;
   for (std::size_t q = 0; q < solver.pair().slave.size(); ++q) {
     const contact::SlaveProjection3& pr = rest.projection[q];
     ASSERT_TRUE(pr.candidate);
     ASSERT_LT(pr.distance, 1e-12);
     const std::array<int, 3>& f = solver.pair().master_faces[static_cast<std::size_t>(pr.facet)];
     for (int comp = 0; comp < 3; ++comp) {
-      auto add = [&](int node, double v) {
-        const int fi = free_index[static_cast<std::size_t>(3 * node + comp)];
-        ASSERT_GE(fi, 0);
-        trip.emplace_back(n + m, fi, v);
-        trip.emplace_back(fi, n + m, v);
-      };
-      add(solver.pair().slave[q], 1.0);
-      for (int i = 0; i < 3; ++i) add(solver.pair().master[static_cast<std::size_t>(f[static_cast<std::size_t>(i)])], -pr.phi(i));
-      ++m;
+      test_support::Tie tie{{3 * solver.pair().slave[q] + comp, 1.0}};
+      for (int i = 0; i < 3; ++i) {
+        tie.emplace_back(3 * solver.pair().master[static_cast<std::size_t>(f[static_cast<std::size_t>(i)])] + comp, -pr.phi(i));
+      }
+      ties.push_back(tie);
     }
   }
-  Eigen::SparseMatrix<double> KKT(n + m, n + m);
-  KKT.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(KKT);
-  ASSERT_EQ(lu.info(), Eigen::Success);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
-  rhs.head(n) = b;
-  const Eigen::VectorXd tied = dofs.lift() + dofs.extend(lu.solve(rhs).head(n));
+  const Eigen::VectorXd tied = test_support::tied_displacement(solver, ties);
+  ASSERT_EQ(tied.size(), s.u.size());
   const double diff = (s.u - tied).cwiseAbs().maxCoeff() / tied.cwiseAbs().maxCoeff();
   std::printf("[ report ] f = 1e6 against the tied interface: max |u - u_tied| / max |u| = %.2e\n", diff);
   EXPECT_LT(diff, 1e-8);

@@ -12,6 +12,22 @@
 
 namespace contactrb::cases {
 
+namespace {
+
+// The load path of the Cattaneo-type cases: the approach (no tangential displacement), then
+// `tangential` in `steps` equal steps, under Coulomb friction with `coefficient`.
+template <int Dim, class Step, class Tangential>
+void approach_then_slide(BasicFrictionalCase<Dim>& c, const Step& step, const Tangential& tangential, int steps,
+                         double coefficient) {
+  c.path.push_back(step(Tangential(tangential * 0.0)));
+  for (int i = 1; i <= steps; ++i) c.path.push_back(step(Tangential(tangential * i / steps)));
+  c.problem.dirichlet = c.path.front().dirichlet;
+  c.friction.law = hf::FrictionLaw::Coulomb;
+  c.friction.coefficient = coefficient;
+}
+
+}  // namespace
+
 FrictionalCase cattaneo_case(int level, const CattaneoData& d) {
   const mesh::HertzGeometry geometry;
   const CaseSpec hertz_a = builtin_case_spec("hertz-a");
@@ -32,11 +48,7 @@ FrictionalCase cattaneo_case(int level, const CattaneoData& d) {
   auto step = [&](double dx) {
     return hf::LoadStep{{{"top", dx, -0.5 * d.approach}, {"bottom", 0.0, 0.5 * d.approach}}, {}};
   };
-  c.path.push_back(step(0.0));
-  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
-  c.problem.dirichlet = c.path.front().dirichlet;
-  c.friction.law = hf::FrictionLaw::Coulomb;
-  c.friction.coefficient = d.coefficient;
+  approach_then_slide(c, step, d.tangential, d.tangential_steps, d.coefficient);
   return c;
 }
 
@@ -92,11 +104,7 @@ FrictionalCase3 cattaneo_3d_case(int level, const Cattaneo3dData& d) {
                           fem::DirichletCondition{"bottom", 0.0, 0.0, 0.0}},
                          {}};
   };
-  c.path.push_back(step(0.0));
-  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
-  c.problem.dirichlet = c.path.front().dirichlet;
-  c.friction.law = hf::FrictionLaw::Coulomb;
-  c.friction.coefficient = d.coefficient;
+  approach_then_slide(c, step, d.tangential, d.tangential_steps, d.coefficient);
   return c;
 }
 
@@ -120,11 +128,7 @@ FrictionalCase3 block_on_block_3d_case(int level, const BlockOnBlock3dData& d) {
                           fem::DirichletCondition{"bottom", 0.0, 0.0, 0.0}},
                          {}};
   };
-  c.path.push_back(step(Eigen::Vector2d::Zero()));
-  for (int i = 1; i <= d.tangential_steps; ++i) c.path.push_back(step(d.tangential * i / d.tangential_steps));
-  c.problem.dirichlet = c.path.front().dirichlet;
-  c.friction.law = hf::FrictionLaw::Coulomb;
-  c.friction.coefficient = d.coefficient;
+  approach_then_slide(c, step, d.tangential, d.tangential_steps, d.coefficient);
   return c;
 }
 
