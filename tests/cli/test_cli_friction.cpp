@@ -12,20 +12,17 @@
 
 #include "cli_runner.hpp"
 #include "csv_text.hpp"
+#include "json_text.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::read_json;
 using contactrb::test::read_csv;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
 namespace {
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 std::vector<double> numbers(const std::vector<std::string>& cells) {
   std::vector<double> v;

@@ -11,20 +11,17 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "json_text.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::read_json;
 using contactrb::test::expect_user_error;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
 
 namespace {
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 std::vector<nlohmann::json> json_lines(const std::string& text) {
   std::vector<nlohmann::json> out;

@@ -8,19 +8,14 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "json_text.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
+using contactrb::test::read_json;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
-
-namespace {
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
-}  // namespace
 
 TEST(CliSolve, HertzAWritesJsonCsvAndVtu) {
   contactrb::test::TempDir dir("solve_ok");
