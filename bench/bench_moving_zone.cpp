@@ -1,5 +1,5 @@
 // Moving contact zone: the row cone (the default of `contactrb offline`) against the paper's
-// CPG cone (`--dual cpg`), per case (docs/performance.md, "Moving contact zone"). For each case and method: the
+// CPG cone (`--dual cpg`) and the registered cone, per case (docs/performance.md, "Moving contact zone"). For each case and method: the
 // sizes, max and median e_displ / e_press / e_force, the effectivity range and median, the median
 // and worst online time per query and the offline time, one CSV line each (study::evaluate_model,
 // as `contactrb evaluate`), and the same as a markdown table on stdout.
@@ -11,7 +11,8 @@
 // hertz-a-l4 (hertz-a at level 4, its 31 training values), hertz-a, hertz-b, ring-block (default
 // offline over the training set). Methods: cpg (default online iteration), rows (default online
 // iteration: accelerated, exact contact rows), rows-newton (`online --iteration newton`), the two
-// rows lines on the same model. Online time: per point the median of 5 solves (wall), then the
+// rows lines on the same model; registered (`--dual registered --r 15`) on the cases built from
+// their training set. Online time: per point the median of 5 solves (wall), then the
 // median and the maximum over the points.
 // --hf-tol: the Kacanov tolerance eps_KA of the snapshots (default: `contactrb offline`'s). The
 // errors are measured against Newton HF solves (KKT residual 1e-10, study::EvaluationOptions).
@@ -97,9 +98,13 @@ double max_online_s(const study::Evaluation& e) {
   return worst;
 }
 
+// The registered cone's R (`--dual registered --r 15`).
+constexpr int kRegisteredR = 15;
+
 offline::OfflineSettings offline_settings(offline::DualConeMethod dual) {
   offline::OfflineSettings s;  // the defaults of `contactrb offline`
   s.dual_method = dual;
+  if (dual == offline::DualConeMethod::Registered) s.dual_size = kRegisteredR;
   return s;
 }
 
@@ -144,7 +149,7 @@ Line evaluate(const BenchCase& c, const std::string& method, const BuiltModel& b
   return line;
 }
 
-// The lines of one case: cpg, rows, rows-newton.
+// The lines of one case: cpg, rows, rows-newton, and registered (R 15) on the one-shot cases.
 std::vector<Line> run_case(const BenchCase& c, const Options& opt) {
   std::cerr << c.name << " (level " << c.level << ")\n";
   const cases::CaseSpec spec = cases::builtin_case_spec(c.name);
@@ -160,7 +165,7 @@ std::vector<Line> run_case(const BenchCase& c, const Options& opt) {
     request.settings.kacanov.tolerance = *opt.hf_tol;
     request.settings.kacanov.max_iterations = kTightMaxIterations;
   }
-  std::vector<BuiltModel> models;  // cpg, rows
+  std::vector<BuiltModel> models;  // cpg, rows (, registered: the non-greedy cases)
   if (c.greedy) {
     models.push_back(greedy_model(spec, request, offline::DualConeMethod::CPG, opt));
     models.push_back(greedy_model(spec, request, offline::DualConeMethod::Rows, opt));
@@ -172,11 +177,16 @@ std::vector<Line> run_case(const BenchCase& c, const Options& opt) {
     const double snapshots_s = seconds_since(t0);
     models.push_back(pod_model(spec, set, snapshots_s, offline::DualConeMethod::CPG));
     models.push_back(pod_model(spec, set, snapshots_s, offline::DualConeMethod::Rows));
+    models.push_back(pod_model(spec, set, snapshots_s, offline::DualConeMethod::Registered));
   }
   using online::OnlineIteration;
-  return {evaluate(c, "cpg", models[0], spec, verification, OnlineIteration::Automatic, opt),
-          evaluate(c, "rows", models[1], spec, verification, OnlineIteration::Automatic, opt),
-          evaluate(c, "rows-newton", models[1], spec, verification, OnlineIteration::Newton, opt)};
+  std::vector<Line> lines{evaluate(c, "cpg", models[0], spec, verification, OnlineIteration::Automatic, opt),
+                          evaluate(c, "rows", models[1], spec, verification, OnlineIteration::Automatic, opt),
+                          evaluate(c, "rows-newton", models[1], spec, verification, OnlineIteration::Newton, opt)};
+  if (models.size() > 2) {
+    lines.push_back(evaluate(c, "registered", models[2], spec, verification, OnlineIteration::Automatic, opt));
+  }
+  return lines;
 }
 
 const std::vector<std::string> kColumns{

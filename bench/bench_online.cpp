@@ -144,7 +144,7 @@ void BM_OnlineQuery(benchmark::State& state, const std::string& name, bool paper
     const online::OnlineSolution fixed_point = solver.solve(snaps[p].mu, tight);
     dev_u = std::max(dev_u, (sol.u_hat - fixed_point.u_hat).norm() / fixed_point.u_hat.norm());
     const Eigen::VectorXd u = online::reconstruct_displacement(d.offline.reconstruction, snaps[p].mu, sol.u_hat);
-    const Eigen::VectorXd l = online::reconstruct_multipliers(d.offline.reconstruction, sol.lambda_hat);
+    const Eigen::VectorXd l = online::reconstruct_multipliers(d.offline.reconstruction, snaps[p].mu, sol.lambda_hat);
     err_u = std::max(err_u, (u - snaps[p].u).norm() / snaps[p].u.norm());
     const Eigen::VectorXd& lh = snaps[p].lambda;
     const Eigen::VectorXd& w = snaps[p].weight;

@@ -336,7 +336,7 @@ int run_offline(const OfflineOptions& opt) {
   };
   std::cout << "case " << set.case_name << ", " << set.snapshots.size() << " snapshots (set " << set.set_name << "), "
             << set.constraint << "\n"
-            << "sizes: N " << m.N_max << ", R " << m.R_max << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
+            << "sizes: N " << m.N_max << ", R " << m.online_R_max() << ", Mk " << m.Mk_max << ", Mg " << m.Mg_max << "\n"
             << "pod: " << to_string(settings.inner_product) << " product, N " << rep.N_pod << " of "
             << rep.singular_values.size() << " ("
             << (settings.pod_modes >= 1 ? "fixed N " + std::to_string(settings.pod_modes) + ", capped at the rank"

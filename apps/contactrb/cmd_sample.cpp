@@ -158,11 +158,10 @@ int run_sample(const SampleOptions& opt) {
   const std::string script = opt.no_plot || rank != 0 ? std::string() : find_script("plot_sample.py", "use --no-plot");
   // The peak pressure max_r (Xi lambda_hat)_r on the HF rows: from the reconstruction data.
   const bool with_peak = io::has_reconstruction(opt.model);
-  Eigen::MatrixXd Xi;
+  contactrb::model::ReducedReconstruction rec;
   if (with_peak) {
-    const contactrb::model::ReducedReconstruction rec = io::read_reconstruction(opt.model);
+    rec = io::read_reconstruction(opt.model);
     online::check_reconstruction(model, rec);
-    Xi = rec.Xi;
   }
   if (world && !world->agree(true)) {
     if (rank == 0) throw Error("an MPI rank could not start the run (its error is above)");
@@ -187,7 +186,7 @@ int run_sample(const SampleOptions& opt) {
       out.contact_force[i] = s.contact_force;
       out.energy[i] = s.energy;
       if (s.estimate.available) out.estimate[i] = s.estimate.energy;
-      if (with_peak) out.peak_pressure[i] = (Xi.leftCols(s.lambda_hat.size()) * s.lambda_hat).maxCoeff();
+      if (with_peak) out.peak_pressure[i] = online::reconstruct_multipliers(rec, mu, s.lambda_hat).maxCoeff();
       if (opt.gaps) {
         const online::OnlineSolver::SurfaceGap gap = solver.surface_gap(mu, s);
         out.max_gap[i] = gap.max;

@@ -30,7 +30,7 @@ class FieldOutput final : public OnlineFields {
     const study::SolutionFiles files =
         study::write_solution_fields(spec_, reference_, mu, model.surface.discretization,
                                      online::reconstruct_displacement(reconstruction_, mu, s.u_hat),
-                                     online::reconstruct_multipliers(reconstruction_, s.lambda_hat), dir);
+                                     online::reconstruct_multipliers(reconstruction_, mu, s.lambda_hat), dir);
     return {{"vtu", files.vtu},
             {"deformed_vtu", files.deformed_vtu},
             {"contact_vtu", files.contact_vtu},

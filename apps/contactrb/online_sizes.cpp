@@ -29,7 +29,7 @@ void check_sizes_against(const online::OnlineSizes& s, const contactrb::model::R
                               std::to_string(max) + " stored in '" + path + "'");
   };
   above("--n", s.N, model.N_max);
-  above("--r", s.R, model.R_max);
+  above("--r", s.R, model.online_R_max());
   above("--mk", s.Mk, model.Mk_max);
   above("--mg", s.Mg, model.Mg_max);
 }

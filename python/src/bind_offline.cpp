@@ -328,7 +328,7 @@ void bind_offline(py::module_& m) {
         "('kacanov' | 'newton'; None: kacanov on 2D level 0, newton otherwise); sequence: their grid\n"
         "sequencing, as --sequence (-1: automatic).\n"
         "Offline settings (keywords, the CLI's defaults): eps_pod, N, inner_product ('energy'|'h1'),\n"
-        "dual ('cpg'|'angle'|'nmf'|'rows'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
+        "dual ('cpg'|'angle'|'nmf'|'rows'|'registered'), eps_du, R, eps_eim_k, eps_eim_g, absolute_tolerances,\n"
         "compression, supremizers.");
 }
 

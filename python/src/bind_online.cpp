@@ -275,7 +275,7 @@ py::dict model_fields(PyModel& m, const OnlineResult& r) {
   d["triangles"] = triangle_array(reference);
   d["body"] = py::array_t<int>(static_cast<py::ssize_t>(reference.body.size()), reference.body.data());
   d["displacement"] = node_vectors(online::reconstruct_displacement(rec, r.mu, r.coefficients));
-  d["multipliers"] = online::reconstruct_multipliers(rec, r.multipliers);
+  d["multipliers"] = online::reconstruct_multipliers(rec, r.mu, r.multipliers);
   return d;
 }
 
@@ -288,7 +288,7 @@ py::dict model_write_fields(PyModel& m, const OnlineResult& r, const std::string
   const study::SolutionFiles f =
       study::write_solution_fields(m.spec(), reference, r.mu, m.model.surface.discretization,
                                    online::reconstruct_displacement(rec, r.mu, r.coefficients),
-                                   online::reconstruct_multipliers(rec, r.multipliers), dir);
+                                   online::reconstruct_multipliers(rec, r.mu, r.multipliers), dir);
   py::dict d;
   d["vtu"] = f.vtu;
   d["deformed_vtu"] = f.deformed_vtu;
@@ -503,7 +503,7 @@ void bind_online(py::module_& m) {
                              [](const PyModel& mm) {
                                py::dict d;
                                d["N"] = mm.model.N_max;
-                               d["R"] = mm.model.R_max;
+                               d["R"] = mm.model.online_R_max();
                                d["Mk"] = mm.model.Mk_max;
                                d["Mg"] = mm.model.Mg_max;
                                return d;
@@ -541,7 +541,7 @@ void bind_online(py::module_& m) {
            "`directory` (created if missing), as `contactrb online --out`; returns their paths.")
       .def("__repr__", [](const PyModel& mm) {
         return "Model(case='" + mm.model.case_name + "', N=" + std::to_string(mm.model.N_max) + ", R=" +
-               std::to_string(mm.model.R_max) + ", Mk=" + std::to_string(mm.model.Mk_max) + ", Mg=" +
+               std::to_string(mm.model.online_R_max()) + ", Mk=" + std::to_string(mm.model.Mk_max) + ", Mg=" +
                std::to_string(mm.model.Mg_max) + ")";
       });
 

@@ -126,7 +126,7 @@ TEST(EnumNames, TheMessageListsTheAcceptedNames) {
     offline::dual_cone_method_from_string("cgp");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "unknown dual cone method 'cgp' (expected cpg, angle, nmf or rows)");
+    EXPECT_STREQ(e.what(), "unknown dual cone method 'cgp' (expected cpg, angle, nmf, rows or registered)");
   }
 }
 

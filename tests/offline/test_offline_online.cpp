@@ -95,7 +95,7 @@ Errors compare(const OfflineResult& off, OnlineSolver& solver, const SnapshotSet
   const contactrb::online::OnlineSolution sol = solver.solve(snap.mu, settings);
   EXPECT_TRUE(sol.converged()) << "mu = " << snap.mu << ": " << sol.message;
   const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(off.reconstruction, snap.mu, sol.u_hat);
-  const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+  const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, snap.mu, sol.lambda_hat);
   EXPECT_GE(sol.lambda_hat.minCoeff(), 0.0);
   return {(u - snap.u).norm() / snap.u.norm(), (lambda - snap.lambda).norm() / snap.lambda.norm()};
 }
@@ -263,7 +263,7 @@ TEST_P(OfflineOnline, RowConeWithExactRowsReproducesTheTrainingSnapshots) {
     ASSERT_EQ(a.status, b.status);
     EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
     EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
-    const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, a.lambda_hat);
+    const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, snap.mu, a.lambda_hat);
     EXPECT_LT((lambda - snap.lambda).norm(), 1e-6 * snap.lambda.norm()) << "mu = " << snap.mu(0);
     const Eigen::VectorXd u =
         contactrb::online::reconstruct_displacement(off.reconstruction, snap.mu, a.u_hat);

@@ -120,8 +120,10 @@ void expect_same(const Study& base, const Study& scaled, double u_factor, double
                                                     Eigen::VectorXd::Constant(1, base_mus[i]), x.u_hat);
     const Eigen::VectorXd uy = online::reconstruct_displacement(scaled.offline.reconstruction,
                                                                 Eigen::VectorXd::Constant(1, scaled_mus[i]), y.u_hat);
-    const Eigen::VectorXd lx = online::reconstruct_multipliers(base.offline.reconstruction, x.lambda_hat);
-    const Eigen::VectorXd ly = online::reconstruct_multipliers(scaled.offline.reconstruction, y.lambda_hat);
+    const Eigen::VectorXd lx = online::reconstruct_multipliers(base.offline.reconstruction,
+                                                                Eigen::VectorXd::Constant(1, base_mus[i]), x.lambda_hat);
+    const Eigen::VectorXd ly = online::reconstruct_multipliers(scaled.offline.reconstruction,
+                                                                Eigen::VectorXd::Constant(1, scaled_mus[i]), y.lambda_hat);
     worst_u = std::max(worst_u, (uy - ux).norm() / ux.norm());
     worst_lambda = std::max(worst_lambda, (ly / ly.norm() - lx / lx.norm()).norm());
 

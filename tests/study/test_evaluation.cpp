@@ -169,7 +169,7 @@ TEST(Evaluation, TruncatedModelErrorsMatchIndependentComputation) {
     EXPECT_GT(r.e_displ, 1e-4);  // one mode cannot represent four Hertz solutions
     // Pressure measures from the snapshot's multipliers and weights |I_r| (same HF solve).
     const auto& snap = snapshots().snapshots[i];
-    const Eigen::VectorXd lr = contactrb::online::reconstruct_multipliers(off.reconstruction, sol.lambda_hat);
+    const Eigen::VectorXd lr = contactrb::online::reconstruct_multipliers(off.reconstruction, one(mu), sol.lambda_hat);
     const Eigen::VectorXd& lh = snap.lambda;
     const Eigen::VectorXd& w = snap.weight;
     const double e_press = std::sqrt(w.dot((lr - lh).cwiseAbs2()) / w.dot(lh.cwiseAbs2()));
@@ -269,8 +269,8 @@ TEST(Evaluation, ReconstructionRoundTripsThroughTheModelFile) {
   const auto sol = solver.solve(0.3);
   EXPECT_EQ(contactrb::online::reconstruct_displacement(back, one(0.3), sol.u_hat),
             contactrb::online::reconstruct_displacement(rec, one(0.3), sol.u_hat));
-  EXPECT_EQ(contactrb::online::reconstruct_multipliers(back, sol.lambda_hat),
-            contactrb::online::reconstruct_multipliers(rec, sol.lambda_hat));
+  EXPECT_EQ(contactrb::online::reconstruct_multipliers(back, one(0.3), sol.lambda_hat),
+            contactrb::online::reconstruct_multipliers(rec, one(0.3), sol.lambda_hat));
 
   // The model part reads the same from both files (the group is not loaded).
   const auto m1 = contactrb::io::read_reduced_model_file(with);

@@ -92,6 +92,23 @@ void theta_group(V& v, const Loc& parent, cases::AffineThetas& t) {
 }
 
 // Every field of the model (layout: docs/file-formats.md).
+// The registered cone (model/registration.hpp); every array empty for the other cones.
+template <typename V>
+void visit_registration(V& v, const Loc& root, contactrb::model::Registration& r) {
+  Handle g = v.group(root, "registration",
+                     "the registered dual cone: lambda = Xi(mu) lambda_hat on the kept rows, Xi(mu)_rk = G_k((s_r - "
+                     "s_left(mu)) / (s_right(mu) - s_left(mu))); empty arrays for the other cones");
+  const Loc re{g.get(), "/registration"};
+  v.vec(re, "row_coordinate", r.row_coordinate,
+        {"R_kept: s_r, the arc length along the slave chain of kept row r's centre node (reference)", "length"});
+  v.vec(re, "grid", r.grid, {"n_g: the registered coordinates xi of the generators, uniform, increasing", "1"});
+  v.mat(re, "generators", r.generators, {"n_g x R: column k is generator G_k on the grid, >= 0", "pressure"});
+  v.vec(re, "point_offset", r.point_offset, {"p: x = (mu - point_offset) .* point_scale", "row k: parameter k"});
+  v.vec(re, "point_scale", r.point_scale, {"p: x = (mu - point_offset) .* point_scale", "1 / parameter k"});
+  v.mat(re, "points", r.points, {"p x P: the training points x, scaled to [0, 1]", "1"});
+  v.mat(re, "support", r.support, {"2 x P: [s_left, s_right] of each training pressure", "length"});
+}
+
 template <typename V>
 void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
   {
@@ -245,6 +262,7 @@ void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
            {"the contact-surface DOFs (indices into the n_c contact DOFs) of the exact load columns", "index (0-based)"});
     v.num(es, "geometric_ratio", e.geometric_ratio);
   }
+  visit_registration(v, root, m.registration);
 }
 
 constexpr const char* kReconstructionGroup = "reconstruction";
@@ -487,6 +505,11 @@ contactrb::model::ReducedReconstruction read_reconstruction(const std::string& p
     visit_reconstruction(r, Loc{file.get(), ""}, rec, has_mesh == 1);
     const auto stored = hdf5::read_number_attribute<std::uint64_t>(g.get(), "checksum", H5T_NATIVE_UINT64, H5T_INTEGER);
     if (stored != sum.value()) throw H5Failure{"reconstruction checksum mismatch: the file was modified or damaged"};
+    {  // the model's registration (covered by the model's checksum, checked with the model)
+      FieldChecksum unused;
+      hdf5::FieldReader model_reader(unused);
+      visit_registration(model_reader, Loc{file.get(), ""}, rec.registration);
+    }
     // Sizes only (the model-dependent checks are online::check_reconstruction's).
     require(rec.num_dofs > 0 && rec.Theta.rows() == static_cast<Eigen::Index>(rec.free_dofs.size()) &&
                 rec.Xi.rows() == static_cast<Eigen::Index>(rec.kept_rows.size()) &&

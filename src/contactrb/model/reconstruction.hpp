@@ -8,6 +8,7 @@
 
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/mesh/mesh.hpp"
+#include "contactrb/model/registration.hpp"
 
 namespace contactrb::model {
 
@@ -20,6 +21,7 @@ struct ReducedReconstruction {
   std::vector<int> kept_rows;
   int num_constraints = 0;
   Eigen::MatrixXd Xi;                 // R_kept x R_max
+  Registration registration;          // the model's (read from /registration): lambda = Xi(mu) lambda_hat
   // The reference mesh the HF DOFs live on (the snapshot set's), stored in the model file so
   // that no .msh file is needed online; empty when unknown (the case's mesh is regenerated).
   mesh::Mesh mesh;

@@ -22,6 +22,7 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/model/error_estimate_data.hpp"
+#include "contactrb/model/registration.hpp"
 
 namespace contactrb::model {
 
@@ -29,8 +30,8 @@ namespace contactrb::model {
 // training points p x P, theta monomials with one factor per parameter); 5: the self-describing
 // layout (groups, attributes, matrices in their documented shape, docs/file-formats.md); 6: every
 // string a fixed-length UTF-8 attribute (no variable-length data, which HDF5 1.10 cannot read
-// safely from a damaged file).
-inline constexpr int kReducedModelFormatVersion = 7;
+// safely from a damaged file); 8: the registered cone (/registration).
+inline constexpr int kReducedModelFormatVersion = 8;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -48,6 +49,10 @@ struct ContactSurface {
 // ReducedModel::dual_method of the row cone (offline/row_cone.hpp): its generators are HF rows,
 // so the online stage evaluates them exactly (online::ContactRows).
 inline constexpr const char* kRowCone = "rows";
+// ReducedModel::dual_method of the registered cone (model/registration.hpp): the row cone's arrays
+// (Xi = I on the kept rows) plus the registered generators, which the online stage maps onto
+// the kept rows at each mu (lambda = Xi(mu) lambda_hat, R = registration.R()).
+inline constexpr const char* kRegisteredCone = "registered";
 
 struct ReducedModel {
   int format_version = kReducedModelFormatVersion;
@@ -90,7 +95,7 @@ struct ReducedModel {
   // lambda_hat = 0.
   Eigen::MatrixXd training_mu;         // p x P: the training points, as in the snapshot set
   Eigen::MatrixXd training_u_hat;      // N_max x P
-  Eigen::MatrixXd training_lambda_hat; // R_max x P
+  Eigen::MatrixXd training_lambda_hat; // R_max x P (registered cone: the first registration.R() rows)
 
   // (49): A_hat(mu) = sum_j theta^a_j A_hat[j];
   // f_hat(mu) = sum_j theta^f_j f_hat[j] - sum_{j,k} theta^a_j theta^lift_k A_lift_hat[j * J^D + k].
@@ -130,11 +135,16 @@ struct ReducedModel {
   // The a posteriori error estimate's arrays (error_estimate.hpp; format 3).
   EstimateData estimate;
 
+  // The registered cone's generators and support data; empty for the other cones (format 8).
+  Registration registration;
+
   int J_a() const { return static_cast<int>(A_hat.size()); }
   int J_f() const { return static_cast<int>(f_hat.size()); }
   int J_lift() const { return static_cast<int>(lift_c.cols()); }
   int R_kept() const { return static_cast<int>(kept_rows.size()); }
   int num_parameters() const { return static_cast<int>(parameters.size()); }
+  // The largest R of an online solve: R_max, or the registered generators' count.
+  int online_R_max() const { return registration.empty() ? R_max : registration.R(); }
 };
 
 // Number of doubles held by the model's arrays (a size figure for the docs and tests).
@@ -150,6 +160,8 @@ inline long long model_doubles(const ReducedModel& m) {
   n += m.estimate.theta_a_reference.size() + m.estimate.residual_T.size() + m.estimate.Q_gamma.size() +
        m.estimate.eim_residual.size() + m.estimate.eim_slack.size();
   for (const auto& q : m.estimate.QTheta_kappa) n += q.size();
+  n += m.registration.row_coordinate.size() + m.registration.grid.size() + m.registration.generators.size() +
+       m.registration.points.size() + m.registration.support.size() + 2 * m.registration.point_scale.size();
   return n;
 }
 

@@ -17,13 +17,14 @@ const char* to_string(DualConeMethod method) {
     case DualConeMethod::AngleGreedy: return "angle";
     case DualConeMethod::NMF: return "nmf";
     case DualConeMethod::Rows: return model::kRowCone;
+    case DualConeMethod::Registered: return model::kRegisteredCone;
   }
   return "unknown";
 }
 
 DualConeMethod dual_cone_method_from_string(const std::string& name) {
   using enum DualConeMethod;
-  return enum_from_string(name, "dual cone method", std::array{CPG, AngleGreedy, NMF, Rows});
+  return enum_from_string(name, "dual cone method", std::array{CPG, AngleGreedy, NMF, Rows, Registered});
 }
 
 void check_dual_snapshots(const char* who, const Eigen::MatrixXd& snapshots, const Eigen::VectorXd& weights) {

@@ -13,7 +13,9 @@ namespace contactrb::offline {
 
 // Rows: one generator per kept constraint row (the unit vectors: every non-negative pressure on
 // the rows active in training is in the cone; the rows' HF constraints hold exactly online).
-enum class DualConeMethod { CPG, AngleGreedy, NMF, Rows };
+// Registered: the rows' arrays plus CPG generators of the registered pressures
+// (offline/registration.hpp), mapped onto the rows at each mu.
+enum class DualConeMethod { CPG, AngleGreedy, NMF, Rows, Registered };
 const char* to_string(DualConeMethod method);
 DualConeMethod dual_cone_method_from_string(const std::string& name);  // throws contactrb::Error
 

@@ -27,7 +27,9 @@
 #include "contactrb/offline/nmf.hpp"
 #include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/model_check.hpp"
+#include "contactrb/online/registered_basis.hpp"
 #include "contactrb/offline/pod.hpp"
+#include "contactrb/offline/registration.hpp"
 #include "contactrb/offline/row_cone.hpp"
 #include "contactrb/common/number_text.hpp"
 
@@ -75,6 +77,8 @@ const char* eim_status(const EIMResult& r) { return to_string(r.status); }
 // Linear dependence threshold of the enrichment: a supremizer whose M-norm drops below this
 // fraction of its own norm when orthogonalized against the basis adds nothing (round-off).
 constexpr double kSupremizerDependence = 1e-10;
+// Relative POD tolerance of the registered cone's supremizers (their span grows with P R).
+constexpr double kRegisteredSupremizerPOD = 1e-3;
 
 // The snapshot a dual generator stands for: the greedies' own pick, otherwise (NMF) the snapshot
 // closest in angle in the Lambda norm.
@@ -95,6 +99,27 @@ int generator_snapshot(const DualConeResult& dual, const Eigen::MatrixXd& Lambda
   return best;
 }
 
+// M^-1 (K_p' xi) on the free DOFs for each column xi of `generators` (on the kept rows), K_p the
+// rows of snapshot snapshot_of[column].
+Eigen::MatrixXd supremizer_columns(const fem::SparseCholesky& chol, Index n_free, const io::SnapshotSet& set,
+                                   const std::vector<int>& kept, const Eigen::MatrixXd& generators,
+                                   const std::vector<int>& snapshot_of, const std::vector<int>& global_to_free) {
+  Eigen::MatrixXd S(n_free, generators.cols());
+  for (Index r = 0; r < generators.cols(); ++r) {
+    const io::Snapshot& snap = set.snapshots[sz(snapshot_of[sz(r)])];
+    Eigen::VectorXd lambda_full = Eigen::VectorXd::Zero(snap.K.rows());
+    for (std::size_t i = 0; i < kept.size(); ++i) lambda_full(kept[i]) = generators(ix(i), r);
+    const Eigen::VectorXd t = snap.K.transpose() * lambda_full;  // contact DOFs
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_free);
+    for (Index i = 0; i < t.size(); ++i) {
+      const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
+      if (fi >= 0) b(fi) += t(i);
+    }
+    S.col(r) = chol.solve(b);
+  }
+  return S;
+}
+
 // Supremizer enrichment: appends M^-1 (K_r' xi_r) (free DOFs), M-orthonormalized against the
 // basis (Gram-Schmidt twice), dependent ones dropped. Returns the number appended.
 int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<double>& M, const io::SnapshotSet& set,
@@ -105,19 +130,9 @@ int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<do
           "offline: the inner-product matrix is not positive definite (supremizers)");
   const Index R = dual.generators.cols();
   const Index n_free = Theta.rows();
-  Eigen::MatrixXd S(n_free, R);
-  for (Index r = 0; r < R; ++r) {
-    const io::Snapshot& snap = set.snapshots[sz(generator_snapshot(dual, Lambda, weights, static_cast<int>(r)))];
-    Eigen::VectorXd lambda_full = Eigen::VectorXd::Zero(snap.K.rows());
-    for (std::size_t i = 0; i < kept.size(); ++i) lambda_full(kept[i]) = dual.generators(ix(i), r);
-    const Eigen::VectorXd t = snap.K.transpose() * lambda_full;  // contact DOFs
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_free);
-    for (Index i = 0; i < t.size(); ++i) {
-      const int fi = global_to_free[sz(set.contact_dofs[sz(i)])];
-      if (fi >= 0) b(fi) += t(i);
-    }
-    S.col(r) = chol.solve(b);
-  }
+  std::vector<int> snapshot_of;
+  for (Index r = 0; r < R; ++r) snapshot_of.push_back(generator_snapshot(dual, Lambda, weights, static_cast<int>(r)));
+  const Eigen::MatrixXd S = supremizer_columns(chol, n_free, set, kept, dual.generators, snapshot_of, global_to_free);
   int added = 0;
   Eigen::MatrixXd out(n_free, Theta.cols() + R);
   out.leftCols(Theta.cols()) = Theta;
@@ -137,6 +152,35 @@ int enrich_with_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<do
   }
   Theta = out.leftCols(n);
   return added;
+}
+
+// The registered cone's supremizers: M^-1 (K_p' Xi(support_p) G_k) for every training point p and
+// generator k, M-orthogonalized against the basis, compressed by a POD at kRegisteredSupremizerPOD
+// (relative), appended. Returns the number appended.
+int enrich_with_registered_supremizers(Eigen::MatrixXd& Theta, const Eigen::SparseMatrix<double>& M,
+                                       const io::SnapshotSet& set, const std::vector<int>& kept,
+                                       const model::Registration& reg, const std::vector<int>& global_to_free) {
+  fem::SparseCholesky chol;
+  require(chol.compute(M) == fem::FactorStatus::Success,
+          "offline: the inner-product matrix is not positive definite (supremizers)");
+  const Index P = reg.support.cols(), R = reg.R();
+  Eigen::MatrixXd generators(ix(kept.size()), P * R), Xi;
+  std::vector<int> snapshot_of;
+  for (Index p = 0; p < P; ++p) {
+    online::registered_basis(reg, reg.support.col(p), static_cast<int>(R), Xi);
+    generators.middleCols(p * R, R) = Xi;
+    snapshot_of.insert(snapshot_of.end(), sz(R), static_cast<int>(p));
+  }
+  Eigen::MatrixXd S = supremizer_columns(chol, Theta.rows(), set, kept, generators, snapshot_of, global_to_free);
+  for (int pass = 0; pass < 2; ++pass) S -= Theta * (Theta.transpose() * (M * S));
+  PODSettings ps;
+  ps.tolerance = kRegisteredSupremizerPOD;
+  ps.relative = true;
+  const PODResult r = pod(S, M, ps);
+  Eigen::MatrixXd out(Theta.rows(), Theta.cols() + r.N);
+  out << Theta, r.basis;
+  Theta = std::move(out);
+  return r.N;
 }
 
 // A gap gamma below this fraction of the largest reference coordinate is round-off (M^g = 0 is
@@ -324,7 +368,8 @@ DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const Offline
     case DualConeMethod::CPG: dual = build_cpg(dual_snapshots.Lambda, ds); break;
     case DualConeMethod::AngleGreedy: dual = build_angle_greedy(dual_snapshots.Lambda, ds); break;
     case DualConeMethod::NMF: dual = build_nmf_cone(dual_snapshots.Lambda, ds); break;
-    case DualConeMethod::Rows: dual = build_row_cone(dual_snapshots.Lambda, ds); break;
+    case DualConeMethod::Rows:
+    case DualConeMethod::Registered: dual = build_row_cone(dual_snapshots.Lambda, ds); break;
   }
   require(dual.generators.cols() >= 1, "offline: the dual cone is empty");
   report.R = static_cast<int>(dual.generators.cols());
@@ -336,15 +381,22 @@ DualConeResult dual_cone_step(const DualSnapshots& dual_snapshots, const Offline
   return dual;
 }
 
-// --- The primal basis Theta, the POD modes enriched with one supremizer per dual generator.
+// --- The primal basis Theta, the POD modes enriched with one supremizer per dual generator
+// (registered cone: with the compressed supremizers of its generators at the training supports).
 Eigen::MatrixXd primal_basis_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const PODResult& pod_result,
                                   const DualSnapshots& dual_snapshots, const DualConeResult& dual,
-                                  const OfflineSettings& settings, OfflineReport& report) {
+                                  const model::Registration* registration, const OfflineSettings& settings,
+                                  OfflineReport& report) {
   Eigen::MatrixXd Theta = pod_result.basis;
   if (settings.supremizers) {
     const auto t0 = Clock::now();
-    report.N_supremizers = enrich_with_supremizers(Theta, ref.inner, set, dual_snapshots.kept, dual,
-                                                   dual_snapshots.Lambda, dual_snapshots.weights, ref.global_to_free);
+    if (registration != nullptr) {
+      report.N_supremizers = enrich_with_registered_supremizers(Theta, ref.inner, set, dual_snapshots.kept,
+                                                                *registration, ref.global_to_free);
+    } else {
+      report.N_supremizers = enrich_with_supremizers(Theta, ref.inner, set, dual_snapshots.kept, dual,
+                                                     dual_snapshots.Lambda, dual_snapshots.weights, ref.global_to_free);
+    }
     report.supremizer_s = seconds_since(t0);
   }
   report.N = static_cast<int>(Theta.cols());
@@ -461,6 +513,29 @@ void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Thet
   }
 }
 
+// --- The registered cone (offline/registration.hpp): the training pressures registered on their
+// supports, their CPG cone, and the data that predict the support online.
+void registration_step(const io::SnapshotSet& set, const cases::CaseSpec& spec, const OfflineSettings& settings,
+                       const DualSnapshots& dual_snapshots, ReducedModel& m, OfflineReport& report) {
+  const auto t0 = Clock::now();
+  Eigen::MatrixXd training_mu(ix(spec.parameters.size()), ix(set.snapshots.size()));
+  for (std::size_t p = 0; p < set.snapshots.size(); ++p) training_mu.col(ix(p)) = set.snapshots[p].mu;
+  DualConeSettings ds;
+  ds.greedy.tolerance = settings.eps_du;
+  ds.greedy.relative = settings.eps_du_relative;
+  ds.greedy.max_size = settings.dual_size;
+  RegistrationResult r = build_registration(m.surface, dual_snapshots.kept, dual_snapshots.Lambda, training_mu,
+                                            spec.parameters, ds);
+  m.registration = std::move(r.registration);
+  // The report's dual cone is the registered one (the model's R_max stays the kept rows').
+  report.R = m.registration.R();
+  report.dual_errors = r.cone.errors;
+  report.dual_relative_errors = r.cone.relative_errors;
+  report.dual_status = to_string(r.cone.status);
+  report.dual_condition_number = generator_condition_number(m.registration.generators, {});
+  report.dual_s += seconds_since(t0);
+}
+
 // The contact surface: its nodes chained in ascending global index, their two DOFs in that order
 // in set.contact_dofs (checked).
 ContactSurface contact_surface(const io::SnapshotSet& set, const mesh::Mesh& reference) {
@@ -553,7 +628,7 @@ void solve_at_training_values(ReducedModel& m) {
     const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
     if (!sol.converged()) continue;
     m.training_u_hat.col(p) = sol.u_hat;
-    m.training_lambda_hat.col(p) = sol.lambda_hat;
+    m.training_lambda_hat.col(p).head(sol.lambda_hat.size()) = sol.lambda_hat;
   }
 }
 
@@ -569,6 +644,7 @@ ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const Refe
   rec.kept_rows = m.kept_rows;
   rec.num_constraints = m.surface.num_constraints;
   rec.Xi = m.Xi;
+  rec.registration = m.registration;
   rec.mesh = ref.mesh;
   return rec;
 }
@@ -653,24 +729,27 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
   const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
   const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
-  const Eigen::MatrixXd Theta = primal_basis_step(set, ref, primal.pod, dual_snapshots, dual, settings, rep);
+  ReducedModel& m = out.model;
+  m.surface = contact_surface(set, ref.mesh);
+  if (settings.dual_method == DualConeMethod::Registered) registration_step(set, spec, settings, dual_snapshots, m, rep);
+  const Eigen::MatrixXd Theta = primal_basis_step(set, ref, primal.pod, dual_snapshots, dual,
+                                                  m.registration.empty() ? nullptr : &m.registration, settings, rep);
   const EIMResult eim_k = eim_kappa_step(set, dual_snapshots.kept, settings, rep);  // (T1)
   const EIMResult eim_g = eim_gamma_step(set, ref, dual_snapshots.kept, settings, rep);  // (T1)
 
   const auto t0 = Clock::now();
-  ReducedModel& m = out.model;
   record_provenance(set, spec, settings, ref.thetas, m);
   m.N_max = rep.N;
   m.N_supremizers = rep.N_supremizers;
-  m.R_max = rep.R;
+  m.R_max = m.registration.empty() ? rep.R : rep.R_kept;
   m.Mk_max = rep.Mk;
   m.Mg_max = rep.Mg;
   m.singular_values = primal.pod.singular_values;
   project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
-  m.surface = contact_surface(set, ref.mesh);
   contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate);
-  if (settings.dual_method == DualConeMethod::Rows) {  // its online default: the exact rows' estimate
+  // The row and registered cones are solved on the exact rows, whose estimate has the geometric term.
+  if (settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered) {
     m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
                                                      contact::discretization_from_string(set.constraint), &parts.geometric);
   }

@@ -74,7 +74,7 @@ struct OfflineReport {
   double eim_gamma_threshold = 0.0;
   int R_hf = 0;       // constraints before compression
   int R_kept = 0;     // after
-  int R = 0;
+  int R = 0;  // registered cone: its generators (errors below: of its registered profiles)
   std::vector<double> dual_errors;           // max_mu |lambda - Pi_{K_R} lambda|_Lambda against R
   std::vector<double> dual_relative_errors;
   std::string dual_status;

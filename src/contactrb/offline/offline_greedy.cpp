@@ -240,7 +240,7 @@ void build_model(Greedy& g, GreedyStep& row) {
   row.build_s = seconds_since(t0);
   const ReducedModel& model = g.out.offline.model;
   row.N = model.N_max;
-  row.R = model.R_max;
+  row.R = model.online_R_max();
   row.Mk = model.Mk_max;
   row.Mg = model.Mg_max;
 }
@@ -325,7 +325,7 @@ void true_errors(const Greedy& g, const GreedyMu& mu, const OnlineSolution& rb, 
   const double norm_hf = std::sqrt(std::max(0.0, snap.u.dot(A * snap.u)));
   const double norm_d = std::sqrt(std::max(0.0, d.dot(A * d)));
   row.true_error = norm_hf > 0.0 ? norm_d / norm_hf : norm_d;
-  const Eigen::VectorXd dl = reconstruct_multipliers(rec, rb.lambda_hat) - snap.lambda;
+  const Eigen::VectorXd dl = reconstruct_multipliers(rec, mu, rb.lambda_hat) - snap.lambda;
   const double lh = std::sqrt(snap.weight.dot(snap.lambda.cwiseAbs2()));
   const double ld = std::sqrt(snap.weight.dot(dl.cwiseAbs2()));
   row.true_e_press = lh > 0.0 ? ld / lh : ld;

@@ -32,6 +32,40 @@ void expect_indices(const std::vector<int>& idx, std::size_t count, int bound, c
                                      " outside [0, " + std::to_string(bound) + ")");
   }
 }
+
+// The registered cone (model/registration.hpp): its shapes, a uniform grid, generators >= 0,
+// supports of positive width; the kept rows must be the identity cone it maps onto.
+void check_registration(const ReducedModel& m) {
+  const model::Registration& g = m.registration;
+  const bool registered = m.dual_method == model::kRegisteredCone;
+  require(registered != g.empty(), registered ? "reduced model: a registered cone without its registration arrays"
+                                              : "reduced model: registration arrays for a " + m.dual_method + " cone");
+  if (!registered) return;
+  const Eigen::Index P = m.training_mu.cols(), p = m.num_parameters(), n_g = g.grid.size();
+  require(m.Xi.isIdentity(0.0), "reduced model: a registered cone's Xi must be the identity on the kept rows");
+  expect_size(g.row_coordinate, m.R_kept(), "registration row_coordinate");
+  require(n_g >= 2, "reduced model: the registration grid has fewer than 2 points");
+  expect_shape(g.generators, n_g, g.R(), "registration generators");
+  require(g.R() <= m.R_max, "reduced model: more registered generators than kept rows");
+  expect_size(g.point_offset, p, "registration point_offset");
+  expect_size(g.point_scale, p, "registration point_scale");
+  expect_shape(g.points, p, P, "registration points");
+  expect_shape(g.support, 2, P, "registration support");
+  require(g.row_coordinate.allFinite() && g.grid.allFinite() && g.generators.allFinite() && g.points.allFinite() &&
+              g.support.allFinite() && g.point_offset.allFinite() && g.point_scale.allFinite(),
+          "reduced model: a registration array is not finite");
+  const double h = (g.grid(n_g - 1) - g.grid(0)) / static_cast<double>(n_g - 1);
+  for (Eigen::Index i = 1; i < n_g; ++i) {
+    require(std::abs(g.grid(i) - g.grid(i - 1) - h) <= 1e-9 * std::abs(h) && h > 0.0,
+            "reduced model: the registration grid is not uniform and increasing");
+  }
+  require(g.generators.minCoeff() >= 0.0, "reduced model: a registered generator has a negative entry");
+  for (Eigen::Index j = 0; j < P; ++j) {
+    require(g.support(1, j) > g.support(0, j), "reduced model: registration support " + std::to_string(j) +
+                                                   " has no positive width");
+  }
+}
+
 }  // namespace
 
 void check_model(const ReducedModel& m) {
@@ -104,6 +138,7 @@ void check_model(const ReducedModel& m) {
   expect_shape(m.Theta_c, n_c, m.N_max, "Theta_c");
   expect_shape(m.lift_c, n_c, static_cast<Eigen::Index>(JD), "lift_c");
   check_estimate_data(m);
+  check_registration(m);
 }
 
 }  // namespace contactrb::online

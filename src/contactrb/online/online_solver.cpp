@@ -14,6 +14,7 @@
 #include "contactrb/contact/lac_integration.hpp"
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/online/model_check.hpp"
+#include "contactrb/online/registered_basis.hpp"
 #include "contactrb/common/number_text.hpp"
 
 namespace contactrb::online {
@@ -55,7 +56,9 @@ double row_dot(const RowSparse& K, int r, const Eigen::VectorXd& v) {
 OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) {
   check_model(model);
   N_ = resolve(sizes.N, model.N_max, 1, "N");
-  R_ = resolve(sizes.R, model.R_max, model.R_max > 0 ? 1 : 0, "R");
+  registered_ = !model.registration.empty();
+  const int R_model = registered_ ? model.registration.R() : model.R_max;
+  R_ = resolve(sizes.R, R_model, R_model > 0 ? 1 : 0, "R");
   Mk_ = resolve(sizes.Mk, model.Mk_max, model.Mk_max > 0 ? 1 : 0, "Mk");
   Mg_ = resolve(sizes.Mg, model.Mg_max, model.Mg_max > 0 ? 1 : 0, "Mg");
   N_max_ = model.N_max;
@@ -108,9 +111,14 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   if (Mk_ > 0) B_kappa_lu_.compute(model.B_kappa.topLeftCorner(Mk_, Mk_));
   if (Mg_ > 0) B_gamma_lu_.compute(model.B_gamma.topLeftCorner(Mg_, Mg_));
   XiQ_gamma_ = model.XiQ_gamma.topLeftCorner(R_, Mg_);
-  Xi_ = model.Xi.leftCols(R_);
-  xi_is_identity_ = Xi_.rows() >= R_ && Xi_.topRows(R_).isIdentity(0.0) &&
-                    (Xi_.rows() == R_ || Xi_.bottomRows(Xi_.rows() - R_).isZero(0.0));
+  if (registered_) {  // Xi(mu), set by prepare
+    registration_ = model.registration;
+    Xi_.setZero(model.R_kept(), R_);
+  } else {
+    Xi_ = model.Xi.leftCols(R_);
+    xi_is_identity_ = Xi_.rows() >= R_ && Xi_.topRows(R_).isIdentity(0.0) &&
+                      (Xi_.rows() == R_ || Xi_.bottomRows(Xi_.rows() - R_).isZero(0.0));
+  }
   kept_rows_ = model.kept_rows;
   for (int i = 0; i < Mk_; ++i) {
     kappa_row_.push_back(model.kept_rows[sz(model.kappa_row[sz(i)])]);
@@ -231,6 +239,10 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
               " constraints, the model " + std::to_string(surface_.num_constraints));
   restricted_ = restricted;
   exact_rows_ = exact_rows;
+  if (registered_) {
+    registered_basis(registration_, predicted_support(registration_, mu), R_, Xi_);
+    d_bound_ = Xi_.norm() * Theta_c_.norm();
+  }
   // Collocation and LAC-Simpson rows: the allocation-free evaluator (online_magic.hpp).
   pointwise_magic_ = restricted && surface_.discretization != contact::Discretization::LAC;
   // (49)
@@ -274,7 +286,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
 }
 
 bool OnlineSolver::exact_rows(ContactRows choice) const {
-  return choice == ContactRows::Exact || (choice == ContactRows::Automatic && row_cone_);
+  return choice == ContactRows::Exact || (choice == ContactRows::Automatic && (row_cone_ || registered_));
 }
 
 void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
@@ -573,6 +585,9 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
                            (settings.iteration == OnlineIteration::Automatic && !settings.kacanov);
   qp_.set_settings(settings.qp);
 
+  // The EIM arrays of a registered model are those of its rows, not of Xi(mu).
+  require(!registered_ || exact_rows(settings.contact_rows),
+          "OnlineSolver: a registered-cone model is solved on the exact contact rows only (ContactRows::Eim asked)");
   OnlineSolution sol;
   if (!prepare(mu, settings.restricted_rows, exact_rows(settings.contact_rows), sol.message)) {
     sol.u_hat = Eigen::VectorXd::Zero(N_);

@@ -234,6 +234,8 @@ class OnlineSolver {
   Eigen::MatrixXd XiQ_gamma_;            // R x Mg
   Eigen::MatrixXd Xi_;                   // R_kept x R
   bool xi_is_identity_ = false;          // Xi_ = the first R unit vectors (the row cone): products skipped
+  bool registered_ = false;              // Xi_ = Xi(mu) of the registered cone (model/registration.hpp)
+  contactrb::model::Registration registration_;
   double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
   // N below the model's N_max cuts supremizers (they are the last basis vectors): the pair
   // (V_N, span Xi_R) may then lose its inf-sup stability, and lambda_hat its uniqueness.

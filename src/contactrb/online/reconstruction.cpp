@@ -8,6 +8,7 @@
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
+#include "contactrb/online/registered_basis.hpp"
 
 namespace contactrb::online {
 
@@ -30,12 +31,14 @@ Eigen::VectorXd reconstruct_displacement(const ReducedReconstruction& rec, const
   return u;
 }
 
-Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& lambda_hat) {
-  require(lambda_hat.size() <= rec.Xi.cols(), "reconstruct_multipliers: lambda_hat has size " +
-                                                  std::to_string(lambda_hat.size()) + ", the dual basis " +
-                                                  std::to_string(rec.Xi.cols()) + " vectors");
+Eigen::VectorXd reconstruct_multipliers(const ReducedReconstruction& rec, const Eigen::VectorXd& mu,
+                                        const Eigen::VectorXd& lambda_hat) {
+  const Eigen::Index R_max = rec.registration.empty() ? rec.Xi.cols() : rec.registration.R();
+  require(lambda_hat.size() <= R_max, "reconstruct_multipliers: lambda_hat has size " +
+                                          std::to_string(lambda_hat.size()) + ", the dual basis " +
+                                          std::to_string(R_max) + " vectors");
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rec.num_constraints);
-  const Eigen::VectorXd lk = rec.Xi.leftCols(lambda_hat.size()) * lambda_hat;
+  const Eigen::VectorXd lk = dual_basis(rec, mu, static_cast<int>(lambda_hat.size())) * lambda_hat;
   for (std::size_t i = 0; i < rec.kept_rows.size(); ++i) lambda(rec.kept_rows[i]) = lk(ix(i));
   return lambda;
 }

@@ -11,8 +11,9 @@ namespace contactrb::online {
 // u = u_D(mu) + Theta[:, :N] u_hat on the HF DOFs (num_dofs), N = u_hat.size().
 Eigen::VectorXd reconstruct_displacement(const contactrb::model::ReducedReconstruction& rec, const Eigen::VectorXd& mu,
                                          const Eigen::VectorXd& u_hat);
-// lambda = Xi[:, :R] lambda_hat on the kept rows, 0 on the dropped ones (R_hf), R = lambda_hat.size().
-Eigen::VectorXd reconstruct_multipliers(const contactrb::model::ReducedReconstruction& rec,
+// lambda = Xi[:, :R] lambda_hat on the kept rows (Xi(mu) for a registered cone), 0 on the dropped
+// ones (R_hf), R = lambda_hat.size().
+Eigen::VectorXd reconstruct_multipliers(const contactrb::model::ReducedReconstruction& rec, const Eigen::VectorXd& mu,
                                         const Eigen::VectorXd& lambda_hat);
 
 // Throws contactrb::Error naming the first disagreement between a reconstruction and the model

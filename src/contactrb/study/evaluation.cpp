@@ -25,6 +25,7 @@
 #include "contactrb/offline/cone_projection.hpp"
 #include "contactrb/online/model_check.hpp"
 #include "contactrb/online/reconstruction.hpp"
+#include "contactrb/online/registered_basis.hpp"
 
 namespace contactrb::study {
 
@@ -170,7 +171,7 @@ void evaluate_one(hf::HFMethod method, const ReducedModel& model, const ReducedR
   }
 
   // Contact pressure: the L2(Gamma^c) norm of the P0 multipliers is sum_r |I_r| lambda_r^2.
-  const Eigen::VectorXd lambda = reconstruct_multipliers(rec, s.lambda_hat);
+  const Eigen::VectorXd lambda = reconstruct_multipliers(rec, row.mu, s.lambda_hat);
   const contact::ContactQuadrature& q = solver.quadrature();
   {
     const Eigen::VectorXd& lh = hf_solution.lambda;
@@ -199,7 +200,8 @@ void evaluate_one(hf::HFMethod method, const ReducedModel& model, const ReducedR
       on_kept(rec.kept_rows[i]) = 1.0;
     }
     for (Eigen::Index r = 0; r < lh.size(); ++r) dropped += (1.0 - on_kept(r)) * w(r) * lh(r) * lh(r);
-    const double cone_err = R > 0 ? project_onto_cone(rec.Xi.leftCols(R), lk, wk).error : weighted_norm(lk, wk);
+    const double cone_err =
+        R > 0 ? project_onto_cone(online::dual_basis(rec, row.mu, static_cast<int>(R)), lk, wk).error : weighted_norm(lk, wk);
     const double best = std::sqrt(cone_err * cone_err + dropped);
     row.e_press_cone = norm_hf > 0.0 ? best / norm_hf : best;
   }

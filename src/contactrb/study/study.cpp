@@ -304,7 +304,7 @@ OfflineResult build_study_model(const StudyContext& ctx, const StudyStage& stage
   OfflineResult off = build_reduced_model(ctx.set, ctx.spec, m.settings);
   m.report = off.report;
   m.N = off.model.N_max;
-  m.R = off.model.R_max;
+  m.R = off.model.online_R_max();
   m.Mk = off.model.Mk_max;
   m.Mg = off.model.Mg_max;
   // The error of the cone kept: errors[R] (an exhausted NMF keeps its best rank, not its last).
