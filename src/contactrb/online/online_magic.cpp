@@ -143,16 +143,20 @@ Vec2 MagicPointEvaluator::vertex_normal(int j) const {
 // the all-pairs search of project_slave_nodes, visiting only the blocks whose box is not
 // farther than the best hit so far. The box bound is exact in floating point
 // (closest_on_segment clamps into the segment's box), so the answer is the all-pairs one.
-contact::SegmentHit MagicPointEvaluator::nearest_segment(const Vec2& x) {
+namespace {
+double box_distance2(const Vec2& x, const Vec2& lo, const Vec2& hi) { return (x - x.cwiseMax(lo).cwiseMin(hi)).squaredNorm(); }
+}  // namespace
+
+// The blocks of one group: the nearest first, then those not farther than the best hit (ties
+// included, so that the lowest segment index of equally near ones wins as in a full scan).
+void MagicPointEvaluator::scan_group(const Vec2& x, int group, Hit& best) {
   const int M = static_cast<int>(master_.size()) - 1;
-  const int num_blocks = static_cast<int>(block_min_.size());
-  int first = 0;
-  for (int b = 0; b < num_blocks; ++b) {
-    const Vec2 c = x.cwiseMax(block_min_[sz(b)]).cwiseMin(block_max_[sz(b)]);
-    block_bound_[sz(b)] = (x - c).squaredNorm();
+  const int b0 = group * kGroupBlocks, b1 = std::min(static_cast<int>(block_min_.size()), b0 + kGroupBlocks);
+  int first = b0;
+  for (int b = b0; b < b1; ++b) {
+    block_bound_[sz(b)] = box_distance2(x, block_min_[sz(b)], block_max_[sz(b)]);
     if (block_bound_[sz(b)] < block_bound_[sz(first)]) first = b;
   }
-  Hit best;
   auto scan = [&](int b) {
     const int k1 = std::min(M, (b + 1) * kBlockSegments);
     for (int k = b * kBlockSegments; k < k1; ++k) {
@@ -160,9 +164,23 @@ contact::SegmentHit MagicPointEvaluator::nearest_segment(const Vec2& x) {
       if (h.d2 < best.d2 || (h.d2 == best.d2 && h.segment < best.segment)) best = h;
     }
   };
-  scan(first);
-  for (int b = 0; b < num_blocks; ++b) {
+  if (block_bound_[sz(first)] <= best.d2) scan(first);
+  for (int b = b0; b < b1; ++b) {
     if (b != first && block_bound_[sz(b)] <= best.d2) scan(b);
+  }
+}
+
+contact::SegmentHit MagicPointEvaluator::nearest_segment(const Vec2& x) {
+  const int num_groups = static_cast<int>(group_min_.size());
+  int first = 0;
+  for (int g = 0; g < num_groups; ++g) {
+    group_bound_[sz(g)] = box_distance2(x, group_min_[sz(g)], group_max_[sz(g)]);
+    if (group_bound_[sz(g)] < group_bound_[sz(first)]) first = g;
+  }
+  Hit best;
+  scan_group(x, first, best);
+  for (int g = 0; g < num_groups; ++g) {
+    if (g != first && group_bound_[sz(g)] <= best.d2) scan_group(x, g, best);
   }
   return best;
 }
@@ -208,6 +226,19 @@ void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
     }
     block_min_[sz(b)] = mn;
     block_max_[sz(b)] = mx;
+  }
+  const int num_groups = (num_blocks + kGroupBlocks - 1) / kGroupBlocks;
+  group_min_.resize(sz(num_groups));
+  group_max_.resize(sz(num_groups));
+  group_bound_.resize(sz(num_groups));
+  for (int g = 0; g < num_groups; ++g) {
+    const int b1 = std::min(num_blocks, (g + 1) * kGroupBlocks);
+    group_min_[sz(g)] = block_min_[sz(g * kGroupBlocks)];
+    group_max_[sz(g)] = block_max_[sz(g * kGroupBlocks)];
+    for (int b = g * kGroupBlocks + 1; b < b1; ++b) {
+      group_min_[sz(g)] = group_min_[sz(g)].cwiseMin(block_min_[sz(b)]);
+      group_max_[sz(g)] = group_max_[sz(g)].cwiseMax(block_max_[sz(b)]);
+    }
   }
   for (std::size_t l = 0; l < slave_node_.size(); ++l) {
     const int slot = node_slot_[sz(slave_node_[l])];

@@ -78,9 +78,11 @@ class MagicPointEvaluator {
   double k_entry(const Projection& p, int slave_node, int dof) const;  // K_pt[s, dof]
   contact::SegmentHit nearest_segment(const Eigen::Vector2d& x);     // closest deformed master segment
 
-  // Master segments per bounding box of the closest-segment search (the search visits the
-  // nearest block and the blocks not farther than the best hit: a few instead of all).
+  // Master segments per bounding box of the closest-segment search, and boxes per group box
+  // above them: the search visits the nearest group and block first, then only the groups and
+  // blocks not farther than the best hit (a few of each instead of all).
   static constexpr int kBlockSegments = 8;
+  static constexpr int kGroupBlocks = 8;
 
   // Setup.
   std::vector<int> master_;                 // master chain (local node indices)
@@ -116,6 +118,9 @@ class MagicPointEvaluator {
   std::vector<Projection> projection_;      // one per restricted slave node
   std::vector<Eigen::Vector2d> block_min_, block_max_;  // boxes of the deformed master blocks
   std::vector<double> block_bound_;         // squared distance of the current slave node to each box
+  std::vector<Eigen::Vector2d> group_min_, group_max_;  // boxes of kGroupBlocks consecutive blocks
+  std::vector<double> group_bound_;
+  void scan_group(const Eigen::Vector2d& x, int group, contact::SegmentHit& best);
 };
 
 }  // namespace contactrb::online
