@@ -38,21 +38,21 @@ Eigen::Vector2d support_of(const Eigen::VectorXd& lambda, const Eigen::VectorXd&
   return {left, right};
 }
 
-// lambda resampled at s = s_left + xi (s_right - s_left) on the grid: linear between the kept
-// rows (sorted by s), 0 beyond them.
-Eigen::VectorXd registered_profile(const Eigen::VectorXd& lambda, const std::vector<Index>& order,
-                                   const Eigen::VectorXd& s_kept, const Eigen::Vector2d& support,
+// lambda resampled at s = s_left + xi (s_right - s_left) on the grid: linear between the rows of
+// the whole surface sorted by s (0 on the rows not kept), 0 beyond them.
+Eigen::VectorXd registered_profile(const Eigen::VectorXd& lambda_rows, const std::vector<Index>& order,
+                                   const Eigen::VectorXd& s_rows, const Eigen::Vector2d& support,
                                    const Eigen::VectorXd& grid) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(grid.size());
   std::size_t k = 1;
   for (Index g = 0; g < grid.size(); ++g) {
     const double s = support(0) + grid(g) * (support(1) - support(0));
-    if (order.size() < 2 || s < s_kept(order.front()) || s > s_kept(order.back())) continue;
-    while (k + 1 < order.size() && s_kept(order[k]) < s) ++k;
+    if (order.size() < 2 || s < s_rows(order.front()) || s > s_rows(order.back())) continue;
+    while (k + 1 < order.size() && s_rows(order[k]) < s) ++k;
     const Index a = order[k - 1], b = order[k];
-    const double h = s_kept(b) - s_kept(a);
-    const double t = h > 0.0 ? (s - s_kept(a)) / h : 0.0;
-    out(g) = (1.0 - t) * lambda(a) + t * lambda(b);
+    const double h = s_rows(b) - s_rows(a);
+    const double t = h > 0.0 ? (s - s_rows(a)) / h : 0.0;
+    out(g) = (1.0 - t) * lambda_rows(a) + t * lambda_rows(b);
   }
   return out;
 }
@@ -73,17 +73,18 @@ RegistrationResult build_registration(const model::ContactSurface& surface, cons
   for (std::size_t i = 0; i < kept.size(); ++i) reg.row_coordinate(ix(i)) = s_rows(kept[i]);
   std::vector<double> s_all(s_rows.data(), s_rows.data() + s_rows.size());
   std::sort(s_all.begin(), s_all.end());
-  std::vector<Index> order(kept.size());
+  std::vector<Index> order(sz(s_rows.size()));  // every row of the surface, by s
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = ix(i);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](Index a, Index b) { return reg.row_coordinate(a) < reg.row_coordinate(b); });
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return s_rows(a) < s_rows(b); });
+  Eigen::VectorXd lambda_rows = Eigen::VectorXd::Zero(s_rows.size());
 
   reg.grid = Eigen::VectorXd::LinSpaced(kRegistrationGridPoints, -kRegistrationMargin, 1.0 + kRegistrationMargin);
   reg.support.resize(2, P);
   Eigen::MatrixXd profiles(reg.grid.size(), P);
   for (Index j = 0; j < P; ++j) {
     reg.support.col(j) = support_of(Lambda.col(j), reg.row_coordinate, s_all, static_cast<int>(j));
-    profiles.col(j) = registered_profile(Lambda.col(j), order, reg.row_coordinate, reg.support.col(j), reg.grid);
+    for (std::size_t i = 0; i < kept.size(); ++i) lambda_rows(kept[i]) = Lambda(ix(i), j);
+    profiles.col(j) = registered_profile(lambda_rows, order, s_rows, reg.support.col(j), reg.grid);
   }
   reg.point_offset.resize(p);
   reg.point_scale.resize(p);
