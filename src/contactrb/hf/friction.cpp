@@ -218,11 +218,16 @@ void set_final(BasicFrictionalSolution<Dim>& sol, const FrictionStepResult<Dim>&
 template <int Dim>
 BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& problem,
                                              const std::vector<BasicLoadStep<Dim>>& path,
-                                             const FrictionSettings& friction, const HFSettings& frictionless) {
+                                             const FrictionSettings& friction, const HFSettings& frictionless,
+                                             const LoadStepObserver<Dim>& observer) {
   const auto t0 = Clock::now();
   require(!path.empty(), "friction: the load path has no step");
   check_settings(friction);
-  if (friction_is_off(friction)) return frictionless_answer(problem, path.back(), frictionless);
+  if (friction_is_off(friction)) {
+    BasicFrictionalSolution<Dim> sol = frictionless_answer(problem, path.back(), frictionless);
+    if (observer && sol.converged) observer(path.size() - 1, sol);
+    return sol;
+  }
   require(problem.discretization == contact::Discretization::Collocation,
           std::string("friction needs the collocation rows, not '") + contact::to_string(problem.discretization) + "'");
   const BasicHFSolver<Dim> solver(with_step(problem, path.front()));  // assembles A, the pair, the quadrature
@@ -267,6 +272,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
       sol.message = "load step " + std::to_string(i + 1) + " of " + std::to_string(path.size()) + ": " + step.report.message;
       break;
     }
+    if (observer) observer(i, sol);
   }
   sol.converged = sol.status == FrictionStatus::Converged;
   sol.time_s = seconds_since(t0);
@@ -274,8 +280,10 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
 }
 
 template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&, const std::vector<BasicLoadStep<2>>&,
-                                                    const FrictionSettings&, const HFSettings&);
+                                                    const FrictionSettings&, const HFSettings&,
+                                                    const LoadStepObserver<2>&);
 template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&, const std::vector<BasicLoadStep<3>>&,
-                                                    const FrictionSettings&, const HFSettings&);
+                                                    const FrictionSettings&, const HFSettings&,
+                                                    const LoadStepObserver<3>&);
 
 }  // namespace contactrb::hf
