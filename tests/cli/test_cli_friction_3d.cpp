@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
@@ -324,5 +325,16 @@ TEST(CliFriction3d, BadInputsGiveOneClearError) {
   expect_user_error(run_cli("solve --case cattaneo-3d --mu 0.3 --level 3" + out), "cattaneo-3d: level must be in [0, 2] (got 3)");
   expect_user_error(run_cli("solve --case cattaneo-3d --mu 1.5" + out), "outside the domain");
   expect_user_error(run_cli("solve --case cattaneo-3d --mu 0.3 --constraint lac" + out), "collocation only");
+  // A 3D case has Dirichlet data only: a load step with a traction is refused.
+  const fs::path example = fs::path(CONTACTRB_SOURCE_DIR) / "examples/block-on-block-3d";
+  fs::copy_file(example / "block-on-block-3d.msh", dir.path() / "block-on-block-3d.msh");
+  std::string text = contactrb::test::file_text((example / "case.toml").string());
+  const std::string step3 = "[[load_steps]]           # 3: all of it\n";
+  ASSERT_NE(text.find(step3), std::string::npos);
+  text.replace(text.find(step3), step3.size(), step3 + "[[load_steps.traction]]\ngroup = \"top\"\nvector = [0.0, -1.0]\n");
+  const fs::path traction = dir.path() / "traction.toml";
+  std::ofstream(traction) << text;
+  expect_user_error(run_cli("solve --case-file " + shell_quote(traction.string()) + " --mu 0.004" + out),
+                    "is three-dimensional: its load steps are Dirichlet data only (no [[load_steps.traction]] in 3D)");
   EXPECT_FALSE(fs::exists(dir.path() / "out"));
 }
