@@ -253,6 +253,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     }
   }
   for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto t_step = Clock::now();
     const StepAlgebra<Dim> a = step_algebra(solver, body_forces, path[i], i);
     FrictionAlgebra<Dim> np;
     np.mesh = &mesh;
@@ -263,6 +264,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.b = &a.b;
     const FrictionState<Dim> start = start_of_step(solver, path[i], state, frictionless);
     FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
+    step.report.time_s = seconds_since(t_step);  // FrictionStepReport::time_s: the whole step
     sol.steps.push_back(step.report);
     sol.slip += step.slip;
     state = step.state;

@@ -92,7 +92,7 @@ struct FrictionStepReport {
   int stick = 0, slip = 0, open = 0;
   double normal_force = 0.0;      // sum_r lambda_r |I_r|
   Eigen::VectorXd tangential_force;  // Dim - 1: sum_r lambda_t,r |I_r| (on the slave, along tau)
-  double time_s = 0.0;
+  double time_s = 0.0;  // wall clock of the whole step: its algebra, the frictionless solve it may start from, the iteration
 };
 
 template <int Dim>
