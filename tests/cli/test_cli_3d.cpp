@@ -38,7 +38,7 @@ TEST(Cli3d, CasesGiveTheirDimension) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const std::string& line : lines_of(r.out)) {
     const std::string name = line.substr(0, line.find(' '));
-    const bool three_d = name == "hertz-3d" || name == "patch-3d";
+    const bool three_d = name == "hertz-3d" || name == "patch-3d" || name == "cattaneo-3d";
     EXPECT_NE(line.find(three_d ? " 3D " : " 2D "), std::string::npos) << line;
   }
   EXPECT_NE(r.out.find("hertz-3d"), std::string::npos) << r.out;

@@ -26,13 +26,13 @@ TEST(Cli, NoSubcommandPrintsHelp) {
   EXPECT_NE(r.out.find("mesh"), std::string::npos) << r.out;
 }
 
-TEST(Cli, CasesListsTheSevenCasesOnePerLine) {
+TEST(Cli, CasesListsTheEightCasesOnePerLine) {
   const auto r = run_cli("cases");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream in(r.out);
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  ASSERT_EQ(lines.size(), 7u) << r.out;
+  ASSERT_EQ(lines.size(), 8u) << r.out;
   EXPECT_EQ(lines[0].rfind("hertz-a ", 0), 0u) << lines[0];
   EXPECT_EQ(lines[1].rfind("hertz-b ", 0), 0u) << lines[1];
   EXPECT_EQ(lines[2].rfind("ring-block ", 0), 0u) << lines[2];
@@ -40,6 +40,7 @@ TEST(Cli, CasesListsTheSevenCasesOnePerLine) {
   EXPECT_EQ(lines[4].rfind("hertz-3d ", 0), 0u) << lines[4];
   EXPECT_EQ(lines[5].rfind("patch-3d ", 0), 0u) << lines[5];
   EXPECT_EQ(lines[6].rfind("cattaneo ", 0), 0u) << lines[6];
+  EXPECT_EQ(lines[7].rfind("cattaneo-3d ", 0), 0u) << lines[7];
 }
 
 TEST(Cli, UnknownSubcommandIsAUsageError) {

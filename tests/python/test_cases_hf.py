@@ -13,7 +13,7 @@ from conftest import cli_error, run_cli
 def test_cases_are_the_cli_list_without_the_frictional_ones(cli):
     lines = [line for line in run_cli("cases").stdout.splitlines() if line.strip()]
     listed = [line.split()[0] for line in lines if " frictional " not in line]
-    assert len(listed) == len(lines) - 1  # cattaneo
+    assert len(listed) == len(lines) - 2  # cattaneo, cattaneo-3d
     assert contactrb.cases() == listed
     assert set(contactrb.case_summaries()) == set(listed)
 

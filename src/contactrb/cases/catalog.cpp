@@ -24,6 +24,8 @@ const std::vector<CaseInfo>& frictional_builtin_cases() {
   static const std::vector<CaseInfo> cases{
       {"cattaneo", "frictional (Coulomb, f = mu in [0, 1]): the hertz-a half-disks pressed together, then the upper "
                    "edge moved sideways; `solve` only"},
+      {"cattaneo-3d", "frictional (Coulomb, f = mu in [0, 1]): the hertz-3d hemisphere (full model) pressed on its "
+                      "block, then its flat top moved sideways; `solve` only", 3},
   };
   return cases;
 }
@@ -33,6 +35,13 @@ bool is_frictional_case(const std::string& name) {
     if (c.name == name) return true;
   }
   return false;
+}
+
+const CaseInfo& frictional_case_info(const std::string& name) {
+  for (const CaseInfo& c : frictional_builtin_cases()) {
+    if (c.name == name) return c;
+  }
+  throw Error("'" + name + "' is not a frictional built-in case");
 }
 
 const CaseInfo& find_case(const std::string& name) {

@@ -20,6 +20,8 @@ const std::vector<CaseInfo>& builtin_cases();
 // only `contactrb solve` takes them.
 const std::vector<CaseInfo>& frictional_builtin_cases();
 bool is_frictional_case(const std::string& name);
+// Throws contactrb::Error for a name that is not a frictional built-in case.
+const CaseInfo& frictional_case_info(const std::string& name);
 // Throws contactrb::Error naming the unknown case and listing the known ones, or saying that a
 // frictional case is for `contactrb solve` only.
 const CaseInfo& find_case(const std::string& name);

@@ -52,21 +52,46 @@ FrictionalCase cattaneo_case(int level, const CattaneoData& d) {
   return c;
 }
 
-FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu) {
+namespace {
+
+// A step's loads at mu: its Dirichlet values, and its tractions (the case's when it has none).
+hf::LoadStep load_step(const CaseSpec& step, const Mu& mu, const mesh::Mesh&) {
+  return hf::LoadStep{dirichlet_at(step, mu), tractions_at(step, mu)};
+}
+
+// 3D: Dirichlet data only (case_problem.hpp, make_problem).
+hf::LoadStep3 load_step(const CaseSpec& step, const Mu& mu, const mesh::Mesh3&) {
+  require(step.tractions.empty(), step.context() + " is three-dimensional: its load steps are Dirichlet data only "
+                                                   "(no [[load_steps.traction]] in 3D)");
+  return hf::LoadStep3{dirichlet_at(step, mu), {}};
+}
+
+template <int Dim>
+BasicFrictionalCase<Dim> file_case(const FrictionalCaseFile& file, const mesh::SimplexMesh<Dim>& reference, const Mu& mu) {
   file.spec.check_mu(mu);
-  FrictionalCase c;
+  BasicFrictionalCase<Dim> c;
   c.problem = make_problem(file.spec, reference, mu, contact::Discretization::Collocation);
   for (const FrictionFileSpec::Step& s : file.friction.steps) {
     CaseSpec step = file.spec;  // the step's loads in place of the case's (its tractions when it has some)
     step.dirichlet = s.dirichlet;
     if (!s.tractions.empty()) step.tractions = s.tractions;
-    c.path.push_back(hf::LoadStep{dirichlet_at(step, mu), tractions_at(step, mu)});
+    c.path.push_back(load_step(step, mu, reference));
   }
   c.friction.law = hf::friction_law_from_string(file.friction.law);
   const int k = file.friction.coefficient_parameter;
   c.friction.coefficient = k >= 0 ? mu(k) : file.friction.coefficient;
   c.friction.threshold = file.friction.threshold;
   return c;
+}
+
+}  // namespace
+
+FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu) {
+  return file_case(file, reference, mu);
+}
+
+FrictionalCase3 frictional_case(const FrictionalCaseFile& file, const mesh::Mesh3& reference, const Mu& mu) {
+  return file_case(file, reference, mu);
 }
 
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 // Frictional cases: a contact problem, its load path and its friction law (hf/friction.hpp;
 // docs/cases.md, "Frictional cases"): the built-in cattaneo (catalog.hpp,
-// frictional_builtin_cases), case files with friction keys, and the 3D cases built from C++.
+// frictional_builtin_cases), cattaneo-3d (the same), case files with friction keys (2D and 3D), and
+// block-on-block-3d, built from C++.
 // Reduced models are frictionless.
 #include <Eigen/Core>
 #include <vector>
@@ -43,6 +44,9 @@ FrictionalCase cattaneo_case(int level, const CattaneoData& data = {});
 // friction law of [friction]. Throws contactrb::Error
 // for mu outside the case's domain.
 FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh& reference, const Mu& mu);
+// The same for a 3D case file (reference_mesh3): Dirichlet data only, so a step with tractions
+// is refused (contactrb::Error).
+FrictionalCase3 frictional_case(const FrictionalCaseFile& file, const mesh::Mesh3& reference, const Mu& mu);
 
 // cattaneo-3d: hertz-3d's hemisphere on a block (R = 1, E and nu of hertz-3d for both: the normal
 // and tangential problems decouple) as a full model (the quarter mesh of mesh::generate_hertz_3d
@@ -51,7 +55,7 @@ FrictionalCase frictional_case(const FrictionalCaseFile& file, const mesh::Mesh&
 // `tangential` along x in `tangential_steps` equal steps; Coulomb friction with `coefficient`.
 struct Cattaneo3dData {
   double approach = 0.02;     // hertz-3d's reference: a about 0.14
-  double tangential = 0.002;
+  double tangential = 0.0035;  // Q / (f P) about 0.5 at f = 0.3
   double coefficient = 0.3;
   int tangential_steps = 1;
 };

@@ -218,11 +218,16 @@ void set_final(BasicFrictionalSolution<Dim>& sol, const FrictionStepResult<Dim>&
 template <int Dim>
 BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& problem,
                                              const std::vector<BasicLoadStep<Dim>>& path,
-                                             const FrictionSettings& friction, const HFSettings& frictionless) {
+                                             const FrictionSettings& friction, const HFSettings& frictionless,
+                                             const LoadStepObserver<Dim>& observer) {
   const auto t0 = Clock::now();
   require(!path.empty(), "friction: the load path has no step");
   check_settings(friction);
-  if (friction_is_off(friction)) return frictionless_answer(problem, path.back(), frictionless);
+  if (friction_is_off(friction)) {
+    BasicFrictionalSolution<Dim> sol = frictionless_answer(problem, path.back(), frictionless);
+    if (observer && sol.converged) observer(path.size() - 1, sol);
+    return sol;
+  }
   require(problem.discretization == contact::Discretization::Collocation,
           std::string("friction needs the collocation rows, not '") + contact::to_string(problem.discretization) + "'");
   const BasicHFSolver<Dim> solver(with_step(problem, path.front()));  // assembles A, the pair, the quadrature
@@ -248,6 +253,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     }
   }
   for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto t_step = Clock::now();
     const StepAlgebra<Dim> a = step_algebra(solver, body_forces, path[i], i);
     FrictionAlgebra<Dim> np;
     np.mesh = &mesh;
@@ -258,6 +264,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.b = &a.b;
     const FrictionState<Dim> start = start_of_step(solver, path[i], state, frictionless);
     FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
+    step.report.time_s = seconds_since(t_step);  // FrictionStepReport::time_s: the whole step
     sol.steps.push_back(step.report);
     sol.slip += step.slip;
     state = step.state;
@@ -267,6 +274,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
       sol.message = "load step " + std::to_string(i + 1) + " of " + std::to_string(path.size()) + ": " + step.report.message;
       break;
     }
+    if (observer) observer(i, sol);
   }
   sol.converged = sol.status == FrictionStatus::Converged;
   sol.time_s = seconds_since(t0);
@@ -274,8 +282,10 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
 }
 
 template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&, const std::vector<BasicLoadStep<2>>&,
-                                                    const FrictionSettings&, const HFSettings&);
+                                                    const FrictionSettings&, const HFSettings&,
+                                                    const LoadStepObserver<2>&);
 template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&, const std::vector<BasicLoadStep<3>>&,
-                                                    const FrictionSettings&, const HFSettings&);
+                                                    const FrictionSettings&, const HFSettings&,
+                                                    const LoadStepObserver<3>&);
 
 }  // namespace contactrb::hf

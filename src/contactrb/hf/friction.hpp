@@ -13,6 +13,7 @@
 // previous step (contact::tangential_slip), so the slip history is carried from step to step. A
 // row that closes during a step carries friction from the next step on.
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,7 @@ struct FrictionStepReport {
   int stick = 0, slip = 0, open = 0;
   double normal_force = 0.0;      // sum_r lambda_r |I_r|
   Eigen::VectorXd tangential_force;  // Dim - 1: sum_r lambda_t,r |I_r| (on the slave, along tau)
-  double time_s = 0.0;
+  double time_s = 0.0;  // wall clock of the whole step: its algebra, the frictionless solve it may start from, the iteration
 };
 
 template <int Dim>
@@ -114,21 +115,30 @@ struct BasicFrictionalSolution {
 using FrictionalSolution = BasicFrictionalSolution<2>;
 using FrictionalSolution3 = BasicFrictionalSolution<3>;
 
+// Called after each converged load step with the step's index in the path (from 0) and the
+// state at its end (the fields of BasicFrictionalSolution as set after that step).
+template <int Dim>
+using LoadStepObserver = std::function<void(std::size_t step, const BasicFrictionalSolution<Dim>& state)>;
+
 // Solves the load steps in order, each from the state at the end of the previous one (the first
 // from u = 0, no slip). Friction off (friction_is_off): the frictionless solver
 // (BasicHFSolver::solve with `frictionless`) on the last step alone, the answer bit for bit
-// (without friction the answer has no history). Stops at the first step that fails, with its
-// status. Throws contactrb::Error for an empty path, a step whose Dirichlet data do not free the
-// same DOFs, an invalid problem or settings, or a discretization other than collocation.
+// (without friction the answer has no history; `observer` sees that last step only). Stops at
+// the first step that fails, with its status. Throws contactrb::Error for an empty path, a step
+// whose Dirichlet data do not free the same DOFs, an invalid problem or settings, or a
+// discretization other than collocation.
 template <int Dim>
 BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& problem,
                                              const std::vector<BasicLoadStep<Dim>>& path,
-                                             const FrictionSettings& friction, const HFSettings& frictionless = {});
+                                             const FrictionSettings& friction, const HFSettings& frictionless = {},
+                                             const LoadStepObserver<Dim>& observer = {});
 extern template BasicFrictionalSolution<2> solve_load_path(const BasicContactProblem<2>&,
                                                            const std::vector<BasicLoadStep<2>>&,
-                                                           const FrictionSettings&, const HFSettings&);
+                                                           const FrictionSettings&, const HFSettings&,
+                                                           const LoadStepObserver<2>&);
 extern template BasicFrictionalSolution<3> solve_load_path(const BasicContactProblem<3>&,
                                                            const std::vector<BasicLoadStep<3>>&,
-                                                           const FrictionSettings&, const HFSettings&);
+                                                           const FrictionSettings&, const HFSettings&,
+                                                           const LoadStepObserver<3>&);
 
 }  // namespace contactrb::hf

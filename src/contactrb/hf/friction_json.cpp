@@ -57,5 +57,6 @@ nlohmann::json to_json(const BasicFrictionalSolution<Dim>& s) {
 }
 
 template nlohmann::json to_json(const BasicFrictionalSolution<2>&);
+template nlohmann::json to_json(const BasicFrictionalSolution<3>&);
 
 }  // namespace contactrb::hf

@@ -101,7 +101,7 @@ FrictionSystemResult solve_schur(const FrictionJacobian& J, solve::SelectedInver
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(e + m, e + m);
   M.topLeftCorner(e, e) = G * HE;
   M.topLeftCorner(e, e).diagonal().array() += 1.0;
-  M.topRightCorner(e, m) = G * Eigen::MatrixXd(BE.transpose());
+  M.topRightCorner(e, m) = G * BE.transpose();  // BE sparse: O(e nnz(BE)), not O(e^2 m) as a dense product
   Eigen::VectorXd rhs(e + m);
   for (int a = 0; a < e; ++a) rhs(a) = z(red.E[sz(a)]) - u0(red.E[sz(a)]);
   for (const auto& t : J.rows) {

@@ -24,7 +24,8 @@ void check_rows(const SlaveSurfaceFields& c, int num_nodes) {
   }
 }
 
-// The slave group's triangles in the numbering of the rows (points of contact.vtu).
+}  // namespace
+
 std::vector<std::array<int, 3>> slave_triangles(const mesh::Mesh3& mesh, const std::vector<int>& nodes) {
   std::unordered_map<int, int> row;
   for (std::size_t r = 0; r < nodes.size(); ++r) row.emplace(nodes[r], static_cast<int>(r));
@@ -41,8 +42,6 @@ std::vector<std::array<int, 3>> slave_triangles(const mesh::Mesh3& mesh, const s
   }
   return triangles;
 }
-
-}  // namespace
 
 CellStress3 cell_stress(const mesh::Mesh3& mesh, const std::vector<fem::Material>& materials, const Eigen::VectorXd& u) {
   const auto s = fem::element_stress(mesh, materials, u);  // (xx, yy, zz, xy, yz, xz) per cell

@@ -4,6 +4,7 @@
 // contact data on its slave surface, given as plain vectors (one entry per contact row), so that
 // any solver's result can be written.
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct SlaveSurfaceFields {
   Eigen::VectorXd gap;
   Eigen::VectorXd weight;
 };
+
+// The triangles of the mesh group "slave" in the numbering of `nodes` (triangle k joins
+// nodes[t[k][0..2]]: the points of contact.vtu, one per contact row). Throws contactrb::Error for
+// a slave triangle on a node that is not in `nodes`.
+std::vector<std::array<int, 3>> slave_triangles(const mesh::Mesh3& mesh, const std::vector<int>& nodes);
 
 // The full stress tensor per tetrahedron (9 components, row by row: xx, xy, xz, yx, ..., zz)
 // from fem::element_stress, and its von Mises value
