@@ -97,8 +97,11 @@ using HFSolution3 = BasicHFSolution<3>;
 struct HFSetupOptions {
   bool newton_analysis = false;
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;  // NewtonSettings::ordering
+  // NewtonLinearSolver::Auto: no analysis where the solve will take Amg (resolved_linear_solver
+  // with this threshold; -1: analyse).
+  int amg_from_free_dofs = -1;
 };
-// newton_analysis for a Newton ActiveSchur method, with its ordering; off for Kacanov.
+// newton_analysis for a Newton ActiveSchur (or Auto) method, with its ordering; off for Kacanov.
 HFSetupOptions setup_options_for(const HFSettings& settings);
 
 // Dim = 2 (HFSolver) or 3 (HFSolver3): one code path, the contact geometry of the dimension
