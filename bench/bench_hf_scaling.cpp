@@ -8,7 +8,7 @@
 //                    (--mu: default the case's reference value; hertz-3d: --case hertz-3d --mu 0.02)
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu|amg|auto]
 //                    [--linear-solver direct|amg|auto (direct: schur)] [--amg-from DOFS] [--krylov-tol 1e-9]
-//                    [--krylov-max 400] [--amg-threshold 0.5] [--amg-aggressive 1] [--passes frozen|consistent] [--lu umfpack|eigen]
+//                    [--krylov-max 400] [--krylov-restart 80] [--amg-threshold 0.25] [--amg-aggressive 1] [--passes frozen|consistent] [--lu umfpack|eigen]
 //                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)]
 //                    [--frozen-rows-from-dimension 3 (4: never)] [--verbose] [--header]
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
@@ -72,7 +72,7 @@ struct BenchOptions {
   double alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
   int sequence = 0, sequence_step = 2;
-  int amg_from = -1, krylov_max = -1, amg_aggressive = -1;
+  int amg_from = -1, krylov_max = -1, krylov_restart = -1, amg_aggressive = -1;
   double krylov_tolerance = -1.0, amg_threshold = -1.0;
 };
 
@@ -105,6 +105,7 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     else if (a == "--amg-from") o.amg_from = std::stoi(next());
     else if (a == "--krylov-tol") o.krylov_tolerance = std::stod(next());
     else if (a == "--krylov-max") o.krylov_max = std::stoi(next());
+    else if (a == "--krylov-restart") o.krylov_restart = std::stoi(next());
     else if (a == "--amg-threshold") o.amg_threshold = std::stod(next());
     else if (a == "--amg-aggressive") o.amg_aggressive = std::stoi(next());
     else if (a == "--inner") o.inner = std::stoi(next());
@@ -145,6 +146,7 @@ hf::HFSettings settings_from(const BenchOptions& o) {
   if (o.amg_from >= 0) settings.newton.amg_from_free_dofs = o.amg_from;
   if (o.krylov_tolerance > 0.0) settings.newton.krylov.tolerance = o.krylov_tolerance;
   if (o.krylov_max > 0) settings.newton.krylov.max_iterations = o.krylov_max;
+  if (o.krylov_restart > 0) settings.newton.krylov.restart = o.krylov_restart;
   if (o.amg_threshold > 0.0) settings.newton.amg.strong_threshold = o.amg_threshold;
   if (o.amg_aggressive >= 0) settings.newton.amg.aggressive_levels = o.amg_aggressive;
   hf::NewtonTuning& t = settings.newton.tuning;
