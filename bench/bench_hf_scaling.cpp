@@ -32,8 +32,7 @@
 // or solve_s); the wall time of the mesh generation and the peak RSS right after it (MB); the
 // Newton linear solver taken (schur, lu or amg; '-' for Kacanov) and the GMRES products of all
 // its systems.
-// Grid sequencing takes 2D cases (cases/level_sequence.hpp); a 3D case with --sequence > 0 is an
-// error.
+// Grid sequencing (cases/level_sequence.hpp) in 2D and 3D alike.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -198,13 +197,12 @@ mesh::Mesh3 reference_of(const cases::CaseSpec& spec, int level, std::integral_c
   return cases::reference_mesh3(spec, level);
 }
 
-// The coarse stages of the grid sequencing (2D cases; level_sequence.hpp), none in 3D.
+// The coarse stages of the grid sequencing (level_sequence.hpp).
 template <int Dim>
 cases::SequenceStart coarse_start(const cases::CaseSpec& spec, const cases::Mu& mu, const std::vector<int>& levels,
                                   std::optional<contact::Discretization> d, const hf::HFSettings& settings,
                                   const hf::BasicHFSolver<Dim>& fine) {
-  if constexpr (Dim == 2) return cases::sequence_start(spec, mu, levels, d, settings, fine);
-  return {};
+  return cases::sequence_start(spec, mu, levels, d, settings, fine);
 }
 
 // The coarse stages as level:iterations joined by '+' ('!' after one that did not converge).
@@ -296,7 +294,6 @@ int main(int argc, char** argv) {
     const cases::Mu mu = cases::Mu::Constant(1, o.mu.value_or(spec.parameters.at(0).reference));
     const hf::HFSettings settings = settings_from(o);
     const int dimension = cases::case_dimension(spec);
-    if (dimension == 3 && o.sequence > 0) throw Error("--sequence: grid sequencing takes 2D cases (" + o.case_name + " is 3D)");
     return dimension == 3 ? run<3>(o, spec, mu, settings) : run<2>(o, spec, mu, settings);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_hf_scaling: %s\n", e.what());

@@ -260,7 +260,7 @@ Command add_solve_command(CLI::App& app) {
                   "newton otherwise (docs/solvers.md)");
   sub->add_option("--linear-solver", opt->linear_solver,
                   "Newton's linear systems: direct (Cholesky) | amg (hypre BoomerAMG + GMRES) | auto (amg in 3D from "
-                  "140 000 free DOFs; docs/solvers.md)")
+                  "40 000 free DOFs; docs/solvers.md)")
       ->capture_default_str();
   sub->add_option("--newton-max-iterations", opt->newton_max_iterations, "Semi-smooth Newton iteration limit")
       ->capture_default_str();

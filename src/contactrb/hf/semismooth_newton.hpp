@@ -141,8 +141,8 @@ struct NewtonSettings {
   int max_iterations = 50;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
   // Auto: the AMG Krylov solve in 3D from this many free DOFs on (docs/performance.md, "Why the
-  // defaults are what they are", "Newton: AMG in 3D from 140 000 free DOFs").
-  int amg_from_free_dofs = 140000;
+  // defaults are what they are", "Newton: AMG in 3D from 40 000 free DOFs").
+  int amg_from_free_dofs = 40000;
   solve::AmgSettings amg;                   // Amg: the V-cycle on A_00
   solve::SaddlePointKrylovSettings krylov;  // Amg: GMRES on each Newton system
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only

@@ -18,7 +18,7 @@
 namespace contactrb::solve {
 
 struct SaddlePointKrylovSettings {
-  double tolerance = 1e-6;   // residual of the equilibrated system relative to the initial one
+  double tolerance = 1e-4;   // residual of the equilibrated system relative to the one at x_ref
   int max_iterations = 400;  // GMRES products in all
   int restart = 80;          // Krylov vectors kept (memory: restart x (n + m) doubles)
 };
