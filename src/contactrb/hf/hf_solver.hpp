@@ -2,7 +2,8 @@
 // High-fidelity contact solver in 2D and 3D (BasicHFSolver<Dim>), two methods (HFMethod):
 //  - Newton: semi-smooth Newton / primal-dual active set with the geometry linearized
 //    consistently; each Newton system reduced exactly to the contact DOFs of the active rows
-//    on one Cholesky of A_00 per solve (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
+//    on one Cholesky of A_00 per solve, or (NewtonLinearSolver::Amg, large 3D meshes) the whole
+//    system by AMG-preconditioned GMRES (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
 //  - Kacanov: the paper's iterations (12), (63) around an exact non-negative QP in dual form.
 // Kacanov: A(mu) is factorized once per solve; the inner QP matrix
 // Q = K A^-1 K' is formed from the block S = (A_00^-1) restricted to the free DOFs of the

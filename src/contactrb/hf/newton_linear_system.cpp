@@ -472,7 +472,8 @@ bool NewtonLinearSystem::solve_saddle_amg(const std::vector<int>& active, bool f
   it.krylov += kr.iterations;
   if (kr.status != solve::SaddlePointKrylovStatus::Converged) {
     std::ostringstream os;
-    os << "the Newton system (" << n << " free DOFs, " << m << " active rows) was not solved by AMG-preconditioned GMRES: "
+    os << "the Newton system (" << n << " free DOFs, " << m
+       << " active rows) was not solved by AMG-preconditioned GMRES: "
        << solve::to_string(kr.status) << " after " << kr.iterations << " products (relative residual "
        << kr.relative_residual << ", tolerance " << s_.krylov.tolerance << ")";
     message = os.str();

@@ -135,7 +135,8 @@ struct AmgPreconditioner::Impl {
     std::vector<HYPRE_Int> sizes(static_cast<std::size_t>(n));
     std::vector<HYPRE_BigInt> row_index(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
-      sizes[static_cast<std::size_t>(i)] = static_cast<HYPRE_Int>(rows.outerIndexPtr()[i + 1] - rows.outerIndexPtr()[i]);
+      const auto entries = rows.outerIndexPtr()[i + 1] - rows.outerIndexPtr()[i];
+      sizes[static_cast<std::size_t>(i)] = static_cast<HYPRE_Int>(entries);
       row_index[static_cast<std::size_t>(i)] = i;
     }
     HYPRE_IJMatrixSetRowSizes(ij_matrix, sizes.data());
@@ -198,7 +199,8 @@ AmgStatus AmgPreconditioner::compute(const Eigen::SparseMatrix<double>& A, const
 
 Eigen::VectorXd AmgPreconditioner::apply(const Eigen::VectorXd& r) const {
   const Impl& m = *impl_;
-  require(m.status == AmgStatus::Success, std::string("AMG: apply() without a hierarchy (status ") + to_string(m.status) + ")");
+  require(m.status == AmgStatus::Success,
+          std::string("AMG: apply() without a hierarchy (status ") + to_string(m.status) + ")");
   require(r.size() == m.n, "AMG: apply() to a vector of " + std::to_string(r.size()) + " entries for a matrix of " +
                                std::to_string(m.n) + " rows");
   Eigen::Map<Eigen::VectorXd>(vector_data(m.b), m.n) = r;
