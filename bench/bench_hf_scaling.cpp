@@ -6,7 +6,9 @@
 //
 //   bench_hf_scaling --case hertz-a --level 4 --mu 0.3 --solver newton [--constraint lac]
 //                    (--mu: default the case's reference value; hertz-3d: --case hertz-3d --mu 0.02)
-//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu] [--passes frozen|consistent] [--lu umfpack|eigen]
+//                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu|amg|auto]
+//                    [--linear-solver direct|amg|auto (direct: schur)] [--amg-from DOFS] [--krylov-tol 1e-9]
+//                    [--krylov-max 400] [--krylov-restart 80] [--amg-threshold 0.25] [--amg-aggressive 1] [--passes frozen|consistent] [--lu umfpack|eigen]
 //                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)]
 //                    [--frozen-rows-from-dimension 3 (4: never)] [--verbose] [--header]
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
@@ -27,9 +29,10 @@
 // mesh generation (not in the other columns); with --sequence: the coarse stages as
 // level:iterations joined by '+' (a '!' after a stage that did not converge; '-' without), and
 // their wall time per repeat (coarse meshes, setups, solves, transfers; in total_s, not in setup_s
-// or solve_s); the wall time of the mesh generation and the peak RSS right after it (MB).
-// Grid sequencing takes 2D cases (cases/level_sequence.hpp); a 3D case with --sequence > 0 is an
-// error.
+// or solve_s); the wall time of the mesh generation and the peak RSS right after it (MB); the
+// Newton linear solver taken (schur, lu or amg; '-' for Kacanov) and the GMRES products of all
+// its systems.
+// Grid sequencing (cases/level_sequence.hpp) in 2D and 3D alike.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -68,6 +71,8 @@ struct BenchOptions {
   double alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
   int sequence = 0, sequence_step = 2;
+  int amg_from = -1, krylov_max = -1, krylov_restart = -1, amg_aggressive = -1;
+  double krylov_tolerance = -1.0, amg_threshold = -1.0;
 };
 
 // Parses argv into `o`; returns false after --header (the header printed) and exits with code 2
@@ -84,7 +89,7 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     };
     if (a == "--header") {
       std::printf("case,level,dofs,slave_nodes,solver,constraint,mu,setup_s,solve_s,total_s,iterations,status,"
-                  "force,energy,kkt,active,peak_rss_mb,cpu_s,mesh_cpu_s,sequence,coarse_s,mesh_s,mesh_rss_mb\n");
+                  "force,energy,kkt,active,peak_rss_mb,cpu_s,mesh_cpu_s,sequence,coarse_s,mesh_s,mesh_rss_mb,linear,krylov\n");
       return false;
     }
     if (a == "--case") o.case_name = next();
@@ -95,6 +100,13 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     else if (a == "--verbose") o.verbose = true;
     else if (a == "--lu") o.lu = next();
     else if (a == "--linear") o.linear = next();
+    else if (a == "--linear-solver") o.linear = next() == std::string("direct") ? "schur" : argv[i];
+    else if (a == "--amg-from") o.amg_from = std::stoi(next());
+    else if (a == "--krylov-tol") o.krylov_tolerance = std::stod(next());
+    else if (a == "--krylov-max") o.krylov_max = std::stoi(next());
+    else if (a == "--krylov-restart") o.krylov_restart = std::stoi(next());
+    else if (a == "--amg-threshold") o.amg_threshold = std::stod(next());
+    else if (a == "--amg-aggressive") o.amg_aggressive = std::stoi(next());
     else if (a == "--inner") o.inner = std::stoi(next());
     else if (a == "--passes") o.passes = next();
     else if (a == "--free-steps") o.free_steps = std::stoi(next());
@@ -130,6 +142,12 @@ hf::HFSettings settings_from(const BenchOptions& o) {
   settings.method = hf::hf_method_from_string(o.solver);
   settings.newton.lu = solve::sparse_lu_backend_from_string(o.lu);
   settings.newton.linear_solver = hf::newton_linear_solver_from_string(o.linear);
+  if (o.amg_from >= 0) settings.newton.amg_from_free_dofs = o.amg_from;
+  if (o.krylov_tolerance > 0.0) settings.newton.krylov.tolerance = o.krylov_tolerance;
+  if (o.krylov_max > 0) settings.newton.krylov.max_iterations = o.krylov_max;
+  if (o.krylov_restart > 0) settings.newton.krylov.restart = o.krylov_restart;
+  if (o.amg_threshold > 0.0) settings.newton.amg.strong_threshold = o.amg_threshold;
+  if (o.amg_aggressive >= 0) settings.newton.amg.aggressive_levels = o.amg_aggressive;
   hf::NewtonTuning& t = settings.newton.tuning;
   if (o.inner > 0) t.max_inner_iterations = o.inner;
   t.inner_passes = hf::newton_inner_passes_from_string(o.passes);
@@ -179,13 +197,12 @@ mesh::Mesh3 reference_of(const cases::CaseSpec& spec, int level, std::integral_c
   return cases::reference_mesh3(spec, level);
 }
 
-// The coarse stages of the grid sequencing (2D cases; level_sequence.hpp), none in 3D.
+// The coarse stages of the grid sequencing (level_sequence.hpp).
 template <int Dim>
 cases::SequenceStart coarse_start(const cases::CaseSpec& spec, const cases::Mu& mu, const std::vector<int>& levels,
                                   std::optional<contact::Discretization> d, const hf::HFSettings& settings,
                                   const hf::BasicHFSolver<Dim>& fine) {
-  if constexpr (Dim == 2) return cases::sequence_start(spec, mu, levels, d, settings, fine);
-  return {};
+  return cases::sequence_start(spec, mu, levels, d, settings, fine);
 }
 
 // The coarse stages as level:iterations joined by '+' ('!' after one that did not converge).
@@ -209,6 +226,7 @@ std::string stages_text(const cases::SequenceStart& start, bool verbose) {
 template <int Dim>
 void print_history(const hf::BasicHFSolution<Dim>& sol) {
   const hf::NewtonTimings& tm = sol.newton_timings;
+  if (tm.linear_solver == hf::NewtonLinearSolver::Amg) std::fprintf(stderr, "  AMG: %d levels\n", tm.amg_levels);
   std::fprintf(stderr, "  A_00: analysis %.4f s%s numeric factorization %.4f s (nnz(L) %ld, %d BLAS threads) z %.4f s; initial evaluation %.4f s\n",
                tm.analyze_s, tm.analysis_ahead ? (" (beside the assembly; waited " + std::to_string(tm.analysis_wait_s) + " s)").c_str() : "",
                tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
@@ -252,13 +270,16 @@ int run(const BenchOptions& o, const cases::CaseSpec& spec, const cases::Mu& mu,
   if (o.verbose) print_history(sol);
   const rusage usage = usage_now();
   const double cpu_s = (cpu_seconds(usage) - cpu_seconds(after_mesh)) / std::max(1, o.repeat);
-  std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f,%.4f,%.2f,%s,%.4f,%.2f,%.1f\n",
+  int krylov = 0;
+  for (const auto& it : sol.newton_history) krylov += it.krylov;
+  const char* linear = sol.method == hf::HFMethod::Newton ? hf::to_string(sol.newton_timings.linear_solver) : "-";
+  std::printf("%s,%d,%d,%zu,%s,%s,%g,%.4f,%.4f,%.4f,%d,%s,%.9g,%.9g,%.2e,%d,%.1f,%.4f,%.2f,%s,%.4f,%.2f,%.1f,%s,%d\n",
               o.case_name.c_str(), o.level, problem.mesh.num_dofs(),
               mesh::boundary_nodes(problem.mesh, mesh::kSlaveBoundary).size(), o.solver.c_str(),
               contact::to_string(problem.discretization), mu(0), median(setup), median(solve), median(total),
               sol.iterations, solve::to_string(sol.status), sol.contact_force, sol.energy, sol.kkt.max(),
               sol.active_constraints, static_cast<double>(usage.ru_maxrss) / 1024.0, cpu_s, mesh_cpu_s, stages.c_str(),
-              median(coarse), mesh_s, static_cast<double>(after_mesh.ru_maxrss) / 1024.0);
+              median(coarse), mesh_s, static_cast<double>(after_mesh.ru_maxrss) / 1024.0, linear, krylov);
   return sol.converged ? 0 : 3;
 }
 
@@ -273,7 +294,6 @@ int main(int argc, char** argv) {
     const cases::Mu mu = cases::Mu::Constant(1, o.mu.value_or(spec.parameters.at(0).reference));
     const hf::HFSettings settings = settings_from(o);
     const int dimension = cases::case_dimension(spec);
-    if (dimension == 3 && o.sequence > 0) throw Error("--sequence: grid sequencing takes 2D cases (" + o.case_name + " is 3D)");
     return dimension == 3 ? run<3>(o, spec, mu, settings) : run<2>(o, spec, mu, settings);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_hf_scaling: %s\n", e.what());

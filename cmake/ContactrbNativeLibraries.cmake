@@ -1,7 +1,8 @@
 # contactrb_find_native_libraries(<found_var> <missing_var>)
 # The libraries that ship no CMake package on Debian, found by hand and wrapped in IMPORTED
-# targets: gmsh::gmsh (mesh/), contactrb_deps::umfpack (solve/) and, when libcholmod is found,
-# contactrb_deps::cholmod (fem/ and solve/; the callers require it: the Newton steps need it).
+# targets: gmsh::gmsh (mesh/), contactrb_deps::umfpack (solve/), when libcholmod is found,
+# contactrb_deps::cholmod (fem/ and solve/; the callers require it: the Newton steps need it) and,
+# when libHYPRE and MPI are found, contactrb_deps::hypre (solve/, optional).
 # Used by the build (CMakeLists.txt) and by the installed contactrbConfig.cmake, so a consumer
 # links the private dependencies of the static libraries through the same targets.
 # Sets <found_var> to TRUE when the required ones were found, else FALSE with <missing_var> the
@@ -43,6 +44,22 @@ function(contactrb_find_native_libraries found_var missing_var)
     add_library(contactrb_deps::cholmod UNKNOWN IMPORTED)
     set_target_properties(contactrb_deps::cholmod PROPERTIES IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
                                                             INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
+  endif()
+
+  # hypre (Debian libhypre-dev, built with MPI) is optional, like CHOLMOD: BoomerAMG, the
+  # preconditioner of the AMG Krylov solve of the Newton systems (solve/amg_preconditioner.hpp).
+  # Its headers include mpi.h: the MPI C library comes with it (without the C++ bindings).
+  find_library(HYPRE_LIBRARY HYPRE)
+  find_path(HYPRE_INCLUDE_DIR HYPRE.h PATH_SUFFIXES hypre)
+  if(HYPRE_LIBRARY AND HYPRE_INCLUDE_DIR AND NOT TARGET contactrb_deps::hypre)
+    find_package(MPI COMPONENTS C QUIET)
+    if(MPI_C_FOUND)
+      add_library(contactrb_deps::hypre UNKNOWN IMPORTED)
+      set_target_properties(contactrb_deps::hypre PROPERTIES IMPORTED_LOCATION "${HYPRE_LIBRARY}"
+                                                            INTERFACE_INCLUDE_DIRECTORIES "${HYPRE_INCLUDE_DIR}"
+                                                            INTERFACE_LINK_LIBRARIES MPI::MPI_C
+                                                            INTERFACE_COMPILE_DEFINITIONS "OMPI_SKIP_MPICXX=1;MPICH_SKIP_MPICXX=1")
+    endif()
   endif()
 
   if(missing)

@@ -8,6 +8,7 @@ CONTACTRB_DEBIAN_PACKAGES=(
   libeigen3-dev libcli11-dev libgmsh-dev libhdf5-dev libtomlplusplus-dev libsuitesparse-dev
   libopenblas0-pthread liblapack-dev  # LAPACK/BLAS (OpenBLAS at run time): the dense Newton systems (solve/dense_lu.hpp)
   nlohmann-json3-dev
+  libhypre-dev  # BoomerAMG: the AMG Krylov solver of the Newton systems (docs/solvers.md)
   libopenmpi-dev openmpi-bin  # optional at build time: mpirun runs (docs/parallel.md)
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-meshio python3-numpy python3-matplotlib

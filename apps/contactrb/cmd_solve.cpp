@@ -56,8 +56,18 @@ struct SolveOptions {
   int sequence = -1;
   std::optional<std::string> solver;  // --solver (nullopt: hf::default_method of the mesh)
   int newton_max_iterations = hf::NewtonSettings{}.max_iterations;
+  std::string linear_solver = "auto";  // --linear-solver: direct | amg | auto (Newton's systems)
   std::string out_dir;
 };
+
+// --linear-solver (docs/solvers.md, "AMG-preconditioned Krylov solve"): direct is the Cholesky of
+// A_00 with the selected inverse (hf::NewtonLinearSolver::ActiveSchur).
+hf::NewtonLinearSolver linear_solver_option(const std::string& name) {
+  if (name == "direct") return hf::NewtonLinearSolver::ActiveSchur;
+  if (name == "amg") return hf::NewtonLinearSolver::Amg;
+  if (name == "auto") return hf::NewtonLinearSolver::Auto;
+  throw Error("unknown --linear-solver '" + name + "' (expected direct, amg or auto)");
+}
 
 // solution.json (docs/user-guide.md, "solve"): the run's keys, the solve's and the discretization's
 // (hf::to_json, hf::discretization_json) and the grid sequencing's (cases::to_json).
@@ -208,6 +218,7 @@ int run_solve(SolveOptions opt) {
   solve::check_settings(settings.kacanov);
   settings.method = snapshot_solver_option(opt.solver).value_or(hf::default_method(dimension, opt.level));
   settings.newton.max_iterations = opt.newton_max_iterations;
+  settings.newton.linear_solver = linear_solver_option(opt.linear_solver);
   hf::check_settings(settings.newton);
   std::optional<contact::Discretization> constraint;
   if (!opt.constraint.empty()) constraint = contact::discretization_from_string(opt.constraint);
@@ -247,6 +258,10 @@ Command add_solve_command(CLI::App& app) {
   sub->add_option("--solver", opt->solver,
                   "HF solver: kacanov (the paper's) | newton (semi-smooth Newton); default: kacanov on 2D level 0, "
                   "newton otherwise (docs/solvers.md)");
+  sub->add_option("--linear-solver", opt->linear_solver,
+                  "Newton's linear systems: direct (Cholesky) | amg (hypre BoomerAMG + GMRES) | auto (amg in 3D from "
+                  "40 000 free DOFs; docs/solvers.md)")
+      ->capture_default_str();
   sub->add_option("--newton-max-iterations", opt->newton_max_iterations, "Semi-smooth Newton iteration limit")
       ->capture_default_str();
   sub->add_option("--level", opt->level, "Mesh refinement level of a generated mesh (0: the paper's mesh)")

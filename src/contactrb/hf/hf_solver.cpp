@@ -21,6 +21,15 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// HFSetupOptions::amg_from_free_dofs: the Auto solve of this problem takes Amg.
+bool amg_in_auto(const HFSetupOptions& options, int dimension, int free_dofs) {
+  if (options.amg_from_free_dofs < 0) return false;
+  NewtonSettings settings;
+  settings.linear_solver = NewtonLinearSolver::Auto;
+  settings.amg_from_free_dofs = options.amg_from_free_dofs;
+  return resolved_linear_solver(settings, dimension, free_dofs) == NewtonLinearSolver::Amg;
+}
 }  // namespace
 
 const char* to_string(HFMethod method) {
@@ -124,9 +133,11 @@ struct BasicHFSolver<Dim>::Impl {
 
 HFSetupOptions setup_options_for(const HFSettings& settings) {
   HFSetupOptions o;
+  const NewtonLinearSolver linear = settings.newton.linear_solver;
   o.newton_analysis = settings.method == HFMethod::Newton &&
-                      settings.newton.linear_solver == NewtonLinearSolver::ActiveSchur;
+                      (linear == NewtonLinearSolver::ActiveSchur || linear == NewtonLinearSolver::Auto);
   o.ordering = settings.newton.ordering;
+  if (linear == NewtonLinearSolver::Auto) o.amg_from_free_dofs = settings.newton.amg_from_free_dofs;
   return o;
 }
 
@@ -141,7 +152,7 @@ BasicHFSolver<Dim>::BasicHFSolver(Problem problem, const HFSetupOptions& options
   require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
   // The nodal pattern of A (fem::stiffness), shared with the analysis thread below.
   std::shared_ptr<const fem::SimplexSparsity<Dim>> pattern;
-  if (options.newton_analysis) {
+  if (options.newton_analysis && !amg_in_auto(options, Dim, m.dofs.num_free())) {
     // The pattern of A_00 is the mesh's nodal pattern restricted to the free DOFs
     // (DofMap::restrict_matrix): known before any value, so its ordering and symbolic analysis
     // (hertz-a level 7: 4 s; the assembly and the rest of this constructor: 2.3 s) run beside

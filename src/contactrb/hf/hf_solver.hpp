@@ -2,7 +2,8 @@
 // High-fidelity contact solver in 2D and 3D (BasicHFSolver<Dim>), two methods (HFMethod):
 //  - Newton: semi-smooth Newton / primal-dual active set with the geometry linearized
 //    consistently; each Newton system reduced exactly to the contact DOFs of the active rows
-//    on one Cholesky of A_00 per solve (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
+//    on one Cholesky of A_00 per solve, or (NewtonLinearSolver::Amg, large 3D meshes) the whole
+//    system by AMG-preconditioned GMRES (semismooth_newton.hpp; docs/solvers.md "Semi-smooth Newton");
 //  - Kacanov: the paper's iterations (12), (63) around an exact non-negative QP in dual form.
 // Kacanov: A(mu) is factorized once per solve; the inner QP matrix
 // Q = K A^-1 K' is formed from the block S = (A_00^-1) restricted to the free DOFs of the
@@ -97,8 +98,11 @@ using HFSolution3 = BasicHFSolution<3>;
 struct HFSetupOptions {
   bool newton_analysis = false;
   solve::FactorOrdering ordering = solve::FactorOrdering::Auto;  // NewtonSettings::ordering
+  // NewtonLinearSolver::Auto: no analysis where the solve will take Amg (resolved_linear_solver
+  // with this threshold; -1: analyse).
+  int amg_from_free_dofs = -1;
 };
-// newton_analysis for a Newton ActiveSchur method, with its ordering; off for Kacanov.
+// newton_analysis for a Newton ActiveSchur (or Auto) method, with its ordering; off for Kacanov.
 HFSetupOptions setup_options_for(const HFSettings& settings);
 
 // Dim = 2 (HFSolver) or 3 (HFSolver3): one code path, the contact geometry of the dimension

@@ -57,13 +57,15 @@ struct NewtonLinearSystem::Reduced {
 NewtonLinearSystem::NewtonLinearSystem(const NewtonAlgebra& p, const NewtonSettings& s, int dimension)
     : p_(p),
       s_(s),
-      schur_(s.linear_solver == NewtonLinearSolver::ActiveSchur),
+      dimension_(dimension),
+      solver_(resolved_linear_solver(s, dimension, p.dofs->num_free())),
+      schur_(solver_ == NewtonLinearSolver::ActiveSchur),
       blas_threads_(s.tuning.blas_threads > 0 && p.dofs->num_free() >= s.tuning.blas_threads_from ? s.tuning.blas_threads
                                                                                                   : 0),
       rows_block_(schur_ && dimension >= s.tuning.frozen_rows_from_dimension),
       lu_(s.lu),
       e_position_(sz(p.dofs->num_free()), -1) {
-  if (!schur_) {
+  if (solver_ == NewtonLinearSolver::SaddleLU) {
     a_trip_.reserve(static_cast<std::size_t>(p.A00->nonZeros()));
     for (int j = 0; j < p.A00->outerSize(); ++j) {
       for (Eigen::SparseMatrix<double>::InnerIterator a(*p.A00, j); a; ++a) a_trip_.emplace_back(a.row(), a.col(), a.value());
@@ -72,6 +74,8 @@ NewtonLinearSystem::NewtonLinearSystem(const NewtonAlgebra& p, const NewtonSetti
 }
 
 bool NewtonLinearSystem::factorize(NewtonTimings& timings, std::string& message) {
+  timings.linear_solver = solver_;
+  if (solver_ == NewtonLinearSolver::Amg) return factorize_amg(timings, message);
   if (!schur_) return true;
   const int n = p_.dofs->num_free();
   solve::SelectedInverseStatus status;
@@ -145,6 +149,7 @@ void NewtonLinearSystem::complete(NewtonStep& step, const SystemPoint& at) const
 bool NewtonLinearSystem::solve(const std::vector<int>& active, bool frozen, const RowSparse& K0,
                                const NewtonLinearization& lin, const SystemPoint& at, NewtonStep& step,
                                NewtonIteration& it, std::string& message) {
+  if (solver_ == NewtonLinearSolver::Amg) return solve_saddle_amg(active, frozen, K0, lin, at, step, it, message);
   if (!schur_) return solve_saddle_lu(active, frozen, K0, lin, at, step, message);
   const Reduced sys = reduce(active, frozen, K0, lin, at, it);
   Eigen::VectorXd yE;
@@ -160,6 +165,7 @@ bool NewtonLinearSystem::solve(const std::vector<int>& active, bool frozen, cons
 
 void NewtonLinearSystem::begin_iteration(int k) {
   rows_now_ = rows_block_ && k == 0;
+  warm_at_ = nullptr;
   if (!rows_now_) inverse_.forget_rows();
 }
 
@@ -405,6 +411,79 @@ bool NewtonLinearSystem::solve_saddle_lu(const std::vector<int>& active, bool fr
   const Eigen::VectorXd x = lu_.solve(rhs);
   step.du = x.head(n);
   scatter(active, x, n, step.lambda);
+  return true;
+}
+
+// The hierarchy of A_00, each free DOF with its displacement component (BoomerAMG's systems
+// coarsening; docs/solvers.md, "AMG-preconditioned Krylov solve").
+bool NewtonLinearSystem::factorize_amg(NewtonTimings& timings, std::string& message) {
+  const int n = p_.dofs->num_free();
+  std::vector<int> component(sz(n));
+  for (int i = 0; i < n; ++i) component[sz(i)] = p_.dofs->free_dofs()[sz(i)] % dimension_;
+  const solve::AmgStatus status = amg_.compute(*p_.A00, component, dimension_, s_.amg);
+  if (status != solve::AmgStatus::Success) {
+    message = std::string("semi-smooth Newton: the AMG hierarchy of the stiffness A_00 (") + std::to_string(n) +
+              " free DOFs) cannot be built: " + solve::to_string(status);
+    return false;
+  }
+  timings.numeric_s = amg_.setup_seconds();
+  timings.amg_levels = amg_.levels();
+  return true;
+}
+
+// The saddle point of solve_saddle_lu by GMRES (solve/saddle_point_krylov.hpp), from the iterate
+// (du = 0, lambda_A = lambda at u). A GMRES that does not reach its tolerance is a failed system
+// (message set), never a step.
+bool NewtonLinearSystem::solve_saddle_amg(const std::vector<int>& active, bool frozen, const RowSparse& K0,
+                                          const NewtonLinearization& lin, const SystemPoint& at, NewtonStep& step,
+                                          NewtonIteration& it, std::string& message) {
+  const int n = p_.dofs->num_free();
+  const int m = static_cast<int>(active.size());
+  std::vector<Eigen::Triplet<double>> b_trip, c_trip;
+  Eigen::VectorXd rhs(n + m), x_iterate = Eigen::VectorXd::Zero(n + m);
+  const bool warm = warm_at_ == at.u0;
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n + m);
+  if (warm) x0.head(n) = warm_du_;
+  rhs.head(n) = *at.top;
+  for (int a = 0; a < m; ++a) {
+    const int r = active[sz(a)];
+    for (RowSparse::InnerIterator kk(K0, r); kk; ++kk) {
+      b_trip.emplace_back(a, kk.col(), kk.value());
+      if (frozen) c_trip.emplace_back(a, kk.col(), kk.value());
+    }
+    if (!frozen) {
+      for (RowSparse::InnerIterator dd(lin.D0, r); dd; ++dd) c_trip.emplace_back(a, dd.col(), -dd.value());
+    }
+    rhs(n + a) = (*at.d)(r);
+    x_iterate(n + a) = (*at.lambda)(r);
+    x0(n + a) = warm ? warm_lambda_(r) : (*at.lambda)(r);
+  }
+  RowSparse B(m, n), C(m, n);
+  B.setFromTriplets(b_trip.begin(), b_trip.end());
+  C.setFromTriplets(c_trip.begin(), c_trip.end());
+  Eigen::SparseMatrix<double> consistent;  // A_00 + H
+  if (!frozen && !lin.H.empty()) {
+    Eigen::SparseMatrix<double> H(n, n);
+    H.setFromTriplets(lin.H.begin(), lin.H.end());
+    consistent = *p_.A00 + H;
+  }
+  const Eigen::SparseMatrix<double>& F = frozen || lin.H.empty() ? *p_.A00 : consistent;
+  const solve::SaddlePointKrylovResult kr = solve::solve_saddle_point(F, B, C, amg_, rhs, x0, s_.krylov, &x_iterate);
+  it.krylov += kr.iterations;
+  if (kr.status != solve::SaddlePointKrylovStatus::Converged) {
+    std::ostringstream os;
+    os << "the Newton system (" << n << " free DOFs, " << m
+       << " active rows) was not solved by AMG-preconditioned GMRES: "
+       << solve::to_string(kr.status) << " after " << kr.iterations << " products (relative residual "
+       << kr.relative_residual << ", tolerance " << s_.krylov.tolerance << ")";
+    message = os.str();
+    return false;
+  }
+  step.du = kr.x.head(n);
+  scatter(active, kr.x, n, step.lambda);
+  warm_du_ = step.du;
+  warm_lambda_ = step.lambda;
+  warm_at_ = at.u0;
   return true;
 }
 

@@ -11,6 +11,9 @@
 //   [ I + G H_E   G K_E' ] [ w        ]   [ z_E - u_0,E ]
 //   [ -D_E        0      ] [ lambda_A ] = [ d_A         ],   G = (A_00^-1)[E, E].
 // SaddleLU: one sparse LU of the whole saddle point per system.
+// Amg: the whole saddle point by GMRES, preconditioned by one AMG V-cycle on A_00 and a sparse
+// Schur approximation (solve/saddle_point_krylov.hpp); nothing factorized but the m x m Schur
+// approximation.
 // Internal to hf/semismooth_newton.cpp and hf/newton_steps.cpp.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -19,6 +22,7 @@
 
 #include "contactrb/hf/newton_iterate.hpp"
 #include "contactrb/hf/semismooth_newton.hpp"
+#include "contactrb/solve/amg_preconditioner.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 #include "contactrb/solve/sparse_lu.hpp"
 
@@ -59,9 +63,11 @@ class NewtonLinearSystem {
  public:
   NewtonLinearSystem(const NewtonAlgebra& problem, const NewtonSettings& settings, int dimension);
   bool schur() const { return schur_; }
+  NewtonLinearSolver solver() const { return solver_; }
   // The BLAS threads of the BLAS-3 parts (0: the BLAS's own count; NewtonTuning::blas_threads).
   int blas_threads() const { return blas_threads_; }
   // ActiveSchur: A_00 = L L' and z = A_00^-1 b. False (message set) when A_00 is not SPD.
+  // Amg: the AMG hierarchy of A_00. False (message set) when it cannot be built.
   bool factorize(NewtonTimings& timings, std::string& message);
   const Eigen::VectorXd& z() const { return z_; }
   // Newton iteration k begins. The frozen systems of the first one (from a cold start: the active
@@ -92,11 +98,17 @@ class NewtonLinearSystem {
                    std::string& message);
   bool solve_saddle_lu(const std::vector<int>& active, bool frozen, const RowSparse& K0,
                        const NewtonLinearization& lin, const SystemPoint& at, NewtonStep& step, std::string& message);
+  bool factorize_amg(NewtonTimings& timings, std::string& message);
+  bool solve_saddle_amg(const std::vector<int>& active, bool frozen, const RowSparse& K0,
+                        const NewtonLinearization& lin, const SystemPoint& at, NewtonStep& step, NewtonIteration& it,
+                        std::string& message);
   void set_step(const std::vector<int>& E, const Eigen::VectorXd& yE, const std::vector<int>& read_dofs,
                 const SystemPoint& at, NewtonStep& step) const;
 
   const NewtonAlgebra& p_;
   const NewtonSettings& s_;
+  const int dimension_;
+  const NewtonLinearSolver solver_;  // resolved: never Auto
   const bool schur_;
   const int blas_threads_;
   // ActiveSchur: the first iteration's frozen systems take Q = K_E G K_E' from the rows of K_0
@@ -105,6 +117,11 @@ class NewtonLinearSystem {
   bool rows_now_ = false;
   solve::SelectedInverse inverse_;
   solve::SparseLU lu_;
+  solve::AmgPreconditioner amg_;
+  // Amg: the last system's solution (du, lambda on every row) at the point warm_at_, the initial
+  // guess of the next system at that point (the passes of an iteration differ in a few rows).
+  Eigen::VectorXd warm_du_, warm_lambda_;
+  const Eigen::VectorXd* warm_at_ = nullptr;
   Eigen::VectorXd z_;
   std::vector<Eigen::Triplet<double>> a_trip_;  // SaddleLU: A_00
   std::vector<int> e_position_;                 // scratch: position in E, -1 outside

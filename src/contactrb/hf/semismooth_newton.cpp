@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/hf/newton_steps.hpp"
 #include "contactrb/common/number_text.hpp"
@@ -13,14 +14,22 @@ const char* to_string(NewtonLinearSolver solver) {
   switch (solver) {
     case NewtonLinearSolver::ActiveSchur: return "schur";
     case NewtonLinearSolver::SaddleLU: return "lu";
+    case NewtonLinearSolver::Amg: return "amg";
+    case NewtonLinearSolver::Auto: return "auto";
   }
   return "unknown";
 }
 
 NewtonLinearSolver newton_linear_solver_from_string(const std::string& name) {
-  if (name == "schur") return NewtonLinearSolver::ActiveSchur;
-  if (name == "lu") return NewtonLinearSolver::SaddleLU;
-  throw Error("unknown Newton linear solver '" + name + "' (expected schur or lu)");
+  return enum_from_string(name, "Newton linear solver",
+                          std::array{NewtonLinearSolver::ActiveSchur, NewtonLinearSolver::SaddleLU,
+                                     NewtonLinearSolver::Amg, NewtonLinearSolver::Auto});
+}
+
+NewtonLinearSolver resolved_linear_solver(const NewtonSettings& s, int dimension, int free_dofs) {
+  if (s.linear_solver != NewtonLinearSolver::Auto) return s.linear_solver;
+  return dimension >= 3 && free_dofs >= s.amg_from_free_dofs && solve::amg_available() ? NewtonLinearSolver::Amg
+                                                                                        : NewtonLinearSolver::ActiveSchur;
 }
 
 const char* to_string(NewtonInnerPasses passes) {
@@ -55,6 +64,15 @@ void check_settings(const NewtonSettings& s) {
           "Newton krylov_max_iterations must be >= 0 (got " + std::to_string(t.krylov_max_iterations) + ")");
   require(std::isfinite(t.krylov_tolerance) && t.krylov_tolerance > 0.0 && t.krylov_tolerance < 1.0,
           "Newton krylov_tolerance must be in (0, 1) (got " + number_text(t.krylov_tolerance) + ")");
+  require(s.amg_from_free_dofs >= 0,
+          "Newton amg_from_free_dofs must be >= 0 (got " + std::to_string(s.amg_from_free_dofs) + ")");
+  require(std::isfinite(s.krylov.tolerance) && s.krylov.tolerance > 0.0 && s.krylov.tolerance < 1.0,
+          "Newton AMG Krylov tolerance must be in (0, 1) (got " + number_text(s.krylov.tolerance) + ")");
+  require(s.krylov.max_iterations >= 1,
+          "Newton AMG Krylov max_iterations must be >= 1 (got " + std::to_string(s.krylov.max_iterations) + ")");
+  require(s.krylov.restart >= 1, "Newton AMG Krylov restart must be >= 1 (got " + std::to_string(s.krylov.restart) + ")");
+  require(std::isfinite(s.amg.strong_threshold) && s.amg.strong_threshold > 0.0 && s.amg.strong_threshold < 1.0,
+          "Newton AMG strong_threshold must be in (0, 1) (got " + number_text(s.amg.strong_threshold) + ")");
   require(t.max_free_steps >= 0, "Newton max_free_steps must be >= 0 (got " + std::to_string(t.max_free_steps) + ")");
   require(t.max_branch_passes >= 0,
           "Newton max_branch_passes must be >= 0 (got " + std::to_string(t.max_branch_passes) + ")");

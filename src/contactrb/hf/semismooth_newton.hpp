@@ -36,7 +36,9 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/fem/dirichlet.hpp"
 #include "contactrb/mesh/mesh.hpp"
+#include "contactrb/solve/amg_preconditioner.hpp"
 #include "contactrb/solve/kacanov.hpp"
+#include "contactrb/solve/saddle_point_krylov.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 #include "contactrb/solve/sparse_lu.hpp"
 
@@ -46,9 +48,14 @@ namespace contactrb::hf {
 //   |E| + |A| (E: the free DOFs of the active rows and of H; docs/solvers.md, "Newton linear
 //   algebra"), |A| with the frozen geometry, GMRES on it in the Newton phase; SaddleLU: one sparse
 //   LU of the (n + |A|)-square saddle point per system (kept to compare).
-enum class NewtonLinearSolver { ActiveSchur, SaddleLU };
+//   Amg: the whole saddle point by GMRES, preconditioned by one BoomerAMG V-cycle on A_00 and a
+//   sparse approximation of the Schur complement of the active rows (solve/saddle_point_krylov.hpp;
+//   docs/solvers.md, "AMG-preconditioned Krylov solve"): no factorization of A_00, for the 3D meshes
+//   whose Cholesky factor does not fit. Auto: Amg in 3D from NewtonSettings::amg_from_free_dofs
+//   free DOFs on (when the build has hypre), ActiveSchur otherwise (resolved_linear_solver).
+enum class NewtonLinearSolver { ActiveSchur, SaddleLU, Amg, Auto };
 const char* to_string(NewtonLinearSolver solver);
-NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  // "schur" | "lu"
+NewtonLinearSolver newton_linear_solver_from_string(const std::string& name);  // "schur" | "lu" | "amg" | "auto"
 
 // Frozen (default): a Kacanov phase first. Each iteration solves the frozen-geometry
 // linearization exactly (active-set passes on a convex QP: an undamped Kacanov step) until one
@@ -133,6 +140,11 @@ struct NewtonSettings {
   double tolerance = 1e-10;  // on HFKKT::max() (relative, hf_solver.hpp), at the nonlinear geometry
   int max_iterations = 50;
   NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;
+  // Auto: the AMG Krylov solve in 3D from this many free DOFs on (docs/performance.md, "Why the
+  // defaults are what they are", "Newton: AMG in 3D from 40 000 free DOFs").
+  int amg_from_free_dofs = 40000;
+  solve::AmgSettings amg;                   // Amg: the V-cycle on A_00
+  solve::SaddlePointKrylovSettings krylov;  // Amg: GMRES on each Newton system
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp;
   // docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering").
@@ -146,6 +158,9 @@ struct NewtonSettings {
 // outside (0, 1/2), a min_step outside (0, 1], a negative kacanov_safeguard or
 // max_newton_passes < 1 (and the other bounds of NewtonTuning, named in the messages).
 void check_settings(const NewtonSettings& settings);
+// The linear solver a problem of this dimension and size gets: Auto resolved (ActiveSchur,
+// SaddleLU or Amg), the others as they are.
+NewtonLinearSolver resolved_linear_solver(const NewtonSettings& settings, int dimension, int free_dofs);
 
 struct NewtonIteration {
   double residual = 0.0;   // HFKKT::max() at the iterate, before the step
@@ -163,7 +178,7 @@ struct NewtonIteration {
   double linearize_s = 0.0, factorize_s = 0.0;
   double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
   double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
-  int krylov = 0;          // GMRES products (Newton phase, ActiveSchur)
+  int krylov = 0;          // GMRES products (ActiveSchur: Newton phase; Amg: every system)
 };
 
 // What the Newton linear systems need of an HF problem (views; the HF solver owns them): the
@@ -198,6 +213,8 @@ struct NewtonTimings {
   double analysis_wait_s = 0.0;
   long factor_nonzeros = 0;  // nnz(L)
   int blas_threads = 1;      // BLAS threads of the factorization
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::ActiveSchur;  // resolved (never Auto)
+  int amg_levels = 0;        // Amg: levels of the hierarchy (its setup in numeric_s)
 };
 
 struct NewtonResult {
