@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -107,12 +108,14 @@ TEST(CliFriction, ZeroCoefficientGivesNoTangentialForce) {
   for (const std::string& t : csv.at("tangential")) EXPECT_EQ(std::stod(t), 0.0);
 }
 
-TEST(CliFriction, CasesListsCattaneoAsFrictional) {
+TEST(CliFriction, CasesListsTheFrictionalCasesWithTheirDimension) {
   const CliResult r = run_cli("cases");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::size_t at = r.out.find("\ncattaneo ");
-  ASSERT_NE(at, std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("2D  frictional", at), std::string::npos) << r.out;
+  for (const auto& [name, kind] : {std::pair{"\ncattaneo ", "2D  frictional"}, std::pair{"\ncattaneo-3d ", "3D  frictional"}}) {
+    const std::size_t at = r.out.find(name);
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(kind, at), std::string::npos) << r.out;
+  }
 }
 
 TEST(CliFriction, BadSolveInputsGiveOneClearError) {

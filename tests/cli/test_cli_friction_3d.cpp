@@ -107,14 +107,6 @@ void expect_coulomb_files(const fs::path& dir, double f) {
 
 }  // namespace
 
-TEST(CliFriction3d, CasesListsCattaneo3dAsFrictional) {
-  const CliResult r = run_cli("cases");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::size_t at = r.out.find("\ncattaneo-3d ");
-  ASSERT_NE(at, std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("3D  frictional", at), std::string::npos) << r.out;
-}
-
 // Cattaneo-Mindlin for spheres (Johnson 7.2): c / a = (1 - Q / (f P))^(1/3), c and a fitted as in
 // tests/hf/test_friction3d.cpp (a from p^2, c from (f p - |t|)^2, linear in r^2) on the rows of
 // multipliers.csv, r the distance to the centre of pressure in the reference plane; the bound

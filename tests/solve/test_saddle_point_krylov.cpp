@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <tuple>
 #include <vector>
 
 #include "contactrb/common/error.hpp"
@@ -64,17 +65,29 @@ Eigen::VectorXd dense_solution(const Eigen::SparseMatrix<double>& F, const RowSp
   return M.partialPivLu().solve(rhs);
 }
 
+// The 20 x 20 two-component grid operator, its AMG hierarchy and 12 unskewed constraint rows.
+struct GridProblem {
+  GridProblem() : A(grid_laplacian(20, component)), n(static_cast<int>(A.rows())), B(constraint_rows(n, m, 1e-3, 0.0)) {
+    status = amg.compute(A, component, 2);
+  }
+  std::vector<int> component;
+  Eigen::SparseMatrix<double> A;
+  int n = 0;
+  static constexpr int m = 12;
+  RowSparse B;
+  solve::AmgPreconditioner amg;
+  solve::AmgStatus status = solve::AmgStatus::InvalidInput;
+};
+
 }  // namespace
 
 TEST(SaddlePointKrylov, MatchesTheDenseSolveSymmetricAndNot) {
   if (!solve::amg_available()) GTEST_SKIP() << "this build has no hypre";
-  std::vector<int> component;
-  const Eigen::SparseMatrix<double> A = grid_laplacian(20, component);
-  const int n = static_cast<int>(A.rows()), m = 12;
-  solve::AmgPreconditioner amg;
-  ASSERT_EQ(amg.compute(A, component, 2), solve::AmgStatus::Success);
-  EXPECT_GE(amg.levels(), 2);
-  const RowSparse B = constraint_rows(n, m, 1e-3, 0.0);
+  const GridProblem g;
+  ASSERT_EQ(g.status, solve::AmgStatus::Success);
+  EXPECT_GE(g.amg.levels(), 2);
+  const auto& [A, n, B, amg] = std::tie(g.A, g.n, g.B, g.amg);
+  const int m = GridProblem::m;
   Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n + m, -1.0, 2.0);
   for (double skew : {0.0, 0.3}) {
     const RowSparse C = constraint_rows(n, m, 1e-3, skew);
@@ -91,12 +104,10 @@ TEST(SaddlePointKrylov, MatchesTheDenseSolveSymmetricAndNot) {
 
 TEST(SaddlePointKrylov, CappedIterationsAndBadInputAreStatuses) {
   if (!solve::amg_available()) GTEST_SKIP() << "this build has no hypre";
-  std::vector<int> component;
-  const Eigen::SparseMatrix<double> A = grid_laplacian(20, component);
-  const int n = static_cast<int>(A.rows()), m = 12;
-  solve::AmgPreconditioner amg;
-  ASSERT_EQ(amg.compute(A, component, 2), solve::AmgStatus::Success);
-  const RowSparse B = constraint_rows(n, m, 1e-3, 0.0);
+  const GridProblem g;
+  ASSERT_EQ(g.status, solve::AmgStatus::Success);
+  const auto& [A, n, B, amg] = std::tie(g.A, g.n, g.B, g.amg);
+  const int m = GridProblem::m;
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(n + m);
   solve::SaddlePointKrylovSettings s;
   s.max_iterations = 1;
