@@ -29,6 +29,13 @@ inline std::vector<std::string> split_csv_line(const std::string& line) {
   return cells;
 }
 
+// A column of number cells as numbers.
+inline std::vector<double> numbers(const std::vector<std::string>& cells) {
+  std::vector<double> v;
+  for (const std::string& c : cells) v.push_back(std::stod(c));
+  return v;
+}
+
 // A CSV with a header: column name -> cells (a line with another number of cells fails the test).
 inline std::map<std::string, std::vector<std::string>> read_csv(const std::string& path) {
   const std::vector<std::string> lines = lines_of(file_text(path));

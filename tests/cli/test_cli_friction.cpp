@@ -19,19 +19,10 @@
 namespace fs = std::filesystem;
 using contactrb::test::CliResult;
 using contactrb::test::read_json;
+using contactrb::test::numbers;
 using contactrb::test::read_csv;
 using contactrb::test::run_cli;
 using contactrb::test::shell_quote;
-
-namespace {
-
-std::vector<double> numbers(const std::vector<std::string>& cells) {
-  std::vector<double> v;
-  for (const std::string& c : cells) v.push_back(std::stod(c));
-  return v;
-}
-
-}  // namespace
 
 TEST(CliFriction, CattaneoFilesAgreeWithTheReportedForcesAndCoulombsLaw) {
   contactrb::test::TempDir dir("friction_solve");
