@@ -52,6 +52,15 @@ std::vector<Eigen::Vector3d> traction_vectors(const hf::ContactProblem3& p, cons
   return t;
 }
 
+// The frictionless Newton answer with the last load step's Dirichlet data of a case's path.
+hf::HFSolution3 frictionless_at_path_end(const cases::FrictionalCase3& c) {
+  hf::ContactProblem3 last = c.problem;
+  last.dirichlet = c.path.back().dirichlet;
+  hf::HFSettings newton;
+  newton.method = hf::HFMethod::Newton;
+  return hf::HFSolver3(last).solve(newton);
+}
+
 }  // namespace
 
 // Coulomb's isotropic cone at every node: |t| <= f p to round-off; on the slip nodes |t| = f p and
@@ -92,12 +101,10 @@ TEST(Friction3D, CoulombConeHoldsAndSlipNodesOpposeTheirSlip) {
 // 3D answer (to the tolerances of the two solvers); Coulomb f = 0 is that answer bit for bit.
 TEST(Friction3D, ZeroThresholdIsTheFrictionlessAnswer) {
   cases::FrictionalCase3 c = cases::block_on_block_3d_case(0, {0.004, {0.0006, 0.0003}, 0.0, 2});
-  hf::ContactProblem3 last = c.problem;
-  last.dirichlet = c.path.back().dirichlet;
+  const hf::HFSolution3 h = frictionless_at_path_end(c);
+  ASSERT_TRUE(h.converged) << h.message;
   hf::HFSettings newton;
   newton.method = hf::HFMethod::Newton;
-  const hf::HFSolution3 h = hf::HFSolver3(last).solve(newton);
-  ASSERT_TRUE(h.converged) << h.message;
   const hf::FrictionalSolution3 off = hf::solve_load_path(c.problem, c.path, c.friction, newton);
   EXPECT_TRUE(off.u == h.u);
   hf::FrictionSettings tresca;
@@ -203,11 +210,7 @@ TEST(Friction3D, Level1StepsConvergeInFewIterations) {
   for (const hf::FrictionStepReport& r : s.steps) EXPECT_LE(r.iterations, 15);
   EXPECT_GT(s.slip_nodes, 0);
   EXPECT_GT(s.stick_nodes, 0);
-  hf::ContactProblem3 last = c.problem;
-  last.dirichlet = c.path.back().dirichlet;
-  hf::HFSettings newton;
-  newton.method = hf::HFMethod::Newton;
-  const hf::HFSolution3 h = hf::HFSolver3(last).solve(newton);
+  const hf::HFSolution3 h = frictionless_at_path_end(c);
   ASSERT_TRUE(h.converged) << h.message;
   std::printf("[ report ] level 1: %lld rows; frictionless Newton %d iterations, %.3f s; frictional path %.3f s\n",
               static_cast<long long>(s.lambda.size()), h.iterations, h.time_s, s.time_s);
