@@ -110,6 +110,8 @@ void ErrorEstimator::setup_exact(const ReducedModel& m, const std::vector<Index>
   for (std::size_t k = 0; k < exact_dofs_.size(); ++k) sel.push_back(first_load + ix(k));
   factor_columns(e.residual_exact, sel, T_exact_, perm_exact_);
   y_exact_.resize(ix(sel.size()));
+  correction_.setup(e.residual_exact.middleCols(first_load, ix(exact_dofs_.size())), exact_dofs_,
+                    m.surface.num_dofs());
 }
 
 void ErrorEstimator::setup(const ReducedModel& m, int N, int R, int Mk, int Mg) {
@@ -250,7 +252,40 @@ ErrorEstimate ErrorEstimator::evaluate_exact(const Eigen::VectorXd& mu, const Ei
   est.multiplier_norm = contact.multiplier_norm;
   est.geometric = geometric_ratio_;
   combine(est);
+  if (est.available) complementary_bound(mu, contact, est);
   return est;
+}
+
+void ErrorEstimator::complementary_bound(const Eigen::VectorXd& mu, const ExactContact& contact, ErrorEstimate& est) {
+  const double keep = 1.0 - est.geometric;
+  const double c1 = 0.5 * est.residual / std::sqrt(est.coercivity);
+  const double c2 = est.violation * est.multiplier_norm + std::max(0.0, est.complementarity);
+  if (!(keep * c2 > c1 * c1) || contact.K.rows() == 0) return;  // no square-root floor to remove
+  // A(mu) = sum_j theta_j A_j against X = sum_j theta_j^ref A_j: alpha X <= A(mu) <= beta X, and the
+  // correction is scaled by t = sqrt(alpha beta) (exact when every theta_j / theta_j^ref is t).
+  const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
+  double alpha = std::numeric_limits<double>::infinity(), beta = 0.0;
+  for (Index j = 0; j < ta.size(); ++j) {
+    alpha = std::min(alpha, ta(j) / theta_ref_(j));
+    beta = std::max(beta, ta(j) / theta_ref_(j));
+  }
+  const double t = std::sqrt(alpha * beta);
+  const ComplementaryCorrection::Result c = correction_.evaluate(contact.K, contact.slack, contact.lambda, t);
+  if (!c.available) return;
+  // |(A(mu)/t - X) v|_A(mu)^-1 <= sum_j |theta_j / t - theta_j^ref| |v|_{A_j} / sqrt(theta_j)
+  //                            <= mismatch |v|_X.
+  double mismatch = 0.0;
+  for (Index j = 0; j < ta.size(); ++j) {
+    mismatch += std::abs(ta(j) / t - theta_ref_(j)) / std::sqrt(ta(j) * theta_ref_(j));
+  }
+  // |e| <= |v / t|_A(mu) + |u_hf - u~|_A(mu), and (1 - eta) |u_hf - u~|_A(mu) <= |r~|_A(mu)^-1 for
+  // the complementary pair (u~, lambda~).
+  const double correction = std::sqrt(beta) / t * c.v_norm;
+  const double bound = correction + (est.residual / std::sqrt(est.coercivity) + mismatch * c.v_norm) / keep;
+  if (bound < est.energy) {
+    est.energy = bound;
+    est.correction = correction;
+  }
 }
 
 }  // namespace contactrb::online

@@ -10,6 +10,7 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/model/error_estimate_data.hpp"
 #include "contactrb/model/reduced_model.hpp"
+#include "contactrb/online/complementary_correction.hpp"
 
 namespace contactrb::online {
 
@@ -27,7 +28,10 @@ struct ErrorEstimate {
   bool exact = false;            // from the HF contact rows (ContactRows::Exact): violation and
                                  // complementarity over every row, no EIM part
   double geometric = 0.0;        // eta, the geometric term (exact rows; EstimateData::geometric_ratio)
-  double energy = 0.0;           // Delta_u = (c1 + sqrt(c1^2 + (1 - eta) c2)) / (1 - eta): estimate of |u_hf - u_rb|_A(mu)
+  double correction = 0.0;       // exact rows: |u~ - u_rb|_A(mu) bound of the complementary correction
+                                 // (ComplementaryCorrection), 0 when the complementary bound is not used
+  double energy = 0.0;           // Delta_u = (c1 + sqrt(c1^2 + (1 - eta) c2)) / (1 - eta), or the smaller
+                                 // complementary bound: estimate of |u_hf - u_rb|_A(mu)
 };
 
 // Rows weighted by |I_r| (the L2(Gamma^c) norms, docs/offline-online.md, "Error estimate"):
@@ -70,9 +74,12 @@ class ErrorEstimator {
     double violation = 0.0;
     double complementarity = 0.0;
     double multiplier_norm = 0.0;
+    ComplementaryCorrection::RowSparse K;  // the rows K(w) (rows x n_c), for the complementary bound
+    Eigen::VectorXd slack, lambda;         // s and lambda over every row
   };
   // The estimate with the exact contact term (EstimateData::residual_exact): no EIM part.
   // Unavailable when the model holds no exact data or the load reaches a DOF outside exact_dofs.
+  // Where the violation term dominates, the complementary bound replaces Delta_u when smaller.
   ErrorEstimate evaluate_exact(const Eigen::VectorXd& mu, const Eigen::VectorXd& u_hat, const ExactContact& contact);
 
  private:
@@ -81,6 +88,9 @@ class ErrorEstimator {
                            double& alpha) const;
   // Delta_u = c1 + sqrt(c1^2 + c2) of the parts of `est` (HSW12).
   static void combine(ErrorEstimate& est);
+  // The complementary bound (docs/offline-online.md, "The complementary bound") in place of
+  // est.energy when it is smaller.
+  void complementary_bound(const Eigen::VectorXd& mu, const ExactContact& contact, ErrorEstimate& est);
   void setup_exact(const contactrb::model::ReducedModel& model, const std::vector<Eigen::Index>& affine);
 
   bool available_ = false;
@@ -101,6 +111,7 @@ class ErrorEstimator {
   std::vector<int> exact_dofs_;            // contact DOF of each exact load column
   std::vector<char> is_exact_dof_;         // n_c flags
   Eigen::VectorXd y_exact_, v_exact_;
+  ComplementaryCorrection correction_;
 };
 
 }  // namespace contactrb::online

@@ -26,7 +26,8 @@ nlohmann::json to_json(const ErrorEstimate& e) {
           {"multiplier_norm", e.multiplier_norm},
           {"eim_residual", e.eim_residual},
           {"eim_slack", e.eim_slack},
-          {"geometric", e.geometric}};
+          {"geometric", e.geometric},
+          {"correction", e.correction}};
 }
 
 nlohmann::json to_json(const OnlineSolution& s) {

@@ -333,17 +333,19 @@ ErrorEstimator::ExactContact OnlineSolver::exact_contact(const Eigen::VectorXd& 
   w_ = lift_mu_;
   w_.noalias() += Theta_c_ * u_hat;
   const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
-  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
+  contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rows.K.rows());
   const Eigen::VectorXd lambda_kept = Xi_ * lambda_hat;
   for (std::size_t i = 0; i < kept_rows_.size(); ++i) lambda(kept_rows_[i]) = lambda_kept(static_cast<Eigen::Index>(i));
   ErrorEstimator::ExactContact c;
   c.load = rows.K.transpose() * lambda;
-  const Eigen::VectorXd slack = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
-  const ConstraintMeasures m = constraint_measures(slack, lambda, quadrature_.weight);
+  c.slack = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
+  const ConstraintMeasures m = constraint_measures(c.slack, lambda, quadrature_.weight);
   c.violation = m.violation;
   c.multiplier_norm = m.multiplier_norm;
   c.complementarity = m.complementarity;
+  c.K = std::move(rows.K);
+  c.lambda = std::move(lambda);
   return c;
 }
 
