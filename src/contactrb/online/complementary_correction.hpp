@@ -38,17 +38,24 @@ class ComplementaryCorrection {
 
  private:
   void form_gram();
-  // Gathers the rows of K whose DOFs are all measured into rows_; false when a row with a
-  // multiplier is not among them.
-  bool gather_rows(const RowSparse& K, const Eigen::VectorXd& lambda);
-  void form_schur(const RowSparse& K);
+  // The rows of K whose DOFs are all measured (measured_); false when a row with a multiplier is
+  // not among them.
+  bool gather_measured(const RowSparse& K, const Eigen::VectorXd& lambda);
+  // S / t on the rows_ (KG_ = K_rows X^-1 on the measured DOFs).
+  void form_schur(const RowSparse& K, double t);
+  // Solves the complementarity problem on rows_ into c_; false when the QP fails.
+  bool solve_on_rows(const Eigen::VectorXd& slack, const Eigen::VectorXd& lambda);
+  // The gap change (S / t) c on every measured row into change_; adds to rows_ the measured rows
+  // the correction closes (their slack below the change) and returns how many.
+  int add_closed_rows(const RowSparse& K, const Eigen::VectorXd& slack, double t);
 
   Eigen::MatrixXd load_T_;   // rank x n_e (released once the Gram matrix is formed)
   Eigen::MatrixXd gram_;     // n_e x n_e: X^-1 on the measured DOFs
   std::vector<int> local_;   // contact DOF -> measured index, -1 when not measured
-  std::vector<Eigen::Index> rows_;
-  Eigen::MatrixXd KG_, S_;   // |rows| x n_e, |rows| x |rows|
-  Eigen::VectorXd q_, lam_, c_, Sc_;
+  std::vector<Eigen::Index> measured_, rows_;  // measured rows; the rows of the problem (sorted)
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> KG_;  // |rows| x n_e
+  Eigen::MatrixXd S_;        // |rows| x |rows|
+  Eigen::VectorXd q_, lam_, c_, y_, change_;
   std::vector<int> warm_;
   solve::NonnegativeQPSolver qp_;
 };
