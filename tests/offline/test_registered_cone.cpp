@@ -120,6 +120,15 @@ contactrb::offline::OfflineResult build(int level, DualConeMethod method, int R)
   return contactrb::offline::build_reduced_model(hertz_a(level), contactrb::cases::builtin_case_spec("hertz-a"), s);
 }
 
+// The model against Newton HF references on the case's verification set.
+contactrb::study::Evaluation evaluate_verification(const contactrb::cases::CaseSpec& spec,
+                                                   const contactrb::offline::OfflineResult& off) {
+  contactrb::study::EvaluationOptions o;
+  o.jobs = 2;
+  o.online_repeats = 1;
+  return contactrb::study::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
+}
+
 // The estimate at every point of an evaluation: an upper bound of the energy-norm error, sharp
 // (effectivity at most 10, median at most 5). The registered pressure meets the HF rows only in the
 // mean, so these figures come from the complementary bound (without it: effectivity 13-61).
@@ -143,11 +152,7 @@ TEST(RegisteredCone, FollowsTheMovingSupportOnHertzALevel3) {
   const contactrb::offline::OfflineResult off = build(3, DualConeMethod::Registered, 15);
   ASSERT_EQ(off.model.registration.R(), 15);
   EXPECT_GT(off.model.R_kept(), 60);  // the row cone would need one generator per kept row
-  contactrb::study::EvaluationOptions o;
-  o.jobs = 2;
-  o.online_repeats = 1;
-  const contactrb::study::Evaluation e =
-      contactrb::study::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
+  const contactrb::study::Evaluation e = evaluate_verification(spec, off);
   EXPECT_EQ(e.summary.hf_failures + e.summary.rb_failures, 0);
   std::printf("[ registered ] N %d R %d: max e_press %.3e (cone's best %.3e), e_displ %.3e, effectivity %.2f-%.2f\n",
               e.N, e.R, e.summary.max_e_press, e.summary.max_e_press_cone, e.summary.max_e_displ,
@@ -161,8 +166,7 @@ TEST(RegisteredCone, FollowsTheMovingSupportOnHertzALevel3) {
   expect_sharp_upper_bound(e);
   // The same R in a global CPG cone of the training pressures holds a worse best approximation.
   const contactrb::offline::OfflineResult cpg = build(3, DualConeMethod::CPG, 15);
-  const contactrb::study::Evaluation c =
-      contactrb::study::evaluate_model(cpg.model, cpg.reconstruction, spec, spec.set("verification"), o);
+  const contactrb::study::Evaluation c = evaluate_verification(spec, cpg);
   std::printf("[ cpg ] R %d: cone's best %.3e\n", c.R, c.summary.max_e_press_cone);
   EXPECT_GT(c.summary.max_e_press_cone, 2.5 * e.summary.max_e_press_cone);
 }
@@ -179,11 +183,7 @@ TEST(RegisteredCone, KeepsTheEdgeRowsOfASupportThatDoesNotMove) {
   contactrb::offline::OfflineSettings s;
   s.dual_method = DualConeMethod::Registered;
   const contactrb::offline::OfflineResult off = contactrb::offline::build_reduced_model(set, spec, s);
-  contactrb::study::EvaluationOptions o;
-  o.jobs = 2;
-  o.online_repeats = 1;
-  const contactrb::study::Evaluation e =
-      contactrb::study::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
+  const contactrb::study::Evaluation e = evaluate_verification(spec, off);
   EXPECT_EQ(e.summary.rb_failures, 0);
   EXPECT_LT(e.summary.max_e_press, 5e-3);
   EXPECT_LT(e.R, off.model.R_kept());
@@ -195,11 +195,7 @@ TEST(RegisteredCone, KeepsTheEdgeRowsOfASupportThatDoesNotMove) {
 TEST(RegisteredCone, EstimateIsASharpUpperBoundOnHertzALevel0) {
   const auto spec = contactrb::cases::builtin_case_spec("hertz-a");
   const contactrb::offline::OfflineResult off = build(0, DualConeMethod::Registered, 15);
-  contactrb::study::EvaluationOptions o;
-  o.jobs = 2;
-  o.online_repeats = 1;
-  const contactrb::study::Evaluation e =
-      contactrb::study::evaluate_model(off.model, off.reconstruction, spec, spec.set("verification"), o);
+  const contactrb::study::Evaluation e = evaluate_verification(spec, off);
   EXPECT_EQ(e.summary.hf_failures + e.summary.rb_failures, 0);
   expect_sharp_upper_bound(e);
 }
