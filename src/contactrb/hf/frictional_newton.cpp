@@ -180,8 +180,7 @@ void FrictionStep<Dim>::residuals(FrictionIterate<Dim>& x) const {
   const Eigen::VectorXd contact_forces = x.n.F1 - (*p_.A00 * x.n.u0 - *p_.b) + Ttl;
   const double force_scale = std::max({p_.b->norm(), contact_forces.norm(), 1e-300});
   x.kkt.normal = HFKKT{x.F1.norm() / force_scale, x.n.primal, x.n.dual, x.n.complementarity};
-  const double lmax = std::max(x.n.lambda.size() > 0 ? x.n.lambda.cwiseAbs().maxCoeff() : 0.0, 1e-300);
-  x.kkt.friction = x.Ct.size() > 0 ? x.Ct.cwiseAbs().maxCoeff() / lmax : 0.0;
+  x.kkt.friction = x.Ct.size() > 0 ? x.n.lambda_scale.relative(x.Ct.cwiseAbs().maxCoeff()) : 0.0;
   double ct2 = 0.0;
   for (int r = 0; r < R_; ++r) ct2 += std::pow(p_.quadrature->weight(r), 2) * x.Ct.template segment<M>(M * r).squaredNorm();
   x.merit = std::sqrt(x.F1.squaredNorm() + x.n.ncp.cwiseProduct(p_.quadrature->weight).squaredNorm() + ct2);
