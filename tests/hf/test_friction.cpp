@@ -131,55 +131,132 @@ TEST(Friction, CoulombConeHoldsAndSlipNodesSitOnIt) {
 }
 
 // Cattaneo-Mindlin for two cylinders of the same material (Johnson, Contact Mechanics, 7.1):
-// under a tangential force Q < f P after the normal load, the stick zone is |x| < c with
-// c / a = sqrt(1 - Q / (f P)), and t(x) = f p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)]
-// (each root taken where it is real), with a and p0 those of Hertz for the measured P. c is
-// measured without the theory's tractions: in the stick zone f p - |t| = f p0 (c/a)
-// sqrt(1 - x^2/c^2), so (f p - |t|)^2 is linear in x^2 (least squares over the stick nodes,
-// as test_hertz.cpp fits a).
+// under a tangential force Q < f P after the normal load p = p0 sqrt(1 - x^2/a^2), the stick
+// zone is |x| < c with c / a = sqrt(1 - Q / (f P)), and
+// t(x) = f p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)] (each root taken where it is real).
+// c is measured without the theory's tractions: in the stick zone f p - |t| = f p0 (c/a)
+// sqrt(1 - x^2/c^2), so (f p - |t|)^2 is linear in x^2 (least squares over the stick nodes, as
+// test_hertz.cpp fits a).
+namespace {
+struct Ellipse {
+  double half_width = 0.0, peak = 0.0;  // v(x) = peak sqrt(1 - x^2 / half_width^2)
+  double at(double x) const { return peak * std::sqrt(std::max(0.0, 1.0 - x * x / (half_width * half_width))); }
+};
+
+// Least squares of v^2 = peak^2 (1 - x^2 / half_width^2) over the rows where `use`.
+Ellipse fit_ellipse(const std::vector<double>& x, const Eigen::VectorXd& v, const std::vector<char>& use) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t r = 0; r < x.size(); ++r) {
+    if (!use[r]) continue;
+    const double X = x[r] * x[r], Y = v(static_cast<Eigen::Index>(r)) * v(static_cast<Eigen::Index>(r));
+    sx += X; sy += Y; sxx += X * X; sxy += X * Y; ++n;
+  }
+  EXPECT_GE(n, 6) << "too few rows to fit an ellipse";
+  const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx), alpha = (sy - beta * sx) / n;
+  return {std::sqrt(-alpha / beta), std::sqrt(alpha)};
+}
+
+// What a converged 2D Cattaneo-Mindlin run gives to compare with the theory.
+struct CattaneoMeasure {
+  double P = 0.0, Q = 0.0;
+  std::vector<double> x;  // deformed, centred on the centre of pressure
+  Eigen::VectorXd weight, pressure, traction;  // traction: |t|
+  Ellipse normal;         // fitted to the computed pressure (rows in contact)
+  double stick_half_width = 0.0;  // c fitted over the stick nodes
+};
+
+CattaneoMeasure measure(const cases::FrictionalCase& c, const hf::FrictionalSolution& s) {
+  hf::ContactProblem final_data = c.problem;
+  final_data.dirichlet = c.path.back().dirichlet;
+  CattaneoMeasure m;
+  m.P = s.contact_force;
+  m.Q = std::abs(s.tangential_force(0));
+  m.x = contact_x(final_data, s);
+  m.weight = hf::HFSolver(final_data).quadrature().weight;
+  m.pressure = s.lambda;
+  m.traction = s.lambda_t.cwiseAbs();
+  std::vector<char> contact(m.x.size()), stick(m.x.size());
+  for (std::size_t r = 0; r < m.x.size(); ++r) {
+    contact[r] = s.lambda(static_cast<Eigen::Index>(r)) > 0.0;
+    stick[r] = contact[r] && s.state[r] == hf::SlipState::Stick;
+  }
+  m.normal = fit_ellipse(m.x, m.pressure, contact);
+  const Eigen::VectorXd stick_part = (kF * m.pressure - m.traction).cwiseMax(0.0);
+  m.stick_half_width = fit_ellipse(m.x, stick_part, stick).half_width;
+  return m;
+}
+
+// Relative L2(Gamma_c) distance of `values` to `truth`.
+template <class Truth>
+double relative_l2(const CattaneoMeasure& m, const Eigen::VectorXd& values, Truth truth) {
+  double e2 = 0.0, t2 = 0.0;
+  for (std::size_t r = 0; r < m.x.size(); ++r) {
+    const auto i = static_cast<Eigen::Index>(r);
+    const double t = truth(m.x[r]);
+    e2 += m.weight(i) * std::pow(values(i) - t, 2);
+    t2 += m.weight(i) * t * t;
+  }
+  return std::sqrt(e2 / t2);
+}
+
+// The tangential traction against Cattaneo-Mindlin's on the normal pressure `normal`, with c
+// of the theory.
+double traction_error(const CattaneoMeasure& m, const Ellipse& normal) {
+  const double c = normal.half_width * std::sqrt(1.0 - m.Q / (kF * m.P));
+  const Ellipse inner{c, normal.peak * c / normal.half_width};
+  return relative_l2(m, m.traction, [&](double x) { return kF * (normal.at(x) - inner.at(x)); });
+}
+
+void print_measure(const char* what, const CattaneoMeasure& m) {
+  const Hertz2d h = hertz_from_force(m.P);
+  const Ellipse hertz{h.a, h.p0};
+  std::printf("[ report ] Cattaneo-Mindlin %s: P %.5f, Q/(fP) %.4f, a %.4f (Hertz %.4f), p0 %.4f (Hertz %.4f), "
+              "c/a %.4f (theory %.4f); traction L2 error %.2f %% on the fitted pressure, %.2f %% on Hertz's; "
+              "pressure L2 error %.2f %% against its fit, %.2f %% against Hertz\n",
+              what, m.P, m.Q / (kF * m.P), m.normal.half_width, h.a, m.normal.peak, h.p0,
+              m.stick_half_width / m.normal.half_width, std::sqrt(1.0 - m.Q / (kF * m.P)),
+              100.0 * traction_error(m, m.normal), 100.0 * traction_error(m, hertz),
+              100.0 * relative_l2(m, m.pressure, [&](double x) { return m.normal.at(x); }),
+              100.0 * relative_l2(m, m.pressure, [&](double x) { return hertz.at(x); }));
+}
+}  // namespace
+
+// hertz-a's half-disks at a/R about 0.1 (the cattaneo case, level 4). Their computed pressure is
+// an ellipse (within 1.4 % in L2) 2.3 % narrower than Hertz's for the same P: the finite disks
+// against the half-space theory, a deviation of order a/R (1 % at a/R = 0.05, 4 % at 0.2) that
+// refinement keeps. Cattaneo's construction is applied to that ellipse: a and p0 fitted to the
+// computed pressure, c from the theory's c/a (the traction against Hertz's a and p0 themselves:
+// CattaneoMindlinOnASmallContactWithinFivePercent).
 TEST(Friction, CattaneoMindlinStickZoneAndTractionWithinFivePercent) {
   const hf::FrictionalSolution& s = cattaneo_run();
   ASSERT_TRUE(s.converged) << s.message;
-  const double P = s.contact_force, Q = std::abs(s.tangential_force(0));
-  ASSERT_LT(Q, kF * P);
-  const Hertz2d h = hertz_from_force(P);
-  const double c_theory = h.a * std::sqrt(1.0 - Q / (kF * P));
-  const std::vector<double> x = contact_x(hertz_with(hertz_step(0.13, 0.01), 481), s);
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
-  double err2 = 0.0, ref2 = 0.0, sup2 = 0.0, pre2 = 0.0, pref2 = 0.0;
-  const hf::HFSolver solver(hertz_with(hertz_step(0.13, 0.01), 481));
-  for (int r = 0; r < s.lambda.size(); ++r) {
-    const double xr = x[static_cast<std::size_t>(r)], w = solver.quadrature().weight(r);
-    const double t_theory = kF * h.p0 * (std::sqrt(std::max(0.0, 1.0 - xr * xr / (h.a * h.a))) -
-                                         (c_theory / h.a) * std::sqrt(std::max(0.0, 1.0 - xr * xr / (c_theory * c_theory))));
-    err2 += w * std::pow(std::abs(s.lambda_t(r)) - t_theory, 2);
-    ref2 += w * t_theory * t_theory;
-    // Cattaneo's superposition on the computed pressure: t = f p - f p0 (c/a) sqrt(1 - x^2/c^2).
-    const double t_superposed =
-        kF * s.lambda(r) - kF * h.p0 * (c_theory / h.a) * std::sqrt(std::max(0.0, 1.0 - xr * xr / (c_theory * c_theory)));
-    sup2 += w * std::pow(std::abs(s.lambda_t(r)) - t_superposed, 2);
-    pre2 += w * std::pow(s.lambda(r) - h.p0 * std::sqrt(std::max(0.0, 1.0 - xr * xr / (h.a * h.a))), 2);
-    pref2 += w * s.lambda(r) * s.lambda(r);
-    if (s.state[static_cast<std::size_t>(r)] != hf::SlipState::Stick || s.lambda(r) <= 0.0) continue;
-    const double X = xr * xr, Y = std::pow(kF * s.lambda(r) - std::abs(s.lambda_t(r)), 2);
-    sx += X; sy += Y; sxx += X * X; sxy += X * Y; ++n;
-  }
-  ASSERT_GE(n, 6);
-  const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  const double alpha = (sy - beta * sx) / n;
-  const double c_fit = std::sqrt(-alpha / beta);
-  const double l2 = std::sqrt(err2 / ref2), l2_superposed = std::sqrt(sup2 / ref2), l2_p = std::sqrt(pre2 / pref2);
-  std::printf("[ report ] Cattaneo-Mindlin: P %.5f, Q/(fP) %.4f, a %.4f, c/a %.4f (theory %.4f), traction L2 error %.2f %% "
-              "(%.2f %% on the computed pressure; the pressure's own L2 error against Hertz %.2f %%), %d stick\n",
-              P, Q / (kF * P), h.a, c_fit / h.a, c_theory / h.a, 100.0 * l2, 100.0 * l2_superposed, 100.0 * l2_p, n);
-  EXPECT_NEAR(c_fit / c_theory, 1.0, 0.05);
-  // The theory's profile: measured 8.4 % here (7.6 % at arc 961, 5.9 % at arc 241: no trend with h),
-  // about twice the L2 error of the computed pressure against Hertz's (4.5 %): the Hertz
-  // profile itself is the limit, not the friction. With the computed pressure in Cattaneo's
-  // superposition the tangential part alone is checked at 5 %.
-  EXPECT_LT(l2, 0.10);
-  EXPECT_LT(l2_superposed, 0.05);
+  const CattaneoMeasure m = measure(cases::cattaneo_case(4), s);
+  ASSERT_LT(m.Q, kF * m.P);
+  print_measure("level 4", m);
+  const Hertz2d h = hertz_from_force(m.P);
+  EXPECT_NEAR(m.normal.half_width / h.a, 1.0, 0.03);
+  EXPECT_NEAR(m.normal.peak / h.p0, 1.0, 0.03);
+  EXPECT_LT(relative_l2(m, m.pressure, [&](double x) { return m.normal.at(x); }), 0.02);
+  EXPECT_NEAR(m.stick_half_width / (m.normal.half_width * std::sqrt(1.0 - m.Q / (kF * m.P))), 1.0, 0.05);
+  EXPECT_LT(traction_error(m, m.normal), 0.05);
+}
+
+// A small contact (approach 0.105: a/R = 0.035, where the half-space theory holds) on a mesh
+// that resolves it (level 5, 21 rows in contact): the traction against Cattaneo-Mindlin with a
+// and p0 those of Hertz for the measured P, c / a of the theory.
+TEST(Friction, CattaneoMindlinOnASmallContactWithinFivePercent) {
+  const cases::FrictionalCase c = cases::cattaneo_case(5, {0.105, 0.0017, kF, 1});
+  const hf::FrictionalSolution s = hf::solve_load_path(c.problem, c.path, c.friction);
+  ASSERT_TRUE(s.converged) << s.message;
+  const CattaneoMeasure m = measure(c, s);
+  ASSERT_LT(m.Q, kF * m.P);
+  print_measure("level 5, a/R 0.035", m);
+  const Hertz2d h = hertz_from_force(m.P);
+  const Ellipse hertz{h.a, h.p0};
+  EXPECT_LT(relative_l2(m, m.pressure, [&](double x) { return hertz.at(x); }), 0.03);
+  EXPECT_NEAR(m.stick_half_width / (h.a * std::sqrt(1.0 - m.Q / (kF * m.P))), 1.0, 0.05);
+  EXPECT_LT(traction_error(m, hertz), 0.05);
 }
 
 // f = 0: the frictionless solver's answer, bit for bit.

@@ -184,13 +184,20 @@ StepAlgebra<Dim> step_algebra(const BasicHFSolver<Dim>& solver, const Eigen::Vec
 }
 
 // Where a step's Newton iteration starts: the previous state (its free displacements; the
-// prescribed ones are the step's); from a state without contact (the first step), the
-// frictionless answer of the step instead: the frictional iteration then starts from the right
-// contact zone rather than from an open gap, where the states of every row change at once.
+// prescribed ones are the step's). From a state without contact (the first step), the
+// frictionless answer of the step instead, which finds the contact zone: from an open gap or a
+// point contact (one touching row) the states of every row would change at once. Bodies that
+// touch at rest over more than one row (meshed in contact: the contact zone is there) start from
+// rest, their touching rows sticking from the first iterate: the frictionless answer would have
+// them all slid, which the iteration must undo (block-on-block-3d level 1: 6 iterations from
+// rest, 8 after the frictionless solve; docs/solvers.md, "Friction").
 template <int Dim>
-FrictionState<Dim> start_of_step(const BasicHFSolver<Dim>& solver, const BasicLoadStep<Dim>& step,
-                                 const FrictionState<Dim>& previous, const HFSettings& frictionless) {
+FrictionState<Dim> start_of_step(const BasicHFSolver<Dim>& solver, const FrictionAlgebra<Dim>& algebra,
+                                 const BasicLoadStep<Dim>& step, const FrictionState<Dim>& previous,
+                                 const FrictionSettings& friction, const HFSettings& frictionless) {
   if ((previous.lambda.array() > 0.0).any()) return previous;
+  const std::vector<char> touching = frictional_rows(algebra, previous, friction.linearization.projection);
+  if (std::count(touching.begin(), touching.end(), 1) > 1) return previous;
   HFSettings newton = frictionless;
   newton.method = HFMethod::Newton;
   const BasicHFSolver<Dim> step_solver(with_step(solver.problem(), step), setup_options_for(newton));
@@ -262,7 +269,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.dofs = &a.dofs;
     np.A00 = &a.A00;
     np.b = &a.b;
-    const FrictionState<Dim> start = start_of_step(solver, path[i], state, frictionless);
+    const FrictionState<Dim> start = start_of_step(solver, np, path[i], state, friction, frictionless);
     FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
     step.report.time_s = seconds_since(t_step);  // FrictionStepReport::time_s: the whole step
     sol.steps.push_back(step.report);

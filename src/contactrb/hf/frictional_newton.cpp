@@ -31,6 +31,32 @@ constexpr double kTouchingGap = 1e-12;
 // A reduced system with a smaller reciprocal condition estimate is singular (NewtonTuning::min_rcond).
 constexpr double kMinRcond = 1e-14;
 
+// The diagonal of the mesh's bounding box.
+template <int Dim>
+double diameter(const mesh::SimplexMesh<Dim>& mesh) {
+  Eigen::Matrix<double, Dim, 1> lo = mesh.nodes.front(), hi = lo;
+  for (const auto& x : mesh.nodes) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  return (hi - lo).norm();
+}
+
+// frictional_rows with the contact maps at u_prev evaluated.
+template <int Dim>
+std::vector<char> frictional_rows(const FrictionAlgebra<Dim>& p, const FrictionState<Dim>& previous,
+                                  const contact::ContactMapsOf<Dim>& before) {
+  const int R = static_cast<int>(p.quadrature->weight.size());
+  const double size = diameter(*p.mesh);
+  std::vector<char> frictional(sz(R), 0);
+  for (int r = 0; r < R; ++r) {
+    const bool candidate = before.rows.K.outerIndexPtr()[r + 1] > before.rows.K.outerIndexPtr()[r];
+    const double touching = kTouchingGap * p.quadrature->weight(r) * size;
+    frictional[sz(r)] = candidate && (previous.lambda(r) > 0.0 || before.d(r) <= touching) ? 1 : 0;
+  }
+  return frictional;
+}
+
 // An iterate and what the method reads at it.
 template <int Dim>
 struct FrictionIterate {
@@ -115,20 +141,10 @@ FrictionStep<Dim>::FrictionStep(const FrictionAlgebra<Dim>& p, const FrictionSta
     global_to_free_[sz(g)] = i;
     movable_[sz(g)] = 1;
   }
-  Eigen::Matrix<double, Dim, 1> lo = p.mesh->nodes.front(), hi = lo;
-  for (const auto& x : p.mesh->nodes) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  diameter_ = (hi - lo).norm();
-  contact::ContactMapsOf<Dim> before =
+  diameter_ = diameter(*p.mesh);
+  const contact::ContactMapsOf<Dim> before =
       contact::evaluate_contact_maps(*p.mesh, *p.pair, *p.quadrature, previous.u, s.linearization.projection);
-  frictional_.assign(sz(R_), 0);
-  for (int r = 0; r < R_; ++r) {
-    const bool candidate = before.rows.K.outerIndexPtr()[r + 1] > before.rows.K.outerIndexPtr()[r];
-    const double touching = kTouchingGap * p.quadrature->weight(r) * diameter_;
-    frictional_[sz(r)] = candidate && (previous.lambda(r) > 0.0 || before.d(r) <= touching) ? 1 : 0;
-  }
+  frictional_ = frictional_rows(p, previous, before);
   rho_previous_ = contact::material_points<Dim>(*p.mesh, *p.pair, before.pointwise, previous.u);
 }
 
@@ -180,8 +196,7 @@ void FrictionStep<Dim>::residuals(FrictionIterate<Dim>& x) const {
   const Eigen::VectorXd contact_forces = x.n.F1 - (*p_.A00 * x.n.u0 - *p_.b) + Ttl;
   const double force_scale = std::max({p_.b->norm(), contact_forces.norm(), 1e-300});
   x.kkt.normal = HFKKT{x.F1.norm() / force_scale, x.n.primal, x.n.dual, x.n.complementarity};
-  const double lmax = std::max(x.n.lambda.size() > 0 ? x.n.lambda.cwiseAbs().maxCoeff() : 0.0, 1e-300);
-  x.kkt.friction = x.Ct.size() > 0 ? x.Ct.cwiseAbs().maxCoeff() / lmax : 0.0;
+  x.kkt.friction = x.Ct.size() > 0 ? x.n.lambda_scale.relative(x.Ct.cwiseAbs().maxCoeff()) : 0.0;
   double ct2 = 0.0;
   for (int r = 0; r < R_; ++r) ct2 += std::pow(p_.quadrature->weight(r), 2) * x.Ct.template segment<M>(M * r).squaredNorm();
   x.merit = std::sqrt(x.F1.squaredNorm() + x.n.ncp.cwiseProduct(p_.quadrature->weight).squaredNorm() + ct2);
@@ -457,6 +472,14 @@ class FrictionDriver {
 }  // namespace
 
 template <int Dim>
+std::vector<char> frictional_rows(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
+                                  const contact::ProjectionOptions& projection) {
+  return frictional_rows(algebra, previous,
+                         contact::evaluate_contact_maps(*algebra.mesh, *algebra.pair, *algebra.quadrature, previous.u,
+                                                        projection));
+}
+
+template <int Dim>
 FrictionStepResult<Dim> solve_friction_step(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
                                             const FrictionState<Dim>& start, solve::SelectedInverse* inverse,
                                             const FrictionSettings& settings) {
@@ -469,5 +492,10 @@ template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<2>&, co
 template FrictionStepResult<3> solve_friction_step(const FrictionAlgebra<3>&, const FrictionState<3>&,
                                                    const FrictionState<3>&, solve::SelectedInverse*,
                                                    const FrictionSettings&);
+
+template std::vector<char> frictional_rows(const FrictionAlgebra<2>&, const FrictionState<2>&,
+                                           const contact::ProjectionOptions&);
+template std::vector<char> frictional_rows(const FrictionAlgebra<3>&, const FrictionState<3>&,
+                                           const contact::ProjectionOptions&);
 
 }  // namespace contactrb::hf

@@ -34,6 +34,12 @@ struct FrictionStepResult {
   FrictionKKT kkt;
 };
 
+// The rows that carry friction in a step from `previous`: the candidates in contact at u_prev
+// (lambda_r > 0) or touching (a weighted gap d_r of round-off size: two bodies meshed in contact).
+template <int Dim>
+std::vector<char> frictional_rows(const FrictionAlgebra<Dim>& algebra, const FrictionState<Dim>& previous,
+                                  const contact::ProjectionOptions& projection);
+
 // previous: the end of the previous step (u_prev of the slip increments); start: the first
 // iterate (the previous state, or a predictor of it); inverse: A_00 factorized (the systems
 // condensed on the contact DOFs), or nullptr (one sparse LU of the whole system per iteration).
@@ -47,5 +53,9 @@ extern template FrictionStepResult<2> solve_friction_step(const FrictionAlgebra<
 extern template FrictionStepResult<3> solve_friction_step(const FrictionAlgebra<3>&, const FrictionState<3>&,
                                                           const FrictionState<3>&, solve::SelectedInverse*,
                                                           const FrictionSettings&);
+extern template std::vector<char> frictional_rows(const FrictionAlgebra<2>&, const FrictionState<2>&,
+                                                  const contact::ProjectionOptions&);
+extern template std::vector<char> frictional_rows(const FrictionAlgebra<3>&, const FrictionState<3>&,
+                                                  const contact::ProjectionOptions&);
 
 }  // namespace contactrb::hf

@@ -12,6 +12,7 @@
 #include "contactrb/fem/sparsity.hpp"
 #include "contactrb/fem/traction.hpp"
 #include "contactrb/hf/contact_condensation.hpp"
+#include "contactrb/hf/multiplier_scale.hpp"
 
 namespace contactrb::hf {
 
@@ -339,10 +340,11 @@ BasicHFSolution<Dim> BasicHFSolver<Dim>::solve(const HFSettings& settings, const
   for (int i = 0; i < abs_u.size(); ++i) abs_u(i) = std::abs(u0_c(i));
   const double row_scale = (last_Kc.cwiseAbs() * abs_u).maxCoeff();
   const double gap_scale = std::max({last_g_lift.cwiseAbs().maxCoeff(), row_scale, 1e-300});
-  const double lmax = std::max(sol.lambda.cwiseAbs().maxCoeff(), 1e-300);
+  const MultiplierScale lambda_scale = multiplier_scale(m.A00_matrix, m.b, sol.u0, sol.lambda, m.quadrature.weight);
   sol.kkt.primal = std::max(0.0, -slack.minCoeff()) / gap_scale;
-  sol.kkt.dual = std::max(0.0, -sol.lambda.minCoeff()) / lmax;
-  sol.kkt.complementarity = sol.lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / (lmax * gap_scale);
+  sol.kkt.dual = lambda_scale.relative(std::max(0.0, -sol.lambda.minCoeff()));
+  sol.kkt.complementarity =
+      sol.lambda.cwiseProduct(slack).cwiseAbs().maxCoeff() / (lambda_scale.value() * gap_scale);
 
   m.finish(sol, t0);
   return sol;

@@ -58,8 +58,10 @@ struct HFInitialGuess {
 struct HFKKT {
   double stationarity = 0.0;     // |A_00 u_0 + K_0' lambda - b| / max(|b|, |K_0' lambda|)
   double primal = 0.0;           // max(0, max_r (K u - g)_r) / gap scale (max(|g|, max_r sum_j |K_rj u_j|))
-  double dual = 0.0;             // max(0, -min lambda) / max(lambda)
-  double complementarity = 0.0;  // max_r |lambda_r (g - K u)_r| / (max lambda * gap scale)
+  // Multiplier scale: max |lambda|, floored by the rounding of the forces the multipliers balance;
+  // multipliers within the floor count as zero (hf/multiplier_scale.hpp).
+  double dual = 0.0;             // max(0, -min lambda) / multiplier scale
+  double complementarity = 0.0;  // max_r |lambda_r (g - K u)_r| / (multiplier scale * gap scale)
   double max() const;
 };
 

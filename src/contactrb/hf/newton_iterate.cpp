@@ -62,11 +62,11 @@ NewtonIterate<Dim> NewtonEvaluator<Dim>::operator()(Eigen::VectorXd u0, Eigen::V
   const Eigen::VectorXd g_lift = st.maps.rows.g - st.maps.rows.K * p_.dofs->lift();
   const double row_scale = st.K0.rows() > 0 ? (st.K0.cwiseAbs() * st.u0.cwiseAbs()).maxCoeff() : 0.0;
   const double gap_scale = std::max({g_lift.size() > 0 ? g_lift.cwiseAbs().maxCoeff() : 0.0, row_scale, 1e-300});
-  const double lmax = std::max(st.lambda.size() > 0 ? st.lambda.cwiseAbs().maxCoeff() : 0.0, 1e-300);
+  st.lambda_scale = multiplier_scale(*p_.A00, *p_.b, st.u0, st.lambda, p_.quadrature->weight);
   if (d.size() > 0) {
     st.primal = std::max(0.0, -d.minCoeff()) / gap_scale;
-    st.dual = std::max(0.0, -st.lambda.minCoeff()) / lmax;
-    st.complementarity = st.lambda.cwiseProduct(d).cwiseAbs().maxCoeff() / (lmax * gap_scale);
+    st.dual = st.lambda_scale.relative(std::max(0.0, -st.lambda.minCoeff()));
+    st.complementarity = st.lambda.cwiseProduct(d).cwiseAbs().maxCoeff() / (st.lambda_scale.value() * gap_scale);
   }
   return st;
 }

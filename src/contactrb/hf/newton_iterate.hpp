@@ -9,6 +9,7 @@
 #include <string>
 
 #include "contactrb/contact/contact_linearization.hpp"
+#include "contactrb/hf/multiplier_scale.hpp"
 #include "contactrb/hf/semismooth_newton.hpp"
 
 namespace contactrb::hf {
@@ -23,6 +24,7 @@ struct NewtonIterate {
   Eigen::VectorXd F1;     // A_00 u_0 - b + K_0' lambda
   Eigen::VectorXd ncp;    // min(lambda_r, c_r d_r)
   double merit = 0.0;     // |(F1, |I_r| ncp_r)|
+  MultiplierScale lambda_scale;  // of the dual and complementarity residuals
   double stationarity = 0.0, primal = 0.0, dual = 0.0, complementarity = 0.0;  // HFKKT
   double kkt() const { return std::max({stationarity, primal, dual, complementarity}); }
 };
