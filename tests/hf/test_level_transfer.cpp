@@ -21,6 +21,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/triangle_hit.hpp"
 #include "contactrb/hf/level_transfer.hpp"
+#include "contactrb/mesh/structured.hpp"
 
 using namespace contactrb;
 
@@ -122,6 +123,81 @@ TEST(LevelTransfer, LocatorFindsTheBruteForceNearestTriangle) {
       }
     }
   }
+}
+
+namespace {
+
+// The block [lo, hi]^Dim of n cells a side (mesh/structured.hpp), body 0.
+template <int Dim>
+mesh::SimplexMesh<Dim> block(double lo, double hi, int n) {
+  if constexpr (Dim == 2) {
+    return mesh::rectangle(lo, lo, hi, hi, n, n);
+  } else {
+    return mesh::box(Eigen::Vector3d::Constant(lo), Eigen::Vector3d::Constant(hi), n, n, n);
+  }
+}
+
+// Transfer from the unit block (interior nodes perturbed) to the block [-0.3, 1.3]^Dim: every
+// fine boundary node and the layer beneath lie outside the coarse body, off its faces, edges
+// and corners. The truth
+// is independent of the locator: the nearest point of the unit block is the clamp of x to
+// [0, 1]^Dim, so the distance is |x - clamp(x)| and the located cell must hold clamp(x).
+template <int Dim>
+void check_outside_points() {
+  using Point = Eigen::Matrix<double, Dim, 1>;
+  using Matrix = Eigen::Matrix<double, Dim, Dim>;
+  mesh::SimplexMesh<Dim> coarse = block<Dim>(0.0, 1.0, 4);
+  mesh::perturb_interior(coarse, 0.1);
+  const mesh::SimplexMesh<Dim> fine = block<Dim>(-0.3, 1.3, 7);
+  Matrix M = Matrix::Zero();
+  for (int i = 0; i < Dim; ++i) {
+    for (int j = 0; j < Dim; ++j) M(i, j) = 0.5 + i - 1.3 * j + 0.7 * i * j;
+  }
+  const Point c = Point::LinSpaced(-0.4, 1.1);
+  const auto field = [&](const mesh::SimplexMesh<Dim>& m) {
+    Eigen::VectorXd u(m.num_dofs());
+    for (int v = 0; v < m.num_nodes(); ++v) u.template segment<Dim>(Dim * v) = M * m.nodes[static_cast<std::size_t>(v)] + c;
+    return u;
+  };
+  // The transfer extrapolates from the nearest cell: a linear field is exact at every fine node.
+  const Eigen::VectorXd u = hf::transfer_displacement(coarse, field(coarse), fine);
+  const Eigen::VectorXd truth = field(fine);
+  EXPECT_LT((u - truth).template lpNorm<Eigen::Infinity>(), 1e-12 * truth.template lpNorm<Eigen::Infinity>()) << Dim << "D";
+
+  const hf::SimplexLocator<Dim> locator(coarse, mesh::kSlaveBody);
+  int outside = 0;
+  double nearest_value_error = 0.0;  // what the value at the nearest point would miss
+  for (int v = 0; v < fine.num_nodes(); ++v) {
+    const Point& x = fine.nodes[static_cast<std::size_t>(v)];
+    const Point p = x.cwiseMax(0.0).cwiseMin(1.0);
+    if (p == x) continue;
+    ++outside;
+    const auto loc = locator.locate(x);
+    ASSERT_GE(loc.cell, 0);
+    EXPECT_NEAR(loc.distance, (x - p).norm(), 1e-14) << "node " << v;
+    const auto& cell = coarse.cells()[static_cast<std::size_t>(loc.cell)];
+    const auto node = [&](int k) { return coarse.nodes[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])]; };
+    Matrix J;
+    for (int k = 0; k < Dim; ++k) J.col(k) = node(k + 1) - node(0);
+    const Point l = J.partialPivLu().solve(p - node(0));
+    EXPECT_GE(std::min(l.minCoeff(), 1.0 - l.sum()), -1e-12) << "node " << v << ": the cell does not hold the nearest point";
+    Point back = Point::Zero();
+    for (int k = 0; k <= Dim; ++k) back += loc.barycentric(k) * node(k);
+    EXPECT_LT((back - x).norm(), 1e-12) << "node " << v;
+    nearest_value_error = std::max(nearest_value_error, (M * (x - p)).norm());
+  }
+  // Two of the eight node planes per axis lie on each side of [0, 1]: 8^Dim - 4^Dim nodes outside.
+  EXPECT_EQ(outside, Dim == 2 ? 64 - 16 : 512 - 64) << Dim << "D";
+  EXPECT_GT(nearest_value_error, 0.3) << Dim << "D: the test would not tell extrapolation from the nearest value";
+}
+
+}  // namespace
+
+// Fine nodes outside the coarse body: located by the nearest coarse boundary facet, the field
+// extrapolated from that facet's cell (docs/solvers.md, "Grid sequencing"), in 2D and 3D.
+TEST(LevelTransfer, ExtrapolatesAtFineNodesOutsideTheCoarseBody) {
+  check_outside_points<2>();
+  check_outside_points<3>();
 }
 
 TEST(LevelTransfer, ReproducesAPressureLinearAlongTheArcExactly) {

@@ -7,7 +7,9 @@
 // axis, half height = the largest distance of a vertex to the plane). On a curved master the
 // cylinder is far thinner than the box (its height shrinks like the square of the piece size),
 // as the capsules of the 2D chain tree (projection.cpp). The 2D master polyline keeps that chain tree, which needs no sorting.
-// Internal to the contact module.
+// Vertices = Dim + 1 holds cells instead (triangles in 2D, tetrahedra in 3D): boxes only, for the
+// point location of the level transfer (hf/level_transfer.cpp).
+// Internal to the contact module and the level transfer.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -21,12 +23,12 @@
 
 namespace contactrb::contact {
 
-template <int Dim>
+template <int Dim, int Vertices = Dim>
 class FacetTree {
  public:
   using Point = Eigen::Matrix<double, Dim, 1>;
 
-  using Facet = std::array<Point, Dim>;
+  using Facet = std::array<Point, Vertices>;
 
   explicit FacetTree(std::vector<Facet> facets) : facets_(std::move(facets)) {
     lo_.reserve(facets_.size());
@@ -107,6 +109,7 @@ class FacetTree {
   }
 
   int num_facets() const { return static_cast<int>(facets_.size()); }
+  const Facet& facet(int k) const { return facets_[static_cast<std::size_t>(k)]; }
 
  private:
   // Facets per leaf: small enough to prune well, large enough to keep the tree shallow.
@@ -128,6 +131,7 @@ class FacetTree {
   // point is a convex combination of vertices, so it lies in the box and in the cylinder.
   static double lower_bound2(const Node& n, const Point& x) {
     const double box = (x - x.cwiseMax(n.min).cwiseMin(n.max)).squaredNorm();
+    if (n.axis.isZero()) return box;  // no cylinder: cells, or facets whose normals cancel exactly
     const Point d = x - n.centre;
     const double h = d.dot(n.axis);
     const double lateral = (d - h * n.axis).norm();
@@ -146,8 +150,9 @@ class FacetTree {
 
   const Facet& facet_at(int j) const { return facets_[static_cast<std::size_t>(order_[static_cast<std::size_t>(j)])]; }
 
-  // The cylinder of facets [lo, hi) around their mean plane.
+  // The cylinder of facets [lo, hi) around their mean plane (cells have no plane: none).
   void set_cylinder(Node& n) const {
+    if constexpr (Vertices != Dim) return;
     Point sum = Point::Zero(), centre = Point::Zero();
     for (int j = n.lo; j < n.hi; ++j) {
       sum += facet_normal(facet_at(j));
@@ -156,7 +161,7 @@ class FacetTree {
     const double len = sum.norm();
     if (!(len > 0.0)) return;
     n.axis = sum / len;
-    n.centre = centre / static_cast<double>(Dim * (n.hi - n.lo));
+    n.centre = centre / static_cast<double>(Vertices * (n.hi - n.lo));
     for (int j = n.lo; j < n.hi; ++j) {
       for (const Point& p : facet_at(j)) {
         const Point d = p - n.centre;

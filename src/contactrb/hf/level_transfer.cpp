@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
-#include <numeric>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/facet_tree.hpp"
+#include "contactrb/contact/segment_hit.hpp"
 #include "contactrb/contact/triangle_hit.hpp"
 
 namespace contactrb::hf {
@@ -34,176 +34,160 @@ Eigen::Vector4d barycentric(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return {1.0 - l.sum(), l(0), l(1), l(2)};
 }
 
-double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x) {
-  const Eigen::Vector2d e = b - a;
-  const double t = std::clamp((x - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-  return (a + t * e - x).norm();
-}
+// A cell counts as containing x when its barycentric coordinates are all above -kInsideRoundOff
+// (a fine node on a coarse facet, to round-off).
+constexpr double kInsideRoundOff = 1e-12;
 
-// Barycentric coordinates of x in cell `cell` and its distance to the cell (0 inside, to
-// round-off: a coordinate above -1e-12 counts as inside): the boundary edges (2D) or faces (3D).
+// Barycentric coordinates of x in cell `cell` (extrapolated outside it).
 template <int Dim>
-std::pair<Eigen::Matrix<double, Dim + 1, 1>, double> cell_hit(const mesh::SimplexMesh<Dim>& mesh, int cell,
-                                                               const Eigen::Matrix<double, Dim, 1>& x) {
+Eigen::Matrix<double, Dim + 1, 1> cell_barycentric(const mesh::SimplexMesh<Dim>& mesh, int cell,
+                                                   const Eigen::Matrix<double, Dim, 1>& x) {
   const auto& v = mesh.cells()[static_cast<std::size_t>(cell)];
   const auto node = [&](int k) -> const Eigen::Matrix<double, Dim, 1>& {
     return mesh.nodes[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
   };
   if constexpr (Dim == 2) {
-    const Eigen::Vector3d l = barycentric(node(0), node(1), node(2), x);
-    double d = 0.0;
-    if (l.minCoeff() < -1e-12) {
-      d = std::min({segment_distance(node(0), node(1), x), segment_distance(node(1), node(2), x),
-                    segment_distance(node(2), node(0), x)});
-    }
-    return {l, d};
+    return barycentric(node(0), node(1), node(2), x);
   } else {
-    const Eigen::Vector4d l = barycentric(node(0), node(1), node(2), node(3), x);
-    double d = 0.0;
-    if (l.minCoeff() < -1e-12) {
-      double d2 = std::numeric_limits<double>::infinity();
-      for (const auto& f : mesh::kCellFacets<3>) d2 = std::min(d2, contact::closest_on_triangle(node(f[0]), node(f[1]), node(f[2]), 0, x).d2);
-      d = std::sqrt(d2);
-    }
-    return {l, d};
+    return barycentric(node(0), node(1), node(2), node(3), x);
   }
 }
 
-// The grid side giving about one cell per grid cell: the side of a cube (square) of the mean
-// cell's measure times Dim! (a simplex of diameter h has measure about h^Dim / Dim!).
+// The closest point of x on a boundary facet: an edge in 2D, a triangle in 3D.
+contact::SegmentHit closest_on_facet(const std::array<Eigen::Vector2d, 2>& f, int k, const Eigen::Vector2d& x) {
+  return contact::closest_on_segment(f[0], f[1], k, x);
+}
+contact::TriangleHit closest_on_facet(const std::array<Eigen::Vector3d, 3>& f, int k, const Eigen::Vector3d& x) {
+  return contact::closest_on_triangle(f[0], f[1], f[2], k, x);
+}
+int facet_index(const contact::SegmentHit& h) { return h.segment; }
+int facet_index(const contact::TriangleHit& h) { return h.facet; }
+
+// The boundary facets of the cells `cells` (the facets of exactly one of them) as (cell, local
+// facet of mesh::kCellFacets), ordered by cell then local facet: among equally near facets the
+// locator takes the lowest-numbered cell.
 template <int Dim>
-double grid_side(double measure, std::size_t cells) {
-  if constexpr (Dim == 2) {
-    return std::max(std::sqrt(2.0 * measure / static_cast<double>(cells)), 1e-300);
-  } else {
-    return std::max(std::cbrt(6.0 * measure / static_cast<double>(cells)), 1e-300);
+std::vector<std::pair<int, int>> boundary_facets(const mesh::SimplexMesh<Dim>& mesh, const std::vector<int>& cells) {
+  struct Entry {
+    std::array<int, Dim> key;  // sorted vertices
+    int cell, local;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(cells.size() * (Dim + 1));
+  for (int t : cells) {
+    const auto& cell = mesh.cells()[static_cast<std::size_t>(t)];
+    for (int k = 0; k <= Dim; ++k) {
+      Entry e{{}, t, k};
+      for (std::size_t j = 0; j < static_cast<std::size_t>(Dim); ++j) {
+        e.key[j] = cell[static_cast<std::size_t>(mesh::kCellFacets<Dim>[static_cast<std::size_t>(k)][j])];
+      }
+      std::sort(e.key.begin(), e.key.end());
+      entries.push_back(e);
+    }
   }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  std::vector<std::pair<int, int>> facets;
+  for (std::size_t i = 0; i < entries.size();) {
+    std::size_t j = i + 1;
+    while (j < entries.size() && entries[j].key == entries[i].key) ++j;
+    if (j == i + 1) facets.emplace_back(entries[i].cell, entries[i].local);
+    i = j;
+  }
+  std::sort(facets.begin(), facets.end());
+  return facets;
 }
 
 }  // namespace
 
 template <int Dim>
+struct SimplexLocator<Dim>::Search {
+  using CellTree = contact::FacetTree<Dim, Dim + 1>;
+  using BoundaryTree = contact::FacetTree<Dim>;
+  std::vector<int> cells;  // the body's cells, ascending: entry k of cell_tree is cells[k]
+  CellTree cell_tree;
+  std::vector<int> facet_cell;  // the cell of entry k of boundary_tree
+  BoundaryTree boundary_tree;
+
+  // boundary: boundary_facets(mesh, own).
+  Search(const mesh::SimplexMesh<Dim>& mesh, std::vector<int> own, const std::vector<std::pair<int, int>>& boundary)
+      : cells(std::move(own)),
+        cell_tree(cell_simplices(mesh, cells)),
+        facet_cell(boundary.size()),
+        boundary_tree(facet_simplices(mesh, boundary)) {
+    for (std::size_t k = 0; k < boundary.size(); ++k) facet_cell[k] = boundary[k].first;
+  }
+
+  static std::vector<typename CellTree::Facet> cell_simplices(const mesh::SimplexMesh<Dim>& mesh,
+                                                              const std::vector<int>& cells) {
+    std::vector<typename CellTree::Facet> simplices;
+    simplices.reserve(cells.size());
+    for (int t : cells) {
+      const auto& cell = mesh.cells()[static_cast<std::size_t>(t)];
+      typename CellTree::Facet s;
+      for (std::size_t j = 0; j <= static_cast<std::size_t>(Dim); ++j) s[j] = mesh.nodes[static_cast<std::size_t>(cell[j])];
+      simplices.push_back(s);
+    }
+    return simplices;
+  }
+
+  static std::vector<typename BoundaryTree::Facet> facet_simplices(const mesh::SimplexMesh<Dim>& mesh,
+                                                                   const std::vector<std::pair<int, int>>& boundary) {
+    std::vector<typename BoundaryTree::Facet> facets;
+    facets.reserve(boundary.size());
+    for (const auto& [t, k] : boundary) {
+      const auto& cell = mesh.cells()[static_cast<std::size_t>(t)];
+      const auto& local = mesh::kCellFacets<Dim>[static_cast<std::size_t>(k)];
+      typename BoundaryTree::Facet f;
+      for (std::size_t j = 0; j < static_cast<std::size_t>(Dim); ++j) {
+        f[j] = mesh.nodes[static_cast<std::size_t>(cell[static_cast<std::size_t>(local[j])])];
+      }
+      facets.push_back(f);
+    }
+    return facets;
+  }
+};
+
+template <int Dim>
 SimplexLocator<Dim>::SimplexLocator(const mesh::SimplexMesh<Dim>& mesh, int body) : mesh_(&mesh) {
   std::vector<int> own;
-  Point lo = Point::Constant(std::numeric_limits<double>::infinity());
-  Point hi = -lo;
-  double measure = 0.0;
   for (int t = 0; t < mesh.num_cells(); ++t) {
-    if (mesh.body[static_cast<std::size_t>(t)] != body) continue;
-    own.push_back(t);
-    for (int v : mesh.cells()[static_cast<std::size_t>(t)]) {
-      lo = lo.cwiseMin(mesh.nodes[static_cast<std::size_t>(v)]);
-      hi = hi.cwiseMax(mesh.nodes[static_cast<std::size_t>(v)]);
-    }
-    measure += std::abs(mesh::signed_volume(mesh, t));
+    if (mesh.body[static_cast<std::size_t>(t)] == body) own.push_back(t);
   }
   require(!own.empty(), "level transfer: body " + std::to_string(body) + " has no " +
                             mesh::SimplexNames<Dim>::cell + " in the coarse mesh");
-  cell_ = grid_side<Dim>(measure, own.size());
-  origin_ = lo;
-  std::size_t total = 1;
-  for (int a = 0; a < Dim; ++a) {
-    n_[static_cast<std::size_t>(a)] = std::max(1, static_cast<int>(std::ceil((hi(a) - lo(a)) / cell_)));
-    total *= static_cast<std::size_t>(n_[static_cast<std::size_t>(a)]);
-  }
-  // Counting pass then filling pass (CSR).
-  start_.assign(total + 1, 0);
-  auto for_cells = [&](int t, auto&& visit) {
-    Point tlo = Point::Constant(std::numeric_limits<double>::infinity());
-    Point thi = -tlo;
-    for (int v : mesh.cells()[static_cast<std::size_t>(t)]) {
-      tlo = tlo.cwiseMin(mesh.nodes[static_cast<std::size_t>(v)]);
-      thi = thi.cwiseMax(mesh.nodes[static_cast<std::size_t>(v)]);
-    }
-    const std::array<int, Dim> g0 = grid_cell_of(tlo), g1 = grid_cell_of(thi);
-    std::array<int, Dim> g = g0;
-    if constexpr (Dim == 2) {
-      for (g[1] = g0[1]; g[1] <= g1[1]; ++g[1]) {
-        for (g[0] = g0[0]; g[0] <= g1[0]; ++g[0]) visit(grid_index(g));
-      }
-    } else {
-      for (g[2] = g0[2]; g[2] <= g1[2]; ++g[2]) {
-        for (g[1] = g0[1]; g[1] <= g1[1]; ++g[1]) {
-          for (g[0] = g0[0]; g[0] <= g1[0]; ++g[0]) visit(grid_index(g));
-        }
-      }
-    }
-  };
-  for (int t : own) for_cells(t, [&](std::size_t c) { ++start_[c + 1]; });
-  std::partial_sum(start_.begin(), start_.end(), start_.begin());
-  cells_.resize(static_cast<std::size_t>(start_.back()));
-  std::vector<int> fill(start_.begin(), start_.end() - 1);
-  for (int t : own) for_cells(t, [&](std::size_t c) { cells_[static_cast<std::size_t>(fill[c]++)] = t; });
+  const std::vector<std::pair<int, int>> boundary = boundary_facets(mesh, own);
+  search_ = std::make_unique<const Search>(mesh, std::move(own), boundary);
 }
 
 template <int Dim>
-std::array<int, Dim> SimplexLocator<Dim>::grid_cell_of(const Point& x) const {
-  std::array<int, Dim> g{};
-  for (int a = 0; a < Dim; ++a) {
-    const int n = n_[static_cast<std::size_t>(a)];
-    const double k = std::floor((x(a) - origin_(a)) / cell_);
-    g[static_cast<std::size_t>(a)] = static_cast<int>(std::clamp(k, 0.0, static_cast<double>(n - 1)));
-  }
-  return g;
-}
-
+SimplexLocator<Dim>::~SimplexLocator() = default;
 template <int Dim>
-std::size_t SimplexLocator<Dim>::grid_index(const std::array<int, Dim>& g) const {
-  std::size_t index = 0;
-  for (int a = Dim - 1; a >= 0; --a) {
-    index = index * static_cast<std::size_t>(n_[static_cast<std::size_t>(a)]) + static_cast<std::size_t>(g[static_cast<std::size_t>(a)]);
-  }
-  return index;
-}
+SimplexLocator<Dim>::SimplexLocator(SimplexLocator&&) noexcept = default;
+template <int Dim>
+SimplexLocator<Dim>& SimplexLocator<Dim>::operator=(SimplexLocator&&) noexcept = default;
 
 template <int Dim>
 typename SimplexLocator<Dim>::Location SimplexLocator<Dim>::locate(const Point& x) const {
   require(x.allFinite(), "level transfer: a node position is not finite");
-  const std::array<int, Dim> home = grid_cell_of(x);
-  Location best;
-  best.distance = std::numeric_limits<double>::infinity();
-  auto visit_cell = [&](const std::array<int, Dim>& g) {
-    const std::size_t c = grid_index(g);
-    for (int k = start_[c]; k < start_[c + 1]; ++k) {
-      const int t = cells_[static_cast<std::size_t>(k)];
-      const auto [l, d] = cell_hit(*mesh_, t, x);
-      if (d < best.distance) {
-        best.cell = t;
-        best.barycentric = l;
-        best.distance = d;
-      }
-    }
-  };
-  // The grid cells at Chebyshev distance exactly r from `home`, inside the grid.
-  auto visit_ring = [&](int r) {
-    std::array<int, Dim> g{};
-    const auto inside = [&](int a, int v) { return v >= 0 && v < n_[static_cast<std::size_t>(a)]; };
-    const auto on_ring = [&] {
-      int m = 0;
-      for (int a = 0; a < Dim; ++a) m = std::max(m, std::abs(g[static_cast<std::size_t>(a)] - home[static_cast<std::size_t>(a)]));
-      return m == r;
-    };
-    const int z0 = Dim == 3 ? home[Dim - 1] - r : 0, z1 = Dim == 3 ? home[Dim - 1] + r : 0;
-    for (int z = z0; z <= z1; ++z) {
-      if (Dim == 3 && !inside(Dim - 1, z)) continue;
-      if constexpr (Dim == 3) g[2] = z;
-      for (g[1] = home[1] - r; g[1] <= home[1] + r; ++g[1]) {
-        if (!inside(1, g[1])) continue;
-        for (g[0] = home[0] - r; g[0] <= home[0] + r; ++g[0]) {
-          if (!inside(0, g[0]) || !on_ring()) continue;
-          visit_cell(g);
-        }
-      }
-    }
-  };
-  // A cell first met in ring r + 1 is at least r grid cells from x, so the search stops once the
-  // best distance is within that.
-  const int max_ring = *std::max_element(n_.begin(), n_.end());
-  for (int r = 0; r <= max_ring; ++r) {
-    visit_ring(r);
-    if (best.distance == 0.0 || best.distance <= static_cast<double>(r) * cell_) break;
+  const Search& s = *search_;
+  // Inside: the cells whose box holds x, the lowest-numbered containing one.
+  std::vector<int> candidates, stack;
+  s.cell_tree.overlapping(x, x, candidates, stack);
+  std::sort(candidates.begin(), candidates.end());
+  for (int k : candidates) {
+    const int cell = s.cells[static_cast<std::size_t>(k)];
+    const Barycentric l = cell_barycentric(*mesh_, cell, x);
+    if (l.minCoeff() >= -kInsideRoundOff) return {cell, l, 0.0};
   }
-  return best;
+  // Outside: the nearest point of the body is on its boundary, so a nearest cell is the cell of
+  // the nearest boundary facet.
+  using Hit = decltype(closest_on_facet(s.boundary_tree.facet(0), 0, x));
+  std::vector<std::pair<int, double>> queue;
+  const Hit hit = s.boundary_tree.template nearest<Hit>(
+      x, [&s](int k, const Point& p) { return closest_on_facet(s.boundary_tree.facet(k), k, p); },
+      [](const Hit& h) { return facet_index(h); }, queue);
+  const int cell = s.facet_cell[static_cast<std::size_t>(facet_index(hit))];
+  return {cell, cell_barycentric(*mesh_, cell, x), std::sqrt(hit.d2)};
 }
 
 template class SimplexLocator<2>;

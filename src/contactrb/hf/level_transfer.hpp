@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -14,36 +15,37 @@
 
 namespace contactrb::hf {
 
-// Point location in the cells of one body of a mesh (triangles in 2D, tetrahedra in 3D): a
-// bucket grid over the body's bounding box (about one cell per grid cell), each cell registered
-// in every grid cell its bounding box meets; a query visits rings of grid cells around the
-// point's until no nearer cell can remain. Never all pairs.
+// Point location in the cells of one body of a mesh (triangles in 2D, tetrahedra in 3D), about
+// O(log n) per query on graded meshes too (docs/solvers.md, "Grid sequencing"): a point is
+// located by a bounding-volume tree over the body's cells; a point outside the body by a
+// bounding-volume tree over the body's boundary facets (edges in 2D, triangles in 3D): its
+// nearest facet's cell is the nearest cell. Never all pairs.
 template <int Dim>
 class SimplexLocator {
  public:
   using Point = Eigen::Matrix<double, Dim, 1>;
   using Barycentric = Eigen::Matrix<double, Dim + 1, 1>;
+  // Throws contactrb::Error when the body has no cell.
   SimplexLocator(const mesh::SimplexMesh<Dim>& mesh, int body);
+  ~SimplexLocator();
+  SimplexLocator(SimplexLocator&&) noexcept;
+  SimplexLocator& operator=(SimplexLocator&&) noexcept;
   struct Location {
     int cell = -1;
     Barycentric barycentric = Barycentric::Zero();  // of the point in `cell` (some < 0 outside)
     double distance = 0.0;  // from the point to the cell (0 inside)
   };
-  // The cell containing x, or, for a point outside the body (a fine boundary node beyond a
-  // coarse chord or facet of a curved boundary), the nearest cell; its barycentric coordinates
-  // then extrapolate linearly (docs/solvers.md, "Grid sequencing"). Throws contactrb::Error
-  // when the body has no cell.
+  // The cell containing x (the lowest-numbered one, to round-off: coordinates above -1e-12), or,
+  // for a point outside the body (a fine boundary node beyond a coarse chord or facet of a curved
+  // boundary), the cell of the nearest boundary facet (the lowest-numbered facet among equally
+  // near ones), which is a nearest cell; its barycentric coordinates then extrapolate linearly
+  // (docs/solvers.md, "Grid sequencing").
   Location locate(const Point& x) const;
 
  private:
+  struct Search;  // the two trees (level_transfer.cpp)
   const mesh::SimplexMesh<Dim>* mesh_ = nullptr;
-  Point origin_ = Point::Zero();
-  double cell_ = 1.0;
-  std::array<int, Dim> n_{};
-  std::vector<int> start_;  // CSR over grid cells
-  std::vector<int> cells_;
-  std::array<int, Dim> grid_cell_of(const Point& x) const;
-  std::size_t grid_index(const std::array<int, Dim>& g) const;
+  std::unique_ptr<const Search> search_;
 };
 using TriangleLocator = SimplexLocator<2>;
 using TetrahedronLocator = SimplexLocator<3>;
