@@ -143,6 +143,14 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   pair_.master = surface_.master;
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
   kept_.setup(surface_, {}, {}, kept_rows_, Theta_c_);
+  {
+    std::vector<int> every_row(sz(surface_.num_constraints));
+    for (int r = 0; r < surface_.num_constraints; ++r) every_row[sz(r)] = r;
+    all_rows_.setup(surface_, {}, {}, every_row, Theta_c_);
+  }
+  lambda_rows_.resize(surface_.num_constraints);
+  slack_rows_.resize(surface_.num_constraints);
+  exact_.load.resize(Theta_c_.rows());
   KTheta_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
   KY_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
   gamma_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
@@ -328,23 +336,28 @@ void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   dg_.noalias() = Xi_.transpose() * gamma_kept_;
 }
 
-ErrorEstimator::ExactContact OnlineSolver::exact_contact(const Eigen::VectorXd& u_hat,
-                                                         const Eigen::VectorXd& lambda_hat) {
-  w_ = lift_mu_;
-  w_.noalias() += Theta_c_ * u_hat;
-  const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
-  const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(rows.K.rows());
-  const Eigen::VectorXd lambda_kept = Xi_ * lambda_hat;
-  for (std::size_t i = 0; i < kept_rows_.size(); ++i) lambda(kept_rows_[i]) = lambda_kept(static_cast<Eigen::Index>(i));
-  ErrorEstimator::ExactContact c;
-  c.load = rows.K.transpose() * lambda;
-  const Eigen::VectorXd slack = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
-  const ConstraintMeasures m = constraint_measures(slack, lambda, quadrature_.weight);
-  c.violation = m.violation;
-  c.multiplier_norm = m.multiplier_norm;
-  c.complementarity = m.complementarity;
-  return c;
+const ErrorEstimator::ExactContact& OnlineSolver::exact_contact(const Eigen::VectorXd& u_hat,
+                                                                const Eigen::VectorXd& lambda_hat) {
+  lambda_rows_.setZero();
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i) {
+    lambda_rows_(kept_rows_[i]) = Xi_.row(static_cast<Eigen::Index>(i)).dot(lambda_hat);
+  }
+  if (pointwise_magic_) {
+    all_rows_.prepare(mesh_.nodes, quadrature_, lift_mu_);
+    all_rows_.evaluate_slack(u_hat, lambda_rows_, slack_rows_, exact_.load);
+  } else {
+    w_ = lift_mu_;
+    w_.noalias() += Theta_c_ * u_hat;
+    const contact::PointwiseContact pw = contact::project_slave_nodes(mesh_, pair_, w_);
+    const contact::ConstraintRows rows = contact::constraint_rows(mesh_, pair_, quadrature_, pw, w_);
+    exact_.load.noalias() = rows.K.transpose() * lambda_rows_;
+    slack_rows_ = rows.g - rows.K * w_;  // (28) - (27): >= 0 where the constraint holds
+  }
+  const ConstraintMeasures m = constraint_measures(slack_rows_, lambda_rows_, quadrature_.weight);
+  exact_.violation = m.violation;
+  exact_.multiplier_norm = m.multiplier_norm;
+  exact_.complementarity = m.complementarity;
+  return exact_;
 }
 
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
@@ -396,7 +409,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
 
 bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                                     std::string& message, bool y_given) {
-  // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y symmetrized,
+  // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y (symmetric),
   // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
   // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
   // multipliers, whose QP is ill-conditioned there.)
@@ -405,9 +418,10 @@ bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lam
     llt_.matrixL().solveInPlace(Et_);
     llt_.matrixU().solveInPlace(Et_);
   }
-  Q_.noalias() = Dt_.transpose() * Et_;
+  // One triangle of Q by inner products, mirrored: half the flops of D Y, and at R of a few tens
+  // no blocked product's packing (docs/offline-online.md, "Cost of a query with the exact rows").
   for (int j = 0; j < R_; ++j) {
-    for (int i = j + 1; i < R_; ++i) Q_(i, j) = Q_(j, i) = 0.5 * (Q_(i, j) + Q_(j, i));
+    for (int i = j; i < R_; ++i) Q_(i, j) = Q_(j, i) = Dt_.col(i).dot(Et_.col(j));
   }
   c_.noalias() = Dt_.transpose() * z_;
   c_ -= dg_;
