@@ -2,6 +2,7 @@
 // estimate", "The geometric term"):
 //  - eta_p bounds -v'Hv / v'A(mu)v over random directions that keep the active rows closed, and
 //    is positive on a curved contact (an independent check of the reduced eigenproblem);
+//  - the estimate's contact parts are those of the HF rows at the reconstructed displacement;
 //  - at uniform random points of each shipped two-dimensional case the estimate is an upper
 //    bound of |u_hf - u_rb|_A(mu) (HF reference: the semi-smooth Newton, KKT residual 1e-10)
 //    and at most kMaxEffectivity times it, with a median of at most 5.
@@ -21,6 +22,8 @@
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/parameter_sets.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
+#include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/projection.hpp"
 #include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/offline/geometric_term.hpp"
 #include "contactrb/offline/offline_builder.hpp"
@@ -98,6 +101,39 @@ TEST_P(ExactEstimate, RestrictedRowsGiveTheWholeSurfaceAnswer) {
     EXPECT_EQ(a.iterations, b.iterations);
     EXPECT_LT((a.u_hat - b.u_hat).norm(), 1e-10 * a.u_hat.norm());
     EXPECT_LT((a.lambda_hat - b.lambda_hat).norm(), 1e-10 * std::max(1.0, a.lambda_hat.norm()));
+  }
+}
+
+// The estimate's contact parts (the HF rows at the returned displacement, over every row) against
+// the contact library on the HF mesh of Omega(mu): the rows of the reconstructed displacement,
+// their slack g - K u and the reconstructed multipliers. The violation and the complementarity
+// are sums of slacks at round-off level on the active rows: compared to an absolute tolerance
+// of round-off times the gap scale.
+TEST_P(ExactEstimate, ContactPartsAreThoseOfTheHighFidelityRows) {
+  const EstimateCase c = GetParam();
+  const cases::CaseSpec spec = cases::builtin_case_spec(c.name);
+  const offline::OfflineResult& off = row_cone_model(c);
+  contactrb::online::OnlineSolver solver(off.model);
+  const auto reference = cases::reference_mesh(spec, 0);
+  for (const cases::Mu& mu : cases::uniform_random(box_of(spec), 3, 29)) {
+    const auto rb = solver.solve(mu);
+    ASSERT_TRUE(rb.converged()) << rb.message;
+    ASSERT_TRUE(rb.estimate.available && rb.estimate.exact);
+    const auto problem = cases::make_problem(spec, reference, mu, off.model.surface.discretization);
+    const auto pair = contactrb::contact::make_contact_pair(problem.mesh);
+    const auto quadrature = contactrb::contact::make_quadrature(problem.mesh, pair, problem.discretization);
+    const Eigen::VectorXd u = contactrb::online::reconstruct_displacement(off.reconstruction, mu, rb.u_hat);
+    const auto pointwise = contactrb::contact::project_slave_nodes(problem.mesh, pair, u);
+    const auto rows = contactrb::contact::constraint_rows(problem.mesh, pair, quadrature, pointwise, u);
+    const Eigen::VectorXd slack = rows.g - rows.K * u;
+    const Eigen::VectorXd lambda = contactrb::online::reconstruct_multipliers(off.reconstruction, mu, rb.lambda_hat);
+    const auto hf = contactrb::online::constraint_measures(slack, lambda, quadrature.weight);
+    const double round_off = 1e-13 * rows.g.cwiseAbs().maxCoeff();
+    EXPECT_NEAR(rb.estimate.multiplier_norm, hf.multiplier_norm, 1e-10 * hf.multiplier_norm) << mu.transpose();
+    EXPECT_NEAR(rb.estimate.violation, hf.violation, round_off / std::sqrt(quadrature.weight.minCoeff()))
+        << mu.transpose();
+    EXPECT_NEAR(rb.estimate.complementarity, hf.complementarity, round_off * lambda.cwiseAbs().sum())
+        << mu.transpose();
   }
 }
 

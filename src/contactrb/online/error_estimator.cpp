@@ -260,7 +260,7 @@ void ErrorEstimator::complementary_bound(const Eigen::VectorXd& mu, const ExactC
   const double keep = 1.0 - est.geometric;
   const double c1 = 0.5 * est.residual / std::sqrt(est.coercivity);
   const double c2 = est.violation * est.multiplier_norm + std::max(0.0, est.complementarity);
-  if (!(keep * c2 > c1 * c1) || contact.K.rows() == 0) return;  // no square-root floor to remove
+  if (!(keep * c2 > c1 * c1) || !contact.rows || !contact.slack || !contact.lambda) return;  // no floor to remove
   // A(mu) = sum_j theta_j A_j against X = sum_j theta_j^ref A_j: alpha X <= A(mu) <= beta X, and the
   // correction is scaled by t = sqrt(alpha beta) (exact when every theta_j / theta_j^ref is t).
   const Eigen::VectorXd ta = cases::evaluate(thetas_.a, mu);
@@ -270,7 +270,7 @@ void ErrorEstimator::complementary_bound(const Eigen::VectorXd& mu, const ExactC
     beta = std::max(beta, ta(j) / theta_ref_(j));
   }
   const double t = std::sqrt(alpha * beta);
-  const ComplementaryCorrection::Result c = correction_.evaluate(contact.K, contact.slack, contact.lambda, t);
+  const ComplementaryCorrection::Result c = correction_.evaluate(contact.rows(), *contact.slack, *contact.lambda, t);
   if (!c.available) return;
   // |(A(mu)/t - X) v|_A(mu)^-1 <= sum_j |theta_j / t - theta_j^ref| |v|_{A_j} / sqrt(theta_j)
   //                            <= mismatch |v|_X.

@@ -5,6 +5,7 @@
 // (N, R, Mk), |T_sub y| with T_sub the R factor of the selected columns (computed once per size in
 // setup), the EIM constraints on the kept rows, and the combination.
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "contactrb/cases/theta.hpp"
@@ -74,8 +75,11 @@ class ErrorEstimator {
     double violation = 0.0;
     double complementarity = 0.0;
     double multiplier_norm = 0.0;
-    ComplementaryCorrection::RowSparse K;  // the rows K(w) (rows x n_c), for the complementary bound
-    Eigen::VectorXd slack, lambda;         // s and lambda over every row
+    const Eigen::VectorXd* slack = nullptr;   // s over every row
+    const Eigen::VectorXd* lambda = nullptr;  // lambda over every row (0 on the dropped rows)
+    // The rows K(w) (rows x n_c), formed on demand (only the complementary bound needs them);
+    // callable while the displacement the contact was evaluated at lives.
+    std::function<const ComplementaryCorrection::RowSparse&()> rows;
   };
   // The estimate with the exact contact term (EstimateData::residual_exact): no EIM part.
   // Unavailable when the model holds no exact data or the load reaches a DOF outside exact_dofs.

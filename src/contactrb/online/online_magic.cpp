@@ -39,6 +39,10 @@ void MagicPointEvaluator::setup(const ContactSurface& surface, const std::vector
   node_slot_.assign(surface.reference_nodes.size(), -1);
   pattern_.clear();
   y_.resize(master_.size());
+  y_normal_.resize(master_.size());
+  y_normal_done_.assign(master_.size(), 0);
+  segment_normal_.resize(master_.size());
+  segment_normal_done_.assign(master_.size(), 0);
 }
 
 void MagicPointEvaluator::rebuild(const contact::ContactQuadrature& q) {
@@ -124,11 +128,11 @@ Vec2 MagicPointEvaluator::segment_normal(int k) const {
 
 // master_polyline.cpp: interior vertices average their two segments, the ends of an open chain
 // take their only segment's normal, a closed chain wraps (vertex 0 == vertex M).
-Vec2 MagicPointEvaluator::vertex_normal(int j) const {
+Vec2 MagicPointEvaluator::vertex_normal(int j) {
   const int M = static_cast<int>(master_.size()) - 1;
   auto average = [&](int left, int right) {
-    const Vec2 nl = segment_normal(left);
-    const Vec2 nr = segment_normal(right);
+    const Vec2 nl = step_segment_normal(left);
+    const Vec2 nr = step_segment_normal(right);
     if (nl == nr) return nl;
     const Vec2 sum = nl + nr;
     const double len = sum.norm();
@@ -136,7 +140,23 @@ Vec2 MagicPointEvaluator::vertex_normal(int j) const {
   };
   if (j > 0 && j < M) return average(j - 1, j);
   if (closed_) return average(M - 1, 0);
-  return segment_normal(j == 0 ? 0 : M - 1);
+  return step_segment_normal(j == 0 ? 0 : M - 1);
+}
+
+const Vec2& MagicPointEvaluator::step_vertex_normal(int j) {
+  if (!y_normal_done_[sz(j)]) {
+    y_normal_[sz(j)] = vertex_normal(j);
+    y_normal_done_[sz(j)] = 1;
+  }
+  return y_normal_[sz(j)];
+}
+
+const Vec2& MagicPointEvaluator::step_segment_normal(int k) {
+  if (!segment_normal_done_[sz(k)]) {
+    segment_normal_[sz(k)] = segment_normal(k);
+    segment_normal_done_[sz(k)] = 1;
+  }
+  return segment_normal_[sz(k)];
 }
 
 // The lexicographic minimum of (squared distance, segment index) over every master segment, as
@@ -205,8 +225,10 @@ void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
     const int slot = node_slot_[sz(master_[sz(j)])];
     y_[sz(j)] = X_[sz(slot)] + w_r_.segment<2>(2 * slot);
   }
+  std::fill(y_normal_done_.begin(), y_normal_done_.end(), 0);
+  std::fill(segment_normal_done_.begin(), segment_normal_done_.end(), 0);
   for (int k = 0; k < M; ++k) {
-    if (!((y_[sz(k + 1)] - y_[sz(k)]).norm() > 0.0)) {
+    if (!((y_[sz(k + 1)] - y_[sz(k)]).squaredNorm() > 0.0)) {  // norm() > 0 without the square root
       throw Error("project_slave_nodes: deformed master segment " + std::to_string(k) + " (nodes " +
                   std::to_string(master_[sz(k)]) + ", " + std::to_string(master_[sz(k + 1)]) +
                   ") has zero length; its normal is undefined");
@@ -257,7 +279,7 @@ void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
     p.b = master_[sz(k + 1)];
     p.xi = best.xi;
     // MasterPolyline::normal_at: the continuous normal field.
-    const Vec2 na = vertex_normal(k), nb = vertex_normal(k + 1);
+    const Vec2 na = step_vertex_normal(k), nb = step_vertex_normal(k + 1);
     if (p.xi == 0.0) {
       p.normal = na;
     } else if (p.xi == 1.0 || na == nb) {
@@ -265,7 +287,7 @@ void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
     } else {
       const Vec2 n = (1.0 - p.xi) * na + p.xi * nb;
       const double len = n.norm();
-      p.normal = len > 0.0 ? Vec2(n / len) : segment_normal(k);
+      p.normal = len > 0.0 ? Vec2(n / len) : step_segment_normal(k);
     }
     const Vec2 rho = (1.0 - p.xi) * X_[sz(node_slot_[sz(p.a)])] + p.xi * X_[sz(node_slot_[sz(p.b)])];
     const bool before_start = k == 0 && best.t_raw < -kEndTolerance;
@@ -366,6 +388,34 @@ void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta,
       add(slave_node_[sz(term.slave)], -term.weight);
     }
     gamma(row) = v;
+  }
+}
+
+void MagicPointEvaluator::evaluate_slack(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda,
+                                         Eigen::VectorXd& slack, Eigen::VectorXd& load) {
+  project(u_hat);
+  load.setZero();
+  const auto w = [&](int node) { return w_r_.segment<2>(2 * node_slot_[sz(node)]); };
+  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
+    const Eigen::Index row = static_cast<Eigen::Index>(i);
+    double v = 0.0;
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+      const Term& term = gamma_terms_[sz(t)];
+      const Projection& p = projection_[sz(term.slave)];
+      const int s = slave_node_[sz(term.slave)];
+      if (!p.candidate) {  // a zero K row: the slack is the gap (the distance)
+        v += term.weight * p.g;
+        continue;
+      }
+      // (28) - (27) at w: g - ((1 - xi) w_a + xi w_b - w_s) . n2.
+      v += term.weight * (p.g - p.normal.dot((1.0 - p.xi) * w(p.a) + p.xi * w(p.b) - w(s)));
+      const double c = lambda(row) * term.weight;
+      if (c == 0.0) continue;
+      load.segment<2>(2 * p.a) += (c * (1.0 - p.xi)) * p.normal;
+      load.segment<2>(2 * p.b) += (c * p.xi) * p.normal;
+      load.segment<2>(2 * s) -= c * p.normal;
+    }
+    slack(row) = v;
   }
 }
 

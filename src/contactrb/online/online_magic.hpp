@@ -55,6 +55,14 @@ class MagicPointEvaluator {
   void prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt);
   void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix& K_Y);
 
+  // Per step or per answer, without the rows of K(w) Theta_c: for each gamma row i the slack
+  // s_i = g_i(w) - K_i(w) w at w = u_D,c + Theta_c u_hat ((28) - (27), >= 0 where the constraint
+  // holds), and the contact load K(w)' lambda on the n_c contact DOFs (lambda: one entry per
+  // gamma row; slack and load sized by the caller). What the exact-rows estimate needs
+  // (ErrorEstimator::ExactContact) at the cost of the projections only.
+  void evaluate_slack(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda, Eigen::VectorXd& slack,
+                      Eigen::VectorXd& load);
+
   int num_slave_nodes() const { return static_cast<int>(slave_node_.size()); }  // restricted slave nodes
 
  private:
@@ -74,14 +82,18 @@ class MagicPointEvaluator {
   void project(const Eigen::VectorXd& u_hat);
   double gamma_term(const Term& term) const;  // weight (g_pt - K_pt u_D) of one slave under a gamma row
   Eigen::Vector2d segment_normal(int k) const;
-  Eigen::Vector2d vertex_normal(int j) const;
+  Eigen::Vector2d vertex_normal(int j);
+  // vertex_normal(j) and segment_normal(k) of this step's deformed chain, each computed once per
+  // step (neighbouring slave nodes share their segments and end points).
+  const Eigen::Vector2d& step_vertex_normal(int j);
+  const Eigen::Vector2d& step_segment_normal(int k);
   double k_entry(const Projection& p, int slave_node, int dof) const;  // K_pt[s, dof]
   contact::SegmentHit nearest_segment(const Eigen::Vector2d& x);     // closest deformed master segment
 
   // Master segments per bounding box of the closest-segment search, and boxes per group box
   // above them: the search visits the nearest group and block first, then only the groups and
   // blocks not farther than the best hit (a few of each instead of all).
-  static constexpr int kBlockSegments = 8;
+  static constexpr int kBlockSegments = 4;
   static constexpr int kGroupBlocks = 8;
 
   // Setup.
@@ -115,6 +127,10 @@ class MagicPointEvaluator {
   // Per step.
   Eigen::VectorXd w_r_;                     // displacement of the used nodes
   std::vector<Eigen::Vector2d> y_;          // deformed master chain
+  std::vector<Eigen::Vector2d> y_normal_;   // its vertex normals, where y_normal_done_
+  std::vector<char> y_normal_done_;
+  std::vector<Eigen::Vector2d> segment_normal_;  // its segment normals, where segment_normal_done_
+  std::vector<char> segment_normal_done_;
   std::vector<Projection> projection_;      // one per restricted slave node
   std::vector<Eigen::Vector2d> block_min_, block_max_;  // boxes of the deformed master blocks
   std::vector<double> block_bound_;         // squared distance of the current slave node to each box

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/contact/projection.hpp"
 #include "contactrb/mesh/mesh.hpp"
 #include "contactrb/online/error_estimator.hpp"
 #include "contactrb/online/online_magic.hpp"
@@ -176,8 +177,11 @@ class OnlineSolver {
   // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
   void exact_operators(const Eigen::VectorXd& u_hat);
   bool exact_rows(ContactRows choice) const;
-  // The HF contact rows at the returned solution, for ErrorEstimator::evaluate_exact.
-  ErrorEstimator::ExactContact exact_contact(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat);
+  // The HF contact rows at the returned solution, for ErrorEstimator::evaluate_exact (pointwise
+  // rows: from all_rows_, allocation-free; exactly integrated LAC rows: the contact library's).
+  const ErrorEstimator::ExactContact& exact_contact(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat);
+  // The contact library's HF rows at w = u_D + Theta_c u_hat (w_ is left at w).
+  contact::ConstraintRows hf_rows_at(const Eigen::VectorXd& u_hat);
   // The reduced dual QP of the step's D and Xi'gamma, and u_bar = A^-1 (f - D' lambda).
   // y_given: Et_ = A^-1 D' is already set (the exact pointwise rows, from the solved rows of
   // Theta_c A^-1); otherwise it is solved here from Dt_.
@@ -261,6 +265,10 @@ class OnlineSolver {
   std::vector<Eigen::Vector2d> quadrature_slave_;  // the slave node positions quadrature_ was built at
   MagicPointEvaluator magic_;             // the restricted evaluation (online_magic.hpp)
   MagicPointEvaluator kept_;              // the kept rows whole (ContactRows::Exact, pointwise rows)
+  MagicPointEvaluator all_rows_;          // every row's slack and the load (the exact-rows estimate, pointwise rows)
+  Eigen::VectorXd lambda_rows_, slack_rows_;  // R_hf: Xi lambda_hat (0 on the dropped rows), g(w) - K(w) w
+  ErrorEstimator::ExactContact exact_;    // exact_contact's answer (its load: n_c)
+  contact::ConstraintRows estimate_rows_; // the rows behind exact_.rows()
   solve::NonnegativeQPSolver qp_;
 
   // Workspaces, sized in the constructor: a query allocates nothing of size N, R per step
