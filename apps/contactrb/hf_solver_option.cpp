@@ -21,8 +21,8 @@ CLI::Option* add_sequence_option(CLI::App* sub, int& sequence, const std::string
       ->add_option("--sequence", sequence,
                    prefix + "Grid sequencing" + what +
                        ": solve first on K coarser levels (level - 2K, ..., level - 2; those below 0 skipped) and "
-                       "start from the last one's solution; -1: 2 with the newton solver on level >= 4 in 2D, 0 "
-                       "otherwise (docs/solvers.md)")
+                       "start from the last one's solution; -1: 2 with the newton solver on level >= 4 in 2D, 1 on "
+                       "level >= 3 in 3D, 0 otherwise (docs/solvers.md)")
       ->capture_default_str();
 }
 

@@ -158,7 +158,10 @@ TEST(SnapshotSequence, AutomaticRuleIsSolves) {
   EXPECT_EQ(default_sequence(2, HFMethod::Newton, 7), 2);
   EXPECT_EQ(default_sequence(2, HFMethod::Newton, 3), 0);
   EXPECT_EQ(default_sequence(2, HFMethod::Kacanov, 6), 0);
-  EXPECT_EQ(default_sequence(3, HFMethod::Newton, 4), 0);
+  EXPECT_EQ(default_sequence(3, HFMethod::Newton, 2), 0);
+  EXPECT_EQ(default_sequence(3, HFMethod::Newton, 3), 1);
+  EXPECT_EQ(default_sequence(3, HFMethod::Newton, 4), 1);
+  EXPECT_EQ(default_sequence(3, HFMethod::Kacanov, 4), 0);
   EXPECT_EQ(contactrb::cases::resolve_sequence(3, 2, HFMethod::Kacanov, 0), 3);
   EXPECT_THROW(contactrb::cases::resolve_sequence(-2, 2, HFMethod::Newton, 4), contactrb::Error);
 }

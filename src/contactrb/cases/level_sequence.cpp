@@ -47,7 +47,9 @@ std::vector<int> sequence_levels(int level, int count, int step) {
 }
 
 int default_sequence(int dimension, hf::HFMethod method, int level) {
-  return dimension == 2 && method == hf::HFMethod::Newton && level >= kAutoSequenceFromLevel ? kAutoSequence : 0;
+  if (method != hf::HFMethod::Newton) return 0;
+  if (dimension == 3) return level >= kAutoSequence3dFromLevel ? kAutoSequence3d : 0;
+  return level >= kAutoSequenceFromLevel ? kAutoSequence : 0;
 }
 
 int resolve_sequence(int requested, int dimension, hf::HFMethod method, int level, const std::string& option) {

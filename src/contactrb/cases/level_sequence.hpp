@@ -19,7 +19,7 @@ std::vector<int> sequence_levels(int level, int count, int step = 2);
 
 // The number of coarse levels when none is asked for (`--sequence -1`, docs/solvers.md, "Grid
 // sequencing"): kAutoSequence with the Newton method in 2D from level kAutoSequenceFromLevel on,
-// 0 otherwise. Measured (docs/performance.md, "Grid sequencing from level 4"): with Newton, two
+// kAutoSequence3d in 3D from kAutoSequence3dFromLevel on, 0 otherwise. Measured (docs/performance.md, "Grid sequencing from level 4"): with Newton, two
 // coarse stages (levels L - 4, L - 2) cut hertz-a's time from level 5 on (level 5: -14 % at mu
 // 0.3, -25 % at mu 0.45; level 7: -15 to -30 %) and break even on level 4 over the mu range (+17 %
 // / +6 % / -13 % at mu 0.15 / 0.3 / 0.45), where they take the fine solve from 5 / 8 / 9 Newton
@@ -27,6 +27,11 @@ std::vector<int> sequence_levels(int level, int count, int step = 2);
 // tolerance eps_KA, docs/solvers.md "Warm start").
 inline constexpr int kAutoSequence = 2;
 inline constexpr int kAutoSequenceFromLevel = 4;
+// In 3D, one coarse stage (level L - 2) from level 3 on. Measured (docs/performance.md, "HF
+// scaling in 3D"; hertz-3d, Newton with the AMG linear solver that `auto` picks there): level 3
+// 8.3 s against 11.9 s cold, level 4 98 s against 204 s; on level 2 (direct) it does not pay.
+inline constexpr int kAutoSequence3d = 1;
+inline constexpr int kAutoSequence3dFromLevel = 3;
 int default_sequence(int dimension, hf::HFMethod method, int level);
 
 // `requested` (>= 0: as given; -1: default_sequence). Throws contactrb::Error naming `option`
