@@ -120,8 +120,8 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path);
 // missing file, a file that is not HDF5, an HDF5 file of another format (a reduced model
 // file is named as such), another format version, an incomplete one (an interrupted write:
 // `complete` missing or not 1), a truncated or damaged file (a group, dataset or attribute
-// missing or of the wrong shape, a checksum mismatch), or contents that fail
-// check_snapshot_set.
+// missing or of the wrong shape, a checksum mismatch), compressed rows of K that describe no
+// matrix (io/snapshot_rows.hpp, rows_from_csr), or contents that fail check_snapshot_set.
 SnapshotSet read_snapshot_file(const std::string& path);
 
 // Throws contactrb::Error naming the first field (by its path in the file) that is
