@@ -166,10 +166,10 @@ TEST_F(CliCraftedStrings, OlderSnapshotFormatIsRefusedWithoutReadingItsStrings) 
   const std::string path = copy_of(snapshots_, "s_old.h5");
   plant_damaged_vlen_string(path, "/", "format");
   set_format_version(path, 4);
-  expect_one_error(offline(path), {"s_old.h5", "snapshot format 4 is no longer read (this build reads formats 5 to 7)",
+  expect_one_error(offline(path), {"s_old.h5", "snapshot format 4 is no longer read (this build reads formats 5 to 8)",
                                    "`contactrb snapshots`"});
   // A version this build reads with a variable-length `format`: a damaged file, not an old one.
-  for (int version : {5, 6, 7}) {
+  for (int version : {5, 6, 7, 8}) {
     set_format_version(path, version);
     expect_one_error(offline(path), {"s_old.h5", "damaged", "'format' is a variable-length string"});
   }

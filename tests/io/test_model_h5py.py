@@ -9,7 +9,10 @@ C++ code (docs/file-formats.md):
    the model file's datasets alone (u_hat from `online --json`), equals the displacement the C++
    reconstruction wrote to solution.vtu (raw appended Float64, parsed here) to 1e-12 relative;
    likewise lambda = Xi[:, :R] lambda_hat on the kept rows against multipliers.csv.
-3. The mesh is in the files: with the case's .msh file moved away, `online --out` and `evaluate`
+3. Each snapshot's K (compressed rows: K_indptr, K_indices, K_data) is R x n_c with ascending
+   columns in every row, and K maps a rigid translation of the contact nodes to 0 at every row
+   (k(w; t)_s = ((1 - xi) t + xi t - t) . n2 = 0, DESIGN's (27)), to round-off.
+4. The mesh is in the files: with the case's .msh file moved away, `online --out` and `evaluate`
    still work, and the VTU holds the same displacement; /mesh/nodes are the VTU's points (the
    case's parameter scales a Dirichlet value: Omega(mu) is the reference mesh).
 
@@ -101,7 +104,7 @@ def check_strings(cli, work):
     """The string attributes read by h5py alone hold what the CLI wrote."""
     version = run(cli, ["--version"], work).split()[-1]
     with h5py.File(os.path.join(work, "s.h5"), "r") as s, h5py.File(os.path.join(work, "m.h5"), "r") as m:
-        check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 7
+        check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 8
               and int(s.attrs["dimension"]) == 2, "snapshot format attributes (bytes decoded), dimension 2")
         check(text(s["settings"], "solver") == "kacanov", "snapshot /settings solver (the default on 2D level 0)")
         check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 8,
@@ -117,6 +120,30 @@ def check_strings(cli, work):
         check(s["snapshots/000000"].attrs["status"] == b"converged", "a converged snapshot's status")
         check(text(s["parameter/000000"], "name") == text(m["parameters/000000"], "name") != "",
               "the parameter's name, in both files")
+
+
+def check_contact_rows(work):
+    """K in compressed rows: its shape, column order and K t = 0 for a rigid translation t."""
+    with h5py.File(os.path.join(work, "s.h5"), "r") as f:
+        n_c = f["discretization/contact_dofs"].shape[0]
+        for key in f["snapshots"]:
+            s = f["snapshots"][key]
+            if not isinstance(s, h5py.Group) or "K_indptr" not in s:
+                continue
+            indptr, indices, data = s["K_indptr"][()], s["K_indices"][()], s["K_data"][()]
+            R = s["lambda"].shape[0]
+            rows = np.repeat(np.arange(R), np.diff(indptr))
+            check(indptr.size == R + 1 and indptr[0] == 0 and indptr[-1] == indices.size == data.size
+                  and indices.min() >= 0 and indices.max() < n_c
+                  and np.all((np.diff(indices) > 0) | (np.diff(rows) > 0)),
+                  f"snapshot {key}: K is R x n_c in compressed rows, columns ascending")
+            scale = np.abs(data).max()
+            for c in range(2):  # a unit translation along x, then along y (contact DOF 2 i + c)
+                t = (indices % 2 == c).astype(float)
+                Kt = np.zeros(R)
+                np.add.at(Kt, rows, data * t)
+                check(np.abs(Kt).max() <= 1e-12 * scale,
+                      f"snapshot {key}: K maps a translation along axis {c} to 0 ({np.abs(Kt).max():.2e})")
 
 
 def main():
@@ -136,6 +163,7 @@ def main():
     check(check_descriptions(os.path.join(work, "m.h5")), "model file: fixed-length UTF-8 strings, descriptions, shape_meaning, units")
     check(check_descriptions(os.path.join(work, "s.h5")), "snapshot file: fixed-length UTF-8 strings, descriptions, shape_meaning, units")
     check_strings(cli, work)
+    check_contact_rows(work)
 
     mu = np.array([0.0175])
     answer = json.loads(run(cli, ["online", "--model", "m.h5", "--mu", "0.0175", "--out", "o1"], work))

@@ -19,6 +19,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
 #include "contactrb/io/snapshot_file.hpp"
+#include "contactrb/io/snapshot_rows.hpp"
 #include "support/snapshot_fixtures.hpp"
 
 namespace fs = std::filesystem;
@@ -68,7 +69,9 @@ SnapshotSet synthetic_set() {
       snap.u0 = random(14);
       snap.u = random(20);
       snap.lambda = random(R).cwiseAbs();
-      snap.K = Eigen::MatrixXd::NullaryExpr(R, nc, [&] { return normal(rng); });
+      Eigen::MatrixXd K = Eigen::MatrixXd::NullaryExpr(R, nc, [&] { return normal(rng); });
+      K(0, 1) = K(1, 0) = K(1, 7) = 0.0;  // not stored: sparse rows
+      snap.K = contactrb::io::rows_from_dense(K);
       snap.g = random(R);
       snap.weight = random(R).cwiseAbs();
       snap.gap_pointwise = random(2);
@@ -300,6 +303,84 @@ TEST(SnapshotFile, AFormat6FileIsReadAsKacanov) {
   expect_error_naming(dir.file("v6.h5"), "solver");
 }
 
+// A format 7 file (each K a dense R x n_c dataset) is read with K as its non-zero entries.
+TEST(SnapshotFile, AFormat7FileIsReadWithItsDenseK) {
+  TempDir dir("format7");
+  const SnapshotSet set = synthetic_set();
+  write_snapshot_file(set, dir.file("v7.h5"));
+  if (!rewrite_as_format(dir.file("v7.h5"), 7)) GTEST_SKIP() << "no h5py or numpy under /usr/bin/python3";
+  const SnapshotSet read = read_snapshot_file(dir.file("v7.h5"));
+  EXPECT_EQ(read.snapshots[0].K.nonZeros(), 13);  // 16 entries, 3 of them zero
+  contactrb::test::expect_same_data(set, read, /*with_timings=*/true);
+  // The same file marked format 8 lacks the compressed rows.
+  set_format_version(dir.file("v7.h5"), 8);
+  expect_error_naming(dir.file("v7.h5"), "K_indptr");
+}
+
+// The compressed rows of a file with a valid checksum (a crafted one) are checked before Eigen
+// sees them: each bad entry named (snapshot_crafted.py sets it and recomputes the checksum).
+TEST(SnapshotFile, CraftedCompressedRowsAreNamed) {
+  TempDir dir("crafted_rows");
+  write_snapshot_file(synthetic_set(), dir.file("good.h5"));
+  const std::string python = "/usr/bin/python3";
+  if (!fs::exists(python) || std::system((python + " -c 'import h5py, numpy' >/dev/null 2>&1").c_str()) != 0) {
+    GTEST_SKIP() << "no h5py or numpy under /usr/bin/python3";
+  }
+  struct Case {
+    const char* label;
+    const char* dataset;
+    int index;
+    const char* value;
+    const char* words;
+  };
+  // Snapshot 0: row 0 holds columns 0, 2..7 (7 entries), row 1 columns 1..6 (6 entries).
+  const std::vector<Case> cases = {
+      {"start", "/snapshots/000000/K_indptr", 0, "1", "/snapshots/000000/K_indptr[0] = 1 (expected 0)"},
+      {"decreasing", "/snapshots/000000/K_indptr", 1, "14", "/snapshots/000000/K_indptr[2] = 13 is below"},
+      {"end", "/snapshots/000000/K_indptr", 2, "12", "K_indptr ends at 12 entries, K_indices holds 13"},
+      {"column", "/snapshots/000000/K_indices", 4, "8", "/snapshots/000000/K_indices[4] = 8 is outside [0, n_c = 8)"},
+      {"negative", "/snapshots/000002/K_indices", 0, "-1", "/snapshots/000002/K_indices[0] = -1 is outside"},
+      {"order", "/snapshots/000000/K_indices", 2, "2", "K_indices[2] = 2 is not above the column before it in row 0"},
+      {"value", "/snapshots/000000/K_data", 3, "nan", "/snapshots/000000/K_data holds a non-finite value (nan) at (0, 4)"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.label);
+    const std::string path = dir.file(std::string(c.label) + ".h5");
+    fs::copy_file(dir.file("good.h5"), path);
+    const std::string cmd = python + " " + CONTACTRB_SOURCE_DIR + "/tests/io/snapshot_crafted.py '" + path + "' " +
+                            c.dataset + " " + std::to_string(c.index) + " " + c.value;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    contactrb::seal_file(path);
+    expect_error_naming(path, c.words);
+  }
+}
+
+// The same checks on arrays in memory (rows_from_csr, also used for the MPI messages).
+TEST(SnapshotRows, BadArraysAreNamed) {
+  using contactrb::io::CsrArrays;
+  using contactrb::io::rows_from_csr;
+  const CsrArrays good{{0, 2, 3}, {0, 3, 1}, {1.0, -2.0, 0.5}};
+  const contactrb::io::SnapshotRows K = rows_from_csr(good, 4, "/x");
+  EXPECT_EQ(Eigen::MatrixXd(K), (Eigen::MatrixXd(2, 4) << 1, 0, 0, -2, 0, 0.5, 0, 0).finished());
+  const auto expect_named = [](const CsrArrays& a, Eigen::Index cols, const std::string& words) {
+    try {
+      (void)rows_from_csr(a, cols, "/x");
+      ADD_FAILURE() << "no error, expected '" << words << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << "expected '" << words << "' in: " << e.what();
+    }
+  };
+  expect_named({{}, {}, {}}, 4, "/x/K_indptr is empty (expected R + 1 entries)");
+  expect_named({{1, 2, 3}, {0, 3, 1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indptr[0] = 1 (expected 0)");
+  expect_named({{0, 2, 1, 3}, {0, 3, 1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indptr[2] = 1 is below the entry before it");
+  expect_named({{0, 2, 3}, {0, 3, 1}, {1.0, -2.0}}, 4, "/x/K_indptr ends at 3 entries, K_indices holds 3 and K_data 2");
+  expect_named({{0, 2, 4}, {0, 3, 1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indptr ends at 4 entries");
+  expect_named(good, 3, "/x/K_indices[1] = 3 is outside [0, n_c = 3)");
+  expect_named({{0, 2, 3}, {0, 3, -1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indices[2] = -1 is outside");
+  expect_named({{0, 2, 3}, {3, 0, 1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indices[1] = 0 is not above the column before it in row 0");
+  expect_named({{0, 2, 3}, {3, 3, 1}, {1.0, -2.0, 0.5}}, 4, "/x/K_indices[1] = 3 is not above");
+}
+
 // The solver is written and read back (h5py reads it too: tests/io, ctest io_snapshots_3d_h5py
 // reads files of the CLI); an unknown method is refused by the writer's check.
 TEST(SnapshotFile, SolverIsRecorded) {
@@ -429,7 +510,7 @@ TEST(SnapshotFile, EditedValuesAreCaughtByTheChecksum) {
   put_double(path, "/snapshots/000000/u", 5, std::nextafter(synthetic_set().snapshots[0].u(5), 10.0));
   expect_error_naming(path, "checksum mismatch");
   path = edited("K");
-  put_double(path, "/snapshots/000002/K", 3, 0.0);  // a failed snapshot's arrays are covered too
+  put_double(path, "/snapshots/000002/K_data", 3, 0.0);  // a failed snapshot's arrays are covered too
   expect_error_naming(path, "checksum mismatch");
   path = edited("domain");
   put_double_attribute(path, "/parameter/000000", "max", 2.0);
@@ -507,8 +588,8 @@ TEST(SnapshotFile, CheckSnapshotSetNamesTheBadField) {
   s.snapshots[0].u(7) = std::numeric_limits<double>::quiet_NaN();
   expect_named(s, "/snapshots/000000/u holds a non-finite value (nan) at entry 7");
   s = synthetic_set();
-  s.snapshots[0].K(1, 2) = -std::numeric_limits<double>::infinity();
-  expect_named(s, "/snapshots/000000/K holds a non-finite value (-inf) at (1, 2)");
+  s.snapshots[0].K.coeffRef(1, 2) = -std::numeric_limits<double>::infinity();
+  expect_named(s, "/snapshots/000000/K_data holds a non-finite value (-inf) at (1, 2)");
   s = synthetic_set();
   s.snapshots[0].g(0) = std::numeric_limits<double>::infinity();
   expect_named(s, "/snapshots/000000/g holds a non-finite value");

@@ -1,11 +1,12 @@
 """3D snapshot files read by an independent reader (h5py + numpy only), against the analytic
 patch answer and the direct solves of `contactrb solve` (docs/file-formats.md, "Snapshot file"):
 
-1. The file says its dimension (root attribute `dimension` = 3, format 7) and its HF method
+1. The file says its dimension (root attribute `dimension` = 3, format 8) and its HF method
    (/settings `solver` = newton, the 3D default); /mesh holds the
    tetrahedra (num_nodes x 3 nodes, num_tetrahedra x 4 cells, boundary triangles x 3);
    num_dofs = 3 x nodes, contact_dofs the three components of every contact node, ascending,
-   u has 3 components per node.
+   u has 3 components per node; each K is R x n_c in compressed rows (K_indptr R + 1 entries from
+   0 to nnz, every column in [0, n_c) and ascending within its row).
 2. patch-3d (LAC, non-matching meshes): at every mu the stored pressure is the analytic patch
    answer p = E mu (E = 10) at every row to round-off, and the rows' weights add up to the unit
    interface.
@@ -38,9 +39,22 @@ def relative(a, b):
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
+def check_contact_rows(s, contact_dofs, name, key):
+    """K in compressed rows (scipy's csr layout), R x n_c."""
+    indptr, indices, data = s["K_indptr"][()], s["K_indices"][()], s["K_data"][()]
+    R, n_c = s["lambda"].shape[0], contact_dofs.size
+    check(indptr.size == R + 1 and indptr[0] == 0 and np.all(np.diff(indptr) >= 0)
+          and indptr[-1] == indices.size == data.size, f"{name}: snapshot {key} K_indptr has R + 1 row pointers")
+    rows = np.repeat(np.arange(R), np.diff(indptr))
+    ascending = np.all((np.diff(indices) > 0) | (np.diff(rows) > 0))
+    check(indices.size == 0 or (indices.min() >= 0 and indices.max() < n_c and ascending),
+          f"{name}: snapshot {key} K_indices are contact columns, ascending within a row")
+    check(np.all(np.isfinite(data)), f"{name}: snapshot {key} K_data is finite")
+
+
 def check_layout(f, name):
     check(int(f.attrs["dimension"]) == 3, f"{name}: root attribute dimension is 3")
-    check(int(f.attrs["format_version"]) == 7, f"{name}: format_version is 7")
+    check(int(f.attrs["format_version"]) == 8, f"{name}: format_version is 8")
     check(f["settings"].attrs["solver"] == b"newton", f"{name}: /settings solver is newton (the 3D default)")
     nodes = f["mesh/nodes"][()]
     tets = f["mesh/tetrahedra"][()]
@@ -62,7 +76,7 @@ def check_layout(f, name):
         if not isinstance(s, h5py.Group):
             continue
         check(s["u"].shape == (3 * n,), f"{name}: snapshot {key} u has 3 components per node")
-        check(s["K"].shape == (s["lambda"].shape[0], expected.size), f"{name}: snapshot {key} K is R x n_c")
+        check_contact_rows(s, expected, name, key)
         check(s["gap_pointwise"].shape == (d["slave"].shape[0],), f"{name}: snapshot {key} one gap per slave node")
     return nodes
 

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/snapshot_rows.hpp"
 #include "contactrb/offline/snapshot_wire.hpp"
 #include "support/snapshot_fixtures.hpp"
 
@@ -27,7 +28,10 @@ TEST(SnapshotWire, ResultRoundTripIsBitwise) {
   s.u = Eigen::VectorXd::Random(9);
   s.u(3) = std::numeric_limits<double>::quiet_NaN();
   s.lambda = Eigen::VectorXd::Random(3);
-  s.K = Eigen::MatrixXd::Random(3, 4);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Random(3, 4);
+  K(1, 2) = 0.0;  // not stored
+  s.K = io::rows_from_dense(K);
+  ASSERT_EQ(s.K.nonZeros(), 11);
   s.g = Eigen::VectorXd::Random(3);
   s.weight = Eigen::VectorXd();  // empty
   s.gap_pointwise = Eigen::VectorXd::Random(2);

@@ -23,6 +23,20 @@ bool same_bits(const Eigen::DenseBase<Derived>& a, const Eigen::DenseBase<Derive
   return pa.size() == 0 || std::memcmp(pa.data(), pb.data(), sizeof(double) * static_cast<std::size_t>(pa.size())) == 0;
 }
 
+// Same shape and the same stored entries: positions and value bytes.
+inline bool same_bits(const io::SnapshotRows& a, const io::SnapshotRows& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  for (Eigen::Index r = 0; r < a.outerSize(); ++r) {
+    io::SnapshotRows::InnerIterator x(a, r), y(b, r);
+    for (; x && y; ++x, ++y) {
+      const double vx = x.value(), vy = y.value();
+      if (x.col() != y.col() || std::memcmp(&vx, &vy, sizeof vx) != 0) return false;
+    }
+    if (x || y) return false;
+  }
+  return true;
+}
+
 // Every array, status and count; timings only when `with_timings`.
 inline void expect_same_data(const io::SnapshotSet& a, const io::SnapshotSet& b, bool with_timings) {
   EXPECT_EQ(a.case_name, b.case_name);

@@ -234,6 +234,8 @@ class FieldReader {
       m.resize(0, 0);
     }
   }
+  // True when `loc` has a link `name` (a dataset a record may lack).
+  static bool has(const Loc& loc, const std::string& name) { return exists(loc, name); }
 
  private:
   static bool exists(const Loc& loc, const std::string& name) {

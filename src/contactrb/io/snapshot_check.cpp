@@ -75,6 +75,19 @@ void check_finite(const Eigen::DenseBase<Derived>& a, const std::string& name) {
   }
 }
 
+// The same for K, whose stored entries are its non-zeros (named by row and column).
+void check_finite(const SnapshotRows& K, const std::string& name) {
+  for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
+    for (SnapshotRows::InnerIterator it(K, r); it; ++it) {
+      if (!std::isfinite(it.value())) {
+        std::ostringstream os;
+        os << name << " holds a non-finite value (" << it.value() << ") at (" << r << ", " << it.col() << ")";
+        invalid(os.str());
+      }
+    }
+  }
+}
+
 bool known_constraint(const std::string& c) { return c == "collocation" || c == "lac" || c == "lac-simpson"; }
 
 // The case, the parameter domains and the Kacanov settings.
@@ -233,7 +246,7 @@ void check_snapshot(const SnapshotSet& set, std::size_t i) {
   check_finite(s.u0, where + "/u0");
   check_finite(s.u, where + "/u");
   check_finite(s.lambda, where + "/lambda");
-  check_finite(s.K, where + "/K");
+  check_finite(s.K, where + "/K_data");
   check_finite(s.g, where + "/g");
   check_finite(s.weight, where + "/weight");
   check_finite(s.gap_pointwise, where + "/gap_pointwise");

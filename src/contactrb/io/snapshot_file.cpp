@@ -17,6 +17,7 @@
 #include "contactrb/io/hdf5_visitor.hpp"
 #include "contactrb/io/mesh_group.hpp"
 #include "contactrb/io/reduced_model_file.hpp"
+#include "contactrb/io/snapshot_rows.hpp"
 
 namespace contactrb::io {
 
@@ -54,6 +55,9 @@ struct SnapshotTables {
   std::vector<int> iterations;
   Eigen::VectorXd time_s;
   Eigen::VectorXd cpu_time_s;
+  // Each snapshot's K as stored (format 8), checked and converted after the checksum
+  // (contact_rows_of); the reader's copy of a dense K (formats 5 to 7) is converted on reading.
+  std::vector<CsrArrays> K;
 };
 
 SnapshotTables tables_of(const SnapshotSet& set) {
@@ -64,6 +68,7 @@ SnapshotTables tables_of(const SnapshotSet& set) {
   t.iterations.resize(n);
   t.time_s.resize(static_cast<Eigen::Index>(n));
   t.cpu_time_s.resize(static_cast<Eigen::Index>(n));
+  t.K.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Snapshot& s = set.snapshots[i];
     const auto row = static_cast<Eigen::Index>(i);
@@ -72,6 +77,7 @@ SnapshotTables tables_of(const SnapshotSet& set) {
     t.iterations[i] = s.iterations;
     t.time_s(row) = s.time_s;
     t.cpu_time_s(row) = s.cpu_time_s;
+    t.K[i] = csr_of(s.K);
   }
   return t;
 }
@@ -182,10 +188,34 @@ void visit_reference_mesh(V& v, const Loc& root, Set& set) {
   }
 }
 
+// K(w) on the contact DOFs: compressed rows (format 8), read as such; a dense R x n_c dataset
+// `K` (formats 5 to 7) is read and converted to its non-zero entries.
+template <typename V>
+void visit_contact_rows(V& v, const Loc& one, CsrArrays& K, bool converged, int version) {
+  if constexpr (!V::kWriting) {
+    if (version < 8) {
+      Eigen::MatrixXd dense;
+      v.optional(one, "K", dense, {"R x n_c: the contact rows K(w) on the contact DOFs", "1"}, converged);
+      K = dense.size() > 0 ? csr_of(rows_from_dense(dense)) : CsrArrays{};
+      return;
+    }
+    if (!converged && !V::has(one, "K_indptr")) return;  // a failed solve without rows
+  } else if (K.indptr.empty()) {
+    return;
+  }
+  v.ints(one, "K_indptr", K.indptr,
+         {"R + 1: row r of K(w) holds the entries K_indptr[r] to K_indptr[r + 1] - 1 of K_indices and K_data",
+          "index (0-based)"});
+  v.ints(one, "K_indices", K.indices,
+         {"nnz: the column of each entry of K(w), a contact DOF (/discretization/contact_dofs), ascending within a row",
+          "index (0-based)"});
+  v.dvec(one, "K_data", K.data, {"nnz: the value of each entry of K(w)", "1"});
+}
+
 // One HF solve. The arrays of a converged solve are required; a failed one stores whatever
 // the solver returned (no arrays after an exception).
 template <typename V, typename S>
-void visit_snapshot(V& v, const Loc& snaps, std::size_t i, S& s, bool converged) {
+void visit_snapshot(V& v, const Loc& snaps, std::size_t i, S& s, CsrArrays& K, bool converged, int version) {
   const std::string name = list_entry_name(i);
   Handle g = v.group(snaps, name, "one HF solve: mu, status, message; the arrays (a failed solve may lack them)");
   const Loc one{g.get(), snaps.field(name)};
@@ -196,8 +226,7 @@ void visit_snapshot(V& v, const Loc& snaps, std::size_t i, S& s, bool converged)
              converged);
   v.optional(one, "u", s.u, {"num_dofs: the total displacement u_D + u_0 on every DOF", "length"}, converged);
   v.optional(one, "lambda", s.lambda, {"R: the contact pressure of each constraint row", "pressure"}, converged);
-  v.optional(one, "K", s.K, {"R x n_c: the contact rows K(w) on the contact DOFs (/discretization/contact_dofs)", "1"},
-             converged);
+  visit_contact_rows(v, one, K, converged, version);
   v.optional(one, "g", s.g, {"R: the gap rows g(w)", "length"}, converged);
   v.optional(one, "weight", s.weight, {"R: |I_r|, the length each row integrates", "length"}, converged);
   v.optional(one, "gap_pointwise", s.gap_pointwise, {"S: the pointwise gap of each slave node", "length"}, converged);
@@ -206,7 +235,7 @@ void visit_snapshot(V& v, const Loc& snaps, std::size_t i, S& s, bool converged)
 // The tables are read before the snapshot groups: a group's `converged` entry says which of
 // its arrays must be there.
 template <typename V, typename Set>
-void visit_snapshots(V& v, const Loc& root, Set& set, SnapshotTables& t) {
+void visit_snapshots(V& v, const Loc& root, Set& set, SnapshotTables& t, int version) {
   Handle g = v.group(root, "snapshots",
                      "one subgroup per snapshot (000000, ...) in the order of the set, and the per-snapshot tables");
   const Loc snaps{g.get(), "/snapshots"};
@@ -222,10 +251,13 @@ void visit_snapshots(V& v, const Loc& root, Set& set, SnapshotTables& t) {
     throw H5Failure{"the snapshot count " + std::to_string(count) + " disagrees with /parameter/values (" +
                     std::to_string(t.mu.rows()) + " x " + std::to_string(t.mu.cols()) + ") or the per-snapshot tables"};
   }
-  if constexpr (!V::kWriting) set.snapshots.resize(n);
+  if constexpr (!V::kWriting) {
+    set.snapshots.resize(n);
+    t.K.resize(n);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     auto& s = set.snapshots[i];
-    visit_snapshot(v, snaps, i, s, t.converged[i] == 1);
+    visit_snapshot(v, snaps, i, s, t.K[i], t.converged[i] == 1, version);
     if constexpr (!V::kWriting) {
       const auto row = static_cast<Eigen::Index>(i);
       s.converged = t.converged[i] == 1;
@@ -245,7 +277,7 @@ void visit(V& v, const Loc& root, Set& set, SnapshotTables& tables) {
   visit_settings(v, root, set, version);
   visit_discretization(v, root, set);
   visit_reference_mesh(v, root, set);
-  visit_snapshots(v, root, set, tables);
+  visit_snapshots(v, root, set, tables, version);
 }
 
 // The first disagreement between the tables and the snapshot groups, or "". Reported after the
@@ -265,6 +297,20 @@ std::string first_inconsistency(const SnapshotSet& set, const SnapshotTables& t)
     }
   }
   return {};
+}
+
+// Each snapshot's K from its stored arrays, checked first (rows_from_csr): a crafted file with a
+// valid checksum must not reach Eigen with an index out of range.
+void contact_rows_of(SnapshotSet& set, const SnapshotTables& t) {
+  const auto n_c = static_cast<Eigen::Index>(set.contact_dofs.size());
+  for (std::size_t i = 0; i < set.snapshots.size(); ++i) {
+    if (t.K[i].indptr.empty()) continue;
+    try {
+      set.snapshots[i].K = rows_from_csr(t.K[i], n_c, "/snapshots/" + list_entry_name(i));
+    } catch (const Error& e) {
+      throw H5Failure{e.what()};
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------- writing
@@ -426,6 +472,7 @@ SnapshotSet read_contents(hid_t file) {
   if (stored != sum.value()) throw H5Failure{"checksum mismatch: the file was modified or damaged after it was written"};
   const std::string inconsistency = first_inconsistency(set, tables);
   if (!inconsistency.empty()) throw H5Failure{inconsistency};
+  contact_rows_of(set, tables);
   return set;
 }
 

@@ -7,6 +7,7 @@
 // the root attribute `complete` is written last. A reader therefore never takes an
 // interrupted run for a finished one.
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,10 @@ inline constexpr const char* kSnapshotFormatName = "contactrb-snapshots";
 // root attribute `dimension` (2 or 3) and a 3D mesh in /mesh; a version 5 file is read as 2D.
 // Version 7: /settings `solver` (the HF method of the solves); a version 5 or 6 file is read as
 // Kacanov, the only method those versions were written with.
+// Version 8: each snapshot's K in compressed sparse rows (K_indptr, K_indices, K_data); the dense
+// K of versions 5 to 7 is converted on reading.
 // Older versions are refused with their version named: generate them again.
-inline constexpr int kSnapshotFormatVersion = 7;
+inline constexpr int kSnapshotFormatVersion = 8;
 // The oldest version this build reads (kSnapshotFormatVersion and this one).
 inline constexpr int kSnapshotFormatOldestRead = 5;
 
@@ -37,6 +40,10 @@ struct SnapshotParameter {
   double min = 0.0;
   double max = 0.0;
 };
+
+// A snapshot's contact rows: a few non-zeros per row (the DOFs of one slave node and of the
+// master facet it projects on), compressed, column indices ascending in each row.
+using SnapshotRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // The outcome of one HF solve at one parameter value. A failed solve keeps whatever the
 // solver returned (a non-converged solve: its last iterate; an exception: no arrays).
@@ -53,7 +60,7 @@ struct Snapshot {
   Eigen::VectorXd u0;      // free part of the displacement (num_free, order of free_dofs)
   Eigen::VectorXd u;       // total displacement u_D + u_0 (num_dofs)
   Eigen::VectorXd lambda;  // contact pressures, one per constraint row (R)
-  Eigen::MatrixXd K;       // contact rows K(w) on the contact DOF columns (R x n_c)
+  SnapshotRows K;          // contact rows K(w) on the contact DOF columns (R x n_c)
   Eigen::VectorXd g;       // gap rows g(w) (R)
   Eigen::VectorXd weight;  // |I_r| (R): depends on mu when the slave body is mapped
   Eigen::VectorXd gap_pointwise;  // pointwise gap g(w)_s of the slave nodes (S)
@@ -113,8 +120,8 @@ void write_snapshot_file(const SnapshotSet& set, const std::string& path);
 // missing file, a file that is not HDF5, an HDF5 file of another format (a reduced model
 // file is named as such), another format version, an incomplete one (an interrupted write:
 // `complete` missing or not 1), a truncated or damaged file (a group, dataset or attribute
-// missing or of the wrong shape, a checksum mismatch), or contents that fail
-// check_snapshot_set.
+// missing or of the wrong shape, a checksum mismatch), compressed rows of K that describe no
+// matrix (io/snapshot_rows.hpp, rows_from_csr), or contents that fail check_snapshot_set.
 SnapshotSet read_snapshot_file(const std::string& path);
 
 // Throws contactrb::Error naming the first field (by its path in the file) that is

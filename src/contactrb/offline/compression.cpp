@@ -47,6 +47,17 @@ Eigen::MatrixXd restrict_rows(const Eigen::MatrixXd& A, const std::vector<int>& 
   return out;
 }
 
+Eigen::MatrixXd restrict_rows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const std::vector<int>& rows) {
+  check_rows("restrict_rows", A.rows(), rows);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), A.cols());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, rows[i]); it; ++it) {
+      out(static_cast<Eigen::Index>(i), it.col()) = it.value();
+    }
+  }
+  return out;
+}
+
 Eigen::VectorXd restrict_rows(const Eigen::VectorXd& v, const std::vector<int>& rows) {
   check_rows("restrict_rows", v.size(), rows);
   Eigen::VectorXd out(static_cast<Eigen::Index>(rows.size()));

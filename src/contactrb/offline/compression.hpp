@@ -2,6 +2,7 @@
 // Elementary compression (Remark 7): constraints never active on the training set are dropped
 // from K(mu, u) and g(mu, u) (their rows) and from the multiplier snapshots.
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 namespace contactrb::offline {
@@ -25,5 +26,7 @@ std::vector<int> active_constraints(const Eigen::MatrixXd& multipliers, double t
 // The given rows, in the given order. Throws for an index outside [0, rows).
 Eigen::MatrixXd restrict_rows(const Eigen::MatrixXd& A, const std::vector<int>& rows);
 Eigen::VectorXd restrict_rows(const Eigen::VectorXd& v, const std::vector<int>& rows);
+// The same rows of a sparse matrix, dense (a snapshot's K on the kept rows).
+Eigen::MatrixXd restrict_rows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A, const std::vector<int>& rows);
 
 }  // namespace contactrb::offline

@@ -131,8 +131,8 @@ std::vector<int> exact_contact_dofs(const EstimateInputs& in, const std::vector<
   std::vector<char> node_touched(surface.reference_nodes.size(), 0);
   for (const io::Snapshot& snap : in.set->snapshots) {
     for (int row : *in.kept_rows) {
-      for (Index a = 0; a < n_c; ++a) {
-        if (snap.K(row, a) != 0.0) node_touched[sz(static_cast<int>(a / 2))] = 1;
+      for (io::SnapshotRows::InnerIterator it(snap.K, row); it; ++it) {
+        if (it.value() != 0.0) node_touched[sz(static_cast<int>(it.col() / 2))] = 1;
       }
     }
   }

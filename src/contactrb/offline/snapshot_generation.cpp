@@ -81,23 +81,27 @@ const BasicProblemFactory<Dim>& factory_of(const SnapshotRequest& request) {
   }
 }
 
-// K (R x num_dofs, sparse) on the contact DOF columns, dense R x n_c.
-Eigen::MatrixXd contact_columns(const Eigen::SparseMatrix<double, Eigen::RowMajor>& K, const Layout& layout) {
+// K (R x num_dofs) on the contact DOF columns (R x n_c).
+io::SnapshotRows contact_columns(const Eigen::SparseMatrix<double, Eigen::RowMajor>& K, const Layout& layout) {
   std::vector<int> column(static_cast<std::size_t>(layout.num_dofs), -1);
   for (std::size_t c = 0; c < layout.contact_dofs.size(); ++c) {
     column[static_cast<std::size_t>(layout.contact_dofs[c])] = static_cast<int>(c);
   }
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(K.rows(), static_cast<Eigen::Index>(layout.contact_dofs.size()));
+  // contact_dofs ascend, so the columns of a row stay ascending; stored zeros are dropped.
+  io::SnapshotRows D(K.rows(), static_cast<Eigen::Index>(layout.contact_dofs.size()));
+  D.reserve(K.nonZeros());
   for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
+    D.startVec(r);
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(K, r); it; ++it) {
       const int c = column[static_cast<std::size_t>(it.col())];
       if (c < 0) {
         throw Error("internal: constraint row " + std::to_string(r) + " touches DOF " + std::to_string(it.col()) +
                     ", which is not on a contact boundary");
       }
-      D(r, c) = it.value();
+      if (it.value() != 0.0) D.insertBack(r, c) = it.value();
     }
   }
+  D.finalize();
   return D;
 }
 

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/io/snapshot_rows.hpp"
 
 namespace contactrb::offline {
 
@@ -28,10 +29,18 @@ class Writer {
     put<std::int64_t>(v.size());
     raw(v.data(), sizeof(double) * static_cast<std::size_t>(v.size()));
   }
-  void put(const Eigen::MatrixXd& m) {
-    put<std::int64_t>(m.rows());
-    put<std::int64_t>(m.cols());
-    raw(m.data(), sizeof(double) * static_cast<std::size_t>(m.size()));
+  void put(const std::vector<double>& v) {
+    put<std::uint64_t>(v.size());
+    raw(v.data(), sizeof(double) * v.size());
+  }
+  // Its shape and its compressed-row arrays (io/snapshot_rows.hpp).
+  void put(const io::SnapshotRows& K) {
+    put<std::int64_t>(K.rows());
+    put<std::int64_t>(K.cols());
+    const io::CsrArrays a = io::csr_of(K);
+    put(a.indptr);
+    put(a.indices);
+    put(a.data);
   }
   std::vector<char> bytes;
 
@@ -64,13 +73,25 @@ class Reader {
     v.resize(static_cast<Eigen::Index>(count(sizeof(double))));
     raw(v.data(), sizeof(double) * static_cast<std::size_t>(v.size()));
   }
-  void get(Eigen::MatrixXd& m) {
+  void get(std::vector<double>& v) {
+    v.resize(count(sizeof(double)));
+    raw(v.data(), sizeof(double) * v.size());
+  }
+  void get(io::SnapshotRows& K) {
     const auto rows = get<std::int64_t>();
     const auto cols = get<std::int64_t>();
-    require(rows >= 0 && cols >= 0 && (rows == 0 || static_cast<std::uint64_t>(cols) <= left() / 8 / static_cast<std::uint64_t>(rows)),
-            "internal: a packed matrix is larger than its message");
-    m.resize(rows, cols);
-    raw(m.data(), sizeof(double) * static_cast<std::size_t>(m.size()));
+    io::CsrArrays a;
+    get(a.indptr);
+    get(a.indices);
+    get(a.data);
+    if (a.indptr.empty()) {
+      require(rows == 0 && cols == 0, "internal: a packed sparse matrix has a shape but no rows");
+      K = io::SnapshotRows();
+      return;
+    }
+    require(rows == static_cast<std::int64_t>(a.indptr.size()) - 1 && cols >= 0 && cols <= INT32_MAX,
+            "internal: a packed sparse matrix disagrees with its row pointers");
+    K = io::rows_from_csr(a, cols, "internal: a packed snapshot");
   }
   void finish() const { require(at_ == bytes_.size(), "internal: a packed message has trailing bytes"); }
 
