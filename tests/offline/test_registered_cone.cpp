@@ -131,7 +131,7 @@ contactrb::study::Evaluation evaluate_verification(const contactrb::cases::CaseS
 
 // The estimate at every point of an evaluation: an upper bound of the energy-norm error, sharp
 // (effectivity at most 10, median at most 5). The registered pressure meets the HF rows only in the
-// mean, so these figures come from the complementary bound (without it: effectivity 13-61).
+// mean, so these figures come from the complementary bound (Delta_u alone: effectivity 13-61).
 void expect_sharp_upper_bound(const contactrb::study::Evaluation& e) {
   std::vector<double> effectivity;
   for (const auto& r : e.rows) {
