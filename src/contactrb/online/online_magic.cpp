@@ -313,14 +313,14 @@ void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix&
 }
 
 void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
-                                        RowMatrix& K_Y) {
-  require(llt_ != nullptr, "MagicPointEvaluator: evaluate_rows with K_Y before prepare_solved");
-  rows(u_hat, K_Theta, gamma, &K_Y);
+                                        RowMatrix& K_E) {
+  require(llt_ != nullptr, "MagicPointEvaluator: evaluate_rows with K_E before prepare_solved");
+  rows(u_hat, K_Theta, gamma, &K_E);
 }
 
 void MagicPointEvaluator::prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt) {
   llt_ = &llt;
-  ThetaA_r_.resize(Theta_r_.rows(), Theta_r_.cols());
+  ThetaL_r_.resize(Theta_r_.rows(), Theta_r_.cols());
   solved_.assign(used_node_.size(), 0);
 }
 
@@ -352,19 +352,19 @@ void MagicPointEvaluator::solve_touched_rows() {
     solve_work_.col(2 * k) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))]).transpose();
     solve_work_.col(2 * k + 1) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1).transpose();
   }
-  llt_->solveInPlace(solve_work_);
+  llt_->matrixL().solveInPlace(solve_work_);  // L^-1 Theta_r': one triangular solve per column
   for (Eigen::Index k = 0; k < m; ++k) {
-    ThetaA_r_.row(2 * pending_[sz(static_cast<int>(k))]) = solve_work_.col(2 * k).transpose();
-    ThetaA_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1) = solve_work_.col(2 * k + 1).transpose();
+    ThetaL_r_.row(2 * pending_[sz(static_cast<int>(k))]) = solve_work_.col(2 * k).transpose();
+    ThetaL_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1) = solve_work_.col(2 * k + 1).transpose();
   }
 }
 
 void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
-                               RowMatrix* K_Y) {
+                               RowMatrix* K_E) {
   project(u_hat);
   K_Theta.setZero();
-  if (K_Y != nullptr) {
-    K_Y->setZero(K_Theta.rows(), K_Theta.cols());
+  if (K_E != nullptr) {
+    K_E->setZero(K_Theta.rows(), K_Theta.cols());
     solve_touched_rows();
   }
   for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
@@ -380,8 +380,8 @@ void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta,
         const int slot = node_slot_[sz(node)];
         const double cx = c * p.normal.x(), cy = c * p.normal.y();
         K_Theta.row(row).noalias() += cx * Theta_r_.row(2 * slot) + cy * Theta_r_.row(2 * slot + 1);
-        if (K_Y == nullptr) return;
-        K_Y->row(row).noalias() += cx * ThetaA_r_.row(2 * slot) + cy * ThetaA_r_.row(2 * slot + 1);
+        if (K_E == nullptr) return;
+        K_E->row(row).noalias() += cx * ThetaL_r_.row(2 * slot) + cy * ThetaL_r_.row(2 * slot + 1);
       };
       add(p.a, term.weight * (1.0 - p.xi));
       add(p.b, term.weight * p.xi);

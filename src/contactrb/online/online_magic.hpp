@@ -47,13 +47,13 @@ class MagicPointEvaluator {
   // (K_Theta, gamma rows x N, sized by the caller) and gamma_i (the exact contact rows of
   // ContactRows::Exact on the kept rows; setup with those as gamma rows and no kappa pair).
   void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma);
-  // The same, and row i of K(w) Theta_c A^-1 in K_Y (sized as K_Theta): from the rows of
-  // Theta_c A^-1 of the nodes the rows touch, solved with `llt` (A = L L') the first time a step
-  // needs them after prepare_solved, together. Why: Y = A^-1 D' then costs 6 N per row and step instead
-  // of two triangular solves (2 N^2 per row), and a query touches the same few nodes at every
-  // step (docs/offline-online.md, "Cost of a query with the exact rows").
+  // The same, and row i of K(w) Theta_c L^-T in K_E (sized as K_Theta; A = L L', `llt`): from
+  // the rows of Theta_c L^-T of the nodes the rows touch, solved the first time a step needs them
+  // after prepare_solved, together. Why: E = L^-1 D' then costs 6 N per row and step instead of a
+  // triangular solve (N^2 / 2 per row), and a query touches the same few nodes at every step
+  // (docs/offline-online.md, "Cost of a query with the exact rows").
   void prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt);
-  void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix& K_Y);
+  void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix& K_E);
 
   // Per step or per answer, without the rows of K(w) Theta_c: for each gamma row i the slack
   // s_i = g_i(w) - K_i(w) w at w = u_D,c + Theta_c u_hat ((28) - (27), >= 0 where the constraint
@@ -109,16 +109,16 @@ class MagicPointEvaluator {
   std::vector<int> used_node_;              // nodes whose displacement is needed: master chain nodes, then slaves
   std::vector<int> node_slot_;              // local node -> index in used_node_ (-1)
   RowMatrix Theta_r_;                       // 2 |used| x N: the rows of Theta_c of used_node_
-  // Per mu (prepare_solved): the rows of Theta_c A^-1 of the used nodes solved so far.
+  // Per mu (prepare_solved): the rows of Theta_c L^-T of the used nodes solved so far.
   const Eigen::LLT<Eigen::MatrixXd>* llt_ = nullptr;
-  RowMatrix ThetaA_r_;                      // 2 |used| x N
+  RowMatrix ThetaL_r_;                      // 2 |used| x N
   std::vector<char> solved_;                // per used node
   std::vector<int> pending_;                // used-node slots to solve at this step
   Eigen::MatrixXd solve_work_;              // N x 2 |pending|
-  // Solves the rows of Theta_c A^-1 of the nodes the step's candidate rows touch (projection_ set).
+  // Solves the rows of Theta_c L^-T of the nodes the step's candidate rows touch (projection_ set).
   void solve_touched_rows();
-  // evaluate_rows; K_Y also when not null.
-  void rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix* K_Y);
+  // evaluate_rows; K_E also when not null.
+  void rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix* K_E);
   // Per mu.
   std::vector<Term> kappa_terms_, gamma_terms_;
   std::vector<int> kappa_start_, gamma_start_;  // CSR-like offsets into the term lists

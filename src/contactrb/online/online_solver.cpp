@@ -156,7 +156,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   slack_rows_.resize(surface_.num_constraints);
   exact_.load.resize(Theta_c_.rows());
   KTheta_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
-  KY_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
+  KE_.resize(static_cast<Eigen::Index>(kept_rows_.size()), N_);
   gamma_kept_.resize(static_cast<Eigen::Index>(kept_rows_.size()));
   lac_rows_ = kappa_row_;
   lac_rows_.insert(lac_rows_.end(), gamma_row_.begin(), gamma_row_.end());
@@ -182,6 +182,9 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   phi_gamma_.resize(Mg_);
   dg_.resize(R_);
   c_.resize(R_);
+  zl_.resize(N_);
+  U_.resize(N_, N_);
+  inv_diag_.resize(N_);
   t_.resize(N_);
   Et_.resize(N_, R_);
   Dt_.resize(N_, R_);
@@ -283,7 +286,11 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     message = "A_hat(mu) is not positive definite";
     return false;
   }
-  z_ = llt_.solve(f_);  // A_hat^-1 f_hat
+  U_ = llt_.matrixL().transpose();
+  inv_diag_ = U_.diagonal().cwiseInverse();
+  zl_ = llt_.matrixL().solve(f_);  // L^-1 f_hat: c = E' L^-1 f_hat with the exact rows (solve_reduced_qp)
+  z_ = zl_;
+  back_substitute(z_);  // A_hat^-1 f_hat
   if (JD > 0) {
     lift_mu_.noalias() = lift_c_ * tl;
   } else {
@@ -303,14 +310,14 @@ bool OnlineSolver::exact_rows(ContactRows choice) const {
 
 void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
   if (pointwise_magic_) {  // collocation and LAC-Simpson rows: from the slaves under the kept rows only
-    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KY_);
+    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KE_);
     if (xi_is_identity_) {  // the row cone: generator r is kept row r
       Dt_ = KTheta_.topRows(R_).transpose();
-      Et_ = KY_.topRows(R_).transpose();
+      Et_ = KE_.topRows(R_).transpose();
       dg_ = gamma_kept_.head(R_);
     } else {
       Dt_.noalias() = KTheta_.transpose() * Xi_;
-      Et_.noalias() = KY_.transpose() * Xi_;
+      Et_.noalias() = KE_.transpose() * Xi_;
       dg_.noalias() = Xi_.transpose() * gamma_kept_;
     }
     return;
@@ -380,7 +387,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
                         std::string& message) {
   if (exact_rows_) {
     exact_operators(u_hat);
-    const bool y_given = pointwise_magic_;  // exact_operators set Et_ from the solved rows
+    const bool e_given = pointwise_magic_;  // exact_operators set Et_ = L^-1 D' from the solved rows
     // |D'|_F <= |Theta_c|_F |Xi|_F max_r |K_r| and |K_r| <= 2 |I_r| (a unit normal on the slave
     // node and a partition of unity on the master): the bound of the blind test below.
     const double d_norm = Dt_.norm();
@@ -388,7 +395,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
       message = blind_contact_message(d_norm);
       return false;
     }
-    return solve_reduced_qp(u_bar, lambda_bar, inner, message, y_given);
+    return solve_reduced_qp(u_bar, lambda_bar, inner, message, e_given);
   }
   if (pointwise_magic_) {
     magic_.evaluate(u_hat, kappa_hat_, gamma_hat_);
@@ -424,28 +431,31 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
 }
 
 bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
-                                    std::string& message, bool y_given) {
-  // Reduced dual QP: Y = A^-1 D' (two triangular solves with A = L L'), Q = D Y (symmetric),
-  // c = D A^-1 f - D^gamma gamma_hat = D z - dg. (Q = E'E with E = L^-1 D' is the same in exact
-  // arithmetic, but its rounding made the untruncated tests at eps_KA = 1e-10 stall on the
-  // multipliers, whose QP is ill-conditioned there.)
-  if (!y_given) {
+                                    std::string& message, bool e_given) {
+  // Reduced dual QP with A = L L'. The exact rows: E = L^-1 D' (given from the rows of Theta_c
+  // L^-T, or one triangular solve), Q = E'E, c = E' L^-1 f - dg, u_bar = L^-T (L^-1 f - E lambda):
+  // one triangular solve per touched contact DOF and query instead of two (docs/offline-online.md,
+  // "Cost of a query with the exact rows"). The EIM rows: Y = A^-1 D' (two triangular solves),
+  // Q = D Y, c = D A^-1 f - dg (Q = E'E there made the untruncated tests at eps_KA = 1e-10 stall
+  // on the multipliers, whose QP is ill-conditioned).
+  const bool one_sided = exact_rows_;
+  if (!e_given) {
     Et_ = Dt_;
     llt_.matrixL().solveInPlace(Et_);
-    llt_.matrixU().solveInPlace(Et_);
+    if (!one_sided) llt_.matrixU().solveInPlace(Et_);
   }
-  // One triangle of Q, mirrored: half the flops of D Y (docs/offline-online.md, "Cost of a query
-  // with the exact rows"). Small R by inner products: there a blocked product spends its time
-  // packing.
+  const Eigen::MatrixXd& left = one_sided ? Et_ : Dt_;
+  // One triangle of Q, mirrored: half the flops of the full product. Small R by inner
+  // products: there a blocked product spends its time packing.
   if (R_ <= kInnerProductRows) {
     for (int j = 0; j < R_; ++j) {
-      for (int i = j; i < R_; ++i) Q_(i, j) = Q_(j, i) = Dt_.col(i).dot(Et_.col(j));
+      for (int i = j; i < R_; ++i) Q_(i, j) = Q_(j, i) = left.col(i).dot(Et_.col(j));
     }
   } else {
-    Q_.triangularView<Eigen::Lower>() = Dt_.transpose() * Et_;
+    Q_.triangularView<Eigen::Lower>() = left.transpose() * Et_;
     Q_.triangularView<Eigen::StrictlyUpper>() = Q_.transpose();
   }
-  c_.noalias() = Dt_.transpose() * z_;
+  c_.noalias() = left.transpose() * (one_sided ? zl_ : z_);
   c_ -= dg_;
   const solve::QPResult& qp = qp_.solve(Q_, c_, warm_);
   inner = qp.iterations;
@@ -455,10 +465,24 @@ bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lam
   }
   warm_ = qp.passive;
   lambda_bar = qp.x;
-  // u_bar = A^-1 (f - D' lambda) = z - Y lambda.
-  u_bar = z_;
-  u_bar.noalias() -= Et_ * lambda_bar;
+  if (one_sided) {  // u_bar = L^-T (L^-1 f - E lambda)
+    u_bar = zl_;
+    u_bar.noalias() -= Et_ * lambda_bar;
+    back_substitute(u_bar);
+  } else {  // u_bar = A^-1 (f - D' lambda) = z - Y lambda
+    u_bar = z_;
+    u_bar.noalias() -= Et_ * lambda_bar;
+  }
   return true;
+}
+
+void OnlineSolver::back_substitute(Eigen::VectorXd& x) const {
+  // By columns of U = L': each step an axpy on contiguous memory. Eigen's row-wise solve with
+  // the transposed view chains one reduction per row: about twice the time at N ~ 50.
+  for (Eigen::Index i = N_ - 1; i >= 0; --i) {
+    x(i) *= inv_diag_(i);
+    x.head(i).noalias() -= x(i) * U_.col(i).head(i);
+  }
 }
 
 double OnlineSolver::relative_inf_sup() const {

@@ -17,9 +17,10 @@
 // (docs/offline-online.md).
 //
 // Cost per query (docs/performance.md, "Online query"): A_hat(mu) and its Cholesky factor once; per
-// step the magic points, D' (N x R) assembled and solved against A (exact pointwise rows: assembled
-// from the rows of Theta_c A^-1 of the nodes they touch, solved once per query), Q = D A^-1 D', the
-// QP warm started from the previous step's passive set; no allocation of size N or R per step.
+// step the magic points, D' (N x R) assembled and solved against A (exact rows: E = L^-1 D' with
+// A = L L', for pointwise rows assembled from the rows of Theta_c L^-T of the nodes they touch,
+// solved once per query; Q = E'E), Q = D A^-1 D', the QP warm started from the previous step's
+// passive set; no allocation of size N or R per step.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -183,10 +184,11 @@ class OnlineSolver {
   // The contact library's HF rows at w = u_D + Theta_c u_hat (w_ is left at w).
   contact::ConstraintRows hf_rows_at(const Eigen::VectorXd& u_hat);
   // The reduced dual QP of the step's D and Xi'gamma, and u_bar = A^-1 (f - D' lambda).
-  // y_given: Et_ = A^-1 D' is already set (the exact pointwise rows, from the solved rows of
-  // Theta_c A^-1); otherwise it is solved here from Dt_.
+  // The exact rows: Et_ = E = L^-1 D' (A_hat = L L'); the EIM rows: Et_ = Y = A^-1 D'.
+  // e_given: Et_ is already set (the exact pointwise rows, from the solved rows of Theta_c L^-T);
+  // otherwise it is solved here from Dt_.
   bool solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner, std::string& message,
-                        bool y_given = false);
+                        bool e_given = false);
   // One linearized step (53) at u_hat: writes u_bar = G(u_hat) and lambda_bar.
   bool step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
             std::string& message);
@@ -211,6 +213,8 @@ class OnlineSolver {
   // lambda_max(Q)) with Q = D A_hat^-1 D' (R x R): 0 when some pressure generator is invisible to
   // V_N (R > N, or the supremizer that sees it cut by the N truncation).
   double relative_inf_sup() const;
+  // x <- U^-1 x with U = L' (A_hat = L L', prepare).
+  void back_substitute(Eigen::VectorXd& x) const;
   std::string undetermined_message(double beta) const;
   // D vanishes: the primal basis has no component the contact rows see (K Theta_c = 0).
   std::string blind_contact_message(double d_norm) const;
@@ -275,13 +279,15 @@ class OnlineSolver {
   // (the contact-surface projection and the QP's message aside).
   Eigen::MatrixXd A_;                    // A_hat(mu)
   Eigen::LLT<Eigen::MatrixXd> llt_;      // A_hat(mu) = L L'
-  Eigen::VectorXd f_, z_;                // f_hat(mu), A_hat(mu)^-1 f_hat(mu)
+  Eigen::VectorXd f_, z_, zl_;           // f_hat(mu), A_hat(mu)^-1 f_hat(mu), L^-1 f_hat(mu)
+  Eigen::MatrixXd U_;                    // L' (column-major: back_substitute reads its columns)
+  Eigen::VectorXd inv_diag_;             // 1 / U_ii
   double E_D_ = 0.0;
   bool restricted_ = true;
   bool exact_rows_ = false;              // this solve's ContactRows, resolved
   bool row_cone_ = false;                // the model's dual cone is the row cone
   RowMatrix KTheta_;                     // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_)
-  RowMatrix KY_;                         // R_kept x N: K(w) Theta_c A_hat^-1 (exact pointwise rows)
+  RowMatrix KE_;                         // R_kept x N: K(w) Theta_c L^-T (exact pointwise rows)
   Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_)
   cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
   bool prepared_ = false;
@@ -289,7 +295,7 @@ class OnlineSolver {
   Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
   Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
   Eigen::MatrixXd Dt_;                   // N x R: D'
-  Eigen::MatrixXd Et_;                   // N x R: Y = A^-1 D'
+  Eigen::MatrixXd Et_;                   // N x R: E = L^-1 D' (exact rows) or Y = A^-1 D' (EIM)
   Eigen::MatrixXd Q_;                    // R x R: D A^-1 D'
   std::vector<int> warm_;                // the previous step's QP passive set
   // Accelerated iteration: current and previous iterates, residuals, history columns.
