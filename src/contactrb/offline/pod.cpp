@@ -1,6 +1,7 @@
 #include "contactrb/offline/pod.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <chrono>
@@ -16,6 +17,36 @@ namespace contactrb::offline {
 namespace {
 
 std::string dims(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + "x" + std::to_string(c); }
+
+// The singular values and leading left singular vectors of a matrix B: for a tall B, those of
+// the R factor of B = Q R, the vectors mapped back by Q.
+class ThinSVD {
+ public:
+  explicit ThinSVD(const Eigen::MatrixXd& B) : tall_(B.rows() > B.cols()) {
+    if (!tall_) {
+      direct_.compute(B, Eigen::ComputeThinU);
+      singular_values = direct_.singularValues();
+      return;
+    }
+    qr_.compute(B);
+    const Eigen::MatrixXd R = qr_.matrixQR().topRows(B.cols()).triangularView<Eigen::Upper>();
+    small_.compute(R, Eigen::ComputeFullU);
+    singular_values = small_.singularValues();
+  }
+  Eigen::MatrixXd left_vectors(Eigen::Index n) const {
+    if (!tall_) return direct_.matrixU().leftCols(n);
+    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(qr_.rows(), n);
+    U.topRows(small_.rows()) = small_.matrixU().leftCols(n);
+    U.applyOnTheLeft(qr_.householderQ());
+    return U;
+  }
+  Eigen::VectorXd singular_values;
+
+ private:
+  bool tall_;
+  Eigen::JacobiSVD<Eigen::MatrixXd> direct_, small_;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
+};
 
 // Truncation, given the singular values sigma (decreasing) and the numerical rank.
 int truncated_size(const Eigen::VectorXd& sigma, int rank, const PODSettings& settings, double& threshold) {
@@ -52,12 +83,13 @@ PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const 
   const auto t0 = std::chrono::steady_clock::now();
   PODResult result;
   const Eigen::Index P = B.cols();
-  // JacobiSVD of a tall matrix starts with a column-pivoting Householder QR (Eigen's default
-  // preconditioner) and diagonalizes R by two-sided Jacobi rotations: singular values accurate
-  // to about 1e-16 sigma_1, the small ones included (the correlation matrix S' M S would square
-  // the condition number and lose them below about 1e-8 sigma_1).
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeThinU);
-  const Eigen::VectorXd& sv = svd.singularValues();
+  // B = Q R (blocked Householder, backward stable), then two-sided Jacobi on the P x P R:
+  // singular values accurate to about 1e-16 sigma_1, the small ones included (the correlation
+  // matrix S' M S would square the condition number and lose them below about 1e-8 sigma_1).
+  // JacobiSVD on B itself does the same with an unblocked pivoted QR, 5-10 times slower for
+  // P in the hundreds.
+  const ThinSVD svd(B);
+  const Eigen::VectorXd& sv = svd.singular_values;
   result.singular_values = Eigen::VectorXd::Zero(P);
   result.singular_values.head(sv.size()) = sv;
   const Eigen::VectorXd& sigma = result.singular_values;
@@ -69,7 +101,7 @@ PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const 
   result.N = N;
   result.discarded_energy = sigma.tail(P - N).squaredNorm();
 
-  Eigen::MatrixXd basis = to_modes(Eigen::MatrixXd(svd.matrixU().leftCols(N)));
+  Eigen::MatrixXd basis = to_modes(svd.left_vectors(N));
   // One Cholesky re-orthonormalization Phi <- Phi L^-T with Phi' M Phi = L L' (L lower
   // triangular, so span{phi_1..phi_k} is kept for every k): removes the round-off of W^-1
   // (about 1e-16 cond(W)) from the M-orthonormality.
