@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
+#include "contactrb/solve/pivoted_qr.hpp"
 
 namespace contactrb::offline {
 
@@ -157,11 +158,10 @@ std::vector<int> exact_contact_dofs(const EstimateInputs& in, const std::vector<
 
 // |S y| = |R P' y| for every y: the rank-truncated R factor of S's column-pivoted QR.
 Eigen::MatrixXd residual_factor(const Eigen::MatrixXd& S) {
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(S);
-  qr.setThreshold(kEstimateRankTolerance);
-  const Index rank = std::max<Index>(1, std::min<Index>(qr.rank(), S.cols()));
-  const Eigen::MatrixXd Rtop = qr.matrixQR().topRows(rank).triangularView<Eigen::Upper>();
-  return Rtop * qr.colsPermutation().transpose();
+  const solve::PivotedQR qr = solve::pivoted_qr(S, kEstimateRankTolerance);
+  Eigen::MatrixXd RPt(qr.R.rows(), S.cols());
+  for (std::size_t k = 0; k < qr.permutation.size(); ++k) RPt.col(qr.permutation[k]) = qr.R.col(ix(k));
+  return RPt;
 }
 
 namespace {

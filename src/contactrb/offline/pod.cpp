@@ -5,6 +5,7 @@
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <string>
 
@@ -22,30 +23,33 @@ std::string dims(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + "x
 // the R factor of B = Q R, the vectors mapped back by Q.
 class ThinSVD {
  public:
-  explicit ThinSVD(const Eigen::MatrixXd& B) : tall_(B.rows() > B.cols()) {
-    if (!tall_) {
-      direct_.compute(B, Eigen::ComputeThinU);
+  // B is overwritten by its QR factor (no copy of an n_free x P matrix).
+  explicit ThinSVD(Eigen::MatrixXd&& B) : factor_(std::move(B)) {
+    if (factor_.rows() <= factor_.cols()) {
+      direct_.compute(factor_, Eigen::ComputeThinU);
       singular_values = direct_.singularValues();
       return;
     }
-    qr_.compute(B);
-    const Eigen::MatrixXd R = qr_.matrixQR().topRows(B.cols()).triangularView<Eigen::Upper>();
+    qr_.emplace(factor_);
+    const Eigen::MatrixXd R = qr_->matrixQR().topRows(factor_.cols()).triangularView<Eigen::Upper>();
     small_.compute(R, Eigen::ComputeFullU);
     singular_values = small_.singularValues();
   }
   Eigen::MatrixXd left_vectors(Eigen::Index n) const {
-    if (!tall_) return direct_.matrixU().leftCols(n);
-    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(qr_.rows(), n);
+    if (!qr_) return direct_.matrixU().leftCols(n);
+    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(factor_.rows(), n);
     U.topRows(small_.rows()) = small_.matrixU().leftCols(n);
-    U.applyOnTheLeft(qr_.householderQ());
+    U.applyOnTheLeft(qr_->householderQ());
     return U;
   }
+  ThinSVD(const ThinSVD&) = delete;
+  ThinSVD& operator=(const ThinSVD&) = delete;
   Eigen::VectorXd singular_values;
 
  private:
-  bool tall_;
+  Eigen::MatrixXd factor_;
+  std::optional<Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>>> qr_;  // in place in factor_
   Eigen::JacobiSVD<Eigen::MatrixXd> direct_, small_;
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
 };
 
 // Truncation, given the singular values sigma (decreasing) and the numerical rank.
@@ -78,7 +82,7 @@ int truncated_size(const Eigen::VectorXd& sigma, int rank, const PODSettings& se
 // so Sigma are the M-singular values of S and Phi' M Phi = U' U = I.
 // to_modes(U_N) = W^-1 U_N; apply_M(X) = M X (for the re-orthonormalization).
 template <class ToModes, class ApplyM>
-PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const ToModes& to_modes,
+PODResult pod_impl(Eigen::MatrixXd B, const PODSettings& settings, const ToModes& to_modes,
                    const ApplyM& apply_M) {
   const auto t0 = std::chrono::steady_clock::now();
   PODResult result;
@@ -88,7 +92,7 @@ PODResult pod_impl(const Eigen::MatrixXd& B, const PODSettings& settings, const 
   // matrix S' M S would square the condition number and lose them below about 1e-8 sigma_1).
   // JacobiSVD on B itself does the same with an unblocked pivoted QR, 5-10 times slower for
   // P in the hundreds.
-  const ThinSVD svd(B);
+  const ThinSVD svd(std::move(B));
   const Eigen::VectorXd& sv = svd.singular_values;
   result.singular_values = Eigen::VectorXd::Zero(P);
   result.singular_values.head(sv.size()) = sv;
@@ -140,20 +144,20 @@ PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double
   // P M P' = L L' (AMD ordering), so u' M u = |L' P u|^2: W = L' P.
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(M);
   require(llt.info() == Eigen::Success, "pod: the inner-product matrix M is not symmetric positive definite");
-  const Eigen::MatrixXd PS = llt.permutationP() * snapshots;
-  const Eigen::MatrixXd B = llt.matrixU() * PS;
+  Eigen::MatrixXd B = llt.permutationP() * snapshots;
+  B = llt.matrixU() * B;
   const auto to_modes = [&](const Eigen::MatrixXd& U) {
     const Eigen::MatrixXd X = llt.matrixU().solve(U);  // L' X = U
     return Eigen::MatrixXd(llt.permutationPinv() * X);
   };
-  return pod_impl(B, settings, to_modes, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(M * X); });
+  return pod_impl(std::move(B), settings, to_modes, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(M * X); });
 }
 
 PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings) {
   check_settings(settings);
   require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
   return pod_impl(
-      snapshots, settings, [](const Eigen::MatrixXd& U) { return U; }, [](const Eigen::MatrixXd& X) { return X; });
+      Eigen::MatrixXd(snapshots), settings, [](const Eigen::MatrixXd& U) { return U; }, [](const Eigen::MatrixXd& X) { return X; });
 }
 
 const char* to_string(PODTruncation value) {
