@@ -171,7 +171,7 @@ TEST(POD, ThinSVDRecoversSingularValuesDownTo1e12Relative) {
   const PODResult r = pod(S, M, s);
   EXPECT_EQ(r.rank, P);
   for (int i = 0; i < P; ++i) {
-    EXPECT_NEAR(r.singular_values(i), sigma(i), 1e-15 * sigma(0)) << "i = " << i;
+    EXPECT_NEAR(r.singular_values(i), sigma(i), 2e-15 * sigma(0)) << "i = " << i;
   }
   // Relative truncation: keep sigma_i / sigma_1 > 1e-11, i.e. i <= 13 (10^(-12*13/15) = 1.6e-11,
   // 10^(-12*14/15) = 1.6e-12); the same N for snapshots scaled by 1e9 and by 1e-3.

@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
 #include "contactrb/offline/eim_flatten.hpp"
+#include "contactrb/solve/pivoted_qr.hpp"
 
 namespace contactrb::offline {
 
@@ -39,7 +40,7 @@ double contact_load_norm(const Eigen::VectorXd& c, const EstimateInputs& in, con
     const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
     if (fi >= 0) v(fi) = c(a);
   }
-  Eigen::VectorXd pv = base.llt.permutationP() * v;
+  Eigen::VectorXd pv = base.P * v;
   base.llt.matrixL().solveInPlace(pv);
   return pv.norm();
 }
@@ -157,11 +158,10 @@ std::vector<int> exact_contact_dofs(const EstimateInputs& in, const std::vector<
 
 // |S y| = |R P' y| for every y: the rank-truncated R factor of S's column-pivoted QR.
 Eigen::MatrixXd residual_factor(const Eigen::MatrixXd& S) {
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(S);
-  qr.setThreshold(kEstimateRankTolerance);
-  const Index rank = std::max<Index>(1, std::min<Index>(qr.rank(), S.cols()));
-  const Eigen::MatrixXd Rtop = qr.matrixQR().topRows(rank).triangularView<Eigen::Upper>();
-  return Rtop * qr.colsPermutation().transpose();
+  const solve::PivotedQR qr = solve::pivoted_qr(S, kEstimateRankTolerance);
+  Eigen::MatrixXd RPt(qr.R.rows(), S.cols());
+  for (std::size_t k = 0; k < qr.permutation.size(); ++k) RPt.col(qr.permutation[k]) = qr.R.col(ix(k));
+  return RPt;
 }
 
 namespace {
@@ -188,53 +188,95 @@ Eigen::VectorXd restrict_free(const Eigen::VectorXd& g, const std::vector<int>& 
   return out;
 }
 
-// L^-1 P v column by column (Eigen's convention: P X P' = L L').
+// L^-1 P v column by column (P X P' = L L', EstimateBase).
 Eigen::MatrixXd whiten(const EstimateBase& base, const Eigen::MatrixXd& V) {
-  Eigen::MatrixXd W = base.llt.permutationP() * V;
+  Eigen::MatrixXd W = base.P * V;
   base.llt.matrixL().solveInPlace(W);
   return W;
 }
 
-// X's factor (once per problem).
-void factor_energy_product(const EstimateInputs& in, EstimateBase& base) {
+// The free index of each DOF (once per problem).
+void map_free_dofs(const EstimateInputs& in, EstimateBase& base) {
   const std::vector<int>& free = *in.free_dofs;
   base.global_to_free.assign(sz(in.terms->A.front().rows()), -1);
   for (std::size_t i = 0; i < free.size(); ++i) base.global_to_free[sz(free[i])] = ix(i);
-  base.llt.compute(energy_product(in, base.global_to_free));
-  require(base.llt.info() == Eigen::Success,
-          "build_estimate_data: the energy product at the reference value is not positive definite");
   base.factored = true;
 }
 
+// P X P' = L L' with the free DOFs of `contact` eliminated last, in that order, and the others
+// in X's AMD order before them.
+void factor_contact_last(const EstimateInputs& in, const std::vector<Index>& contact, EstimateBase& base) {
+  const Eigen::SparseMatrix<double> X = energy_product(in, base.global_to_free);
+  const Index n_free = X.rows();
+  std::vector<char> is_contact(sz(n_free), 0);
+  Eigen::VectorXi order(n_free);  // elimination position -> free index
+  Index next = n_free - ix(contact.size());
+  for (const Index a : contact) {
+    const Index fi = base.global_to_free[sz((*in.contact_dofs)[sz(a)])];
+    require(fi >= 0 && !is_contact[sz(fi)], "internal: an estimate contact column is not a free DOF");
+    is_contact[sz(fi)] = 1;
+    order(next++) = static_cast<int>(fi);
+  }
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+  Eigen::AMDOrdering<int>()(X, amd);
+  next = 0;
+  for (Index k = 0; k < n_free; ++k) {
+    const int fi = amd.indices()(k);
+    if (!is_contact[sz(fi)]) order(next++) = fi;
+  }
+  base.P = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>(order).inverse();
+  Eigen::SparseMatrix<double> Xp(n_free, n_free);
+  Xp = X.selfadjointView<Eigen::Lower>().twistedBy(base.P);
+  base.llt.compute(Xp);
+  require(base.llt.info() == Eigen::Success,
+          "build_estimate_data: the energy product at the reference value is not positive definite");
+}
+
+// L_cc^-1, the whitened unit loads of the contact DOFs eliminated last (their rows; the rows
+// before them are zero since L^-1 is lower triangular).
+Eigen::MatrixXd whitened_contact_block(const EstimateBase& base, Index n_u) {
+  const Eigen::SparseMatrix<double>& L = base.llt.matrixL().nestedExpression();
+  const Eigen::MatrixXd Lcc = L.bottomRightCorner(n_u, n_u);
+  Eigen::MatrixXd W = Eigen::MatrixXd::Identity(n_u, n_u);
+  Lcc.triangularView<Eigen::Lower>().solveInPlace(W);
+  return W;
+}
+
 // The basis-free columns (layout: model/error_estimate_data.hpp): the loads f_j, the lift terms
-// -A_j u_D,k, and the columns of E_c' of the contact DOFs `contact` (contact DOF a -> its free
-// index), whitened and factored: [W_fixed | W_contact] = H [R_fixed; 0].
+// -A_j u_D,k, and the columns of E_c' of the contact DOFs `contact`, whitened and factored in
+// the block form of EstimateBase.
 void factor_fixed_columns(const EstimateInputs& in, const std::vector<Index>& contact, EstimateBase& base) {
   const cases::AffineTerms& terms = *in.terms;
   const std::vector<int>& free = *in.free_dofs;
-  const Index n_free = ix(free.size()), n_u = ix(contact.size());
+  const Index n_free = ix(free.size()), n_u = ix(contact.size()), n_i = n_free - n_u;
   const int Jf = static_cast<int>(terms.f.size()), Ja = static_cast<int>(terms.A.size());
   const int JD = static_cast<int>(terms.lift.size());
-  const Index n_fixed = Jf + Ja * JD;
-  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n_free, n_fixed + n_u);
+  const Index nf = Jf + Ja * JD;
+  require(n_i >= nf, "build_estimate_data: fewer free DOFs off the contact surface than load and lift terms");
+  factor_contact_last(in, contact, base);
+  Eigen::MatrixXd V(n_free, nf);
   Index col = 0;
-  for (int j = 0; j < Jf; ++j) W.col(col++) = restrict_free(terms.f[sz(j)], free);
+  for (int j = 0; j < Jf; ++j) V.col(col++) = restrict_free(terms.f[sz(j)], free);
   for (int j = 0; j < Ja; ++j) {
-    for (int k = 0; k < JD; ++k) W.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)], free);
+    for (int k = 0; k < JD; ++k) V.col(col++) = -restrict_free(terms.A[sz(j)] * terms.lift[sz(k)], free);
   }
-  for (Index u = 0; u < n_u; ++u) W(base.global_to_free[sz((*in.contact_dofs)[sz(contact[sz(u)])])], n_fixed + u) = 1.0;
-  W = whiten(base, W);
-  const Index k = std::min(n_free, W.cols());
-  base.qr_fixed.compute(W);
-  base.R_fixed = base.qr_fixed.matrixQR().topRows(k).triangularView<Eigen::Upper>();
-  base.n_fixed = static_cast<int>(n_fixed);
+  const Eigen::MatrixXd W = whiten(base, V);
+  base.qr_interior.compute(W.topRows(n_i));
+  base.R_fixed = Eigen::MatrixXd::Zero(n_u + nf, nf + n_u);
+  base.R_fixed.bottomLeftCorner(nf, nf) = base.qr_interior.matrixQR().topRows(nf).triangularView<Eigen::Upper>();
+  if (n_u > 0) {
+    base.qr_contact.compute(whitened_contact_block(base, n_u));
+    base.R_fixed.topLeftCorner(n_u, nf) = base.qr_contact.householderQ().adjoint() * W.bottomRows(n_u);
+    base.R_fixed.topRightCorner(n_u, n_u) = base.qr_contact.matrixQR().triangularView<Eigen::Upper>();
+  }
+  base.n_fixed = static_cast<int>(nf);
   base.contact_columns = contact;
 }
 
-// The base holding at least the contact DOFs `needed` (sorted): factored once, its columns
-// refactored with the union when a model needs a contact DOF they miss.
+// The base holding at least the contact DOFs `needed` (sorted): factored again, with the union,
+// when a model needs a contact DOF it misses.
 void ensure_estimate_base(const EstimateInputs& in, const std::vector<Index>& needed, EstimateBase& base) {
-  if (!base.factored) factor_energy_product(in, base);
+  if (!base.factored) map_free_dofs(in, base);
   if (base.columns_built && std::includes(base.contact_columns.begin(), base.contact_columns.end(), needed.begin(),
                                           needed.end())) {
     return;
@@ -282,23 +324,26 @@ Eigen::MatrixXd whitened_basis_columns(const EstimateInputs& in, const EstimateB
 }
 
 // S with |W y| = |S y| for W = L^-1 P [f_j | -A_j u_D,k | -A_j,00 Theta | E_c'] (that column
-// order, E_c' on the base's contact columns only): with the base's Householder factor
-// [W_fixed | W_contact] = H [R_fixed; 0], the basis columns are H' W_t = [C; D], and
-// S = [[R_f, C, R_c], [0, R_t, 0]] with D = Q_t R_t (thin QR): only the n_free x J^a N basis
-// block is factored per model.
+// order, E_c' on the base's contact columns only): with the base's block factor
+// [W_fixed | W_contact] = blockdiag(Q_i, Q_c) R_fixed, the basis columns are
+// [Q_c' W_t,contact; Q_i' W_t,interior] = [C; D] (C the rows of the frame, D = Q_t R_t the rest,
+// thin QR), and S = [[R_f, C, R_c], [0, R_t, 0]]: only the n_free x J^a N basis block is
+// factored per model.
 Eigen::MatrixXd whitened_residual_factor(const EstimateInputs& in, const EstimateBase& base, Index cols) {
-  Eigen::MatrixXd Z = whitened_basis_columns(in, base);
-  Z.applyOnTheLeft(base.qr_fixed.householderQ().adjoint());
+  const Eigen::MatrixXd Z = whitened_basis_columns(in, base);
   const Index n_free = Z.rows(), nt = Z.cols(), kc = base.R_fixed.rows();
-  const Index kt = std::min(n_free - kc, nt);
-  const Index nf = base.n_fixed, nc = base.R_fixed.cols() - nf;
+  const Index nf = base.n_fixed, nc = ix(base.contact_columns.size()), n_i = n_free - nc;
+  const Index kt = std::min(n_i - nf, nt);
   require(cols == nf + nt + nc, "build_estimate_data: inconsistent residual columns");
+  Eigen::MatrixXd interior = Z.topRows(n_i);
+  interior.applyOnTheLeft(base.qr_interior.householderQ().adjoint());
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kc + kt, cols);
   S.topLeftCorner(kc, nf) = base.R_fixed.leftCols(nf);
-  S.block(0, nf, kc, nt) = Z.topRows(kc);
+  if (nc > 0) S.block(0, nf, nc, nt) = base.qr_contact.householderQ().adjoint() * Z.bottomRows(nc);
+  S.block(nc, nf, nf, nt) = interior.topRows(nf);
   S.topRightCorner(kc, nc) = base.R_fixed.rightCols(nc);
   if (kt > 0) {
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Z.bottomRows(n_free - kc));
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(interior.bottomRows(n_i - nf));
     S.block(kc, nf, kt, nt) = qr.matrixQR().topRows(kt).triangularView<Eigen::Upper>();
   }
   return S;
@@ -328,7 +373,7 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
               std::to_string(in.Q_kappa->rows()) + " rows for R_kept n_c = " + std::to_string(R_kept * n_c) + ")");
   EstimateBase own;
   EstimateBase& base = in.base ? *in.base : own;
-  if (!base.factored) factor_energy_product(in, base);
+  if (!base.factored) map_free_dofs(in, base);
 
   // The contact term -E_c' K' Xi lambda with K ~ sum_i phi_i Q_i (50): column (i, r) of C is
   // -(Q_i' Xi)_r.

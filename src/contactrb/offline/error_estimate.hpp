@@ -59,18 +59,29 @@ struct EstimateInputs {
 // The parts of the estimate's offline data that depend on the problem only, not on the bases:
 // X = A_00(reference_mu) factored, and the whitened load, lift and contact-DOF columns
 // L^-1 P [f_j | -A_j u_D,k] and L^-1 P E_c'.
+//
+// X is factored with the contact DOFs `contact_columns` eliminated last (the others in AMD
+// order), so that L^-1 P E_c' = [0; L_cc^-1] with L_cc the trailing n_u x n_u block of L: the
+// whitened contact columns take n_u^2 numbers, not n_free n_u (hertz-a level 6: 2 200 contact
+// columns, 5.5 GB as dense n_free-columns). With the rows split into the interior (first n_i)
+// and the contact (last n_u) ones,
+//     [W_fixed | W_contact] = blockdiag(Q_i, Q_c) R_fixed,
+//     R_fixed = [[Q_c' W_fixed,contact, R_c], [R_i, 0]]   ((n_u + n_fixed) x (n_fixed + n_u))
+// with L_cc^-1 = Q_c R_c and W_fixed,interior = Q_i R_i (Householder): an orthonormal row frame,
+// so |W y| = |R_fixed y| for every y.
 struct EstimateBase {
-  bool factored = false;       // llt and global_to_free
-  bool columns_built = false;  // the rest
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+  bool factored = false;       // global_to_free
+  bool columns_built = false;  // the factor and the rest
   std::vector<Eigen::Index> global_to_free;  // -1 on a Dirichlet DOF
-  int n_fixed = 0;                           // J^f + J^a J^D
+  // P X P' = L L', P the contact_columns last (in their order), the other free DOFs before them.
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> llt;
+  int n_fixed = 0;  // J^f + J^a J^D
   // The free contact DOFs (indices into contact_dofs, ascending) whose unit loads the estimate
   // uses: the exact rows' DOFs and the support of the EIM contact columns, over the builds so far.
   std::vector<Eigen::Index> contact_columns;
-  // [W_fixed | W_contact] = H [R_fixed; 0] (Householder), W_fixed = L^-1 P [f_j | -A_j u_D,k] and
-  // W_contact = L^-1 P E_c' on contact_columns.
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr_fixed;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_interior;  // of W_fixed's interior rows
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_contact;   // of L_cc^-1
   Eigen::MatrixXd R_fixed;
 };
 

@@ -113,8 +113,8 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
   const Eigen::MatrixXd Z = active.empty() ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m))
                                            : Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(DA).kernel());
   if (Z.cols() == 0 || Z.norm() == 0.0) return 0.0;
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Z.transpose() * H * Z,
-                                                                      Z.transpose() * S * Z);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Z.transpose() * H * Z, Z.transpose() * S * Z,
+                                                                      Eigen::EigenvaluesOnly);
   require(eig.info() == Eigen::Success, "geometric_ratio: the eigenvalue problem did not converge");
   return std::max(0.0, eig.eigenvalues().maxCoeff());
 }
