@@ -17,7 +17,7 @@
 //                    [--ordering auto|cholmod|node-metis] [--keep-freed 1 (0: glibc's default malloc thresholds)]
 //                    [--sequence K [--sequence-step 2]] (grid sequencing: K coarse solves on levels
 //                     L - K*step, ..., L - step, each from the previous one, the fine one from the last;
-//                     cases/level_sequence.hpp)
+//                     cases/level_sequence.hpp; -1: contactrb solve's default, cases::default_sequence)
 //                    [--fine-size H (hertz-3d: the mesh generated with contact-zone size H,
 //                     mesh::Hertz3dGeometry::fine_size, instead of the level's 0.04 / 2^level, for a
 //                     point between two levels; --level then names only the coarse levels of --sequence)]
@@ -267,7 +267,8 @@ int run(const BenchOptions& o, const cases::CaseSpec& spec, const cases::Mu& mu,
   const double mesh_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count();
   const rusage after_mesh = usage_now();
   const double mesh_cpu_s = cpu_seconds(after_mesh) - cpu_seconds(before);
-  const std::vector<int> coarse_levels = cases::sequence_levels(o.level, o.sequence, o.sequence_step);
+  const int sequence = cases::resolve_sequence(o.sequence, Dim, settings.method, o.level, "--sequence");
+  const std::vector<int> coarse_levels = cases::sequence_levels(o.level, sequence, o.sequence_step);
   std::vector<double> setup, solve, total, coarse;
   hf::BasicHFSolution<Dim> sol;
   cases::SequenceStart start;
