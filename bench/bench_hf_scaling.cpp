@@ -8,7 +8,7 @@
 //                    (--mu: default the case's reference value; hertz-3d: --case hertz-3d --mu 0.02)
 //                    [--repeat 3] [--alpha 0.3] [--tolerance 1e-3] [--linear schur|lu|amg|auto]
 //                    [--linear-solver direct|amg|auto (direct: schur)] [--amg-from DOFS] [--krylov-tol 1e-9]
-//                    [--krylov-max 400] [--krylov-restart 80] [--amg-threshold 0.25] [--amg-aggressive 1] [--passes frozen|consistent] [--lu umfpack|eigen]
+//                    [--krylov-max 400] [--krylov-restart 80] [--amg-threshold 0.25] [--amg-aggressive 1] [--amg-smoother forward-backward|symmetric] [--forcing-max 3e-2 (equal to --krylov-tol: a constant forcing term)] [--passes frozen|consistent] [--lu umfpack|eigen]
 //                    [--linearization analytic|fd] [--branch-passes N] [--krylov 100 (0: dense LU)]
 //                    [--frozen-rows-from-dimension 3 (4: never)] [--verbose] [--header]
 //                    [--threads N (Newton: OpenBLAS threads of the factorization and the selected-inverse
@@ -17,7 +17,10 @@
 //                    [--ordering auto|cholmod|node-metis] [--keep-freed 1 (0: glibc's default malloc thresholds)]
 //                    [--sequence K [--sequence-step 2]] (grid sequencing: K coarse solves on levels
 //                     L - K*step, ..., L - step, each from the previous one, the fine one from the last;
-//                     cases/level_sequence.hpp)
+//                     cases/level_sequence.hpp; -1: contactrb solve's default, cases::default_sequence)
+//                    [--fine-size H (hertz-3d: the mesh generated with contact-zone size H,
+//                     mesh::Hertz3dGeometry::fine_size, instead of the level's 0.04 / 2^level, for a
+//                     point between two levels; --level then names only the coarse levels of --sequence)]
 //                    [--ahead 1 (Newton: A_00's ordering and symbolic analysis beside the assembly,
 //                     hf::HFSetupOptions; 0: in the solve, after it)]
 //
@@ -52,6 +55,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/keep_freed_memory.hpp"
 #include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/mesh/geometries.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
 using namespace contactrb;
@@ -71,8 +75,10 @@ struct BenchOptions {
   double alpha = 0.3, tolerance = 1e-3, branch_below = -1.0, safeguard = -1.0;
   int newton_passes = -1, switch_passes = -1, chord = -1;
   int sequence = 0, sequence_step = 2;
+  double fine_size = 0.0;  // > 0: hertz-3d at this contact-zone size instead of the level's
   int amg_from = -1, krylov_max = -1, krylov_restart = -1, amg_aggressive = -1;
-  double krylov_tolerance = -1.0, amg_threshold = -1.0;
+  double krylov_tolerance = -1.0, amg_threshold = -1.0, forcing_max = -1.0;
+  std::string amg_smoother;
 };
 
 // Parses argv into `o`; returns false after --header (the header printed) and exits with code 2
@@ -94,6 +100,7 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     }
     if (a == "--case") o.case_name = next();
     else if (a == "--level") o.level = std::stoi(next());
+    else if (a == "--fine-size") o.fine_size = std::stod(next());
     else if (a == "--mu") o.mu = std::stod(next());
     else if (a == "--solver") o.solver = next();
     else if (a == "--constraint") o.constraint = next();
@@ -107,6 +114,8 @@ bool parse_options(int argc, char** argv, BenchOptions& o) {
     else if (a == "--krylov-restart") o.krylov_restart = std::stoi(next());
     else if (a == "--amg-threshold") o.amg_threshold = std::stod(next());
     else if (a == "--amg-aggressive") o.amg_aggressive = std::stoi(next());
+    else if (a == "--amg-smoother") o.amg_smoother = next();
+    else if (a == "--forcing-max") o.forcing_max = std::stod(next());
     else if (a == "--inner") o.inner = std::stoi(next());
     else if (a == "--passes") o.passes = next();
     else if (a == "--free-steps") o.free_steps = std::stoi(next());
@@ -148,6 +157,8 @@ hf::HFSettings settings_from(const BenchOptions& o) {
   if (o.krylov_restart > 0) settings.newton.krylov.restart = o.krylov_restart;
   if (o.amg_threshold > 0.0) settings.newton.amg.strong_threshold = o.amg_threshold;
   if (o.amg_aggressive >= 0) settings.newton.amg.aggressive_levels = o.amg_aggressive;
+  if (!o.amg_smoother.empty()) settings.newton.amg.smoother = solve::amg_smoother_from_string(o.amg_smoother);
+  if (o.forcing_max > 0.0) settings.newton.krylov_forcing.max = o.forcing_max;
   hf::NewtonTuning& t = settings.newton.tuning;
   if (o.inner > 0) t.max_inner_iterations = o.inner;
   t.inner_passes = hf::newton_inner_passes_from_string(o.passes);
@@ -190,11 +201,16 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-mesh::Mesh reference_of(const cases::CaseSpec& spec, int level, std::integral_constant<int, 2>) {
-  return cases::reference_mesh(spec, level);
+mesh::Mesh reference_of(const BenchOptions& o, const cases::CaseSpec& spec, std::integral_constant<int, 2>) {
+  require(o.fine_size <= 0.0, "--fine-size applies to the hertz-3d mesh only");
+  return cases::reference_mesh(spec, o.level);
 }
-mesh::Mesh3 reference_of(const cases::CaseSpec& spec, int level, std::integral_constant<int, 3>) {
-  return cases::reference_mesh3(spec, level);
+mesh::Mesh3 reference_of(const BenchOptions& o, const cases::CaseSpec& spec, std::integral_constant<int, 3>) {
+  if (o.fine_size <= 0.0) return cases::reference_mesh3(spec, o.level);
+  require(spec.mesh.generator == "hertz-3d", "--fine-size applies to the hertz-3d mesh only");
+  mesh::Hertz3dGeometry geometry;
+  geometry.fine_size = o.fine_size;
+  return mesh::generate_hertz_3d(geometry);
 }
 
 // The coarse stages of the grid sequencing (level_sequence.hpp).
@@ -231,9 +247,9 @@ void print_history(const hf::BasicHFSolution<Dim>& sol) {
                tm.analyze_s, tm.analysis_ahead ? (" (beside the assembly; waited " + std::to_string(tm.analysis_wait_s) + " s)").c_str() : "",
                tm.numeric_s, tm.factor_nonzeros, tm.blas_threads, tm.rhs_s, tm.initial_s);
   for (const auto& it : sol.newton_history) {
-    std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d chord %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d line search %.4f s\n",
+    std::fprintf(stderr, "  kkt %.3e merit %.3e active %d changed %d systems %d |E| %d step %g colours %d branch passes %d kacanov step %d chord %d lin %.4f s linear algebra %.4f s (G block %.4f s) krylov %d (tolerance %.1e) line search %.4f s\n",
                  it.residual, it.merit, it.active, it.changed, it.factorizations, it.reduced_size, it.step, it.colours, it.branch_passes, it.kacanov_step ? 1 : 0, it.chord_steps,
-                 it.linearize_s, it.factorize_s, it.block_s, it.krylov, it.search_s);
+                 it.linearize_s, it.factorize_s, it.block_s, it.krylov, it.forcing, it.search_s);
   }
   if (!sol.message.empty()) std::fprintf(stderr, "  %s\n", sol.message.c_str());
 }
@@ -246,12 +262,13 @@ int run(const BenchOptions& o, const cases::CaseSpec& spec, const cases::Mu& mu,
   if (!o.constraint.empty()) d = contact::discretization_from_string(o.constraint);
   const rusage before = usage_now();
   const auto mesh_start = std::chrono::steady_clock::now();
-  const auto reference = reference_of(spec, o.level, std::integral_constant<int, Dim>{});
+  const auto reference = reference_of(o, spec, std::integral_constant<int, Dim>{});
   const hf::BasicContactProblem<Dim> problem = cases::make_problem(spec, reference, mu, d);
   const double mesh_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count();
   const rusage after_mesh = usage_now();
   const double mesh_cpu_s = cpu_seconds(after_mesh) - cpu_seconds(before);
-  const std::vector<int> coarse_levels = cases::sequence_levels(o.level, o.sequence, o.sequence_step);
+  const int sequence = cases::resolve_sequence(o.sequence, Dim, settings.method, o.level, "--sequence");
+  const std::vector<int> coarse_levels = cases::sequence_levels(o.level, sequence, o.sequence_step);
   std::vector<double> setup, solve, total, coarse;
   hf::BasicHFSolution<Dim> sol;
   cases::SequenceStart start;

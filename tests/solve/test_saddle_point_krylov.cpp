@@ -127,3 +127,38 @@ TEST(SaddlePointKrylov, CappedIterationsAndBadInputAreStatuses) {
   EXPECT_EQ(bad.compute(Eigen::SparseMatrix<double>(3, 4), {}, 1), solve::AmgStatus::InvalidInput);
   EXPECT_EQ(solve::amg_status_from_string("invalid input"), solve::AmgStatus::InvalidInput);
 }
+
+// Both smoothers (solve::AmgSmoother): a V-cycle with forward Gauss-Seidel down and backward up,
+// or symmetric sweeps both ways, is a symmetric operator (x' M^-1 y = y' M^-1 x); the two cycles
+// differ (the option takes effect) and both precondition the saddle point to its dense solution.
+TEST(SaddlePointKrylov, BothSmoothersGiveSymmetricCyclesAndTheSolution) {
+  if (!solve::amg_available()) GTEST_SKIP() << "this build has no hypre";
+  std::vector<int> component;
+  const Eigen::SparseMatrix<double> A = grid_laplacian(20, component);
+  const int n = static_cast<int>(A.rows()), m = GridProblem::m;
+  const RowSparse B = constraint_rows(n, m, 1e-3, 0.0);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0).array().sin();
+  const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.0, 3.0).array().cos();
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n + m, -1.0, 2.0);
+  const Eigen::VectorXd exact = dense_solution(A, B, B, rhs);
+  std::vector<Eigen::VectorXd> cycles;
+  for (solve::AmgSmoother smoother : {solve::AmgSmoother::ForwardBackward, solve::AmgSmoother::Symmetric}) {
+    solve::AmgSettings settings;
+    settings.smoother = smoother;
+    solve::AmgPreconditioner amg;
+    ASSERT_EQ(amg.compute(A, component, 2, settings), solve::AmgStatus::Success);
+    const Eigen::VectorXd My = amg.apply(y);
+    EXPECT_NEAR(x.dot(My), y.dot(amg.apply(x)), 1e-12 * x.norm() * My.norm()) << solve::to_string(smoother);
+    cycles.push_back(My);
+    solve::SaddlePointKrylovSettings s;
+    s.tolerance = 1e-12;
+    const solve::SaddlePointKrylovResult r = solve::solve_saddle_point(A, B, B, amg, rhs, Eigen::VectorXd::Zero(n + m), s);
+    ASSERT_EQ(r.status, solve::SaddlePointKrylovStatus::Converged) << solve::to_string(smoother);
+    EXPECT_LE((r.x - exact).lpNorm<Eigen::Infinity>(), 1e-9 * exact.lpNorm<Eigen::Infinity>()) << solve::to_string(smoother);
+  }
+  EXPECT_GT((cycles[0] - cycles[1]).norm(), 1e-6 * cycles[1].norm());
+  EXPECT_EQ(solve::amg_smoother_from_string("symmetric"), solve::AmgSmoother::Symmetric);
+  EXPECT_EQ(solve::amg_smoother_from_string(solve::to_string(solve::AmgSmoother::ForwardBackward)),
+            solve::AmgSmoother::ForwardBackward);
+  EXPECT_THROW(solve::amg_smoother_from_string("jacobi"), Error);
+}

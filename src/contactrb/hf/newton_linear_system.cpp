@@ -163,8 +163,9 @@ bool NewtonLinearSystem::solve(const std::vector<int>& active, bool frozen, cons
   return solved;
 }
 
-void NewtonLinearSystem::begin_iteration(int k) {
+void NewtonLinearSystem::begin_iteration(int k, double forcing) {
   rows_now_ = rows_block_ && k == 0;
+  forcing_ = forcing;
   warm_at_ = nullptr;
   if (!rows_now_) inverse_.forget_rows();
 }
@@ -468,14 +469,16 @@ bool NewtonLinearSystem::solve_saddle_amg(const std::vector<int>& active, bool f
     consistent = *p_.A00 + H;
   }
   const Eigen::SparseMatrix<double>& F = frozen || lin.H.empty() ? *p_.A00 : consistent;
-  const solve::SaddlePointKrylovResult kr = solve::solve_saddle_point(F, B, C, amg_, rhs, x0, s_.krylov, &x_iterate);
+  solve::SaddlePointKrylovSettings krylov = s_.krylov;
+  krylov.tolerance = forcing_;
+  const solve::SaddlePointKrylovResult kr = solve::solve_saddle_point(F, B, C, amg_, rhs, x0, krylov, &x_iterate);
   it.krylov += kr.iterations;
   if (kr.status != solve::SaddlePointKrylovStatus::Converged) {
     std::ostringstream os;
     os << "the Newton system (" << n << " free DOFs, " << m
        << " active rows) was not solved by AMG-preconditioned GMRES: "
        << solve::to_string(kr.status) << " after " << kr.iterations << " products (relative residual "
-       << kr.relative_residual << ", tolerance " << s_.krylov.tolerance << ")";
+       << kr.relative_residual << ", tolerance " << krylov.tolerance << ")";
     message = os.str();
     return false;
   }

@@ -73,7 +73,8 @@ class NewtonLinearSystem {
   // Newton iteration k begins. The frozen systems of the first one (from a cold start: the active
   // set of the unloaded overlap, much larger than the final one) take their dual matrix from the
   // active rows of K_0; later systems the block G, kept across iterations (rows_block_).
-  void begin_iteration(int k);
+  // forcing: the GMRES tolerance of the iteration's systems (Amg; newton_forcing_term).
+  void begin_iteration(int k, double forcing);
   // Sets lin.read_dofs: the free DOFs K_0 and D_0 read over every row (ActiveSchur).
   void set_read_dofs(const RowSparse& K0, NewtonLinearization& lin);
   // One system on the rows `active` at `at`: sets step. False when the system is singular
@@ -115,6 +116,7 @@ class NewtonLinearSystem {
   // (SelectedInverse::row_block) instead of G (NewtonTuning::frozen_rows_from_dimension).
   const bool rows_block_;
   bool rows_now_ = false;
+  double forcing_ = 0.0;  // Amg: the GMRES tolerance of the systems of this iteration
   solve::SelectedInverse inverse_;
   solve::SparseLU lu_;
   solve::AmgPreconditioner amg_;

@@ -150,7 +150,12 @@ bool NewtonSolve<Dim>::linearize() {
   it_.colours = lin.colours;
   it_.linearize_s = seconds_since(t0);
   lin_.D0 = p_.dofs->restrict_columns(lin.D);
-  system_.begin_iteration(k_);
+  if (system_.solver() == NewtonLinearSolver::Amg) {
+    forcing_ = newton_forcing_term(s_, !kacanov_phase_, it_.residual, previous_residual_, forcing_);
+    previous_residual_ = kacanov_phase_ ? 0.0 : it_.residual;  // the Newton phase's own ratios only
+    it_.forcing = forcing_;
+  }
+  system_.begin_iteration(k_, forcing_);
   system_.set_read_dofs(st_.K0, lin_);
   t_systems_ = Clock::now();
   lin_.H = free_hessian(lin.H);

@@ -69,6 +69,8 @@ class NewtonSolve {
   NewtonResult res_;
   NewtonIterate<Dim> st_;                 // the iterate
   std::vector<char> previous_active_;  // the active set of the previous step
+  double previous_residual_ = 0.0;     // the KKT residual of the previous iterate (0: none)
+  double forcing_ = 0.0;               // Amg: the forcing term of the previous iteration
   bool newton_phase_ = false;
   int free_steps_ = 0;
   // The iteration under way.

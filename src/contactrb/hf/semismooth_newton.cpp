@@ -1,5 +1,6 @@
 #include "contactrb/hf/semismooth_newton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -30,6 +31,21 @@ NewtonLinearSolver resolved_linear_solver(const NewtonSettings& s, int dimension
   if (s.linear_solver != NewtonLinearSolver::Auto) return s.linear_solver;
   return dimension >= 3 && free_dofs >= s.amg_from_free_dofs && solve::amg_available() ? NewtonLinearSolver::Amg
                                                                                         : NewtonLinearSolver::ActiveSchur;
+}
+
+double newton_forcing_term(const NewtonSettings& s, bool newton_phase, double residual, double previous_residual,
+                           double previous_eta) {
+  const NewtonForcing& f = s.krylov_forcing;
+  const double tightest = std::min(s.krylov.tolerance, f.max);
+  if (!newton_phase) return f.max;
+  double eta = tightest;
+  if (previous_residual > 0.0 && residual > 0.0) {
+    eta = f.gamma * std::pow(residual / previous_residual, f.exponent);
+    const double safeguard = f.gamma * std::pow(previous_eta, f.exponent);
+    if (safeguard > 0.1) eta = std::max(eta, safeguard);
+  }
+  if (residual > 0.0) eta = std::max(eta, 0.5 * s.tolerance / residual);
+  return std::clamp(eta, tightest, f.max);
 }
 
 const char* to_string(NewtonInnerPasses passes) {
@@ -70,6 +86,12 @@ void check_settings(const NewtonSettings& s) {
           "Newton AMG Krylov tolerance must be in (0, 1) (got " + number_text(s.krylov.tolerance) + ")");
   require(s.krylov.max_iterations >= 1,
           "Newton AMG Krylov max_iterations must be >= 1 (got " + std::to_string(s.krylov.max_iterations) + ")");
+  require(std::isfinite(s.krylov_forcing.max) && s.krylov_forcing.max > 0.0 && s.krylov_forcing.max < 1.0,
+          "Newton AMG forcing max must be in (0, 1) (got " + number_text(s.krylov_forcing.max) + ")");
+  require(std::isfinite(s.krylov_forcing.gamma) && s.krylov_forcing.gamma > 0.0 && s.krylov_forcing.gamma <= 1.0,
+          "Newton AMG forcing gamma must be in (0, 1] (got " + number_text(s.krylov_forcing.gamma) + ")");
+  require(std::isfinite(s.krylov_forcing.exponent) && s.krylov_forcing.exponent > 1.0 && s.krylov_forcing.exponent <= 2.0,
+          "Newton AMG forcing exponent must be in (1, 2] (got " + number_text(s.krylov_forcing.exponent) + ")");
   require(s.krylov.restart >= 1, "Newton AMG Krylov restart must be >= 1 (got " + std::to_string(s.krylov.restart) + ")");
   require(std::isfinite(s.amg.strong_threshold) && s.amg.strong_threshold > 0.0 && s.amg.strong_threshold < 1.0,
           "Newton AMG strong_threshold must be in (0, 1) (got " + number_text(s.amg.strong_threshold) + ")");

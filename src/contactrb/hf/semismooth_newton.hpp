@@ -134,6 +134,18 @@ struct NewtonTuning {
   int frozen_rows_from_dimension = 3;
 };
 
+// Amg: the forcing term eta_k of an inexact Newton step, the GMRES tolerance of the systems of
+// iteration k relative to the residual at the iterate (newton_forcing_term; docs/solvers.md,
+// "AMG-preconditioned Krylov solve"): `max` in the Kacanov phase, Eisenstat and Walker's choice 2
+// (SIAM J. Sci. Comput. 17, 1996, (2.6) with the safeguard of Section 3) in the Newton phase,
+// bounded by `max` above and by SaddlePointKrylovSettings::tolerance below; max equal to that
+// tolerance: a constant forcing term.
+struct NewtonForcing {
+  double max = 3e-2;      // the loosest tolerance (the Kacanov phase's)
+  double gamma = 0.9;     // eta^A = gamma (r_k / r_k-1)^exponent
+  double exponent = 2.0;
+};
+
 // What a user sets: the tolerance, the iteration cap, the linear solver; the method's tuning
 // apart (NewtonTuning).
 struct NewtonSettings {
@@ -144,7 +156,8 @@ struct NewtonSettings {
   // defaults are what they are", "Newton: AMG in 3D from 40 000 free DOFs").
   int amg_from_free_dofs = 40000;
   solve::AmgSettings amg;                   // Amg: the V-cycle on A_00
-  solve::SaddlePointKrylovSettings krylov;  // Amg: GMRES on each Newton system
+  solve::SaddlePointKrylovSettings krylov;  // Amg: GMRES on each Newton system (tolerance: the tightest forcing term)
+  NewtonForcing krylov_forcing;             // Amg: the forcing terms of the inexact Newton
   solve::SparseLUBackend lu = solve::SparseLUBackend::Umfpack;  // SaddleLU only
   // ActiveSchur: the fill-reducing ordering of A_00 (solve/selected_inverse.hpp;
   // docs/performance.md, "Why the defaults are what they are", "Fill-reducing ordering").
@@ -158,6 +171,15 @@ struct NewtonSettings {
 // outside (0, 1/2), a min_step outside (0, 1], a negative kacanov_safeguard or
 // max_newton_passes < 1 (and the other bounds of NewtonTuning, named in the messages).
 void check_settings(const NewtonSettings& settings);
+// The forcing term of an iteration (NewtonForcing). Kacanov phase: `max` (its frozen-geometry
+// steps converge linearly, at the rate of the geometry update, however exactly they are solved).
+// Newton phase: Eisenstat and Walker's gamma (r_k / r_k-1)^exponent, at least
+// gamma eta_k-1^exponent when that exceeds 0.1 (the tightest in the first Newton-phase iteration:
+// previous_residual <= 0), and at least 0.5 tolerance / r_k (no tighter than the Newton tolerance
+// needs: Kelley, "Iterative Methods for Linear and Nonlinear Equations", 1995, (6.20)); clamped to
+// [krylov.tolerance, krylov_forcing.max]. r: the KKT residuals of the iterates.
+double newton_forcing_term(const NewtonSettings& settings, bool newton_phase, double residual, double previous_residual,
+                           double previous_eta);
 // The linear solver a problem of this dimension and size gets: Auto resolved (ActiveSchur,
 // SaddleLU or Amg), the others as they are.
 NewtonLinearSolver resolved_linear_solver(const NewtonSettings& settings, int dimension, int free_dofs);
@@ -179,6 +201,7 @@ struct NewtonIteration {
   double search_s = 0.0;   // line search: the trial iterates' contact maps and residuals
   double block_s = 0.0;    // ActiveSchur: the G blocks (selected-inverse columns, Gram products), in factorize_s
   int krylov = 0;          // GMRES products (ActiveSchur: Newton phase; Amg: every system)
+  double forcing = 0.0;    // Amg: the GMRES tolerance of the iteration's systems (newton_forcing_term)
 };
 
 // What the Newton linear systems need of an HF problem (views; the HF solver owns them): the

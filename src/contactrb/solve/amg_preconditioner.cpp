@@ -39,6 +39,18 @@ AmgStatus amg_status_from_string(const std::string& name) {
                                      AmgStatus::InvalidInput});
 }
 
+const char* to_string(AmgSmoother smoother) {
+  switch (smoother) {
+    case AmgSmoother::ForwardBackward: return "forward-backward";
+    case AmgSmoother::Symmetric: return "symmetric";
+  }
+  return "unknown";
+}
+
+AmgSmoother amg_smoother_from_string(const std::string& name) {
+  return enum_from_string(name, "AMG smoother", std::array{AmgSmoother::ForwardBackward, AmgSmoother::Symmetric});
+}
+
 bool amg_available() {
 #ifdef CONTACTRB_HAVE_HYPRE
   return true;
@@ -170,7 +182,11 @@ struct AmgPreconditioner::Impl {
     HYPRE_BoomerAMGSetPMaxElmts(solver, s.max_interpolation_entries);
     HYPRE_BoomerAMGSetStrongThreshold(solver, s.strong_threshold);
     HYPRE_BoomerAMGSetAggNumLevels(solver, s.aggressive_levels);
-    HYPRE_BoomerAMGSetRelaxType(solver, 8);  // l1 symmetric Gauss-Seidel
+    HYPRE_BoomerAMGSetRelaxType(solver, 8);  // l1 symmetric Gauss-Seidel; Gaussian elimination on the coarsest level
+    if (s.smoother == AmgSmoother::ForwardBackward) {
+      HYPRE_BoomerAMGSetCycleRelaxType(solver, 13, 1);  // l1 Gauss-Seidel forward, down the cycle
+      HYPRE_BoomerAMGSetCycleRelaxType(solver, 14, 2);  // backward, up the cycle
+    }
     HYPRE_BoomerAMGSetNumSweeps(solver, 1);
     HYPRE_BoomerAMGSetMaxIter(solver, 1);  // one V-cycle per application
     HYPRE_BoomerAMGSetTol(solver, 0.0);

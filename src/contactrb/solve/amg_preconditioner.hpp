@@ -20,6 +20,13 @@ AmgStatus amg_status_from_string(const std::string& name);  // throws contactrb:
 // True when the build has hypre (CONTACTRB_WITH_AMG and libhypre-dev found).
 bool amg_available();
 
+// The smoother of the V-cycle: one l1 Gauss-Seidel sweep forward on the way down and one
+// backward on the way up (hypre's relax types 13 and 14, its own default), or one symmetric
+// sweep (forward then backward, relax type 8) each way: twice the sweeps per cycle.
+enum class AmgSmoother { ForwardBackward, Symmetric };
+const char* to_string(AmgSmoother smoother);
+AmgSmoother amg_smoother_from_string(const std::string& name);  // throws contactrb::Error
+
 // BoomerAMG's options for 3D elasticity (hypre's users manual, "BoomerAMG": HMIS coarsening,
 // extended+i interpolation with at most 4 entries per row, l1 Gauss-Seidel smoothing). The
 // strength threshold 0.25: faster than the 0.5 often advised in 3D, on hertz-3d levels 2 and 3
@@ -28,6 +35,7 @@ struct AmgSettings {
   double strong_threshold = 0.25;
   int max_interpolation_entries = 4;
   int aggressive_levels = 1;  // levels of aggressive coarsening (less memory and setup in 3D)
+  AmgSmoother smoother = AmgSmoother::ForwardBackward;
 };
 
 class AmgPreconditioner {
