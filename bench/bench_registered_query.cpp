@@ -4,7 +4,7 @@
 //   OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 build/bench/bench_registered_query MODEL.h5 [n] [repeats]
 // Defaults: n = 30 points (hertz-a's verification set), 7 repeats per point. Prints, per setting,
 // the median and maximum over the points of each point's median wall time, the median number of
-// steps and the median effectivity-free estimate; the first query (the solver's first use) is
+// steps and the median estimate of |u_hf - u_rb|_A; the first query (the solver's first use) is
 // reported apart.
 #include <algorithm>
 #include <chrono>
