@@ -54,6 +54,12 @@ class ComplementaryCorrection {
   std::vector<int> local_;   // contact DOF -> measured index, -1 when not measured
   std::vector<Eigen::Index> measured_, rows_;  // measured rows; the rows of the problem (sorted)
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> KG_;  // |rows| x n_e
+  struct Entry {
+    int local = 0;  // measured index of the DOF
+    double value = 0.0;
+  };
+  std::vector<Entry> entries_;     // the entries of rows_'s rows, row after row
+  std::vector<int> entry_start_;   // |rows| + 1 offsets into entries_
   Eigen::MatrixXd S_;        // |rows| x |rows|
   Eigen::VectorXd q_, lam_, c_, y_, change_;
   std::vector<int> warm_;

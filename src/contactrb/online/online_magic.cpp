@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/segment_hit.hpp"
@@ -71,6 +72,7 @@ void MagicPointEvaluator::rebuild(const contact::ContactQuadrature& q) {
     }
   };
   for (int v : master_) use(v);
+  master_slots_ = static_cast<int>(used_node_.size());
   for (int v : slave_node_) use(v);
   const int n_used = static_cast<int>(used_node_.size());
   Theta_r_.resize(2 * n_used, Theta_c_.cols());
@@ -118,6 +120,19 @@ void MagicPointEvaluator::prepare(const std::vector<Eigen::Vector2d>& nodes, con
   };
   terms(kappa_row_, kappa_terms_, kappa_start_);
   terms(gamma_row_, gamma_terms_, gamma_start_);
+  active_.resize(gamma_row_.size());
+  for (std::size_t i = 0; i < active_.size(); ++i) active_[i] = static_cast<int>(i);
+  slave_needed_.assign(slave_node_.size(), 1);
+}
+
+void MagicPointEvaluator::select_rows(const std::vector<int>& rows) {
+  active_ = rows;
+  slave_needed_.assign(slave_node_.size(), 0);
+  for (const Term& term : kappa_terms_) slave_needed_[sz(term.slave)] = 1;
+  for (int i : active_) {
+    require(i >= 0 && sz(i) < gamma_row_.size(), "MagicPointEvaluator::select_rows: row outside the gamma rows");
+    for (int t = gamma_start_[sz(i)]; t < gamma_start_[sz(i) + 1]; ++t) slave_needed_[sz(gamma_terms_[sz(t)].slave)] = 1;
+  }
 }
 
 Vec2 MagicPointEvaluator::segment_normal(int k) const {
@@ -217,9 +232,19 @@ double MagicPointEvaluator::k_entry(const Projection& p, int slave_node, int dof
 }
 
 void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
-  w_r_ = lift_r_;
-  w_r_.noalias() += Theta_r_ * u_hat;
-  if (!w_r_.allFinite()) throw Error("OnlineSolver: the contact-surface displacement is not finite");
+  // The displacement of the master chain and of the slave nodes the selected rows need.
+  const Eigen::Index m = 2 * static_cast<Eigen::Index>(master_slots_);
+  w_r_.head(m) = lift_r_.head(m);
+  w_r_.head(m).noalias() += Theta_r_.topRows(m) * u_hat;
+  bool finite = w_r_.head(m).allFinite();
+  for (std::size_t l = 0; l < slave_node_.size(); ++l) {
+    const int slot = node_slot_[sz(slave_node_[l])];
+    if (!slave_needed_[l] || slot < master_slots_) continue;
+    w_r_.segment<2>(2 * slot) = lift_r_.segment<2>(2 * slot);
+    w_r_.segment<2>(2 * slot).noalias() += Theta_r_.middleRows<2>(2 * slot) * u_hat;
+    finite = finite && w_r_.segment<2>(2 * slot).allFinite();
+  }
+  if (!finite) throw Error("OnlineSolver: the contact-surface displacement is not finite");
   const int M = static_cast<int>(master_.size()) - 1;  // segments
   for (int j = 0; j <= M; ++j) {
     const int slot = node_slot_[sz(master_[sz(j)])];
@@ -263,6 +288,7 @@ void MagicPointEvaluator::project(const Eigen::VectorXd& u_hat) {
     }
   }
   for (std::size_t l = 0; l < slave_node_.size(); ++l) {
+    if (!slave_needed_[l]) continue;
     const int slot = node_slot_[sz(slave_node_[l])];
     const Vec2& X = X_[sz(slot)];
     const Vec2 x = X + w_r_.segment<2>(2 * slot);
@@ -335,8 +361,8 @@ void MagicPointEvaluator::solve_touched_rows() {
       pending_.push_back(slot);
     }
   };
-  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
-    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+  for (int i : active_) {
+    for (int t = gamma_start_[sz(i)]; t < gamma_start_[sz(i) + 1]; ++t) {
       const Term& term = gamma_terms_[sz(t)];
       const Projection& p = projection_[sz(term.slave)];
       if (!p.candidate) continue;
@@ -367,9 +393,10 @@ void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta,
     K_E->setZero(K_Theta.rows(), K_Theta.cols());
     solve_touched_rows();
   }
-  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
+  for (std::size_t j = 0; j < active_.size(); ++j) {
     double v = 0.0;
-    const Eigen::Index row = static_cast<Eigen::Index>(i);
+    const Eigen::Index row = static_cast<Eigen::Index>(j);
+    const std::size_t i = sz(active_[j]);
     for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
       const Term& term = gamma_terms_[sz(t)];
       const Projection& p = projection_[sz(term.slave)];
@@ -396,8 +423,9 @@ void MagicPointEvaluator::evaluate_slack(const Eigen::VectorXd& u_hat, const Eig
   project(u_hat);
   load.setZero();
   const auto w = [&](int node) { return w_r_.segment<2>(2 * node_slot_[sz(node)]); };
-  for (std::size_t i = 0; i < gamma_row_.size(); ++i) {
-    const Eigen::Index row = static_cast<Eigen::Index>(i);
+  for (std::size_t j = 0; j < active_.size(); ++j) {
+    const Eigen::Index row = static_cast<Eigen::Index>(j);
+    const std::size_t i = sz(active_[j]);
     double v = 0.0;
     for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
       const Term& term = gamma_terms_[sz(t)];
@@ -417,6 +445,37 @@ void MagicPointEvaluator::evaluate_slack(const Eigen::VectorXd& u_hat, const Eig
     }
     slack(row) = v;
   }
+}
+
+void MagicPointEvaluator::assemble_rows(Eigen::Index num_dofs, Eigen::SparseMatrix<double, Eigen::RowMajor>& K) const {
+  // Row j = sum over the row's slave terms of weight * k_pt(s) (27), merged per DOF in increasing
+  // order; the master entries of a zero barycentric weight are left out, as project_slave_nodes does.
+  K.resize(static_cast<Eigen::Index>(active_.size()), num_dofs);
+  K.reserve(Eigen::VectorXi::Constant(K.rows(), 6));
+  std::vector<std::pair<int, double>> entries;
+  for (std::size_t j = 0; j < active_.size(); ++j) {
+    const std::size_t i = sz(active_[j]);
+    entries.clear();
+    for (int t = gamma_start_[i]; t < gamma_start_[i + 1]; ++t) {
+      const Term& term = gamma_terms_[sz(t)];
+      const Projection& p = projection_[sz(term.slave)];
+      if (!p.candidate) continue;
+      const auto add = [&](int node, double phi) {
+        for (int c = 0; c < 2; ++c) entries.emplace_back(2 * node + c, term.weight * (phi * p.normal(c)));
+      };
+      if (1.0 - p.xi != 0.0) add(p.a, 1.0 - p.xi);
+      if (p.xi != 0.0) add(p.b, p.xi);
+      add(slave_node_[sz(term.slave)], -1.0);
+    }
+    std::sort(entries.begin(), entries.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t e = 0; e < entries.size();) {
+      double v = 0.0;
+      const int dof = entries[e].first;
+      for (; e < entries.size() && entries[e].first == dof; ++e) v += entries[e].second;
+      K.insert(static_cast<Eigen::Index>(j), dof) = v;
+    }
+  }
+  K.makeCompressed();
 }
 
 void MagicPointEvaluator::evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat,

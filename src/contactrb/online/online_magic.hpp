@@ -17,6 +17,7 @@
 // compare it with the full contact-surface rows (constraint_rows) to 1e-10.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "contactrb/contact/contact_pair.hpp"
@@ -40,6 +41,13 @@ class MagicPointEvaluator {
   void prepare(const std::vector<Eigen::Vector2d>& nodes, const contact::ContactQuadrature& quadrature,
                const Eigen::VectorXd& lift_mu);
 
+  // Per mu, after prepare (which selects every gamma row): evaluate_rows and evaluate_slack then
+  // compute only the gamma rows listed (positions in the setup's gamma_row, increasing), from the
+  // slave nodes under them; row j of their outputs is row rows[j]. Why: a registered dual basis
+  // Xi(mu) is zero on the kept rows outside the predicted support, which add nothing to D or
+  // Xi' gamma (docs/offline-online.md, "Cost of a query with the exact rows").
+  void select_rows(const std::vector<int>& rows);
+
   // Per step: kappa_hat (Mk) and gamma_hat (Mg) at u_hat (N), sized by the caller.
   void evaluate(const Eigen::VectorXd& u_hat, Eigen::VectorXd& kappa_hat, Eigen::VectorXd& gamma_hat);
 
@@ -62,6 +70,12 @@ class MagicPointEvaluator {
   // (ErrorEstimator::ExactContact) at the cost of the projections only.
   void evaluate_slack(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda, Eigen::VectorXd& slack,
                       Eigen::VectorXd& load);
+
+  // The rows K(w) of every gamma row over the n_c contact DOFs, from the projections of the last
+  // evaluate_slack (gamma rows = every constraint row, in order): K = W K_pt as
+  // contact::constraint_rows builds it for collocation and LAC-Simpson rows, without projecting
+  // again.
+  void assemble_rows(Eigen::Index num_dofs, Eigen::SparseMatrix<double, Eigen::RowMajor>& K) const;
 
   int num_slave_nodes() const { return static_cast<int>(slave_node_.size()); }  // restricted slave nodes
 
@@ -107,6 +121,7 @@ class MagicPointEvaluator {
   std::vector<int> slave_position_;         // restricted slave index -> position in the slave chain
   std::vector<int> slave_node_;             // restricted slave index -> local node
   std::vector<int> used_node_;              // nodes whose displacement is needed: master chain nodes, then slaves
+  int master_slots_ = 0;                    // the first master_slots_ used nodes are the master chain's
   std::vector<int> node_slot_;              // local node -> index in used_node_ (-1)
   RowMatrix Theta_r_;                       // 2 |used| x N: the rows of Theta_c of used_node_
   // Per mu (prepare_solved): the rows of Theta_c L^-T of the used nodes solved so far.
@@ -122,6 +137,8 @@ class MagicPointEvaluator {
   // Per mu.
   std::vector<Term> kappa_terms_, gamma_terms_;
   std::vector<int> kappa_start_, gamma_start_;  // CSR-like offsets into the term lists
+  std::vector<int> active_;                 // the gamma rows evaluated (select_rows; prepare: all)
+  std::vector<char> slave_needed_;          // per restricted slave: under an active or kappa row
   std::vector<Eigen::Vector2d> X_;          // Omega(mu) position of each used node
   Eigen::VectorXd lift_r_;                  // u_D,c(mu) on the used nodes
   // Per step.

@@ -254,10 +254,7 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
               " constraints, the model " + std::to_string(surface_.num_constraints));
   restricted_ = restricted;
   exact_rows_ = exact_rows;
-  if (registered_) {
-    registered_basis(registration_, predicted_support(registration_, mu), R_, Xi_);
-    d_bound_ = Xi_.norm() * Theta_c_.norm();
-  }
+  if (registered_) set_registered_basis(mu);
   // Collocation and LAC-Simpson rows: the allocation-free evaluator (online_magic.hpp).
   pointwise_magic_ = restricted && surface_.discretization != contact::Discretization::LAC;
   // (49)
@@ -297,11 +294,30 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     lift_mu_.setZero();
   }
   if (pointwise_magic_) (exact_rows_ ? kept_ : magic_).prepare(mesh_.nodes, quadrature_, lift_mu_);
-  if (pointwise_magic_ && exact_rows_) kept_.prepare_solved(llt_);
+  if (pointwise_magic_ && exact_rows_ && registered_) {
+    // Only the rows Xi(mu) weighs; Y = A^-1 D' from D' itself (R columns, not the rows'
+    // nodes: R is small and does not grow with the mesh).
+    kept_.select_rows(xi_rows_);
+    KTheta_.resize(static_cast<Eigen::Index>(xi_rows_.size()), N_);
+    gamma_kept_.resize(static_cast<Eigen::Index>(xi_rows_.size()));
+  } else if (pointwise_magic_ && exact_rows_) {
+    kept_.prepare_solved(llt_);
+  }
   warm_.clear();
   prepared_mu_ = mu;
   prepared_ = true;
   return true;
+}
+
+void OnlineSolver::set_registered_basis(const cases::Mu& mu) {
+  registered_basis(registration_, predicted_support(registration_, mu), R_, Xi_);
+  d_bound_ = Xi_.norm() * Theta_c_.norm();
+  xi_rows_.clear();
+  for (Eigen::Index r = 0; r < Xi_.rows(); ++r) {
+    if (!Xi_.row(r).isZero(0.0)) xi_rows_.push_back(static_cast<int>(r));
+  }
+  Xi_rows_.resize(static_cast<Eigen::Index>(xi_rows_.size()), R_);
+  for (std::size_t j = 0; j < xi_rows_.size(); ++j) Xi_rows_.row(static_cast<Eigen::Index>(j)) = Xi_.row(xi_rows_[j]);
 }
 
 bool OnlineSolver::exact_rows(ContactRows choice) const {
@@ -309,6 +325,12 @@ bool OnlineSolver::exact_rows(ContactRows choice) const {
 }
 
 void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
+  if (pointwise_magic_ && registered_) {  // the rows Xi(mu) weighs, from their own slave nodes
+    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_);
+    Dt_.noalias() = KTheta_.transpose() * Xi_rows_;
+    dg_.noalias() = Xi_rows_.transpose() * gamma_kept_;
+    return;
+  }
   if (pointwise_magic_) {  // collocation and LAC-Simpson rows: from the slaves under the kept rows only
     kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KE_);
     if (xi_is_identity_) {  // the row cone: generator r is kept row r
@@ -363,9 +385,10 @@ const ErrorEstimator::ExactContact& OnlineSolver::exact_contact(const Eigen::Vec
   if (pointwise_magic_) {
     all_rows_.prepare(mesh_.nodes, quadrature_, lift_mu_);
     all_rows_.evaluate_slack(u_hat, lambda_rows_, slack_rows_, exact_.load);
-    // The sparse rows only when the complementary bound asks for them.
-    exact_.rows = [this, &u_hat]() -> const ComplementaryCorrection::RowSparse& {
-      estimate_rows_ = hf_rows_at(u_hat);
+    // The sparse rows only when the complementary bound asks for them, from the projections
+    // evaluate_slack made.
+    exact_.rows = [this]() -> const ComplementaryCorrection::RowSparse& {
+      all_rows_.assemble_rows(Theta_c_.rows(), estimate_rows_.K);
       return estimate_rows_.K;
     };
   } else {
@@ -387,7 +410,7 @@ bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Ei
                         std::string& message) {
   if (exact_rows_) {
     exact_operators(u_hat);
-    const bool e_given = pointwise_magic_;  // exact_operators set Et_ = L^-1 D' from the solved rows
+    const bool e_given = pointwise_magic_ && !registered_;  // exact_operators set Et_ = L^-1 D' from the solved rows
     // |D'|_F <= |Theta_c|_F |Xi|_F max_r |K_r| and |K_r| <= 2 |I_r| (a unit normal on the slave
     // node and a partition of unity on the master): the bound of the blind test below.
     const double d_norm = Dt_.norm();

@@ -178,6 +178,8 @@ class OnlineSolver {
   // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
   void exact_operators(const Eigen::VectorXd& u_hat);
   bool exact_rows(ContactRows choice) const;
+  // Xi(mu) of the registered cone at mu, and the kept rows where it is not zero (xi_rows_, Xi_rows_).
+  void set_registered_basis(const cases::Mu& mu);
   // The HF contact rows at the returned solution, for ErrorEstimator::evaluate_exact (pointwise
   // rows: from all_rows_, allocation-free; exactly integrated LAC rows: the contact library's).
   const ErrorEstimator::ExactContact& exact_contact(const Eigen::VectorXd& u_hat, const Eigen::VectorXd& lambda_hat);
@@ -243,6 +245,8 @@ class OnlineSolver {
   Eigen::MatrixXd Xi_;                   // R_kept x R
   bool xi_is_identity_ = false;          // Xi_ = the first R unit vectors (the row cone): products skipped
   bool registered_ = false;              // Xi_ = Xi(mu) of the registered cone (model/registration.hpp)
+  std::vector<int> xi_rows_;             // registered: the kept rows (positions) where Xi(mu) is not zero
+  Eigen::MatrixXd Xi_rows_;              // registered: those rows of Xi(mu)
   contactrb::model::Registration registration_;
   double d_bound_ = 0.0;                 // |Xi|_F |Theta_c|_F (bound of |D|_F per unit |phi|_1)
   // N below the model's N_max cuts supremizers (they are the last basis vectors): the pair
@@ -286,9 +290,10 @@ class OnlineSolver {
   bool restricted_ = true;
   bool exact_rows_ = false;              // this solve's ContactRows, resolved
   bool row_cone_ = false;                // the model's dual cone is the row cone
-  RowMatrix KTheta_;                     // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_)
+  RowMatrix KTheta_;                     // R_kept x N: K(w) Theta_c on the kept rows (exact_rows_; registered:
+                                         // on xi_rows_)
   RowMatrix KE_;                         // R_kept x N: K(w) Theta_c L^-T (exact pointwise rows)
-  Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_)
+  Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_; registered: xi_rows_)
   cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
   bool prepared_ = false;
   bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
