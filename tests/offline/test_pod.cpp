@@ -225,3 +225,42 @@ TEST(POD, InvalidInputThrows) {
   nan(0, 0) = std::nan("");
   EXPECT_THROW(pod(nan), contactrb::Error);
 }
+
+// The method of snapshots against the thin SVD, on snapshots with known M-singular values
+// 3 * 10^(-12 i / 15): the same values down to about 1e-8 sigma_1, the same truncation at a
+// relative 1e-3, the same subspace, an M-orthonormal basis; the numerical rank stops where the
+// squared values reach round-off.
+TEST(POD, CorrelationMethodAgreesWithTheThinSVDAboveItsAccuracy) {
+  const int n = 200, P = 16;
+  const auto M = h1_like(n);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N01;
+  const MatrixXd A = MatrixXd::NullaryExpr(n, P, [&] { return N01(rng); });
+  const Eigen::LLT<MatrixXd> llt(A.transpose() * (M * A));
+  const MatrixXd Phi = llt.matrixU().solve<Eigen::OnTheRight>(A);
+  Eigen::HouseholderQR<MatrixXd> qv(MatrixXd::NullaryExpr(P, P, [&] { return N01(rng); }));
+  const MatrixXd V = qv.householderQ() * MatrixXd::Identity(P, P);
+  VectorXd sigma(P);
+  for (int i = 0; i < P; ++i) sigma(i) = 3.0 * std::pow(10.0, -12.0 * i / (P - 1));
+  const MatrixXd S = Phi * sigma.asDiagonal() * V.transpose();
+
+  PODSettings s;
+  s.relative = true;
+  s.tolerance = 1e-3;
+  const PODResult svd = pod(S, M, s);
+  const PODResult cor = pod_by_correlation(S, M, s);
+  EXPECT_EQ(svd.N, 4);  // sigma_i / sigma_1 = 10^(-0.8 i): 4.0e-3 at i = 3, 6.3e-4 at i = 4
+  EXPECT_EQ(cor.N, svd.N);
+  for (int i = 0; i < P; ++i) {
+    if (sigma(i) > 1e-6 * sigma(0)) {
+      EXPECT_NEAR(cor.singular_values(i), sigma(i), 1e-8 * sigma(0)) << "i = " << i;
+    }
+  }
+  EXPECT_LT(cor.rank, P);  // sigma_15 = 3e-12: below the method's floor
+  EXPECT_GE(cor.rank, 9);  // sigma_8 = 4.5e-7 sigma_1: above it
+  const MatrixXd G = cor.basis.transpose() * (M * cor.basis);
+  EXPECT_LT((G - MatrixXd::Identity(cor.N, cor.N)).cwiseAbs().maxCoeff(), 1e-12);
+  // The same subspace: the M-projection of one basis onto the other keeps its norm.
+  const MatrixXd C = svd.basis.transpose() * (M * cor.basis);
+  EXPECT_NEAR(C.squaredNorm(), static_cast<double>(cor.N), 1e-8);
+}

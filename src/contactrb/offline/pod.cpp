@@ -1,12 +1,13 @@
 #include "contactrb/offline/pod.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <chrono>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "contactrb/common/enum_names.hpp"
@@ -151,6 +152,57 @@ PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double
     return Eigen::MatrixXd(llt.permutationPinv() * X);
   };
   return pod_impl(std::move(B), settings, to_modes, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(M * X); });
+}
+
+PODResult pod_by_correlation(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M,
+                             const PODSettings& settings) {
+  check_settings(settings);
+  require(M.rows() == snapshots.rows() && M.cols() == snapshots.rows(),
+          "pod: the inner-product matrix M is " + dims(M.rows(), M.cols()) + " but the snapshots are " +
+              dims(snapshots.rows(), snapshots.cols()) + " (M must be N_hf x N_hf)");
+  require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
+  const auto t0 = std::chrono::steady_clock::now();
+  const Eigen::Index P = snapshots.cols();
+  constexpr Eigen::Index kBlock = 64;
+  Eigen::MatrixXd G(P, P);
+  for (Eigen::Index b = 0; b < P; b += kBlock) {
+    const Eigen::Index nb = std::min(kBlock, P - b);
+    const Eigen::MatrixXd MS = M * snapshots.middleCols(b, nb);
+    G.middleCols(b, nb) = snapshots.transpose() * MS;
+  }
+  G = 0.5 * (G + G.transpose()).eval();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
+  require(eig.info() == Eigen::Success, "pod: the correlation matrix's eigenvalue problem did not converge");
+  PODResult result;
+  result.singular_values.resize(P);
+  Eigen::MatrixXd V(P, P);  // decreasing order
+  for (Eigen::Index i = 0; i < P; ++i) {
+    result.singular_values(i) = std::sqrt(std::max(0.0, eig.eigenvalues()(P - 1 - i)));
+    V.col(i) = eig.eigenvectors().col(P - 1 - i);
+  }
+  const Eigen::VectorXd& sigma = result.singular_values;
+  const double largest = P > 0 ? sigma(0) : 0.0;
+  const double rank_tolerance = std::max(settings.rank_tolerance, kCorrelationRankTolerance);
+  int rank = 0;
+  while (rank < P && sigma(rank) > 0.0 && sigma(rank) > rank_tolerance * largest) ++rank;
+  result.rank = rank;
+  const int N = truncated_size(sigma, rank, settings, result.threshold);
+  result.N = N;
+  result.discarded_energy = sigma.tail(P - N).squaredNorm();
+  // phi_i = S v_i / sigma_i, then one Cholesky re-orthonormalization in M (as pod()).
+  Eigen::MatrixXd basis = snapshots * (V.leftCols(N) * sigma.head(N).cwiseInverse().asDiagonal());
+  if (N > 0) {
+    Eigen::MatrixXd B = basis.transpose() * (M * basis);
+    B = 0.5 * (B + B.transpose()).eval();
+    const Eigen::LLT<Eigen::MatrixXd> llt(B);
+    if (llt.info() == Eigen::Success) {
+      const Eigen::MatrixXd Lt = llt.matrixU();
+      basis = Lt.triangularView<Eigen::Upper>().solve<Eigen::OnTheRight>(basis);
+    }
+  }
+  result.basis = std::move(basis);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
 }
 
 PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings) {

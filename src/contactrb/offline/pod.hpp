@@ -55,4 +55,13 @@ PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double
 // Euclidean inner product (M = identity).
 PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings = {});
 
+// The method of snapshots: the eigenvalues of the correlation matrix S' M S, formed a block of
+// columns at a time, so no second N_hf x P matrix is made (pod() makes two: W S and its QR).
+// The singular values are accurate to about 1e-8 sigma_1 only (the square root of round-off), so
+// the numerical rank is taken at kCorrelationRankTolerance: for truncations well above it (the
+// registered supremizers' 1e-3 of offline_builder.cpp, P in the hundreds on meshes of 1e6 DOFs).
+inline constexpr double kCorrelationRankTolerance = 1e-7;
+PODResult pod_by_correlation(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M,
+                             const PODSettings& settings = {});
+
 }  // namespace contactrb::offline
