@@ -733,11 +733,14 @@ void training_coordinates(const Eigen::MatrixXd& Theta, const Eigen::SparseMatri
 }
 
 // The online initial guess (OnlineSettings::initial_guess): the reduced solutions at the training
-// values, P online solves from zero.
-void solve_at_training_values(ReducedModel& m) {
+// values, P online solves: from zero, or (`guess` Interpolated, extension builds) from the
+// projection coefficients just stored, which the reduced Newton refines in a few steps (a greedy
+// solves every training value again at each step, and from zero these solves cost more than the
+// rest of the build on finer meshes).
+void solve_at_training_values(ReducedModel& m, InitialGuess guess) {
   OnlineSolver solver(m);
   OnlineSettings cold;
-  cold.initial_guess = InitialGuess::Zero;
+  cold.initial_guess = guess;
   for (Index p = 0; p < m.training_mu.cols(); ++p) {
     const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
     if (!sol.converged()) continue;
@@ -879,7 +882,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   }
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);
-  solve_at_training_values(m);
+  solve_at_training_values(m, settings.extend_basis ? InitialGuess::Interpolated : InitialGuess::Zero);
   rep.reduction_s = seconds_since(t0);
 
   out.reconstruction = reconstruction_data(set, ref, Theta, m);
