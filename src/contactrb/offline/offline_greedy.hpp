@@ -70,8 +70,8 @@ inline constexpr int kRowConeSweepIterations = 30;
 struct GreedyOfflineSettings {
   // Stop when max_mu Delta_u(mu) / |u_rb(mu)|_A(mu) <= tolerance (unit-free; relative_estimate()).
   // 1e-3: with the row cone (the default) the estimate has no floor and overestimates the
-  // relative energy-norm error 1.5-4.5 times; hertz-3p reaches it in 35 HF solves with max
-  // e_displ 1.4e-4 on its verification set, where 1e-2 stopped at 1.6e-3 (docs/offline-online.md,
+  // relative energy-norm error 1.5-4.5 times; hertz-3p reaches it in 33 HF solves with max
+  // e_displ 1.8e-4 on its verification set, where 1e-2 stopped at 1.6e-3 (docs/offline-online.md,
   // "Greedy sampling"). The paper's cones stop near 1e-2 (the EIM estimate's square-root floor)
   // and spend the budget.
   double tolerance = 1e-3;
