@@ -88,6 +88,7 @@ struct OfflineOptions {
   int max_hf = offline::GreedyOfflineSettings{}.max_hf;
   int greedy_batch = offline::GreedyOfflineSettings{}.batch;
   double greedy_saturation = offline::GreedyOfflineSettings{}.saturation;
+  bool greedy_rebuild = false;
   std::string out;
 };
 
@@ -205,6 +206,7 @@ int run_greedy(const OfflineOptions& opt) {
   gs.max_hf = opt.max_hf;
   gs.batch = opt.greedy_batch;
   gs.saturation = opt.greedy_saturation;
+  gs.incremental = !opt.greedy_rebuild;
   gs.jobs = opt.jobs;
   gs.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   offline::check_settings(gs);
@@ -459,6 +461,9 @@ Command add_offline_command(CLI::App& app) {
                   "With --greedy: saturation constant of the lazy sweep (>= 1): a point whose last estimate times "
                   "this is below the largest fresh one is not solved again; inf: every point every step")
       ->capture_default_str()
+      ->needs(greedy_opt);
+  sub->add_flag("--greedy-rebuild", opt->greedy_rebuild,
+                "With --greedy: rebuild each step's model by POD instead of extending the previous one (row cone)")
       ->needs(greedy_opt);
   sub->add_option("--out", opt->out,
                   "Output model file (HDF5); offline.json (greedy.csv, greedy.json with --greedy) goes to the same "

@@ -36,7 +36,7 @@ struct DualConeResult {
   DualConeMethod method = DualConeMethod::CPG;
   GreedyStatus status = GreedyStatus::Exhausted;
   Eigen::MatrixXd generators;  // R_hf x R, entries >= 0 (greedies: the selected snapshots themselves)
-  std::vector<int> selected;   // greedies: snapshot indices in selection order; NMF: empty
+  std::vector<int> selected;   // greedies: snapshot indices in selection order; rows: row_cone.hpp; NMF: empty
   // errors[R] = max_mu |lambda(mu) - Pi_{K_R}(lambda(mu))|_Lambda for R = 0 .. (R of the generators),
   // K_R the cone of the first R selected snapshots (greedies) or of an NMF of rank R;
   // errors[0] = max_mu |lambda(mu)|_Lambda. Angle-greedy: filled only when cone_history. NMF:

@@ -271,6 +271,7 @@ void factor_fixed_columns(const EstimateInputs& in, const std::vector<Index>& co
   }
   base.n_fixed = static_cast<int>(nf);
   base.contact_columns = contact;
+  base.extended = 0;  // the split basis columns were against the former factor
 }
 
 // The base holding at least the contact DOFs `needed` (sorted): factored again, with the union,
@@ -323,31 +324,126 @@ Eigen::MatrixXd whitened_basis_columns(const EstimateInputs& in, const EstimateB
   return whiten(base, cols);
 }
 
+// H' Z for whitened columns Z, in the row frame of R_fixed: [Q_c' Z_contact; Q_i' Z_interior]
+// (EstimateBase). Its first R_fixed.rows() rows are the coefficients on the fixed columns' frame,
+// the rest (Q_i' Z_interior below its first n_fixed rows) is the part orthogonal to them.
+Eigen::MatrixXd split_against_fixed(const EstimateBase& base, const Eigen::MatrixXd& Z) {
+  const Index nc = ix(base.contact_columns.size()), n_i = Z.rows() - nc;
+  Eigen::MatrixXd out(Z.rows(), Z.cols());
+  out.bottomRows(n_i) = Z.topRows(n_i);
+  out.bottomRows(n_i).applyOnTheLeft(base.qr_interior.householderQ().adjoint());
+  if (nc > 0) out.topRows(nc) = base.qr_contact.householderQ().adjoint() * Z.bottomRows(nc);
+  return out;
+}
+
 // S with |W y| = |S y| for W = L^-1 P [f_j | -A_j u_D,k | -A_j,00 Theta | E_c'] (that column
 // order, E_c' on the base's contact columns only): with the base's block factor
-// [W_fixed | W_contact] = blockdiag(Q_i, Q_c) R_fixed, the basis columns are
-// [Q_c' W_t,contact; Q_i' W_t,interior] = [C; D] (C the rows of the frame, D = Q_t R_t the rest,
-// thin QR), and S = [[R_f, C, R_c], [0, R_t, 0]]: only the n_free x J^a N basis block is
-// factored per model.
+// [W_fixed | W_contact] = blockdiag(Q_i, Q_c) R_fixed, the basis columns split as H' W_t = [C; D]
+// (split_against_fixed; D = Q_t R_t, thin QR), and S = [[R_f, C, R_c], [0, R_t, 0]]: only the
+// n_free x J^a N basis block is factored per model.
 Eigen::MatrixXd whitened_residual_factor(const EstimateInputs& in, const EstimateBase& base, Index cols) {
-  const Eigen::MatrixXd Z = whitened_basis_columns(in, base);
+  const Eigen::MatrixXd Z = split_against_fixed(base, whitened_basis_columns(in, base));
   const Index n_free = Z.rows(), nt = Z.cols(), kc = base.R_fixed.rows();
-  const Index nf = base.n_fixed, nc = ix(base.contact_columns.size()), n_i = n_free - nc;
-  const Index kt = std::min(n_i - nf, nt);
+  const Index nf = base.n_fixed, nc = ix(base.contact_columns.size());
+  const Index kt = std::min(n_free - kc, nt);
   require(cols == nf + nt + nc, "build_estimate_data: inconsistent residual columns");
-  Eigen::MatrixXd interior = Z.topRows(n_i);
-  interior.applyOnTheLeft(base.qr_interior.householderQ().adjoint());
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kc + kt, cols);
   S.topLeftCorner(kc, nf) = base.R_fixed.leftCols(nf);
-  if (nc > 0) S.block(0, nf, nc, nt) = base.qr_contact.householderQ().adjoint() * Z.bottomRows(nc);
-  S.block(nc, nf, nf, nt) = interior.topRows(nf);
+  S.block(0, nf, kc, nt) = Z.topRows(kc);
   S.topRightCorner(kc, nc) = base.R_fixed.rightCols(nc);
   if (kt > 0) {
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(interior.bottomRows(n_i - nf));
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Z.bottomRows(n_free - kc));
     S.block(kc, nf, kt, nt) = qr.matrixQR().topRows(kt).triangularView<Eigen::Upper>();
   }
   return S;
 }
+
+// A column whose part outside Q_t's span is below this fraction of its norm adds no row to R_t.
+constexpr double kExtensionRankTolerance = 1e-13;
+
+// Appends z to the thin QR Q_t R_t (classical Gram-Schmidt twice): R_t gains the column
+// [Q_t' z; rho] and Q_t the column z_perp / rho when rho = |z_perp| leaves the span.
+void append_to_thin_qr(Eigen::VectorXd z, Eigen::MatrixXd& Q, Eigen::MatrixXd& R) {
+  const double norm0 = z.norm();
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(Q.cols());
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::VectorXd c = Q.transpose() * z;
+    z -= Q * c;
+    r += c;
+  }
+  const double rho = z.norm();
+  const bool grows = rho > kExtensionRankTolerance * norm0 && Q.cols() < Q.rows();
+  const Index k = Q.cols() + (grows ? 1 : 0), n = R.cols();
+  R.conservativeResize(k, n + 1);
+  R.bottomLeftCorner(k - Q.cols(), n).setZero();
+  R.col(n).head(Q.cols()) = r;
+  if (grows) {
+    R(k - 1, n) = rho;
+    Q.conservativeResize(Eigen::NoChange, k);
+    Q.col(k - 1) = z / rho;
+  }
+}
+
+// The split basis columns of an extension build: the base's columns of the reused basis vectors,
+// then those of the new ones, computed and appended to the thin QR here.
+void extend_split_columns(const EstimateInputs& in, EstimateBase& base) {
+  const std::vector<int>& order = *in.extension_order;
+  const Index n_free = ix(in.free_dofs->size()), kc = base.R_fixed.rows();
+  const int Ja = static_cast<int>(in.terms->A.size()), N = static_cast<int>(order.size());
+  if (base.extended > in.extension_reused || base.Z.rows() != n_free) base.extended = 0;  // another basis
+  if (base.extended == 0) {
+    base.Z.resize(n_free, 0);
+    base.Q_t.resize(n_free - kc, 0);
+    base.R_t.resize(0, 0);
+  }
+  std::vector<int> column_of(sz(N), -1);  // growth index -> column of Theta
+  for (int n = 0; n < N; ++n) column_of[sz(order[sz(n)])] = n;
+  const int fresh = N - base.extended;
+  if (fresh <= 0) return;
+  Eigen::MatrixXd theta(n_free, fresh);
+  for (int i = 0; i < fresh; ++i) theta.col(i) = in.Theta->col(column_of[sz(base.extended + i)]);
+  EstimateInputs part = in;
+  part.Theta = &theta;
+  const Eigen::MatrixXd Z = split_against_fixed(base, whitened_basis_columns(part, base));  // column j fresh + i
+  const Index first = base.Z.cols();
+  base.Z.conservativeResize(Eigen::NoChange, first + static_cast<Index>(Ja) * fresh);
+  for (int i = 0; i < fresh; ++i) {
+    for (int j = 0; j < Ja; ++j) {
+      const Eigen::VectorXd z = Z.col(static_cast<Index>(j) * fresh + i);
+      base.Z.col(first + static_cast<Index>(Ja) * i + j) = z;
+      append_to_thin_qr(z.tail(n_free - kc), base.Q_t, base.R_t);
+    }
+  }
+  base.extended = N;
+}
+
+// whitened_residual_factor of an extension build: the same S up to an orthogonal factor on the
+// left, its basis block from the base's split columns (growth order mapped to the layout's) and
+// R_t in place of a new QR.
+Eigen::MatrixXd extended_residual_factor(const EstimateInputs& in, EstimateBase& base, Index cols) {
+  extend_split_columns(in, base);
+  const std::vector<int>& order = *in.extension_order;
+  const int Ja = static_cast<int>(in.terms->A.size()), N = static_cast<int>(order.size());
+  const Index kc = base.R_fixed.rows(), kt = base.R_t.rows();
+  const Index nf = base.n_fixed, nt = static_cast<Index>(Ja) * N, nc = base.R_fixed.cols() - nf;
+  require(cols == nf + nt + nc, "build_estimate_data: inconsistent residual columns");
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kc + kt, cols);
+  S.topLeftCorner(kc, nf) = base.R_fixed.leftCols(nf);
+  for (int j = 0; j < Ja; ++j) {
+    for (int n = 0; n < N; ++n) {
+      const Index internal = static_cast<Index>(Ja) * order[sz(n)] + j, layout = nf + static_cast<Index>(j) * N + n;
+      S.col(layout).head(kc) = base.Z.col(internal).head(kc);
+      S.col(layout).tail(kt) = base.R_t.col(internal);
+    }
+  }
+  S.topRightCorner(kc, nc) = base.R_fixed.rightCols(nc);
+  return S;
+}
+
+// The residual factor of an extension build: T itself when it has no more rows than columns
+// (|T y| is all the estimate needs; ErrorEstimator factors the columns it uses), else the
+// rank-truncated R factor.
+Eigen::MatrixXd unpivoted_factor(const Eigen::MatrixXd& T) { return T.rows() <= T.cols() ? T : residual_factor(T); }
 
 }  // namespace
 
@@ -395,7 +491,11 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
   // QR), n_u <= n_c the contact DOFs the estimate uses (the others' unit loads never enter).
   const Index d = residual_columns(Jf, Ja, JD, N, Mk, R);
   const Index d0 = d - static_cast<Index>(Mk) * R;
-  const Eigen::MatrixXd S = whitened_residual_factor(in, base, d0 + n_u);
+  const bool extension = in.extension_order != nullptr;
+  require(!extension || ix(in.extension_order->size()) == N,
+          "build_estimate_data: the extension order does not have N = " + std::to_string(N) + " entries");
+  const Eigen::MatrixXd S = extension ? extended_residual_factor(in, base, d0 + n_u)
+                                      : whitened_residual_factor(in, base, d0 + n_u);
   // W = [W0 | G] = Q0 [S0 | SG]; every residual column is Q0 times a column of T0 = [S0 | SG C],
   // so |W_full y| = |T0 y| with T0 of d0 + n_u rows at most.
   const Index k0 = S.rows();
@@ -407,7 +507,7 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
 
   EstimateData e;
   e.theta_a_reference = cases::evaluate(in.thetas->a, in.reference_mu);
-  e.residual_T = residual_factor(T0);  // W = Q R P': |W y| = |R P' y|
+  e.residual_T = extension ? unpivoted_factor(T0) : residual_factor(T0);  // W = Q R P': |W y| = |R P' y|
   // The exact contact rows' residual: the unit loads on exact_dofs are columns of S itself.
   e.exact_dofs = exact_dofs;
   Eigen::MatrixXd T1(k0, d0 + ix(e.exact_dofs.size()));
@@ -417,7 +517,7 @@ EstimateData build_estimate_data(const EstimateInputs& in) {
     require(at != columns.end() && *at == e.exact_dofs[k], "internal: an exact contact DOF has no estimate column");
     T1.col(d0 + ix(k)) = S.col(d0 + (at - columns.begin()));
   }
-  e.residual_exact = residual_factor(T1);
+  e.residual_exact = extension ? unpivoted_factor(T1) : residual_factor(T1);
   for (int i = 0; i < Mk; ++i) e.QTheta_kappa.push_back(Q[sz(i)] * (*in.Theta_c));
   e.Q_gamma = *in.Q_gamma;
   calibrate_eim(in, base, e);

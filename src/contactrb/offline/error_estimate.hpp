@@ -54,6 +54,12 @@ struct EstimateInputs {
   const model::ContactSurface* surface = nullptr;  // its chains give the margin of exact_dofs
   // The basis-free parts, shared by successive builds (nullptr, or not built yet: built here).
   struct EstimateBase* base = nullptr;
+  // Extension builds (OfflineSettings::extend_basis): Theta's column n is basis vector
+  // extension_order[n] in the order the basis grew, of which the first extension_reused are those
+  // of the base's previous build: their split columns are kept and the new ones appended (a QR
+  // update), and the residual factor is left unpivoted. nullptr: the whole basis block is factored.
+  const std::vector<int>* extension_order = nullptr;
+  int extension_reused = 0;
 };
 
 // The parts of the estimate's offline data that depend on the problem only, not on the bases:
@@ -83,6 +89,12 @@ struct EstimateBase {
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_interior;  // of W_fixed's interior rows
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_contact;   // of L_cc^-1
   Eigen::MatrixXd R_fixed;
+  // Extension builds: Z = H' L^-1 P (-A_j,00 theta_i) for the first `extended` basis vectors in
+  // growth order (column J^a i + j), and the thin QR of its rows below R_fixed's, Q_t R_t (Q_t
+  // orthonormal; R_t gains a row only for a column that leaves Q_t's span). Reset when the fixed
+  // columns are refactored.
+  Eigen::MatrixXd Z, Q_t, R_t;
+  int extended = 0;
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.

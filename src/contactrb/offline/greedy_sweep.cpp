@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 #include "contactrb/common/error.hpp"
@@ -32,17 +33,23 @@ struct Sweep {
   std::vector<double> failed;  // 1: the online solve at that point did not converge
 };
 
+using SolverPool = std::vector<std::unique_ptr<OnlineSolver>>;
+
 Sweep sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>& mus,
-                  const online::OnlineSettings& online, int jobs, std::size_t begin, std::size_t end) {
+                  const online::OnlineSettings& online, int jobs, std::size_t begin, std::size_t end,
+                  SolverPool* pool) {
   Sweep out;
   out.criterion.assign(mus.size(), kInf);
   out.failed.assign(mus.size(), 0.0);
   std::vector<std::exception_ptr> errors(mus.size());
   std::atomic<std::size_t> next{begin};
   std::atomic<bool> stop{false};
-  const auto work = [&](std::exception_ptr& own_setup_error) {
+  const auto work = [&](std::size_t t, std::exception_ptr& own_setup_error) {
     try {
-      OnlineSolver solver(model);
+      std::unique_ptr<OnlineSolver> own;
+      std::unique_ptr<OnlineSolver>& slot = pool ? (*pool)[t] : own;
+      if (!slot) slot = std::make_unique<OnlineSolver>(model);
+      OnlineSolver& solver = *slot;
       for (std::size_t i = next.fetch_add(1); i < end && !stop; i = next.fetch_add(1)) {
         try {
           const OnlineSolution s = solver.solve(mus[i], online);
@@ -60,7 +67,8 @@ Sweep sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>
   };
   const std::size_t threads_count = std::max<std::size_t>(1, std::min(end - begin, static_cast<std::size_t>(jobs)));
   std::vector<std::exception_ptr> setup_errors(threads_count);
-  run_threads(threads_count, [&](std::size_t t) { work(setup_errors[t]); });
+  if (pool && pool->size() < threads_count) pool->resize(threads_count);
+  run_threads(threads_count, [&](std::size_t t) { work(t, setup_errors[t]); });
   for (const std::exception_ptr& e : setup_errors) {
     if (e) std::rethrow_exception(e);
   }
@@ -73,13 +81,13 @@ Sweep sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>
 // The sweep over `mus`: on this process alone, or its block on each process of a distributed
 // run, then gathered (every process gets the same criterion and failures).
 Sweep sweep_points(const model::ReducedModel& model, const std::vector<cases::Mu>& mus,
-                   const online::OnlineSettings& online, int jobs, const GreedyDistribution& dist) {
-  if (!dist.active()) return sweep_block(model, mus, online, jobs, 0, mus.size());
+                   const online::OnlineSettings& online, int jobs, const GreedyDistribution& dist, SolverPool* pool) {
+  if (!dist.active()) return sweep_block(model, mus, online, jobs, 0, mus.size(), pool);
   const auto [begin, end] = dist.block(mus.size());
   Sweep out;
   std::exception_ptr error;
   try {
-    out = sweep_block(model, mus, online, jobs, begin, end);
+    out = sweep_block(model, mus, online, jobs, begin, end, pool);
   } catch (...) {  // the other processes wait in the gather: tell them first
     error = std::current_exception();
     out.criterion.assign(mus.size(), kInf);
@@ -97,7 +105,7 @@ void solve_indices(const SweepContext& c, const std::vector<std::size_t>& indice
   std::vector<cases::Mu> mus;
   mus.reserve(indices.size());
   for (std::size_t i : indices) mus.push_back(c.mus[i]);
-  const Sweep s = sweep_points(c.model, mus, c.online, c.jobs, c.distribution);
+  const Sweep s = sweep_points(c.model, mus, c.online, c.jobs, c.distribution, c.solvers);
   for (std::size_t k = 0; k < indices.size(); ++k) {
     const std::size_t i = indices[k];
     e.value[i] = s.failed[k] != 0.0 ? kInf : s.criterion[k];

@@ -9,6 +9,7 @@
 // largest, and is not solved. The points are solved in decreasing order of their last estimate,
 // in chunks, until that holds for every point left (docs/offline-online.md, "Greedy sampling").
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "contactrb/cases/parameter.hpp"
@@ -36,6 +37,10 @@ struct SweepContext {
   int jobs = 1;
   const GreedyDistribution& distribution;
   const std::vector<char>& skip;  // 1: no longer a training point (its HF solve failed)
+  // One solver of `model` per thread, built at the first chunk that needs it and kept for the
+  // sweep's other chunks (its setup factors the estimate's columns: several online solves' worth).
+  // nullptr: each chunk builds its own.
+  std::vector<std::unique_ptr<online::OnlineSolver>>* solvers = nullptr;
 };
 
 // Every point not skipped, with the current model.

@@ -4,7 +4,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -413,6 +415,117 @@ Eigen::MatrixXd primal_basis_step(const io::SnapshotSet& set, const ReferenceTer
   return Theta;
 }
 
+// --- The primal basis by extension (OfflineSettings::extend_basis), grown snapshot by snapshot.
+// What a cache keeps of it: the snapshots it was grown from and the basis in growth order.
+struct BasisExtension {
+  std::vector<Eigen::VectorXd> u0;   // the snapshots' u_0, in set order
+  std::vector<int> rows;             // the kept rows that have their supremizer, ascending
+  Eigen::MatrixXd Theta;             // n_free x N, M-orthonormal, in growth order
+  std::vector<char> supremizer;      // per column of Theta: a supremizer, else a snapshot's component
+  std::unique_ptr<fem::SparseCholesky> chol;  // of M, for the supremizers
+  void clear() {
+    u0.clear();
+    rows.clear();
+    Theta.resize(0, 0);
+    supremizer.clear();
+  }
+};
+
+// The basis of `set` with its growth order mapped to Theta's columns, and how many of its
+// leading vectors the cache held already (the estimate reuses their split columns).
+struct ExtendedBasis {
+  Eigen::MatrixXd Theta;   // snapshot components first, then supremizers (N_supremizers's layout)
+  std::vector<int> order;  // Theta's column n is basis vector order[n] in growth order
+  int reused = 0;
+};
+
+// Appends v M-orthogonalized against Theta (Gram-Schmidt twice, M-normalized), unless its M-norm
+// falls below kExtensionDependence of its own. Returns whether it was appended.
+bool append_orthonormal(Eigen::MatrixXd& Theta, Eigen::VectorXd v, const Eigen::SparseMatrix<double>& M) {
+  const double norm0 = std::sqrt(std::max(0.0, v.dot(M * v)));
+  if (norm0 <= 0.0) return false;
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::VectorXd Mv = M * v;
+    v -= Theta * (Theta.transpose() * Mv);
+  }
+  const double norm = std::sqrt(std::max(0.0, v.dot(M * v)));
+  if (norm <= kExtensionDependence * norm0) return false;
+  Theta.conservativeResize(v.size(), Theta.cols() + 1);
+  Theta.col(Theta.cols() - 1) = v / norm;
+  return true;
+}
+
+// The supremizer of row `row` of snapshot p: M^-1 P' E_c' K_p(row, :)' (free DOFs).
+Eigen::VectorXd row_supremizer(const fem::SparseCholesky& chol, const io::SnapshotSet& set, int p, int row,
+                               const std::vector<int>& global_to_free) {
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(chol.rows());
+  for (io::SnapshotRows::InnerIterator it(set.snapshots[sz(p)].K, row); it; ++it) {
+    const int fi = global_to_free[sz(set.contact_dofs[sz(it.col())])];
+    if (fi >= 0) b(fi) += it.value();
+  }
+  return chol.solve(b);
+}
+
+// The cache's basis when it was grown from the set's leading snapshots, else cleared. Returns
+// the number of basis vectors kept.
+int reusable_extension(const io::SnapshotSet& set, const std::vector<int>& kept, BasisExtension& ext) {
+  bool same = ext.u0.size() <= set.snapshots.size();
+  for (std::size_t p = 0; same && p < ext.u0.size(); ++p) {
+    const Eigen::VectorXd& u0 = set.snapshots[p].u0;
+    same = u0.size() == ext.u0[p].size() && (u0.array() == ext.u0[p].array()).all();
+  }
+  same = same && std::includes(kept.begin(), kept.end(), ext.rows.begin(), ext.rows.end());
+  if (!same) ext.clear();
+  return static_cast<int>(ext.Theta.cols());
+}
+
+// Grows the cache's basis by the set's snapshots it does not hold: each one's u_0, then the
+// supremizers of the kept rows it is the first to activate (row_cone.hpp: the rows' snapshots).
+ExtendedBasis extended_basis_step(const io::SnapshotSet& set, const ReferenceTerms& ref, const std::vector<int>& kept,
+                                  const OfflineSettings& settings, BasisExtension& ext, OfflineReport& report) {
+  const auto t0 = Clock::now();
+  ExtendedBasis out;
+  out.reused = reusable_extension(set, kept, ext);
+  if (!ext.chol && settings.supremizers) {
+    ext.chol = std::make_unique<fem::SparseCholesky>();
+    require(ext.chol->compute(ref.inner) == fem::FactorStatus::Success,
+            "offline: the inner-product matrix is not positive definite (supremizers)");
+  }
+  if (ext.Theta.rows() != ix(set.free_dofs.size())) ext.Theta.resize(ix(set.free_dofs.size()), 0);
+  for (std::size_t p = ext.u0.size(); p < set.snapshots.size(); ++p) {
+    const io::Snapshot& snap = set.snapshots[p];
+    if (append_orthonormal(ext.Theta, snap.u0, ref.inner)) ext.supremizer.push_back(0);
+    ext.u0.push_back(snap.u0);
+    std::vector<int> first_active;
+    std::set_difference(kept.begin(), kept.end(), ext.rows.begin(), ext.rows.end(), std::back_inserter(first_active));
+    first_active.erase(std::remove_if(first_active.begin(), first_active.end(),
+                                      [&](int r) { return !(snap.lambda(r) > 0.0); }),
+                       first_active.end());
+    for (int r : first_active) {
+      if (settings.supremizers &&
+          append_orthonormal(ext.Theta, row_supremizer(*ext.chol, set, static_cast<int>(p), r, ref.global_to_free),
+                             ref.inner)) {
+        ext.supremizer.push_back(1);
+      }
+    }
+    std::vector<int> rows;
+    std::set_union(ext.rows.begin(), ext.rows.end(), first_active.begin(), first_active.end(), std::back_inserter(rows));
+    ext.rows = std::move(rows);
+  }
+  for (int pass : {0, 1}) {  // snapshot components first, supremizers last
+    for (std::size_t i = 0; i < ext.supremizer.size(); ++i) {
+      if (ext.supremizer[i] == pass) out.order.push_back(static_cast<int>(i));
+    }
+  }
+  out.Theta.resize(ext.Theta.rows(), ext.Theta.cols());
+  for (std::size_t n = 0; n < out.order.size(); ++n) out.Theta.col(ix(n)) = ext.Theta.col(out.order[n]);
+  report.N = static_cast<int>(out.Theta.cols());
+  report.N_supremizers = static_cast<int>(std::count(ext.supremizer.begin(), ext.supremizer.end(), 1));
+  report.N_pod = report.N - report.N_supremizers;
+  report.supremizer_s = seconds_since(t0);
+  return out;
+}
+
 // --- (T1) EIM of kappa, K(u(mu)) on the kept rows and the contact DOFs, flattened.
 EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kept, const OfflineSettings& settings,
                          OfflineReport& report) {
@@ -610,11 +723,12 @@ void contact_arrays(const io::SnapshotSet& set, const ReferenceTerms& ref, const
 EstimateData estimate_data_step(const io::SnapshotSet& set, const cases::CaseSpec& spec, const ReferenceTerms& ref,
                                 const Eigen::MatrixXd& Theta, const ReducedModel& m,
                                 const DualSnapshots& dual_snapshots, const EIMResult& eim_k, const EIMResult& eim_g,
-                                EstimateBase* base) {
+                                EstimateBase* base, const ExtendedBasis* extension) {
   return build_estimate_data({&ref.terms, &ref.thetas, cases::reference_mu(spec.parameters), &set.free_dofs,
                               &set.contact_dofs, &Theta, &m.Theta_c, &m.Xi, &eim_k.Q, &eim_g.Q, &set,
                               &dual_snapshots.kept, &ref.lift_c, &dual_snapshots.weights, &eim_k.magic_points,
-                              &eim_k.B, &eim_g.magic_points, &eim_g.B, &m.surface, base});
+                              &eim_k.B, &eim_g.magic_points, &eim_g.B, &m.surface, base,
+                              extension ? &extension->order : nullptr, extension ? extension->reused : 0});
 }
 
 // The training points and their coordinates. Theta is M-orthonormal, so Theta' M u_0 are the
@@ -629,11 +743,14 @@ void training_coordinates(const Eigen::MatrixXd& Theta, const Eigen::SparseMatri
 }
 
 // The online initial guess (OnlineSettings::initial_guess): the reduced solutions at the training
-// values, P online solves from zero.
-void solve_at_training_values(ReducedModel& m) {
+// values, P online solves: from zero, or (`guess` Interpolated, extension builds) from the
+// projection coefficients just stored, which the reduced Newton refines in a few steps (a greedy
+// solves every training value again at each step, and from zero these solves cost more than the
+// rest of the build on finer meshes).
+void solve_at_training_values(ReducedModel& m, InitialGuess guess) {
   OnlineSolver solver(m);
   OnlineSettings cold;
-  cold.initial_guess = InitialGuess::Zero;
+  cold.initial_guess = guess;
   for (Index p = 0; p < m.training_mu.cols(); ++p) {
     const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
     if (!sol.converged()) continue;
@@ -677,6 +794,7 @@ struct OfflineBuildCache::Parts {
   std::optional<ReferenceTerms> ref;
   EstimateBase estimate;
   GeometricRatios geometric;
+  BasisExtension basis;
 };
 
 OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
@@ -694,6 +812,8 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
   parts.estimate.columns_built = false;
   parts.estimate.contact_columns.clear();
   parts.geometric.clear();
+  parts.basis.clear();
+  parts.basis.chol.reset();
   parts.ref = assemble_reference_terms(set, spec, product, report);
   parts.case_name = spec.name;
   parts.constraint = set.constraint;
@@ -719,6 +839,8 @@ void check_settings(const OfflineSettings& s) {
   require(std::isfinite(s.eps_eim_k) && s.eps_eim_k >= 0.0, "offline: eps_eim_k must be >= 0");
   require(std::isfinite(s.eps_eim_g) && s.eps_eim_g >= 0.0, "offline: eps_eim_g must be >= 0");
   require(s.eim_k_size >= -1 && s.eim_g_size >= -1, "offline: EIM sizes must be >= -1");
+  require(!s.extend_basis || (s.dual_method == DualConeMethod::Rows && s.compression),
+          "offline: the primal basis by extension needs the row cone and the constraint compression");
 }
 
 // The offline stage, paper Section 5 (docs/theory.md, "POD, dual cones, EIM"): (T2) POD,
@@ -742,8 +864,12 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   ReducedModel& m = out.model;
   m.surface = contact_surface(set, ref.mesh);
   if (settings.dual_method == DualConeMethod::Registered) registration_step(set, spec, settings, dual_snapshots, m, rep);
-  const Eigen::MatrixXd Theta = primal_basis_step(set, ref, primal.pod, dual_snapshots, dual,
-                                                  m.registration.empty() ? nullptr : &m.registration, settings, rep);
+  std::optional<ExtendedBasis> extension;
+  if (settings.extend_basis) extension = extended_basis_step(set, ref, dual_snapshots.kept, settings, parts.basis, rep);
+  const Eigen::MatrixXd Theta =
+      extension ? std::move(extension->Theta)
+                : primal_basis_step(set, ref, primal.pod, dual_snapshots, dual,
+                                    m.registration.empty() ? nullptr : &m.registration, settings, rep);
   const EIMResult eim_k = eim_kappa_step(set, dual_snapshots.kept, settings, rep);  // (T1)
   const EIMResult eim_g = eim_gamma_step(set, ref, dual_snapshots.kept, settings, rep);  // (T1)
 
@@ -757,7 +883,8 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.singular_values = primal.pod.singular_values;
   project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
   contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
-  m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate);
+  m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate,
+                                  extension ? &*extension : nullptr);
   // The row and registered cones are solved on the exact rows, whose estimate has the geometric term.
   if (settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered) {
     m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
@@ -765,7 +892,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   }
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);
-  solve_at_training_values(m);
+  solve_at_training_values(m, settings.extend_basis ? InitialGuess::Interpolated : InitialGuess::Zero);
   rep.reduction_s = seconds_since(t0);
 
   out.reconstruction = reconstruction_data(set, ref, Theta, m);

@@ -56,11 +56,23 @@ struct OfflineSettings {
   // it the reduced saddle point (53) is not inf-sup stable when R > N and lambda_hat is not
   // determined by the reduced problem.
   bool supremizers = true;
+  // The primal basis by extension (the greedy's; docs/offline-online.md, "Greedy sampling"): in
+  // place of the POD, each snapshot's u_0 in set order, M-orthogonalized against the basis so far
+  // (Gram-Schmidt twice, dropped when its norm falls below kExtensionDependence of its own), each
+  // followed by the supremizers of the kept rows it is the first snapshot to activate; the basis is
+  // stored snapshot components first, supremizers last. Row cone with compression only. A build
+  // given a cache that holds the basis of the set's leading snapshots extends that basis and the
+  // estimate's Riesz data (a QR update) instead of rebuilding them.
+  bool extend_basis = false;
   // All four tolerances absolute (the paper's reading; the report and the demo use it).
   void set_absolute() { eps_pod_relative = eps_du_relative = eps_eim_k_relative = eps_eim_g_relative = false; }
 };
 // Throws contactrb::Error naming the first invalid setting.
 void check_settings(const OfflineSettings& settings);
+
+// OfflineSettings::extend_basis: a component (snapshot or supremizer) whose M-norm falls below
+// this fraction of its own when orthogonalized against the basis adds nothing (round-off).
+inline constexpr double kExtensionDependence = 1e-10;
 
 struct OfflineReport {
   Eigen::VectorXd singular_values;  // POD, all P

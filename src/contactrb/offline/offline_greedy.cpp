@@ -8,6 +8,7 @@
 #include <exception>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -188,6 +189,7 @@ struct Greedy {
   const cases::CaseSpec& spec;
   const SnapshotRequest& request;
   const GreedyOfflineSettings& settings;
+  OfflineSettings offline;  // of every build (settings.offline, extended when incremental)
   const std::vector<GreedyMu>& training;
   // HF data of the true error at the chosen points (offline side: A(mu) = sum theta^a_j A_j).
   cases::AffineTerms terms;
@@ -236,7 +238,7 @@ void start(Greedy& g, GreedyProgress& progress) {
 // Extend's counterpart: the reduced model of the selected snapshots.
 void build_model(Greedy& g, GreedyStep& row) {
   const auto t0 = Clock::now();
-  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.settings.offline, &g.cache);
+  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.offline, &g.cache);
   row.build_s = seconds_since(t0);
   const ReducedModel& model = g.out.offline.model;
   row.N = model.N_max;
@@ -272,8 +274,9 @@ void summarize_sweep(const Greedy& g, GreedyStep& row) {
 std::vector<int> evaluate(Greedy& g, GreedyStep& row) {
   const auto t0 = Clock::now();
   const int P = static_cast<int>(g.training.size());
+  std::vector<std::unique_ptr<OnlineSolver>> solvers;  // of this step's model, kept across its chunks
   const SweepContext context{g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution,
-                             g.excluded};
+                             g.excluded, &solvers};
   std::vector<char> eligible(sz(P), 0);
   std::vector<int> candidates;
   for (int i = 0; i < P; ++i) {
@@ -400,9 +403,11 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
                                       "D: reduced models are built from 2D cases only in this build");
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
   const std::size_t P = training.size();
-  Greedy g{spec, request, settings, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
+  Greedy g{spec, request, settings, settings.offline, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
            cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}, {}};
   g.online.error_estimate = true;
+  g.offline.extend_basis = settings.incremental && settings.offline.dual_method == DualConeMethod::Rows &&
+                           settings.offline.compression;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
     // The row cone's estimate has no floor but the last step's lag: the sweep solves to

@@ -17,6 +17,15 @@ DualConeResult build_row_cone(const Eigen::MatrixXd& snapshots, const DualConeSe
   out.generators = Eigen::MatrixXd::Identity(R, R);
   out.errors.assign(static_cast<std::size_t>(R + 1), 0.0);
   out.relative_errors.assign(static_cast<std::size_t>(R + 1), 0.0);
+  out.selected.assign(static_cast<std::size_t>(R), 0);
+  for (Eigen::Index k = 0; k < R; ++k) {
+    for (Eigen::Index p = 0; p < P; ++p) {
+      if (snapshots(k, p) > 0.0) {
+        out.selected[static_cast<std::size_t>(k)] = static_cast<int>(p);
+        break;
+      }
+    }
+  }
   for (Eigen::Index p = 0; p < P; ++p) {
     const double total = std::sqrt(w.dot(snapshots.col(p).cwiseAbs2()));
     double tail2 = 0.0;  // |lambda_p on rows >= k|^2, k from R down to 0
