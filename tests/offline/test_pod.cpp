@@ -54,6 +54,22 @@ double projection_error_sq(const MatrixXd& S, const Eigen::SparseMatrix<double>&
   return sum;
 }
 
+// S = Phi diag(sigma) V' with Phi' M Phi = I (M-orthonormalized Gaussian columns), V orthogonal
+// and sigma_i = 3 * 10^(-12 i / (P - 1)): snapshots whose M-singular values are sigma exactly.
+MatrixXd snapshots_with_known_spectrum(const Eigen::SparseMatrix<double>& M, int P, VectorXd& sigma) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N01;
+  const MatrixXd A = MatrixXd::NullaryExpr(M.rows(), P, [&] { return N01(rng); });
+  const Eigen::LLT<MatrixXd> llt(A.transpose() * (M * A));
+  const MatrixXd Phi = llt.matrixU().solve<Eigen::OnTheRight>(A);  // Phi' M Phi = I
+  EXPECT_LT((Phi.transpose() * (M * Phi) - MatrixXd::Identity(P, P)).cwiseAbs().maxCoeff(), 1e-13);
+  Eigen::HouseholderQR<MatrixXd> qv(MatrixXd::NullaryExpr(P, P, [&] { return N01(rng); }));
+  const MatrixXd V = qv.householderQ() * MatrixXd::Identity(P, P);
+  sigma.resize(P);
+  for (int i = 0; i < P; ++i) sigma(i) = 3.0 * std::pow(10.0, -12.0 * i / (P - 1));
+  return Phi * sigma.asDiagonal() * V.transpose();
+}
+
 }  // namespace
 
 TEST(POD, ProjectionErrorEqualsDiscardedSingularValues) {
@@ -153,18 +169,8 @@ TEST(POD, RankDeficientSnapshotsGiveTheNumericalRank) {
 TEST(POD, ThinSVDRecoversSingularValuesDownTo1e12Relative) {
   const int n = 200, P = 16;
   const auto M = h1_like(n);
-  std::mt19937 rng(5);
-  std::normal_distribution<double> N01;
-  const MatrixXd A = MatrixXd::NullaryExpr(n, P, [&] { return N01(rng); });
-  const MatrixXd G = A.transpose() * (M * A);
-  const Eigen::LLT<MatrixXd> llt(G);
-  const MatrixXd Phi = llt.matrixU().solve<Eigen::OnTheRight>(A);  // Phi' M Phi = I
-  ASSERT_LT((Phi.transpose() * (M * Phi) - MatrixXd::Identity(P, P)).cwiseAbs().maxCoeff(), 1e-13);
-  Eigen::HouseholderQR<MatrixXd> qv(MatrixXd::NullaryExpr(P, P, [&] { return N01(rng); }));
-  const MatrixXd V = qv.householderQ() * MatrixXd::Identity(P, P);
-  VectorXd sigma(P);
-  for (int i = 0; i < P; ++i) sigma(i) = 3.0 * std::pow(10.0, -12.0 * i / (P - 1));
-  const MatrixXd S = Phi * sigma.asDiagonal() * V.transpose();
+  VectorXd sigma;
+  const MatrixXd S = snapshots_with_known_spectrum(M, P, sigma);
 
   PODSettings s;
   s.tolerance = 0.0;
@@ -233,16 +239,8 @@ TEST(POD, InvalidInputThrows) {
 TEST(POD, CorrelationMethodAgreesWithTheThinSVDAboveItsAccuracy) {
   const int n = 200, P = 16;
   const auto M = h1_like(n);
-  std::mt19937 rng(5);
-  std::normal_distribution<double> N01;
-  const MatrixXd A = MatrixXd::NullaryExpr(n, P, [&] { return N01(rng); });
-  const Eigen::LLT<MatrixXd> llt(A.transpose() * (M * A));
-  const MatrixXd Phi = llt.matrixU().solve<Eigen::OnTheRight>(A);
-  Eigen::HouseholderQR<MatrixXd> qv(MatrixXd::NullaryExpr(P, P, [&] { return N01(rng); }));
-  const MatrixXd V = qv.householderQ() * MatrixXd::Identity(P, P);
-  VectorXd sigma(P);
-  for (int i = 0; i < P; ++i) sigma(i) = 3.0 * std::pow(10.0, -12.0 * i / (P - 1));
-  const MatrixXd S = Phi * sigma.asDiagonal() * V.transpose();
+  VectorXd sigma;
+  const MatrixXd S = snapshots_with_known_spectrum(M, P, sigma);
 
   PODSettings s;
   s.relative = true;

@@ -53,6 +53,19 @@ class ThinSVD {
   Eigen::JacobiSVD<Eigen::MatrixXd> direct_, small_;
 };
 
+// One Cholesky re-orthonormalization Phi <- Phi L^-T with Phi' M Phi = L L' (L lower
+// triangular, so span{phi_1..phi_k} is kept for every k): removes the round-off of the modes'
+// construction (about 1e-16 cond(W) for W^-1) from the M-orthonormality. MPhi = M Phi.
+void reorthonormalize(Eigen::MatrixXd& Phi, const Eigen::MatrixXd& MPhi) {
+  if (Phi.cols() == 0) return;
+  Eigen::MatrixXd G = Phi.transpose() * MPhi;
+  G = 0.5 * (G + G.transpose()).eval();
+  const Eigen::LLT<Eigen::MatrixXd> llt(G);
+  if (llt.info() != Eigen::Success) return;
+  const Eigen::MatrixXd Lt = llt.matrixU();
+  Phi = Lt.triangularView<Eigen::Upper>().solve<Eigen::OnTheRight>(Phi);
+}
+
 // Truncation, given the singular values sigma (decreasing) and the numerical rank.
 int truncated_size(const Eigen::VectorXd& sigma, int rank, const PODSettings& settings, double& threshold) {
   const Eigen::Index P = sigma.size();
@@ -107,19 +120,7 @@ PODResult pod_impl(Eigen::MatrixXd B, const PODSettings& settings, const ToModes
   result.discarded_energy = sigma.tail(P - N).squaredNorm();
 
   Eigen::MatrixXd basis = to_modes(svd.left_vectors(N));
-  // One Cholesky re-orthonormalization Phi <- Phi L^-T with Phi' M Phi = L L' (L lower
-  // triangular, so span{phi_1..phi_k} is kept for every k): removes the round-off of W^-1
-  // (about 1e-16 cond(W)) from the M-orthonormality.
-  if (N > 0) {
-    const Eigen::MatrixXd Mbasis = apply_M(basis);
-    Eigen::MatrixXd G = basis.transpose() * Mbasis;
-    G = 0.5 * (G + G.transpose()).eval();
-    Eigen::LLT<Eigen::MatrixXd> llt(G);
-    if (llt.info() == Eigen::Success) {
-      const Eigen::MatrixXd Lt = llt.matrixU();
-      basis = Lt.triangularView<Eigen::Upper>().solve<Eigen::OnTheRight>(basis);
-    }
-  }
+  reorthonormalize(basis, apply_M(basis));
   result.basis = std::move(basis);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
@@ -189,17 +190,9 @@ PODResult pod_by_correlation(const Eigen::MatrixXd& snapshots, const Eigen::Spar
   const int N = truncated_size(sigma, rank, settings, result.threshold);
   result.N = N;
   result.discarded_energy = sigma.tail(P - N).squaredNorm();
-  // phi_i = S v_i / sigma_i, then one Cholesky re-orthonormalization in M (as pod()).
+  // phi_i = S v_i / sigma_i.
   Eigen::MatrixXd basis = snapshots * (V.leftCols(N) * sigma.head(N).cwiseInverse().asDiagonal());
-  if (N > 0) {
-    Eigen::MatrixXd B = basis.transpose() * (M * basis);
-    B = 0.5 * (B + B.transpose()).eval();
-    const Eigen::LLT<Eigen::MatrixXd> llt(B);
-    if (llt.info() == Eigen::Success) {
-      const Eigen::MatrixXd Lt = llt.matrixU();
-      basis = Lt.triangularView<Eigen::Upper>().solve<Eigen::OnTheRight>(basis);
-    }
-  }
+  reorthonormalize(basis, M * basis);
   result.basis = std::move(basis);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
