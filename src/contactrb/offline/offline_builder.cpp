@@ -530,6 +530,17 @@ ExtendedBasis extended_basis_step(const io::SnapshotSet& set, const ReferenceTer
 EIMResult eim_kappa_step(const io::SnapshotSet& set, const std::vector<int>& kept, const OfflineSettings& settings,
                          OfflineReport& report) {
   const auto t0 = Clock::now();
+  // The registered cone is solved on the exact contact rows only (ContactRows::Eim is refused
+  // online), so its model carries no EIM of kappa: the flattened kept rows of every training K
+  // are R_kept n_c P numbers (4.2 GB a copy on hertz-a level 7).
+  if (settings.dual_method == DualConeMethod::Registered) {
+    EIMResult none;
+    none.Q.resize(ix(kept.size()) * ix(set.contact_dofs.size()), 0);
+    report.Mk = 0;
+    report.eim_kappa_status = "not built: the registered cone is solved on the exact contact rows";
+    report.eim_kappa_s = seconds_since(t0);
+    return none;
+  }
   std::vector<Eigen::MatrixXd> Ks;
   Ks.reserve(set.snapshots.size());
   for (const io::Snapshot& s : set.snapshots) Ks.push_back(restrict_rows(s.K, kept));
