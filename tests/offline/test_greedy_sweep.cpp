@@ -93,11 +93,11 @@ TEST(GreedySweep, ValidBoundsGiveTheFullSweepsLargestEstimates) {
   }
   EXPECT_EQ(top(lazy.value, 3), top(full.value, 3));
 
-  // Exact bounds: the first chunk holds the 3 largest, nothing after it is solved.
+  // Exact bounds: the first chunk (16 points) holds the 3 largest, nothing after it is solved.
   GreedyEstimates exact(mus.size());
   exact.value = full.value;
   contactrb::offline::sweep_largest(context, eligible, 3, 1.0, exact);
-  EXPECT_EQ(exact.solves, 8);
+  EXPECT_EQ(exact.solves, 16);
 
   // Saturation +inf: every point.
   GreedyEstimates every(mus.size());
@@ -105,6 +105,35 @@ TEST(GreedySweep, ValidBoundsGiveTheFullSweepsLargestEstimates) {
   contactrb::offline::sweep_largest(context, eligible, 1, std::numeric_limits<double>::infinity(), every);
   EXPECT_EQ(every.solves, 61);
   EXPECT_EQ(every.value, full.value);
+}
+
+// The points a lazy sweep solves do not depend on the thread count (so neither do the greedy's
+// picks): the same bounds on 1, 2 and 3 threads solve the same points to the same values.
+TEST(GreedySweep, LazySweepSolvesTheSamePointsWhateverTheThreads) {
+  const auto& model = small_greedy().offline.model;
+  const auto mus = training();
+  const auto online = sweep_settings();
+  const GreedyDistribution one_process;
+  const std::vector<char> skip(mus.size(), 0), eligible(mus.size(), 1);
+  GreedyEstimates reference(mus.size());
+  contactrb::offline::sweep_every_point(SweepContext{model, mus, online, 1, one_process, skip}, reference);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> factor(1.0, 3.0);
+  std::vector<double> bounds(mus.size());
+  for (std::size_t i = 0; i < mus.size(); ++i) bounds[i] = reference.value[i] * factor(rng);
+  std::vector<GreedyEstimates> runs;
+  for (int jobs : {1, 2, 3}) {
+    GreedyEstimates e(mus.size());
+    e.value = bounds;
+    contactrb::offline::sweep_largest(SweepContext{model, mus, online, jobs, one_process, skip}, eligible, 2, 1.0, e);
+    runs.push_back(e);
+  }
+  ASSERT_LT(runs[0].solves, 61);
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    EXPECT_EQ(runs[k].solves, runs[0].solves) << "run " << k;
+    EXPECT_EQ(runs[k].fresh, runs[0].fresh) << "run " << k;
+    EXPECT_EQ(runs[k].value, runs[0].value) << "run " << k;
+  }
 }
 
 TEST(GreedySweep, SkippedPointsAreNeverSolved) {

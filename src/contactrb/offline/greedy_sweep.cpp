@@ -21,9 +21,10 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Points solved per chunk of a lazy sweep, per thread: enough to keep the threads busy, few
-// enough that a chunk rarely goes far past the cut.
-constexpr std::size_t kChunkPerJob = 8;
+// Points solved per chunk of a lazy sweep: enough to keep two threads busy, few enough that a
+// chunk rarely goes far past the cut. Fixed, not per thread: the points a lazy sweep solves, and
+// so the greedy's picks, do not depend on the thread or process count.
+constexpr std::size_t kChunk = 16;
 
 // The criterion at some points (online solves only), `jobs` threads with one OnlineSolver each;
 // every point writes its own slot, so the result does not depend on jobs. Only [begin, end) is
@@ -154,7 +155,7 @@ void sweep_largest(const SweepContext& c, const std::vector<char>& eligible, std
   }
   // Largest last estimate first (never solved and failed points: +inf); ties to the smaller index.
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return e.value[a] > e.value[b]; });
-  const std::size_t chunk = kChunkPerJob * static_cast<std::size_t>(std::max(1, c.jobs));
+  const std::size_t chunk = kChunk;
   std::size_t next = 0;
   while (next < order.size()) {
     // A point left is solved only while its bound may still exceed the wanted-th fresh value.
