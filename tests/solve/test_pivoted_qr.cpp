@@ -9,6 +9,7 @@
 #include <random>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 #include "contactrb/solve/pivoted_qr.hpp"
 
 namespace {
@@ -59,6 +60,24 @@ TEST(PivotedQR, DropsTheRowsOfARankDeficientMatrixAsEigenDoes) {
   }
   const VectorXd y = random_matrix(90, 1, 7);
   EXPECT_NEAR(apply_RPt(qr, y).norm(), (A * y).norm(), 1e-12 * (A * y).norm());
+}
+
+// The same factor bit for bit whatever the BLAS thread count of the caller (OpenBLAS threads its
+// matrix products, whose sums then round differently).
+TEST(PivotedQR, SameBitsWhateverTheBlasThreads) {
+  const MatrixXd A = random_matrix(600, 1500, 9);
+  contactrb::solve::PivotedQR one, two;
+  {
+    const contactrb::solve::ScopedBlasThreads threads(1);
+    one = contactrb::solve::pivoted_qr(A, 1e-13);
+  }
+  {
+    const contactrb::solve::ScopedBlasThreads threads(2);
+    two = contactrb::solve::pivoted_qr(A, 1e-13);
+  }
+  EXPECT_EQ(one.permutation, two.permutation);
+  ASSERT_EQ(one.R.rows(), two.R.rows());
+  EXPECT_TRUE((one.R.array() == two.R.array()).all());
 }
 
 TEST(PivotedQR, ZeroMatrixKeepsOneRowAndNonFiniteIsAnError) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "contactrb/common/error.hpp"
+#include "contactrb/solve/blas_threads.hpp"
 
 // LAPACK, Fortran calling convention (column-major, every argument by pointer).
 extern "C" {
@@ -28,6 +29,9 @@ PivotedQR pivoted_qr(Eigen::MatrixXd A, double threshold) {
     for (Eigen::Index j = 0; j < n_; ++j) out.permutation.push_back(j);
     return out;
   }
+  // One BLAS thread: the factor is then the same bit for bit whatever the process's thread count
+  // (a serial run against MPI ranks; the greedy's files are compared byte for byte).
+  const ScopedBlasThreads serial(1);
   std::vector<int> jpvt(static_cast<std::size_t>(n), 0);
   std::vector<double> tau(static_cast<std::size_t>(k));
   int info = 0, lwork = -1;

@@ -3,7 +3,8 @@
 // alternative is OpenBLAS, whose dgeqp3 does half of its flops in blocked matrix products).
 // Eigen's ColPivHouseholderQR is unblocked: on the estimate's residual factor of hertz-a level 5
 // (1 134 x 8 622) it is several times slower. Same rank rule as Eigen's: the leading diagonal
-// entries of R above threshold * |R(0, 0)|.
+// entries of R above threshold * |R(0, 0)|. Runs on one BLAS thread, so its result does not
+// depend on the process's BLAS thread count.
 #include <Eigen/Core>
 #include <vector>
 
