@@ -4,7 +4,11 @@
 // the reduced steps per query. --dump writes per point the steps, the time, the estimate and
 // u_hat, lambda_hat to 17 digits (two builds or settings compared line by line).
 //   build/bench/bench_online_points --model m.h5 --case hertz-3p [--set verification]
-//                                   [--repeats 5] [--dump FILE]
+//                                   [--repeats 5] [--dump FILE] [--depth D] [--guess zero]
+//                                   [--iteration accelerated|relaxed|newton] [--tolerance T]
+//                                   [--max-steps K] [--estimate off]
+// --tolerance and --max-steps set the reduced iteration's stopping test (undamped steps);
+// with --tolerance below reach and --max-steps K, --dump gives the iterate after K steps.
 // docs/performance.md, "Moving contact zone".
 #include <algorithm>
 #include <chrono>
@@ -47,6 +51,15 @@ Options parse(int argc, char** argv) {
       o.settings.anderson_depth = std::stoi(v);
     } else if (a == "--guess") {
       o.settings.initial_guess = online::initial_guess_from_string(v);
+    } else if (a == "--tolerance") {
+      o.settings.kacanov = solve::KacanovSettings{1.0, std::stod(v), 500};
+    } else if (a == "--max-steps") {
+      if (!o.settings.kacanov) o.settings.kacanov = solve::KacanovSettings{1.0, 1e-8, 500};
+      o.settings.kacanov->max_iterations = std::stoi(v);
+    } else if (a == "--estimate") {
+      o.settings.error_estimate = v != "off";
+    } else if (a == "--iteration") {
+      o.settings.iteration = online::online_iteration_from_string(v);
     } else if (a == "--dump") {
       o.dump = v;
     } else {
@@ -54,7 +67,8 @@ Options parse(int argc, char** argv) {
     }
   }
   require(!o.model.empty() && !o.case_name.empty() && o.repeats >= 1,
-          "usage: bench_online_points --model FILE --case NAME [--set SET] [--repeats K] [--dump FILE]");
+          "usage: bench_online_points --model FILE --case NAME [--set SET] [--repeats K] [--dump FILE] "
+          "[--depth D] [--guess G] [--iteration I] [--tolerance T] [--max-steps K] [--estimate off]");
   return o;
 }
 
