@@ -188,7 +188,7 @@ TEST_F(CliCraftedStrings, OlderModelFormatIsRefusedWithoutReadingItsStrings) {
   set_format_version(path, 5);
   for (bool fields : {false, true}) {
     expect_one_error(online(path, fields),
-                     {"m_old.h5", "model format 5 is no longer read (this build reads format 8)",
+                     {"m_old.h5", "model format 5 is no longer read (this build reads format 9)",
                       "rebuild it with `contactrb offline`"});
   }
   const CliResult e = run_cli("evaluate --model " + shell_quote(path) + " --set verification --repeats 1 -q --out " +

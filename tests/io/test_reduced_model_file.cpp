@@ -110,6 +110,8 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
     EXPECT_EQ(r.parameters[k].center, m.parameters[k].center);
   }
   EXPECT_TRUE(same(r.training_mu, m.training_mu));
+  ASSERT_EQ(m.training_jacobian.rows(), m.N_max);  // the row cone at N_max <= kMaxJacobianN
+  EXPECT_TRUE(same(r.training_jacobian, m.training_jacobian));
   EXPECT_EQ(r.thetas.f.size(), m.thetas.f.size());
   // Format 4: each theta monomial with its factors.
   const auto expect_same_thetas = [](const std::vector<contactrb::cases::ThetaMonomial>& x,

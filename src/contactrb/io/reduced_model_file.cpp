@@ -183,6 +183,10 @@ void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
     v.mat(pr, "lift_c", m.lift_c, {"n_c x J^D: column k is lift_k on the contact-surface DOFs", "length"});
     v.mat(pr, "training_u_hat", m.training_u_hat,
           {"N_max x P: column i is the online initial guess u_hat at training point i", "1 (basis coordinates)"});
+    v.mat(pr, "training_jacobian", m.training_jacobian,
+          {"N_max x (N_max P), or empty: block i is the Jacobian of the reduced Kacanov map at training point i "
+           "(the online preconditioner)",
+           "1"});
   }
   {
     Handle g = v.group(root, "dual", "the reduced dual cone (Remark 7): lambda = Xi lambda_hat on the kept rows");

@@ -31,7 +31,10 @@ namespace contactrb::model {
 // layout (groups, attributes, matrices in their documented shape, docs/file-formats.md); 6: every
 // string a fixed-length UTF-8 attribute (no variable-length data, which HDF5 1.10 cannot read
 // safely from a damaged file); 8: the registered cone (/registration).
-inline constexpr int kReducedModelFormatVersion = 8;
+inline constexpr int kReducedModelFormatVersion = 9;
+// ReducedModel::training_jacobian is built for N_max up to this size (its cost offline: N_max + 2
+// reduced steps per training point; its size: N_max^2 P).
+inline constexpr int kMaxJacobianN = 100;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.
 // Local contact nodes are the slave and master chain nodes in ascending global node index, so
@@ -96,6 +99,11 @@ struct ReducedModel {
   Eigen::MatrixXd training_mu;         // p x P: the training points, as in the snapshot set
   Eigen::MatrixXd training_u_hat;      // N_max x P
   Eigen::MatrixXd training_lambda_hat; // R_max x P (registered cone: the first registration.R() rows)
+  // The online preconditioner (OnlineSettings::preconditioned): at each training point the
+  // Jacobian G'(u_hat) of the reduced Kacanov map with the exact contact rows at the reduced
+  // solution, block i = columns [i N_max, (i + 1) N_max). Empty: none (the EIM and registered
+  // cones, N_max above kMaxJacobianN).
+  Eigen::MatrixXd training_jacobian;   // N_max x (N_max P), or empty
 
   // (49): A_hat(mu) = sum_j theta^a_j A_hat[j];
   // f_hat(mu) = sum_j theta^f_j f_hat[j] - sum_{j,k} theta^a_j theta^lift_k A_lift_hat[j * J^D + k].
@@ -149,7 +157,7 @@ struct ReducedModel {
 
 // Number of doubles held by the model's arrays (a size figure for the docs and tests).
 inline long long model_doubles(const ReducedModel& m) {
-  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() +
+  long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + m.training_jacobian.size() +
                 m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
                 m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
                 2 * static_cast<long long>(m.surface.reference_nodes.size());

@@ -102,6 +102,11 @@ void check_model(const ReducedModel& m) {
   require(m.training_mu.allFinite(), "reduced model: a training value is not finite");
   expect_shape(m.training_u_hat, m.N_max, m.training_mu.cols(), "training_u_hat");
   expect_shape(m.training_lambda_hat, m.R_max, m.training_mu.cols(), "training_lambda_hat");
+  if (m.training_jacobian.size() > 0) {
+    expect_shape(m.training_jacobian, m.N_max, static_cast<Eigen::Index>(m.N_max) * m.training_mu.cols(),
+                 "training_jacobian");
+    require(m.training_jacobian.allFinite(), "reduced model: training_jacobian holds a value that is not finite");
+  }
   require(m.training_u_hat.allFinite() && m.training_lambda_hat.allFinite(),
           "reduced model: the training coordinates are not finite");
   const ContactSurface& s = m.surface;

@@ -96,6 +96,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
       guess_.col(static_cast<Eigen::Index>(p)) << model.training_u_hat.col(order[p]).head(N_),
           model.training_lambda_hat.col(order[p]).head(R_);
     }
+    set_preconditioners(model, order);
   }
   thetas_ = model.thetas;
   kacanov_alpha_ = model.kacanov_alpha;
@@ -536,6 +537,60 @@ std::string OnlineSolver::undetermined_message(double beta) const {
   return os.str();
 }
 
+void OnlineSolver::set_preconditioners(const ReducedModel& model, const std::vector<int>& order) {
+  preconditioner_.clear();
+  const int R_model = registered_ ? model.registration.R() : model.R_max;
+  // The Jacobians are those of the map at the maximal sizes; a truncated model's map is another.
+  if (model.training_jacobian.size() == 0 || N_ != model.N_max || R_ != R_model) return;
+  const Eigen::Index n = N_;
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
+  preconditioner_.resize(order.size());
+  for (std::size_t p = 0; p < order.size(); ++p) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(identity - model.training_jacobian.middleCols(order[p] * n, n));
+    Eigen::MatrixXd M = lu.inverse();
+    // G'_p with an eigenvalue at 1 (I - G'_p singular): no preconditioner at that point.
+    if (M.allFinite()) preconditioner_[p] = std::move(M);
+  }
+}
+
+Eigen::Index OnlineSolver::nearest_training(const cases::Mu& point) const {
+  if (guess_.cols() == 0) return -1;
+  const Eigen::VectorXd x = (point - guess_offset_).cwiseProduct(guess_scale_);
+  Eigen::Index best = 0;
+  (guess_points_.colwise() - x).colwise().squaredNorm().minCoeff(&best);
+  return best;
+}
+
+Eigen::MatrixXd OnlineSolver::fixed_point_jacobian(const cases::Mu& mu, const Eigen::VectorXd& u_hat) {
+  cases::check_mu(parameters_, mu, "the reduced model");
+  require(u_hat.size() == N_, "OnlineSolver::fixed_point_jacobian: u_hat has size " + std::to_string(u_hat.size()) +
+                                  ", expected N = " + std::to_string(N_));
+  require(exact_rows(ContactRows::Automatic),
+          "OnlineSolver::fixed_point_jacobian: the model's dual cone is not solved on the exact contact rows");
+  std::string message;
+  require(prepare(mu, true, true, message), "OnlineSolver::fixed_point_jacobian: " + message);
+  Eigen::VectorXd base(N_), shifted(N_), lambda(R_), u = u_hat;
+  int inner = 0;
+  const auto take_step = [&](const Eigen::VectorXd& at, Eigen::VectorXd& out, const std::vector<int>& start) {
+    warm_ = start;
+    require(step(at, out, lambda, inner, message), "OnlineSolver::fixed_point_jacobian: " + message);
+  };
+  take_step(u, base, {});
+  const std::vector<int> passive = warm_;
+  // Forward differences: the step is exact (a QP solved to round-off), so h = 1e-7 |u_hat|
+  // leaves about 1e-9 relative error, far below what a preconditioner needs.
+  const double h = 1e-7 * std::max(1.0, u_hat.norm());
+  Eigen::MatrixXd J(N_, N_);
+  for (int i = 0; i < N_; ++i) {
+    u(i) += h;
+    take_step(u, shifted, passive);
+    u(i) = u_hat(i);
+    J.col(i) = (shifted - base) / h;
+  }
+  prepared_ = false;  // surface_gap refers to the last solve, not to these steps
+  return J;
+}
+
 Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
   const Eigen::Index P = guess_.cols();
   if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
@@ -557,7 +612,8 @@ Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
 
 solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSettings& ks, int depth,
                                                        const Eigen::VectorXd& u_start,
-                                                       const Eigen::VectorXd& lambda_start) {
+                                                       const Eigen::VectorXd& lambda_start,
+                                                       const Eigen::MatrixXd* pre) {
   solve::KacanovResult result;
   if (dU_.cols() < depth) {
     dU_.resize(N_, depth);
@@ -592,7 +648,6 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
       return result;
     }
     r_ = result.u_bar - u_;
-    const double r_norm = r_.norm();
     // (63) at alpha = 1 (see OnlineIteration::Accelerated).
     it.du = solve::relative_increment(result.u_bar, u_);
     it.dlambda = solve::relative_increment(result.lambda_bar, lambda_prev_);
@@ -604,9 +659,22 @@ solve::KacanovResult OnlineSolver::iterate_accelerated(const solve::KacanovSetti
       result.lambda = result.lambda_bar;
       return result;
     }
+    // Newton-like steps: u + (I - G'_p)^-1 (G(u) - u) is Newton's step on G(u) - u = 0 with the
+    // Jacobian of the nearest training point (OnlineSettings::preconditioned).
+    if (pre != nullptr) {
+      pr_.noalias() = *pre * r_;
+      r_.swap(pr_);
+    }
+    double r_norm = r_.norm();
     if (k > 1) {
       if (r_norm >= r_prev_norm) {
-        // Safeguard: no decrease of the residual. Forget the history, damp more.
+        // Safeguard: no decrease of the residual. Forget the history (and the preconditioner,
+        // which does not fit this point), damp more.
+        if (pre != nullptr) {
+          pre = nullptr;
+          r_ = result.u_bar - u_;
+          r_norm = r_.norm();
+        }
         m = 0;
         next = 0;
         beta = std::max(0.5 * beta, beta_min);
@@ -694,7 +762,11 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
       require(exact_rows_, "OnlineSolver: the Newton iteration needs the exact contact rows (ContactRows::Exact)");
       kr = iterate_newton(ks, u_start, lambda_start);
     } else if (accelerated) {
-      kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start);
+      const Eigen::Index p = settings.preconditioned && exact_rows_ && !preconditioner_.empty() ? nearest_training(mu) : -1;
+      const Eigen::MatrixXd* pre = p >= 0 && preconditioner_[sz(static_cast<int>(p))].size() > 0
+                                       ? &preconditioner_[sz(static_cast<int>(p))]
+                                       : nullptr;
+      kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start, pre);
     } else {
       const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
                                                 Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,

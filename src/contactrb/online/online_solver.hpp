@@ -119,6 +119,12 @@ struct OnlineSettings {
   InitialGuess initial_guess = InitialGuess::Interpolated;
   // Compute OnlineSolution::estimate (error_estimate.hpp); false only to time the solve without it.
   bool error_estimate = true;
+  // Accelerated iteration with the exact contact rows, at the model's maximal N and R: mix the
+  // steps preconditioned by (I - G'_p)^-1, G'_p the Jacobian of the reduced Kacanov map at the
+  // nearest training point (ReducedModel::training_jacobian; docs/offline-online.md, "Online:
+  // the preconditioned iteration"). The fixed point and the stopping test are those of the plain
+  // iteration; only the number of steps changes. Ignored when the model holds no Jacobians.
+  bool preconditioned = true;
 };
 
 struct OnlineSolution {
@@ -166,6 +172,13 @@ class OnlineSolver {
   };
   SurfaceGap surface_gap(const cases::Mu& mu, const OnlineSolution& s) const;
 
+  // The Jacobian G'(u_hat) (N x N) of the reduced Kacanov map G at mu with the exact contact rows
+  // (one linearized step (53): u_hat -> u_bar), by forward differences, each step's QP started
+  // from the same passive set (the result does not depend on earlier solves). Offline data of
+  // ReducedModel::training_jacobian. Throws contactrb::Error for a model without exact rows (EIM
+  // cones), a mu or u_hat of the wrong size, or a step that fails.
+  Eigen::MatrixXd fixed_point_jacobian(const cases::Mu& mu, const Eigen::VectorXd& u_hat);
+
   int N() const { return N_; }
   int R() const { return R_; }
   int Mk() const { return Mk_; }
@@ -205,8 +218,15 @@ class OnlineSolver {
   // from quadrature_ (whenever quadrature_ is rebuilt).
   void setup_kept_pair();
   void restrict_quadrature();
+  // pre: the preconditioner (I - G'_p)^-1 of the step's residual, or null.
   solve::KacanovResult iterate_accelerated(const solve::KacanovSettings& ks, int depth,
-                                           const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start);
+                                           const Eigen::VectorXd& u_start, const Eigen::VectorXd& lambda_start,
+                                           const Eigen::MatrixXd* pre = nullptr);
+  // The column of guess_ (training point) nearest to mu in the scaled coordinates of
+  // interpolated_guess (p = 1: the nearer of the two it interpolates between); -1 without any.
+  Eigen::Index nearest_training(const cases::Mu& mu) const;
+  // preconditioner_ from the model's Jacobians (constructor; guess_'s column order).
+  void set_preconditioners(const contactrb::model::ReducedModel& model, const std::vector<int>& order);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
   // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
   // training point in coordinates scaled to [0, 1] per parameter.
@@ -233,6 +253,7 @@ class OnlineSolver {
   Eigen::MatrixXd guess_points_;  // p x P: training points scaled to [0, 1] per parameter
   Eigen::VectorXd guess_offset_, guess_scale_;  // x = (mu - offset) .* scale
   Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
+  std::vector<Eigen::MatrixXd> preconditioner_;  // P (same order), each N x N or empty: (I - G'_p)^-1
   cases::AffineThetas thetas_;
   double kacanov_alpha_ = 0.3, kacanov_tolerance_ = 1e-3;
   int kacanov_max_iterations_ = 500;
@@ -304,7 +325,7 @@ class OnlineSolver {
   Eigen::MatrixXd Q_;                    // R x R: D A^-1 D'
   std::vector<int> warm_;                // the previous step's QP passive set
   // Accelerated iteration: current and previous iterates, residuals, history columns.
-  Eigen::VectorXd u_, u_prev_, r_, r_prev_, lambda_prev_;
+  Eigen::VectorXd u_, u_prev_, r_, r_prev_, lambda_prev_, pr_;
   Eigen::MatrixXd dU_, dR_, dL_;         // differences of u, of r = G(u) - u, of lambda_bar
   ErrorEstimator estimator_;             // the leading blocks of the estimate's data
   Eigen::VectorXd weight_kept_;          // |I_r|(mu) on the kept rows
