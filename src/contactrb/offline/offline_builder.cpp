@@ -770,25 +770,6 @@ void solve_at_training_values(ReducedModel& m, InitialGuess guess) {
   }
 }
 
-// ReducedModel::training_jacobian: the Jacobian of the reduced Kacanov map at each training
-// point's reduced solution, for the row cone up to kMaxJacobianN (the registered cone's steps cost
-// a thousand times more on the fine meshes it is for). A training value whose reduced solve does
-// not converge keeps a zero Jacobian (the plain step there).
-void training_jacobians(ReducedModel& m) {
-  m.training_jacobian.resize(0, 0);
-  if (m.dual_method != model::kRowCone || m.N_max > model::kMaxJacobianN || m.training_mu.cols() == 0) return;
-  const Index n = m.N_max;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n * m.training_mu.cols());
-  OnlineSolver solver(m);
-  OnlineSettings settings;
-  settings.error_estimate = false;
-  for (Index p = 0; p < m.training_mu.cols(); ++p) {
-    const OnlineSolution sol = solver.solve(m.training_mu.col(p), settings);
-    if (sol.converged()) J.middleCols(p * n, n) = solver.fixed_point_jacobian(m.training_mu.col(p), sol.u_hat);
-  }
-  m.training_jacobian = std::move(J);
-}
-
 // The HF-size data that reconstruct a field from (u_hat, lambda_hat) (reconstruction.hpp).
 ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const ReferenceTerms& ref,
                                           const Eigen::MatrixXd& Theta, const ReducedModel& m) {
@@ -807,6 +788,22 @@ ReducedReconstruction reconstruction_data(const io::SnapshotSet& set, const Refe
 }
 
 }  // namespace
+
+void add_training_jacobians(ReducedModel& m) {
+  m.training_jacobian.resize(0, 0);
+  // The registered cone's steps cost a thousand times more on the fine meshes it is for.
+  if (m.dual_method != model::kRowCone || m.N_max > model::kMaxJacobianN || m.training_mu.cols() == 0) return;
+  const Index n = m.N_max;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n * m.training_mu.cols());
+  OnlineSolver solver(m);
+  OnlineSettings settings;
+  settings.error_estimate = false;
+  for (Index p = 0; p < m.training_mu.cols(); ++p) {
+    const OnlineSolution sol = solver.solve(m.training_mu.col(p), settings);
+    if (sol.converged()) J.middleCols(p * n, n) = solver.fixed_point_jacobian(m.training_mu.col(p), sol.u_hat);
+  }
+  m.training_jacobian = std::move(J);
+}
 
 // What a greedy's builds share (offline_builder.hpp), valid for one case, level, discretization
 // and inner product: the first build fills it, the next ones check that their set is of the same
@@ -923,7 +920,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   training_coordinates(Theta, ref.inner, primal, set, m);
   check_model(m);
   solve_at_training_values(m, settings.extend_basis ? InitialGuess::Interpolated : InitialGuess::Zero);
-  training_jacobians(m);
+  if (settings.training_jacobians) add_training_jacobians(m);
   rep.reduction_s = seconds_since(t0);
 
   out.reconstruction = reconstruction_data(set, ref, Theta, m);

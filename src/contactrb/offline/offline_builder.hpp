@@ -64,6 +64,9 @@ struct OfflineSettings {
   // given a cache that holds the basis of the set's leading snapshots extends that basis and the
   // estimate's Riesz data (a QR update) instead of rebuilding them.
   bool extend_basis = false;
+  // ReducedModel::training_jacobian (add_training_jacobians): the online preconditioner. A greedy
+  // builds its steps without it and adds it to the model it returns.
+  bool training_jacobians = true;
   // All four tolerances absolute (the paper's reading; the report and the demo use it).
   void set_absolute() { eps_pod_relative = eps_du_relative = eps_eim_k_relative = eps_eim_g_relative = false; }
 };
@@ -126,6 +129,12 @@ struct OfflineResult {
 class OfflineBuildCache;
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {}, OfflineBuildCache* cache = nullptr);
+
+// ReducedModel::training_jacobian of a finished model (its training points and reduced
+// solutions): the Jacobian of the reduced Kacanov map at each training point, for the row cone
+// up to model::kMaxJacobianN (empty otherwise; a training value whose reduced solve does not
+// converge keeps a zero block, the plain step there). P (N_max + 2) reduced steps.
+void add_training_jacobians(model::ReducedModel& m);
 
 class OfflineBuildCache {
  public:

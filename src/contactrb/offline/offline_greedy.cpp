@@ -408,6 +408,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   g.online.error_estimate = true;
   g.offline.extend_basis = settings.incremental && settings.offline.dual_method == DualConeMethod::Rows &&
                            settings.offline.compression;
+  g.offline.training_jacobians = false;  // the sweep's reduced Newton does not use them: the returned model only
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
     // The row cone's estimate has no floor but the last step's lag: the sweep solves to
@@ -439,6 +440,7 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     if (stop != nullptr) break;
   }
   g.out.offline = std::move(*best);
+  if (settings.offline.training_jacobians) add_training_jacobians(g.out.offline.model);
   progress.model(g.out.steps[sz(g.out.model_step - 1)], static_cast<int>(g.out.steps.size()));
   g.out.total_s = seconds_since(t_total);
   return std::move(g.out);
