@@ -307,4 +307,55 @@ TEST(GeometricRatio, BoundsRandomDirectionsThatKeepTheActiveRowsClosed) {
   std::printf("[ hertz-a mu 0.4 ] eta_p %.4f, largest random ratio %.4f\n", eta, largest);
 }
 
+// eta_p against an independent dense computation of its definition over every free DOF (no Schur
+// reduction, no Lanczos): Z a basis of ker D_A on the free DOFs, then the largest eigenvalue of the
+// dense pencil (Z'(-H)Z, Z'A_00 Z).
+TEST(GeometricRatio, EqualsTheDenseGeneralizedEigenvalueOverEveryFreeDof) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");
+  const auto reference = cases::reference_mesh(spec, 0);
+  for (double value : {0.2, 0.4}) {
+    const cases::Mu mu = cases::Mu::Constant(1, value);
+    const contactrb::io::SnapshotSet set = snapshots_at(spec, {mu});
+    const contactrb::io::Snapshot& snap = set.snapshots.front();
+    const auto d = contactrb::contact::discretization_from_string(set.constraint);
+    const double eta = offline::geometric_ratio(spec, reference, d, snap);
+
+    const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
+    const auto& dofs = solver.dofs();
+    std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
+    for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
+    const auto lin = contactrb::contact::linearize_contact(solver.problem().mesh, solver.pair(), solver.quadrature(),
+                                                           snap.u, snap.lambda, movable);
+    const Index n = dofs.num_free();
+    const Eigen::MatrixXd H = Eigen::MatrixXd(lin.H);
+    Eigen::MatrixXd minus_H(n, n);
+    for (Index j = 0; j < n; ++j) {
+      const Index gj = dofs.free_dofs()[static_cast<std::size_t>(j)];
+      for (Index i = 0; i < n; ++i) {
+        const Index gi = dofs.free_dofs()[static_cast<std::size_t>(i)];
+        minus_H(i, j) = -0.5 * (H(gi, gj) + H(gj, gi));
+      }
+    }
+    const Eigen::MatrixXd A = Eigen::MatrixXd(dofs.restrict_matrix(solver.stiffness()));
+    std::vector<Index> active;
+    for (Index r = 0; r < snap.lambda.size(); ++r) {
+      if (snap.lambda(r) > 0.0) active.push_back(r);
+    }
+    ASSERT_GE(active.size(), 2u);
+    const Eigen::MatrixXd D = Eigen::MatrixXd(dofs.restrict_columns(lin.D));
+    Eigen::MatrixXd DA(static_cast<Index>(active.size()), n);
+    for (std::size_t a = 0; a < active.size(); ++a) DA.row(static_cast<Index>(a)) = D.row(active[a]);
+    const Eigen::MatrixXd Z = Eigen::FullPivLU<Eigen::MatrixXd>(DA).kernel();
+    ASSERT_EQ(Z.cols(), n - static_cast<Index>(active.size()));
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+        Z.transpose() * minus_H * Z, Z.transpose() * A * Z, Eigen::EigenvaluesOnly);
+    ASSERT_EQ(eig.info(), Eigen::Success);
+    const double dense = eig.eigenvalues().maxCoeff();
+    std::printf("[ hertz-a mu %.2f ] eta_p %.15f, dense over %ld free DOFs %.15f\n", value, eta,
+                static_cast<long>(n), dense);
+    ASSERT_GT(dense, 0.0);
+    EXPECT_NEAR(eta, dense, 1e-10 * dense);
+  }
+}
+
 }  // namespace

@@ -1,7 +1,5 @@
 #include "contactrb/offline/geometric_term.hpp"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -9,8 +7,10 @@
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/contact/contact_linearization.hpp"
-#include "contactrb/hf/hf_solver.hpp"
+#include "contactrb/fem/dirichlet.hpp"
+#include "contactrb/fem/elasticity.hpp"
 #include "contactrb/solve/blas_threads.hpp"
+#include "contactrb/solve/constrained_eigenvalue.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
 
 namespace contactrb::offline {
@@ -38,40 +38,92 @@ std::vector<Index> touched_dofs(const contact::ContactLinearization& lin, const 
   return out;
 }
 
-// A_00(mu_p) factored once and kept while the next snapshot's matrix is the same (a parameter
-// that does not enter the stiffness, as an imposed displacement): its block of the inverse on
-// the touched DOFs is then read from the same factor and the columns it has cached.
+bool same_materials(const std::vector<fem::Material>& a, const std::vector<fem::Material>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](const fem::Material& x, const fem::Material& y) { return x.E == y.E && x.nu == y.nu; });
+}
+
+// A_00(mu_p) assembled and factored once and kept while the next snapshot's stiffness is the
+// same: it depends on mu only through the mesh of Omega(mu), the materials and the prescribed
+// DOFs, so a parameter that enters none of them (an imposed displacement) reuses the factor and
+// the columns of the inverse it has cached.
 class InverseBlocks {
  public:
-  Eigen::MatrixXd block(const Eigen::SparseMatrix<double>& A, const std::vector<int>& idx) {
-    // One BLAS thread: the supernodal factor and block are then the same bitwise whatever the
-    // machine's threads (a model built on each MPI rank is the serial one).
-    const solve::ScopedBlasThreads blas(1);
-    if (!same_as_factored(A)) {
-      require(inverse_.compute(A) == solve::SelectedInverseStatus::Success,
+  Eigen::MatrixXd block(const hf::ContactProblem& problem, const fem::DofMap& dofs, const std::vector<int>& idx) {
+    if (!same_stiffness(problem, dofs)) {
+      require(inverse_.compute(dofs.restrict_matrix(fem::stiffness(problem.mesh, problem.materials))) ==
+                  solve::SelectedInverseStatus::Success,
               "geometric_ratio: A_00(mu) is not positive definite");
-      factored_ = A;
+      nodes_ = problem.mesh.nodes;
+      cells_ = problem.mesh.cells();
+      body_ = problem.mesh.body;
+      materials_ = problem.materials;
+      free_ = dofs.free_dofs();
+      factored_ = true;
     }
     return inverse_.block(idx);
   }
 
  private:
-  bool same_as_factored(const Eigen::SparseMatrix<double>& A) const {
-    if (factored_.rows() != A.rows() || factored_.nonZeros() != A.nonZeros() || !A.isCompressed()) return false;
-    const auto n = static_cast<std::size_t>(A.nonZeros());
-    return std::equal(A.valuePtr(), A.valuePtr() + n, factored_.valuePtr()) &&
-           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + n, factored_.innerIndexPtr()) &&
-           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, factored_.outerIndexPtr());
+  bool same_stiffness(const hf::ContactProblem& problem, const fem::DofMap& dofs) const {
+    return factored_ && problem.mesh.nodes == nodes_ && problem.mesh.cells() == cells_ && problem.mesh.body == body_ &&
+           same_materials(problem.materials, materials_) && dofs.free_dofs() == free_;
   }
   solve::SelectedInverse inverse_;
-  Eigen::SparseMatrix<double> factored_;
+  bool factored_ = false;
+  std::vector<mesh::Mesh::Point> nodes_;
+  std::vector<mesh::Mesh::Cell> cells_;
+  std::vector<int> body_;
+  std::vector<fem::Material> materials_;
+  std::vector<int> free_;
 };
+
+// The pencil of eta_p on the touched DOFs cd (free numbering, slot[] its position there):
+// M = -H (symmetrized) and the active rows D_A.
+struct TouchedPencil {
+  Eigen::SparseMatrix<double> M;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> DA;
+};
+
+TouchedPencil touched_pencil(const contact::ContactLinearization& lin, const Eigen::VectorXd& lambda,
+                             const std::vector<int>& to_free, const std::vector<Index>& slot, Index m) {
+  const auto local = [&](Index dof) { return to_free[sz(dof)] >= 0 ? slot[sz(to_free[sz(dof)])] : Index{-1}; };
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Index k = 0; k < lin.H.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(lin.H, k); it; ++it) {
+      const Index a = local(it.row()), b = local(it.col());
+      if (a < 0 || b < 0) continue;
+      entries.emplace_back(a, b, -0.5 * it.value());
+      entries.emplace_back(b, a, -0.5 * it.value());
+    }
+  }
+  TouchedPencil p;
+  p.M.resize(m, m);
+  p.M.setFromTriplets(entries.begin(), entries.end());
+  entries.clear();
+  Index rows = 0;
+  for (Index r = 0; r < lambda.size(); ++r) {
+    if (!(lambda(r) > 0.0)) continue;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(lin.D, r); it; ++it) {
+      if (local(it.col()) >= 0) entries.emplace_back(rows, local(it.col()), it.value());
+    }
+    ++rows;
+  }
+  p.DA.resize(rows, m);
+  p.DA.setFromTriplets(entries.begin(), entries.end());
+  return p;
+}
 
 double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
                        const io::Snapshot& snapshot, InverseBlocks& inverse) {
-  const hf::HFSolver solver(cases::make_problem(spec, reference, snapshot.mu, d));
-  const fem::DofMap& dofs = solver.dofs();
-  require(snapshot.u.size() == dofs.num_dofs() && snapshot.lambda.size() == solver.quadrature().weight.size(),
+  // One BLAS thread: the supernodal factor and block are then the same bitwise whatever the
+  // machine's threads (a model built on each MPI rank is the serial one).
+  const solve::ScopedBlasThreads blas(1);
+  const hf::ContactProblem problem = cases::make_problem(spec, reference, snapshot.mu, d);
+  const fem::DofMap dofs(problem.mesh, problem.dirichlet);
+  const contact::ContactPair pair = contact::make_contact_pair(problem.mesh);
+  const contact::ContactQuadrature quadrature = contact::make_quadrature(problem.mesh, pair, d);
+  require(snapshot.u.size() == dofs.num_dofs() && snapshot.lambda.size() == quadrature.weight.size(),
           "geometric_ratio: the snapshot does not match the case's discretization");
   std::vector<int> to_free(sz(dofs.num_dofs()), -1);
   std::vector<char> movable(sz(dofs.num_dofs()), 0);
@@ -79,44 +131,21 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
     to_free[sz(dofs.free_dofs()[i])] = static_cast<int>(i);
     movable[sz(dofs.free_dofs()[i])] = 1;
   }
-  const contact::ContactLinearization lin = contact::linearize_contact(
-      solver.problem().mesh, solver.pair(), solver.quadrature(), snapshot.u, snapshot.lambda, movable);
+  const contact::ContactLinearization lin =
+      contact::linearize_contact(problem.mesh, pair, quadrature, snapshot.u, snapshot.lambda, movable);
   const std::vector<Index> cd = touched_dofs(lin, snapshot.lambda, to_free);
   if (cd.empty()) return 0.0;
   const Index m = static_cast<Index>(cd.size());
   std::vector<Index> slot(dofs.free_dofs().size(), -1);
   for (Index i = 0; i < m; ++i) slot[sz(cd[sz(i)])] = i;
-
-  // C = (A_00^-1) on cd; its inverse is the Schur complement (the minimum energy of an extension).
-  const std::vector<int> idx(cd.begin(), cd.end());
-  const Eigen::MatrixXd S = inverse.block(dofs.restrict_matrix(solver.stiffness()), idx).inverse();
-
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, m);
-  for (Index k = 0; k < lin.H.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(lin.H, k); it; ++it) {
-      const Index a = to_free[sz(it.row())] >= 0 ? slot[sz(to_free[sz(it.row())])] : -1;
-      const Index b = to_free[sz(it.col())] >= 0 ? slot[sz(to_free[sz(it.col())])] : -1;
-      if (a >= 0 && b >= 0) H(a, b) -= it.value();  // -H
-    }
-  }
-  H = 0.5 * (H + H.transpose()).eval();
-  std::vector<Index> active;
-  for (Index r = 0; r < snapshot.lambda.size(); ++r) {
-    if (snapshot.lambda(r) > 0.0) active.push_back(r);
-  }
-  Eigen::MatrixXd DA = Eigen::MatrixXd::Zero(static_cast<Index>(active.size()), m);
-  for (std::size_t a = 0; a < active.size(); ++a) {
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(lin.D, active[a]); it; ++it) {
-      if (to_free[sz(it.col())] >= 0) DA(static_cast<Index>(a), slot[sz(to_free[sz(it.col())])]) = it.value();
-    }
-  }
-  const Eigen::MatrixXd Z = active.empty() ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m))
-                                           : Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(DA).kernel());
-  if (Z.cols() == 0 || Z.norm() == 0.0) return 0.0;
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Z.transpose() * H * Z, Z.transpose() * S * Z,
-                                                                      Eigen::EigenvaluesOnly);
-  require(eig.info() == Eigen::Success, "geometric_ratio: the eigenvalue problem did not converge");
-  return std::max(0.0, eig.eigenvalues().maxCoeff());
+  const TouchedPencil pencil = touched_pencil(lin, snapshot.lambda, to_free, slot, m);
+  // C = (A_00^-1) on cd, the inverse of the Schur complement there (the minimum energy of an
+  // extension), so that eta_p = max { v'Mv / v'C^-1 v : D_A v = 0 } over cd alone.
+  const Eigen::MatrixXd C = inverse.block(problem, dofs, std::vector<int>(cd.begin(), cd.end()));
+  const solve::ConstrainedEigenvalueResult eig = solve::largest_constrained_eigenvalue(C, pencil.M, pencil.DA);
+  require(eig.converged, "geometric_ratio: the Lanczos iteration did not converge (" +
+                             std::to_string(eig.iterations) + " steps, residual " + std::to_string(eig.residual) + ")");
+  return std::max(0.0, eig.value);
 }
 
 }  // namespace

@@ -10,7 +10,10 @@
 // with the same contact zone takes:
 //   eta_p = max { v'(-H)v / v'A(mu_p)v : D_A v = 0 },
 // reduced exactly to the DOFs H and D_A touch by the Schur complement of A_00(mu_p) there (the
-// minimum energy of every extension). The estimate then solves (1 - eta)|e|^2 <= 2 c1 |e| + c2.
+// minimum energy of every extension), whose inverse is the block of A_00(mu_p)^-1 on them (a
+// selected inverse); its largest eigenvalue by Lanczos on that block, the Schur complement never
+// formed (solve/constrained_eigenvalue.hpp). The estimate then solves
+// (1 - eta)|e|^2 <= 2 c1 |e| + c2.
 #include <utility>
 #include <vector>
 
