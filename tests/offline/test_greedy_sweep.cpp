@@ -228,7 +228,8 @@ TEST(GreedySweep, CoordinateMapCarriesTheSameFieldIntoTheExtendedModel) {
   };
   EXPECT_EQ(on_rows(small.reconstruction, answer.lambda_hat), on_rows(large.reconstruction, e.start[0].tail(map->R)));
   // A POD rebuild: new directions everywhere, no map; the starts are dropped.
-  const auto rebuilt = contactrb::offline::build_reduced_model(g.snapshots, spec(), contactrb::offline::GreedyOfflineSettings{}.offline);
+  const auto rebuilt =
+      contactrb::offline::build_reduced_model(g.snapshots, spec(), contactrb::offline::GreedyOfflineSettings{}.offline);
   EXPECT_FALSE(contactrb::offline::coordinate_map(small, rebuilt).has_value());
   contactrb::offline::carry_starts(std::nullopt, e);
   EXPECT_EQ(e.start[0].size(), 0);

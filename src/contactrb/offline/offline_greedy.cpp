@@ -128,6 +128,9 @@ void check_settings(const GreedyOfflineSettings& s) {
   require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));
   require(s.saturation >= 1.0, "greedy: the saturation constant must be >= 1 (+inf: every point every step), got " +
                                    number_text(s.saturation));
+  // Each model has its own sizes: the sweep sets every point's start itself.
+  require(!s.online.start, "greedy: the online settings may not carry a start (OnlineSettings::start); the sweep "
+                           "starts each point from its own last answer");
   check_settings(s.offline);
 }
 

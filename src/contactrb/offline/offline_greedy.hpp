@@ -109,7 +109,8 @@ struct GreedyOfflineSettings {
   // Start each sweep solve from the point's last reduced answer, carried into the new model's
   // coordinates, when the model extends the last one (greedy_sweep.hpp, "Warm starts"; a POD
   // rebuild starts as any online solve). The same answers to the sweep's tolerance in fewer
-  // steps (docs/performance.md).
+  // steps; a point whose solve from the model's own guess fails may converge from its warm start
+  // and is then answered, not enriched first (docs/offline-online.md, "Greedy sampling").
   bool sweep_warm_start = true;
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
@@ -196,8 +197,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
 // The per-step table as CSV (one line per step: step,snapshots,hf_solves,N,R,Mk,Mg,max_estimate,
 // argmax_<name>...,online_failures,chosen_<name>...,hf_status,true_error,true_e_press,build_s,sweep_s,
-// hf_s,step_s,batch_solves,batch_failures,sweep_solves,sweep_iterations; one argmax_ and one chosen_ column per parameter, chosen_
-// empty (NaN) when the greedy stopped at that step), written atomically.
+// hf_s,step_s,batch_solves,batch_failures,sweep_solves,sweep_iterations; one argmax_ and one chosen_
+// column per parameter, chosen_ empty (NaN) when the greedy stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 
 }  // namespace contactrb::offline
