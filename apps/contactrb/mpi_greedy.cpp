@@ -39,19 +39,22 @@ void wait_polling(MPI_Request& request) {
   }
 }
 
-// Every rank: its block filled in `values`; afterwards every rank holds all blocks (in point
-// order, as the serial sweep's vector). The Allreduce first, so that a rank whose sweep threw does not leave the others in the gather.
-bool all_gather(MpiWorld& world, std::vector<double>& values, bool ok) {
+// Every rank: its block of points filled in `values` (`width` entries a point); afterwards every
+// rank holds all blocks (in point order, as the serial sweep's vector). The Allreduce first, so
+// that a rank whose sweep threw does not leave the others in the gather.
+bool all_gather(MpiWorld& world, std::vector<double>& values, std::size_t width, bool ok) {
   int mine = ok ? 1 : 0, all = 0;
   MPI_Request pending = MPI_REQUEST_NULL;
   MPI_Iallreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &pending);
   wait_polling(pending);
   if (all == 0) return false;
   std::vector<int> counts, displs;
+  require(width > 0 && values.size() % width == 0, "internal: a gathered sweep of " + std::to_string(values.size()) +
+                                                      " entries in records of " + std::to_string(width));
   for (int r = 0; r < world.size(); ++r) {
-    const auto [b, e] = rank_block(values.size(), r, world.size());
-    counts.push_back(to_int(e - b, "training points"));
-    displs.push_back(to_int(b, "training points"));
+    const auto [b, e] = rank_block(values.size() / width, r, world.size());
+    counts.push_back(to_int(width * (e - b), "training points"));
+    displs.push_back(to_int(width * b, "training points"));
   }
   MPI_Iallgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values.data(), counts.data(), displs.data(), MPI_DOUBLE,
                   MPI_COMM_WORLD, &pending);
@@ -167,7 +170,7 @@ offline::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
   offline::GreedyDistribution d;
   MpiWorld* w = &world;
   d.block = [w](std::size_t n) { return rank_block(n, w->rank(), w->size()); };
-  d.gather = [w](std::vector<double>& values, bool ok) { return all_gather(*w, values, ok); };
+  d.gather = [w](std::vector<double>& values, std::size_t width, bool ok) { return all_gather(*w, values, width, ok); };
   d.share = [w](const offline::GreedyDistribution::SolveFn& solve, const offline::SnapshotRequest& step) {
     return share(*w, solve, step);
   };

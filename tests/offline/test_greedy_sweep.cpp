@@ -3,11 +3,14 @@
 // sweep finds the same largest estimates as the full sweep, at the same values, and solves fewer
 // points; saturation +inf is the full sweep; an exact bound of every point costs one chunk.
 // The greedy with the lazy sweep stops only when every training point is below the tolerance,
-// checked here by an independent loop of online solves.
+// checked here by an independent loop of online solves. Warm starts (each point from its last
+// answer, carried into the extended model's coordinates) keep the picks and save steps.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -15,8 +18,11 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/cases/parameter.hpp"
+#include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/offline/greedy_sweep.hpp"
+#include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/model/reconstruction.hpp"
 #include "contactrb/online/online_solver.hpp"
 
 namespace {
@@ -176,7 +182,82 @@ TEST(GreedySweep, LazyGreedyStopsOnlyBelowTheToleranceEverywhere) {
     worst = std::max(worst, contactrb::offline::relative_estimate(g.offline.model, mu, answer));
   }
   EXPECT_LE(worst, s.tolerance);
-  EXPECT_EQ(worst, g.steps.back().max_estimate);
+  // The sweep started each point from its last answer (warm starts): the same estimate to the
+  // solver's tolerance (1e-10 on the increments), not to the last bit.
+  EXPECT_NEAR(worst, g.steps.back().max_estimate, 1e-8 * worst);
+}
+
+// The row cone's extension builds keep every basis column and every generator: the map carries
+// a reduced solution of the smaller model to the same HF field and pressures in the larger one
+// (bit for bit: only zeros are added). A POD rebuild has no such map.
+TEST(GreedySweep, CoordinateMapCarriesTheSameFieldIntoTheExtendedModel) {
+  const auto& g = small_greedy();
+  ASSERT_EQ(g.snapshots.snapshots.size(), 3u);
+  contactrb::offline::OfflineSettings extend = contactrb::offline::GreedyOfflineSettings{}.offline;
+  extend.extend_basis = true;
+  contactrb::offline::OfflineBuildCache cache;
+  contactrb::io::SnapshotSet two = g.snapshots;
+  two.snapshots.pop_back();
+  const auto small = contactrb::offline::build_reduced_model(two, spec(), extend, &cache);
+  const auto large = contactrb::offline::build_reduced_model(g.snapshots, spec(), extend, &cache);
+  const auto map = contactrb::offline::coordinate_map(small, large);
+  ASSERT_TRUE(map.has_value());
+  const int N0 = small.model.N_max, R0 = small.model.online_R_max();
+  ASSERT_EQ(map->N, large.model.N_max);
+  ASSERT_EQ(map->R, large.model.online_R_max());
+  ASSERT_LT(N0, map->N);  // the third snapshot added a direction
+  contactrb::online::OnlineSolver solver(small.model);
+  auto online = sweep_settings();
+  online.iteration = contactrb::online::OnlineIteration::Newton;
+  const auto answer = solver.solve(training()[10], online);
+  ASSERT_TRUE(answer.converged()) << answer.message;
+  GreedyEstimates e(1);
+  e.start.assign(1, Eigen::VectorXd(N0 + R0));
+  e.start[0] << answer.u_hat, answer.lambda_hat;
+  contactrb::offline::carry_starts(map, e);
+  ASSERT_EQ(e.start[0].size(), map->N + map->R);
+  const Eigen::VectorXd u_small = small.reconstruction.Theta * answer.u_hat;
+  const Eigen::VectorXd u_large = large.reconstruction.Theta * e.start[0].head(map->N);
+  EXPECT_EQ((u_small - u_large).cwiseAbs().maxCoeff(), 0.0);
+  // The pressures on the HF rows (the row cone: lambda_hat is the pressure on the kept rows).
+  const auto on_rows = [](const contactrb::model::ReducedReconstruction& r, const Eigen::VectorXd& l) {
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(r.num_constraints);
+    const Eigen::VectorXd kept = r.Xi * l;
+    for (std::size_t i = 0; i < r.kept_rows.size(); ++i) p(r.kept_rows[i]) = kept(static_cast<Eigen::Index>(i));
+    return p;
+  };
+  EXPECT_EQ(on_rows(small.reconstruction, answer.lambda_hat), on_rows(large.reconstruction, e.start[0].tail(map->R)));
+  // A POD rebuild: new directions everywhere, no map; the starts are dropped.
+  const auto rebuilt =
+      contactrb::offline::build_reduced_model(g.snapshots, spec(), contactrb::offline::GreedyOfflineSettings{}.offline);
+  EXPECT_FALSE(contactrb::offline::coordinate_map(small, rebuilt).has_value());
+  contactrb::offline::carry_starts(std::nullopt, e);
+  EXPECT_EQ(e.start[0].size(), 0);
+}
+
+// Warm starts change the sweep's path, not its answers: the same picks and estimates (to the
+// sweep's tolerance) as the solves from the model's own start, in fewer reduced steps.
+TEST(GreedySweep, WarmStartsKeepThePicksInFewerSteps) {
+  contactrb::offline::GreedyOfflineSettings s;
+  s.tolerance = 1e-3;
+  s.max_hf = 20;
+  const auto warm = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  s.sweep_warm_start = false;
+  const auto cold = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  ASSERT_EQ(warm.selected, cold.selected);
+  ASSERT_EQ(warm.steps.size(), cold.steps.size());
+  long long warm_steps = 0, cold_steps = 0;
+  for (std::size_t k = 0; k < warm.steps.size(); ++k) {
+    const auto &w = warm.steps[k], &c = cold.steps[k];
+    EXPECT_EQ(w.argmax, c.argmax) << "step " << k + 1;
+    EXPECT_EQ(w.sweep_solves, c.sweep_solves) << "step " << k + 1;
+    EXPECT_NEAR(w.max_estimate, c.max_estimate, 1e-8 * c.max_estimate) << "step " << k + 1;
+    warm_steps += w.sweep_iterations;
+    cold_steps += c.sweep_iterations;
+  }
+  std::printf("[ hertz-a ] sweep: %lld reduced Newton steps from warm starts, %lld from the model's start\n",
+              warm_steps, cold_steps);
+  EXPECT_LT(warm_steps, cold_steps);
 }
 
 }  // namespace

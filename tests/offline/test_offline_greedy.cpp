@@ -341,6 +341,9 @@ TEST(OfflineGreedy, BadSettingsAreRefused) {
   s.batch = 0;
   refused(s, "batch");
   s = {};
+  s.online.start = Eigen::VectorXd::Zero(3);
+  refused(s, "may not carry a start (OnlineSettings::start)");
+  s = {};
   s.offline.eps_pod = -1.0;
   refused(s, "eps_pod");
   // An empty training set, before any HF solve.

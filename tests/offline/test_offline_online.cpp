@@ -304,6 +304,59 @@ TEST_P(OfflineOnline, ReducedNewtonReachesTheFixedPointInFewSteps) {
   }
 }
 
+// An explicit start (OnlineSettings::start) at the converged answer: the accelerated iteration
+// (on the truncated CPG model) stops after one step, the reduced Newton (on the row-cone model,
+// the greedy's sweep) after two (its test needs the same active set twice), at the same answer.
+// A start of another size is refused with the sizes in the message.
+TEST_P(OfflineOnline, ExplicitStartAtTheAnswerConvergesAtOnce) {
+  const SnapshotSet& set = snapshots(GetParam());
+  const double mu = verification_values().at(GetParam()).front();
+  OnlineSettings accelerated;
+  accelerated.kacanov = contactrb::solve::KacanovSettings{1.0, 1e-10, 500};
+  accelerated.iteration = contactrb::online::OnlineIteration::Accelerated;
+  OnlineSettings newton = accelerated;
+  newton.iteration = contactrb::online::OnlineIteration::Newton;
+  const OfflineResult cpg = truncated_model(set, GetParam());
+  const OfflineResult rows =
+      contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), OfflineSettings{});
+  for (const bool is_newton : {false, true}) {
+    SCOPED_TRACE(is_newton ? "Newton, row cone" : "accelerated, CPG cone");
+    OnlineSolver solver(is_newton ? rows.model : cpg.model);
+    const OnlineSettings& cold = is_newton ? newton : accelerated;
+    const auto ref = solver.solve(mu, cold);
+    ASSERT_TRUE(ref.converged()) << ref.message;
+    ASSERT_GT(ref.iterations, is_newton ? 2 : 1);
+    OnlineSettings warm = cold;
+    warm.start = Eigen::VectorXd(solver.N() + solver.R());
+    *warm.start << ref.u_hat, ref.lambda_hat;
+    const auto w = solver.solve(mu, warm);
+    ASSERT_TRUE(w.converged()) << w.message;
+    EXPECT_EQ(w.iterations, is_newton ? 2 : 1);
+    EXPECT_LE((w.u_hat - ref.u_hat).norm(), 1e-9 * ref.u_hat.norm());
+    EXPECT_LE((w.lambda_hat - ref.lambda_hat).norm(), 1e-9 * ref.lambda_hat.norm());
+    EXPECT_NEAR(w.energy, ref.energy, 1e-12 * std::abs(ref.energy));
+  }
+  OnlineSolver solver(cpg.model);
+  OnlineSettings wrong = accelerated;
+  wrong.start = Eigen::VectorXd::Zero(solver.N() + solver.R() + 1);
+  const std::string sizes = "size N + R = " + std::to_string(solver.N()) + " + " + std::to_string(solver.R()) + " = " +
+                            std::to_string(solver.N() + solver.R()) + " (got " +
+                            std::to_string(solver.N() + solver.R() + 1) + " entries)";
+  try {
+    solver.solve(mu, wrong);
+    ADD_FAILURE() << "a start of the wrong size was accepted";
+  } catch (const contactrb::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("OnlineSettings::start must be a finite [u_hat; lambda_hat] of " + sizes),
+              std::string::npos)
+        << e.what();
+  }
+  wrong.start = Eigen::VectorXd::Zero(solver.N() + solver.R());
+  (*wrong.start)(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(solver.solve(mu, wrong), contactrb::Error);
+  // The solver still answers after the refusals.
+  EXPECT_TRUE(solver.solve(mu, accelerated).converged());
+}
+
 // The interpolated initial guess (the reduced solutions at the training values, linear in mu)
 // reaches the same fixed point within the Kacanov tolerance in fewer steps than the zero start,
 // and in one step at a training value, where it is the fixed point itself.

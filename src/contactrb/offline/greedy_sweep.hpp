@@ -8,12 +8,20 @@
 // times `saturation` is below the `wanted`-th largest fresh value cannot be among the `wanted`
 // largest, and is not solved. The points are solved in decreasing order of their last estimate,
 // in chunks, until that holds for every point left (docs/offline-online.md, "Greedy sampling").
+//
+// Warm starts: each point's last reduced solution, carried into the next model's coordinates
+// when that model extends the last one (every basis column and cone generator kept as it was),
+// is the start of its next solve (OnlineSettings::start); a point without one, or whose warm
+// solve does not converge, starts as any online solve does.
+#include <Eigen/Core>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "contactrb/cases/parameter.hpp"
 #include "contactrb/model/reduced_model.hpp"
+#include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/online/online_solver.hpp"
 
 namespace contactrb::offline {
@@ -27,7 +35,27 @@ struct GreedyEstimates {
   std::vector<char> failed;   // 1: the last online solve there did not converge
   std::vector<char> fresh;    // 1: value is the current model's
   int solves = 0;             // online solves of the last sweep
+  long long iterations = 0;   // their reduced iterations (OnlineSolution::iterations), summed
+  // Per point: its last converged [u_hat; lambda_hat] in the current model's coordinates, the
+  // start of its next solve; empty: none.
+  std::vector<Eigen::VectorXd> start;
 };
+
+// Where one model's reduced coordinates sit in the next model's: column n of the first basis is
+// column primal[n] of the next, generator r of the first cone is generator dual[r] of the next.
+struct CoordinateMap {
+  std::vector<int> primal, dual;
+  int N = 0, R = 0;  // the next model's sizes
+};
+
+// The map from `before` to `after` when every basis column and cone generator of `before` is,
+// bit for bit, one of `after`'s (an extension build, OfflineSettings::extend_basis); nullopt
+// otherwise (a POD rebuild, a registered cone). Then u = Theta u_hat is the same field in both.
+std::optional<CoordinateMap> coordinate_map(const OfflineResult& before, const OfflineResult& after);
+
+// The points' starts mapped into the next model's coordinates (zero in its new directions),
+// or dropped when there is no map.
+void carry_starts(const std::optional<CoordinateMap>& map, GreedyEstimates& estimates);
 
 // What a sweep solves over: the model, the training points and how.
 struct SweepContext {
@@ -41,10 +69,16 @@ struct SweepContext {
   // sweep's other chunks (its setup factors the estimate's columns: several online solves' worth).
   // nullptr: each chunk builds its own.
   std::vector<std::unique_ptr<online::OnlineSolver>>* solvers = nullptr;
+  // Start each point from GreedyEstimates::start where it has one.
+  bool warm_start = true;
 };
 
 // Every point not skipped, with the current model.
 void sweep_every_point(const SweepContext& context, GreedyEstimates& estimates);
+
+// Every point not skipped whose estimate is not fresh (the rest of a lazy sweep): afterwards
+// every estimate is the current model's.
+void sweep_stale(const SweepContext& context, GreedyEstimates& estimates);
 
 // The points that may hold the `wanted` largest estimates among those with `eligible` set (and
 // every point whose bound exceeds them, eligible or not): see the header comment. saturation >= 1;

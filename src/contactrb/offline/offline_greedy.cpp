@@ -128,6 +128,9 @@ void check_settings(const GreedyOfflineSettings& s) {
   require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));
   require(s.saturation >= 1.0, "greedy: the saturation constant must be >= 1 (+inf: every point every step), got " +
                                    number_text(s.saturation));
+  // Each model has its own sizes: the sweep sets every point's start itself.
+  require(!s.online.start, "greedy: the online settings may not carry a start (OnlineSettings::start); the sweep "
+                           "starts each point from its own last answer");
   check_settings(s.offline);
 }
 
@@ -238,7 +241,9 @@ void start(Greedy& g, GreedyProgress& progress) {
 // Extend's counterpart: the reduced model of the selected snapshots.
 void build_model(Greedy& g, GreedyStep& row) {
   const auto t0 = Clock::now();
-  g.out.offline = build_reduced_model(g.out.snapshots, g.spec, g.offline, &g.cache);
+  OfflineResult next = build_reduced_model(g.out.snapshots, g.spec, g.offline, &g.cache);
+  carry_starts(g.settings.sweep_warm_start ? coordinate_map(g.out.offline, next) : std::nullopt, g.estimates);
+  g.out.offline = std::move(next);
   row.build_s = seconds_since(t0);
   const ReducedModel& model = g.out.offline.model;
   row.N = model.N_max;
@@ -276,7 +281,7 @@ std::vector<int> evaluate(Greedy& g, GreedyStep& row) {
   const int P = static_cast<int>(g.training.size());
   std::vector<std::unique_ptr<OnlineSolver>> solvers;  // of this step's model, kept across its chunks
   const SweepContext context{g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution,
-                             g.excluded, &solvers};
+                             g.excluded, &solvers, g.settings.sweep_warm_start};
   std::vector<char> eligible(sz(P), 0);
   std::vector<int> candidates;
   for (int i = 0; i < P; ++i) {
@@ -285,11 +290,13 @@ std::vector<int> evaluate(Greedy& g, GreedyStep& row) {
   }
   sweep_largest(context, eligible, sz(g.settings.batch), g.settings.saturation, g.estimates);
   row.sweep_solves = g.estimates.solves;
+  row.sweep_iterations = g.estimates.iterations;
   summarize_sweep(g, row);
   const bool partial = std::any_of(candidates.begin(), candidates.end(), [&](int i) { return !g.estimates.fresh[sz(i)]; });
   if (partial && row.online_failures == 0 && row.max_estimate <= g.settings.tolerance) {
-    sweep_every_point(context, g.estimates);
+    sweep_stale(context, g.estimates);
     row.sweep_solves += g.estimates.solves;
+    row.sweep_iterations += g.estimates.iterations;
     summarize_sweep(g, row);
   }
   row.sweep_s = seconds_since(t0);
@@ -334,6 +341,23 @@ void true_errors(const Greedy& g, const GreedyMu& mu, const OnlineSolution& rb, 
   row.true_e_press = lh > 0.0 ? ld / lh : ld;
 }
 
+// The current model's answer at training point `index`: the sweep's when it solved the point with
+// this model (GreedyEstimates::start), else an online solve.
+OnlineSolution current_answer(const Greedy& g, int index) {
+  const ReducedModel& model = g.out.offline.model;
+  const Eigen::VectorXd* x = g.estimates.start.empty() ? nullptr : &g.estimates.start[sz(index)];
+  const int N = model.N_max, R = model.online_R_max();
+  if (g.estimates.fresh[sz(index)] && x != nullptr && x->size() == N + R) {
+    OnlineSolution answer;
+    answer.status = solve::KacanovStatus::Converged;
+    answer.u_hat = x->head(N);
+    answer.lambda_hat = x->tail(R);
+    return answer;
+  }
+  OnlineSolver solver(model);
+  return solver.solve(g.training[sz(index)], g.online);
+}
+
 // The step's converged snapshots join the set; a point whose HF solve failed leaves the
 // training set (reported in the step).
 void add_snapshots(Greedy& g, io::SnapshotSet& s, GreedyStep& row) {
@@ -364,8 +388,7 @@ void extend(Greedy& g, const std::vector<int>& candidates, GreedyStep& row) {
   row.chosen = candidates.front();
   const GreedyMu& mu = g.training[sz(row.chosen)];
   row.chosen_mu = mu;
-  OnlineSolver solver(g.out.offline.model);
-  const OnlineSolution rb = solver.solve(mu, g.online);
+  const OnlineSolution rb = current_answer(g, row.chosen);
   const auto t0 = Clock::now();
   io::SnapshotSet s = hf_solve(g, row.batch_points);
   row.hf_s = seconds_since(t0);
@@ -453,7 +476,7 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
   columns.push_back("online_failures");
   for (const io::SnapshotParameter& q : params) columns.push_back("chosen_" + q.name);
   for (const char* c : {"hf_status", "true_error", "true_e_press", "build_s", "sweep_s", "hf_s", "step_s", "batch_solves",
-                        "batch_failures", "sweep_solves"}) {
+                        "batch_failures", "sweep_solves", "sweep_iterations"}) {
     columns.push_back(c);
   }
   io::CsvWriter csv(columns);
@@ -471,7 +494,7 @@ void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path
     for (const io::CsvCell& c : std::vector<io::CsvCell>{r.hf_status, r.true_error, r.true_e_press, r.build_s, r.sweep_s,
                                                          r.hf_s, r.step_s, static_cast<long long>(r.batch_points.size()),
                                                          static_cast<long long>(r.batch_failures),
-                                                         static_cast<long long>(r.sweep_solves)}) {
+                                                         static_cast<long long>(r.sweep_solves), r.sweep_iterations}) {
       row.push_back(c);
     }
     csv.add_row(row);

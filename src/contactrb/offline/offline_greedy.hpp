@@ -50,9 +50,10 @@ GreedyOfflineStatus greedy_offline_status_from_string(const std::string& name); 
 struct GreedyDistribution {
   // [begin, end) of this process's points among n.
   std::function<std::pair<std::size_t, std::size_t>(std::size_t n)> block;
-  // `values` has n entries on every process, this one having filled its block (ok false: its sweep
-  // threw). Afterwards every process holds every entry. Returns false when some process was not ok.
-  std::function<bool(std::vector<double>& values, bool ok)> gather;
+  // `values` has n * width entries on every process (width consecutive ones per point), this one
+  // having filled its block of points (ok false: its sweep threw). Afterwards every process holds
+  // every entry. Returns false when some process was not ok.
+  std::function<bool(std::vector<double>& values, std::size_t width, bool ok)> gather;
   // The HF solves of the points of `step`: each process calls solve(part) on its part of them
   // (a request with a subset of step.mu, possibly none: then it does not call solve; solve may
   // throw) and every process returns the set of all of step.mu's snapshots, in step.mu's order,
@@ -105,6 +106,12 @@ struct GreedyOfflineSettings {
   // Of the sweep (error_estimate is forced on; a row-cone greedy with the default iteration and
   // no Kacanov settings sweeps with the reduced Newton, kRowConeSweepTolerance).
   contactrb::online::OnlineSettings online;
+  // Start each sweep solve from the point's last reduced answer, carried into the new model's
+  // coordinates, when the model extends the last one (greedy_sweep.hpp, "Warm starts"; a POD
+  // rebuild starts as any online solve). The same answers to the sweep's tolerance in fewer
+  // steps; a point whose solve from the model's own guess fails may converge from its warm start
+  // and is then answered, not enriched first (docs/offline-online.md, "Greedy sampling").
+  bool sweep_warm_start = true;
   ProgressMode progress = ProgressMode::None;  // one line per step (Terminal prints lines too)
   std::ostream* progress_stream = nullptr;     // nullptr: std::cerr
   GreedyDistribution distribution;             // empty: one process
@@ -145,6 +152,7 @@ struct GreedyStep {
   std::vector<int> batch_points;
   int batch_failures = 0;
   int sweep_solves = 0;  // online solves of the sweep (the training points solved)
+  long long sweep_iterations = 0;  // their reduced iterations, summed
   // Wall times (s): build_reduced_model, the sweep, the step's HF solves, the whole step.
   double build_s = 0.0, sweep_s = 0.0, hf_s = 0.0, step_s = 0.0;
 };
@@ -189,8 +197,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
 
 // The per-step table as CSV (one line per step: step,snapshots,hf_solves,N,R,Mk,Mg,max_estimate,
 // argmax_<name>...,online_failures,chosen_<name>...,hf_status,true_error,true_e_press,build_s,sweep_s,
-// hf_s,step_s,batch_solves,batch_failures,sweep_solves; one argmax_ and one chosen_ column per parameter, chosen_
-// empty (NaN) when the greedy stopped at that step), written atomically.
+// hf_s,step_s,batch_solves,batch_failures,sweep_solves,sweep_iterations; one argmax_ and one chosen_
+// column per parameter, chosen_ empty (NaN) when the greedy stopped at that step), written atomically.
 void write_greedy_csv(const GreedyOfflineResult& result, const std::string& path);
 
 }  // namespace contactrb::offline

@@ -48,6 +48,7 @@ nlohmann::json to_json(const GreedyStep& r, const SnapshotRequest& request) {
           {"batch_mu", points_json(request, r.batch_points)},
           {"batch_failures", r.batch_failures},
           {"sweep_solves", r.sweep_solves},
+          {"sweep_iterations", r.sweep_iterations},
           {"times_s", {{"build", r.build_s}, {"sweep", r.sweep_s}, {"hf", r.hf_s}, {"step", r.step_s}}}};
 }
 

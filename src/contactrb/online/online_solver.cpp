@@ -732,6 +732,12 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   solve::check_settings(ks);
   require(settings.anderson_depth >= 0 && settings.anderson_depth <= 8,
           "OnlineSettings::anderson_depth must be in [0, 8] (got " + std::to_string(settings.anderson_depth) + ")");
+  if (settings.start && (settings.start->size() != N_ + R_ || !settings.start->allFinite())) {
+    throw Error("OnlineSettings::start must be a finite [u_hat; lambda_hat] of size N + R = " + std::to_string(N_) +
+                " + " + std::to_string(R_) + " = " + std::to_string(N_ + R_) + " (got " +
+                std::to_string(settings.start->size()) + " entries" +
+                (settings.start->size() == N_ + R_ ? ", not all finite)" : ")"));
+  }
   const bool accelerated = settings.iteration == OnlineIteration::Accelerated ||
                            (settings.iteration == OnlineIteration::Automatic && !settings.kacanov);
   qp_.set_settings(settings.qp);
@@ -749,8 +755,9 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
   }
 
   // [u_hat; lambda_hat] to start from; lambda only enters the first stopping test.
-  const Eigen::VectorXd start =
-      settings.initial_guess == InitialGuess::Interpolated ? interpolated_guess(mu) : Eigen::VectorXd::Zero(N_ + R_);
+  const Eigen::VectorXd start = settings.start                                          ? *settings.start
+                                : settings.initial_guess == InitialGuess::Interpolated ? interpolated_guess(mu)
+                                                                                       : Eigen::VectorXd::Zero(N_ + R_);
   const Eigen::VectorXd u_start = start.head(N_), lambda_start = start.tail(R_);
   // The first reduced QP starts from the guess's support (the QP is exact from any start).
   for (int i = 0; i < R_; ++i) {

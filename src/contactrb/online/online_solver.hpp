@@ -117,6 +117,11 @@ struct OnlineSettings {
   // Accelerated: number of previous steps mixed (0: plain undamped steps, still safeguarded).
   int anderson_depth = 3;
   InitialGuess initial_guess = InitialGuess::Interpolated;
+  // An explicit start [u_hat; lambda_hat] of size N + R (the solver's sizes), used in place of
+  // initial_guess: e.g. the answer at mu of an earlier model whose basis this one extends (the
+  // greedy's sweep, offline/greedy_sweep.hpp). The fixed point and the stopping test are the same.
+  // Another size or a non-finite entry is refused (contactrb::Error).
+  std::optional<Eigen::VectorXd> start;
   // Compute OnlineSolution::estimate (error_estimate.hpp); false only to time the solve without it.
   bool error_estimate = true;
   // Accelerated iteration with the exact contact rows, at the model's maximal N and R: mix the
