@@ -6,7 +6,7 @@
 //   build/bench/bench_online_points --model m.h5 --case hertz-3p [--set verification]
 //                                   [--repeats 5] [--dump FILE] [--depth D] [--guess zero]
 //                                   [--iteration accelerated|relaxed|newton] [--tolerance T]
-//                                   [--max-steps K] [--estimate off]
+//                                   [--max-steps K] [--estimate off] [--preconditioned off]
 // --tolerance and --max-steps set the reduced iteration's stopping test (undamped steps);
 // with --tolerance below reach and --max-steps K, --dump gives the iterate after K steps.
 // docs/performance.md, "Moving contact zone".
@@ -56,6 +56,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--max-steps") {
       if (!o.settings.kacanov) o.settings.kacanov = solve::KacanovSettings{1.0, 1e-8, 500};
       o.settings.kacanov->max_iterations = std::stoi(v);
+    } else if (a == "--preconditioned") {
+      o.settings.preconditioned = v != "off";
     } else if (a == "--estimate") {
       o.settings.error_estimate = v != "off";
     } else if (a == "--iteration") {
@@ -68,7 +70,8 @@ Options parse(int argc, char** argv) {
   }
   require(!o.model.empty() && !o.case_name.empty() && o.repeats >= 1,
           "usage: bench_online_points --model FILE --case NAME [--set SET] [--repeats K] [--dump FILE] "
-          "[--depth D] [--guess G] [--iteration I] [--tolerance T] [--max-steps K] [--estimate off]");
+          "[--depth D] [--guess G] [--iteration I] [--tolerance T] [--max-steps K] [--estimate off] "
+          "[--preconditioned off]");
   return o;
 }
 

@@ -111,10 +111,11 @@ OfflineResult truncated_model(const SnapshotSet& set, const std::string& name) {
   return contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(name), s);
 }
 
-// The reduced fixed point to 1e-12: the paper's relaxed iteration (alpha 0.3) from u_hat = 0.
+// The reduced fixed point to 1e-11: the paper's relaxed iteration (alpha 0.3) from u_hat = 0
+// (at 1e-12 its relative increments stall on round-off at some values in a -march=native build).
 OnlineSettings reduced_fixed_point() {
   OnlineSettings s;
-  s.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-12, 5000};
+  s.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-11, 5000};
   s.iteration = contactrb::online::OnlineIteration::Relaxed;
   s.initial_guess = contactrb::online::InitialGuess::Zero;
   return s;
