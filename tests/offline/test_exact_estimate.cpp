@@ -62,6 +62,16 @@ contactrb::io::SnapshotSet snapshots_at(const cases::CaseSpec& spec, const std::
   return offline::generate_snapshots(r, options);
 }
 
+// The HF contact linearization at a snapshot, every free DOF movable.
+contactrb::contact::ContactLinearization linearization_of(const contactrb::hf::HFSolver& solver,
+                                                          const contactrb::io::Snapshot& snap) {
+  const auto& dofs = solver.dofs();
+  std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
+  for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
+  return contactrb::contact::linearize_contact(solver.problem().mesh, solver.pair(), solver.quadrature(), snap.u,
+                                               snap.lambda, movable);
+}
+
 struct EstimateCase {
   std::string name;
   double eps_pod;
@@ -272,10 +282,7 @@ TEST(GeometricRatio, BoundsRandomDirectionsThatKeepTheActiveRowsClosed) {
 
   const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
   const auto& dofs = solver.dofs();
-  std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
-  for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
-  const auto lin = contactrb::contact::linearize_contact(solver.problem().mesh, solver.pair(), solver.quadrature(),
-                                                         snap.u, snap.lambda, movable);
+  const auto lin = linearization_of(solver, snap);
   std::vector<Index> active;
   for (Index r = 0; r < snap.lambda.size(); ++r) {
     if (snap.lambda(r) > 0.0) active.push_back(r);
@@ -322,10 +329,7 @@ TEST(GeometricRatio, EqualsTheDenseGeneralizedEigenvalueOverEveryFreeDof) {
 
     const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
     const auto& dofs = solver.dofs();
-    std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
-    for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
-    const auto lin = contactrb::contact::linearize_contact(solver.problem().mesh, solver.pair(), solver.quadrature(),
-                                                           snap.u, snap.lambda, movable);
+    const auto lin = linearization_of(solver, snap);
     const Index n = dofs.num_free();
     const Eigen::MatrixXd H = Eigen::MatrixXd(lin.H);
     Eigen::MatrixXd minus_H(n, n);
