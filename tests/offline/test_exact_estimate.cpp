@@ -283,6 +283,8 @@ TEST(GeometricRatio, BoundsRandomDirectionsThatKeepTheActiveRowsClosed) {
   const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
   const auto& dofs = solver.dofs();
   const auto lin = linearization_of(solver, snap);
+  std::vector<char> movable(static_cast<std::size_t>(dofs.num_dofs()), 0);
+  for (int i : dofs.free_dofs()) movable[static_cast<std::size_t>(i)] = 1;
   std::vector<Index> active;
   for (Index r = 0; r < snap.lambda.size(); ++r) {
     if (snap.lambda(r) > 0.0) active.push_back(r);
