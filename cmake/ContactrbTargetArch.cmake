@@ -5,11 +5,9 @@
 # same way: Eigen aligns its arrays to the widest vector the flags enable (16 bytes for SSE2, 32
 # for AVX, 64 for AVX-512), and two objects compiled differently that exchange Eigen types
 # corrupt memory. -ffp-contract=off keeps the compiler from fusing a*b+c in our own scalar code
-# (its results stay those of the default build); Eigen's kernels use FMA explicitly. Two GCC 12
-# warnings from inside the compiler's own intrinsics headers are silenced in this build only:
-# -Warray-bounds in Eigen 3.4's AVX assignment loops on 2- and 3-vectors (a 256-bit unaligned
-# load inside a loop that runs zero times for them) and -Wmaybe-uninitialized on the `__Y` of
-# the AVX-512 headers' _mm512_undefined_* (deliberately undefined vectors).
+# (its results stay those of the default build); Eigen's kernels use FMA explicitly. GCC 12
+# reports -Warray-bounds in Eigen 3.4's AVX assignment loops on 2- and 3-vectors (a 256-bit
+# unaligned load inside a loop that runs zero times for them): silenced in this build only.
 include(CheckCXXCompilerFlag)
 
 macro(contactrb_target_arch)
