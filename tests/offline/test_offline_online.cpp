@@ -112,7 +112,7 @@ OfflineResult truncated_model(const SnapshotSet& set, const std::string& name) {
 }
 
 // The reduced fixed point to 1e-11: the paper's relaxed iteration (alpha 0.3) from u_hat = 0
-// (at 1e-12 its relative increments stall on round-off at some values in a -march=native build).
+// (at 1e-12 its relative increments stall on round-off at some values in an AVX2/FMA build).
 OnlineSettings reduced_fixed_point() {
   OnlineSettings s;
   s.kacanov = contactrb::solve::KacanovSettings{0.3, 1e-11, 5000};
