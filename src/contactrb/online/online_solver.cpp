@@ -538,19 +538,32 @@ std::string OnlineSolver::undetermined_message(double beta) const {
 }
 
 void OnlineSolver::set_preconditioners(const ReducedModel& model, const std::vector<int>& order) {
+  jacobian_.resize(0, 0);
   preconditioner_.clear();
+  preconditioner_state_.clear();
   const int R_model = registered_ ? model.registration.R() : model.R_max;
   // The Jacobians are those of the map at the maximal sizes; a truncated model's map is another.
   if (model.training_jacobian.size() == 0 || N_ != model.N_max || R_ != R_model) return;
   const Eigen::Index n = N_;
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
-  preconditioner_.resize(order.size());
+  jacobian_.resize(n, n * static_cast<Eigen::Index>(order.size()));
   for (std::size_t p = 0; p < order.size(); ++p) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(identity - model.training_jacobian.middleCols(order[p] * n, n));
-    Eigen::MatrixXd M = lu.inverse();
-    // G'_p with an eigenvalue at 1 (I - G'_p singular): no preconditioner at that point.
-    if (M.allFinite()) preconditioner_[p] = std::move(M);
+    jacobian_.middleCols(static_cast<Eigen::Index>(p) * n, n) = model.training_jacobian.middleCols(order[p] * n, n);
   }
+  preconditioner_.resize(order.size());
+  preconditioner_state_.assign(order.size(), 0);
+}
+
+const Eigen::MatrixXd* OnlineSolver::preconditioner(Eigen::Index p) {
+  if (jacobian_.size() == 0 || p < 0) return nullptr;
+  const std::size_t k = sz(static_cast<int>(p));
+  if (preconditioner_state_[k] == 0) {
+    const Eigen::Index n = N_;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(n, n) - jacobian_.middleCols(p * n, n));
+    preconditioner_[k] = lu.inverse();
+    // G'_p with an eigenvalue at 1 (I - G'_p singular): no preconditioner at that point.
+    preconditioner_state_[k] = preconditioner_[k].allFinite() ? 1 : 2;
+  }
+  return preconditioner_state_[k] == 1 ? &preconditioner_[k] : nullptr;
 }
 
 Eigen::Index OnlineSolver::nearest_training(const cases::Mu& point) const {
@@ -769,10 +782,8 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
       require(exact_rows_, "OnlineSolver: the Newton iteration needs the exact contact rows (ContactRows::Exact)");
       kr = iterate_newton(ks, u_start, lambda_start);
     } else if (accelerated) {
-      const Eigen::Index p = settings.preconditioned && exact_rows_ && !preconditioner_.empty() ? nearest_training(mu) : -1;
-      const Eigen::MatrixXd* pre = p >= 0 && preconditioner_[sz(static_cast<int>(p))].size() > 0
-                                       ? &preconditioner_[sz(static_cast<int>(p))]
-                                       : nullptr;
+      const Eigen::MatrixXd* pre =
+          settings.preconditioned && exact_rows_ && jacobian_.size() > 0 ? preconditioner(nearest_training(mu)) : nullptr;
       kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start, pre);
     } else {
       const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,
