@@ -607,13 +607,7 @@ Eigen::MatrixXd OnlineSolver::fixed_point_jacobian(const cases::Mu& mu, const Ei
 Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
   const Eigen::Index P = guess_.cols();
   if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
-  if (point.size() > 1) {
-    // The nearest training point in scaled coordinates (ties: the first).
-    const Eigen::VectorXd x = (point - guess_offset_).cwiseProduct(guess_scale_);
-    Eigen::Index best = 0;
-    (guess_points_.colwise() - x).colwise().squaredNorm().minCoeff(&best);
-    return guess_.col(best);
-  }
+  if (point.size() > 1) return guess_.col(nearest_training(point));  // ties: the first
   const double mu = point(0);
   const auto hi = static_cast<Eigen::Index>(std::upper_bound(guess_mu_.begin(), guess_mu_.end(), mu) - guess_mu_.begin());
   if (hi == 0) return guess_.col(0);
