@@ -80,6 +80,7 @@ void MagicPointEvaluator::rebuild(const contact::ContactQuadrature& q) {
     Theta_r_.row(2 * i) = Theta_c_.row(2 * used_node_[sz(i)]);
     Theta_r_.row(2 * i + 1) = Theta_c_.row(2 * used_node_[sz(i)] + 1);
   }
+  if (V_.size() > 0) ThetaV_r_.noalias() = Theta_r_ * V_;
   X_.resize(sz(n_used));
   lift_r_.resize(2 * n_used);
   w_r_.resize(2 * n_used);
@@ -335,17 +336,27 @@ double MagicPointEvaluator::gamma_term(const Term& term) const {
 }
 
 void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma) {
-  rows(u_hat, K_Theta, gamma, nullptr);
+  rows(u_hat, &K_Theta, gamma, nullptr);
+}
+
+void MagicPointEvaluator::evaluate_solved_rows(const Eigen::VectorXd& u_hat, Eigen::VectorXd& gamma, RowMatrix& K_E) {
+  require(whitening_ != nullptr, "MagicPointEvaluator: evaluate_solved_rows before prepare_solved");
+  rows(u_hat, nullptr, gamma, &K_E);
 }
 
 void MagicPointEvaluator::evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
                                         RowMatrix& K_E) {
-  require(llt_ != nullptr, "MagicPointEvaluator: evaluate_rows with K_E before prepare_solved");
-  rows(u_hat, K_Theta, gamma, &K_E);
+  require(whitening_ != nullptr, "MagicPointEvaluator: evaluate_rows with K_E before prepare_solved");
+  rows(u_hat, &K_Theta, gamma, &K_E);
 }
 
-void MagicPointEvaluator::prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt) {
-  llt_ = &llt;
+void MagicPointEvaluator::set_whitening_basis(const Eigen::MatrixXd& V) {
+  V_ = V;
+  if (Theta_r_.size() > 0) ThetaV_r_.noalias() = Theta_r_ * V_;
+}
+
+void MagicPointEvaluator::prepare_solved(const AffineWhitening& whitening) {
+  whitening_ = &whitening;
   ThetaL_r_.resize(Theta_r_.rows(), Theta_r_.cols());
   solved_.assign(used_node_.size(), 0);
 }
@@ -372,25 +383,33 @@ void MagicPointEvaluator::solve_touched_rows() {
     }
   }
   if (pending_.empty()) return;
+  if (whitening_->diagonal()) {  // Theta_c L^-T = Theta_c V diag(d^-1/2)
+    const auto scale = whitening_->scale().transpose().array();
+    for (const int slot : pending_) {
+      ThetaL_r_.row(2 * slot).array() = ThetaV_r_.row(2 * slot).array() * scale;
+      ThetaL_r_.row(2 * slot + 1).array() = ThetaV_r_.row(2 * slot + 1).array() * scale;
+    }
+    return;
+  }
   const Eigen::Index m = static_cast<Eigen::Index>(pending_.size());
   solve_work_.resize(Theta_r_.cols(), 2 * m);
   for (Eigen::Index k = 0; k < m; ++k) {
     solve_work_.col(2 * k) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))]).transpose();
     solve_work_.col(2 * k + 1) = Theta_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1).transpose();
   }
-  llt_->matrixL().solveInPlace(solve_work_);  // L^-1 Theta_r': one triangular solve per column
+  whitening_->cholesky().matrixL().solveInPlace(solve_work_);  // L^-1 Theta_r': one triangular solve per column
   for (Eigen::Index k = 0; k < m; ++k) {
     ThetaL_r_.row(2 * pending_[sz(static_cast<int>(k))]) = solve_work_.col(2 * k).transpose();
     ThetaL_r_.row(2 * pending_[sz(static_cast<int>(k))] + 1) = solve_work_.col(2 * k + 1).transpose();
   }
 }
 
-void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma,
+void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix* K_Theta, Eigen::VectorXd& gamma,
                                RowMatrix* K_E) {
   project(u_hat);
-  K_Theta.setZero();
+  if (K_Theta != nullptr) K_Theta->setZero();
   if (K_E != nullptr) {
-    K_E->setZero(K_Theta.rows(), K_Theta.cols());
+    K_E->setZero(static_cast<Eigen::Index>(active_.size()), Theta_r_.cols());
     solve_touched_rows();
   }
   for (std::size_t j = 0; j < active_.size(); ++j) {
@@ -406,9 +425,10 @@ void MagicPointEvaluator::rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta,
       const auto add = [&](int node, double c) {
         const int slot = node_slot_[sz(node)];
         const double cx = c * p.normal.x(), cy = c * p.normal.y();
-        K_Theta.row(row).noalias() += cx * Theta_r_.row(2 * slot) + cy * Theta_r_.row(2 * slot + 1);
-        if (K_E == nullptr) return;
-        K_E->row(row).noalias() += cx * ThetaL_r_.row(2 * slot) + cy * ThetaL_r_.row(2 * slot + 1);
+        if (K_Theta != nullptr) {
+          K_Theta->row(row).noalias() += cx * Theta_r_.row(2 * slot) + cy * Theta_r_.row(2 * slot + 1);
+        }
+        if (K_E != nullptr) K_E->row(row).noalias() += cx * ThetaL_r_.row(2 * slot) + cy * ThetaL_r_.row(2 * slot + 1);
       };
       add(p.a, term.weight * (1.0 - p.xi));
       add(p.b, term.weight * p.xi);

@@ -23,6 +23,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/segment_hit.hpp"
 #include "contactrb/model/reduced_model.hpp"
+#include "contactrb/online/affine_whitening.hpp"
 
 namespace contactrb::online {
 
@@ -55,13 +56,18 @@ class MagicPointEvaluator {
   // (K_Theta, gamma rows x N, sized by the caller) and gamma_i (the exact contact rows of
   // ContactRows::Exact on the kept rows; setup with those as gamma rows and no kappa pair).
   void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma);
-  // The same, and row i of K(w) Theta_c L^-T in K_E (sized as K_Theta; A = L L', `llt`): from
+  // The same, and row i of K(w) Theta_c L^-T in K_E (sized as K_Theta; A = L L', `whitening`): from
   // the rows of Theta_c L^-T of the nodes the rows touch, solved the first time a step needs them
-  // after prepare_solved, together. Why: E = L^-1 D' then costs 6 N per row and step instead of a
+  // after prepare_solved, together (scaled rows of Theta_c V with a diagonal whitening). Why: E = L^-1 D' then costs 6 N per row and step instead of a
   // triangular solve (N^2 / 2 per row), and a query touches the same few nodes at every step
   // (docs/offline-online.md, "Cost of a query with the exact rows").
-  void prepare_solved(const Eigen::LLT<Eigen::MatrixXd>& llt);
+  void prepare_solved(const AffineWhitening& whitening);
+  // A whitening in diagonal form (AffineWhitening::diagonal()): its basis V, once. The rows of
+  // Theta_c L^-T are then those of Theta_c V scaled by d^-1/2 (N flops a row, no solve).
+  void set_whitening_basis(const Eigen::MatrixXd& V);
   void evaluate_rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix& K_E);
+  // K_E and gamma only (half the row updates of evaluate_rows with K_Theta).
+  void evaluate_solved_rows(const Eigen::VectorXd& u_hat, Eigen::VectorXd& gamma, RowMatrix& K_E);
 
   // Per step or per answer, without the rows of K(w) Theta_c: for each gamma row i the slack
   // s_i = g_i(w) - K_i(w) w at w = u_D,c + Theta_c u_hat ((28) - (27), >= 0 where the constraint
@@ -125,15 +131,17 @@ class MagicPointEvaluator {
   std::vector<int> node_slot_;              // local node -> index in used_node_ (-1)
   RowMatrix Theta_r_;                       // 2 |used| x N: the rows of Theta_c of used_node_
   // Per mu (prepare_solved): the rows of Theta_c L^-T of the used nodes solved so far.
-  const Eigen::LLT<Eigen::MatrixXd>* llt_ = nullptr;
+  const AffineWhitening* whitening_ = nullptr;
+  Eigen::MatrixXd V_;                       // set_whitening_basis's V (empty: none)
+  RowMatrix ThetaV_r_;                      // 2 |used| x N: Theta_r_ V
   RowMatrix ThetaL_r_;                      // 2 |used| x N
   std::vector<char> solved_;                // per used node
   std::vector<int> pending_;                // used-node slots to solve at this step
   Eigen::MatrixXd solve_work_;              // N x 2 |pending|
   // Solves the rows of Theta_c L^-T of the nodes the step's candidate rows touch (projection_ set).
   void solve_touched_rows();
-  // evaluate_rows; K_E also when not null.
-  void rows(const Eigen::VectorXd& u_hat, RowMatrix& K_Theta, Eigen::VectorXd& gamma, RowMatrix* K_E);
+  // evaluate_rows: K_Theta and K_E where not null.
+  void rows(const Eigen::VectorXd& u_hat, RowMatrix* K_Theta, Eigen::VectorXd& gamma, RowMatrix* K_E);
   // Per mu.
   std::vector<Term> kappa_terms_, gamma_terms_;
   std::vector<int> kappa_start_, gamma_start_;  // CSR-like offsets into the term lists

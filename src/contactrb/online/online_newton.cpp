@@ -146,7 +146,9 @@ solve::KacanovResult OnlineSolver::iterate_newton(const solve::KacanovSettings& 
   for (int k = 1; k <= ks.max_iterations; ++k) {
     newton_system(u, lambda, sys);
     if (k == 1) {  // c_k = 1 / Q_kk, Q = B A_hat^-1 B': a pressure per unit gap
-      const Eigen::MatrixXd Y = llt_.solve(sys.B.transpose());
+      Eigen::MatrixXd Y = sys.B.transpose();  // A_hat^-1 B'
+      whitening_.solve_factor(Y);
+      whitening_.solve_factor_transpose(Y);
       for (int i = 0; i < R_; ++i) {
         const double q = sys.B.row(i).dot(Y.col(i));
         c(i) = q > 0.0 ? 1.0 / q : 1.0;

@@ -148,6 +148,8 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   pair_.master = surface_.master;
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
   kept_.setup(surface_, {}, {}, kept_rows_, Theta_c_);
+  whitening_.setup(A_hat_);
+  if (whitening_.diagonal()) kept_.set_whitening_basis(whitening_.basis());
   {
     std::vector<int> every_row(sz(surface_.num_constraints));
     for (int r = 0; r < surface_.num_constraints; ++r) every_row[sz(r)] = r;
@@ -184,8 +186,6 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   dg_.resize(R_);
   c_.resize(R_);
   zl_.resize(N_);
-  U_.resize(N_, N_);
-  inv_diag_.resize(N_);
   t_.resize(N_);
   Et_.resize(N_, R_);
   Dt_.resize(N_, R_);
@@ -278,17 +278,15 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     f_ += tf(j) * f_hat_[sz(j)];
     for (int k = 0; k < JD; ++k) E_D_ -= tf(j) * tl(k) * lift_f_[sz(j * JD + k)];
   }
-  // Once per query: the Cholesky factor of A_hat(mu) serves every step.
-  llt_.compute(A_);
-  if (llt_.info() != Eigen::Success) {
+  // Once per query: the factor A_hat(mu) = L L' serves every step (affine_whitening.hpp).
+  if (!whitening_.factor(ta, A_)) {
     message = "A_hat(mu) is not positive definite";
     return false;
   }
-  U_ = llt_.matrixL().transpose();
-  inv_diag_ = U_.diagonal().cwiseInverse();
-  zl_ = llt_.matrixL().solve(f_);  // L^-1 f_hat: c = E' L^-1 f_hat with the exact rows (solve_reduced_qp)
+  zl_ = f_;
+  whitening_.solve_factor(zl_);  // L^-1 f_hat: c = E' L^-1 f_hat with the exact rows (solve_reduced_qp)
   z_ = zl_;
-  back_substitute(z_);  // A_hat^-1 f_hat
+  whitening_.solve_factor_transpose(z_);  // A_hat^-1 f_hat
   if (JD > 0) {
     lift_mu_.noalias() = lift_c_ * tl;
   } else {
@@ -302,9 +300,10 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     KTheta_.resize(static_cast<Eigen::Index>(xi_rows_.size()), N_);
     gamma_kept_.resize(static_cast<Eigen::Index>(xi_rows_.size()));
   } else if (pointwise_magic_ && exact_rows_) {
-    kept_.prepare_solved(llt_);
+    kept_.prepare_solved(whitening_);
   }
   warm_.clear();
+  blind_checked_ = false;
   prepared_mu_ = mu;
   prepared_ = true;
   return true;
@@ -325,7 +324,7 @@ bool OnlineSolver::exact_rows(ContactRows choice) const {
   return choice == ContactRows::Exact || (choice == ContactRows::Automatic && (row_cone_ || registered_));
 }
 
-void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
+void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat, bool with_d) {
   if (pointwise_magic_ && registered_) {  // the rows Xi(mu) weighs, from their own slave nodes
     kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_);
     Dt_.noalias() = KTheta_.transpose() * Xi_rows_;
@@ -333,13 +332,17 @@ void OnlineSolver::exact_operators(const Eigen::VectorXd& u_hat) {
     return;
   }
   if (pointwise_magic_) {  // collocation and LAC-Simpson rows: from the slaves under the kept rows only
-    kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KE_);
+    if (with_d) {
+      kept_.evaluate_rows(u_hat, KTheta_, gamma_kept_, KE_);
+    } else {
+      kept_.evaluate_solved_rows(u_hat, gamma_kept_, KE_);
+    }
     if (xi_is_identity_) {  // the row cone: generator r is kept row r
-      Dt_ = KTheta_.topRows(R_).transpose();
+      if (with_d) Dt_ = KTheta_.topRows(R_).transpose();
       Et_ = KE_.topRows(R_).transpose();
       dg_ = gamma_kept_.head(R_);
     } else {
-      Dt_.noalias() = KTheta_.transpose() * Xi_;
+      if (with_d) Dt_.noalias() = KTheta_.transpose() * Xi_;
       Et_.noalias() = KE_.transpose() * Xi_;
       dg_.noalias() = Xi_.transpose() * gamma_kept_;
     }
@@ -410,14 +413,21 @@ const ErrorEstimator::ExactContact& OnlineSolver::exact_contact(const Eigen::Vec
 bool OnlineSolver::step(const Eigen::VectorXd& u_hat, Eigen::VectorXd& u_bar, Eigen::VectorXd& lambda_bar, int& inner,
                         std::string& message) {
   if (exact_rows_) {
-    exact_operators(u_hat);
     const bool e_given = pointwise_magic_ && !registered_;  // exact_operators set Et_ = L^-1 D' from the solved rows
+    // With E given, D' itself serves only the blind test and the inf-sup check of a truncated
+    // basis: whether V_N sees the contact does not change between the steps of a query, so the
+    // test is made at its first step (check_inf_sup_: at every step, relative_inf_sup reads D').
+    const bool with_d = !e_given || check_inf_sup_ || !blind_checked_;
+    exact_operators(u_hat, with_d);
     // |D'|_F <= |Theta_c|_F |Xi|_F max_r |K_r| and |K_r| <= 2 |I_r| (a unit normal on the slave
     // node and a partition of unity on the master): the bound of the blind test below.
-    const double d_norm = Dt_.norm();
-    if (R_ > 0 && d_norm <= kBlindContactTolerance * 2.0 * d_bound_ * quadrature_.weight.maxCoeff()) {
-      message = blind_contact_message(d_norm);
-      return false;
+    if (with_d) {
+      const double d_norm = Dt_.norm();
+      if (R_ > 0 && d_norm <= kBlindContactTolerance * 2.0 * d_bound_ * quadrature_.weight.maxCoeff()) {
+        message = blind_contact_message(d_norm);
+        return false;
+      }
+      blind_checked_ = true;
     }
     return solve_reduced_qp(u_bar, lambda_bar, inner, message, e_given);
   }
@@ -465,8 +475,8 @@ bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lam
   const bool one_sided = exact_rows_;
   if (!e_given) {
     Et_ = Dt_;
-    llt_.matrixL().solveInPlace(Et_);
-    if (!one_sided) llt_.matrixU().solveInPlace(Et_);
+    whitening_.solve_factor(Et_);
+    if (!one_sided) whitening_.solve_factor_transpose(Et_);
   }
   const Eigen::MatrixXd& left = one_sided ? Et_ : Dt_;
   // One triangle of Q, mirrored: half the flops of the full product. Small R by inner
@@ -492,7 +502,7 @@ bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lam
   if (one_sided) {  // u_bar = L^-T (L^-1 f - E lambda)
     u_bar = zl_;
     u_bar.noalias() -= Et_ * lambda_bar;
-    back_substitute(u_bar);
+    whitening_.solve_factor_transpose(u_bar);
   } else {  // u_bar = A^-1 (f - D' lambda) = z - Y lambda
     u_bar = z_;
     u_bar.noalias() -= Et_ * lambda_bar;
@@ -500,20 +510,12 @@ bool OnlineSolver::solve_reduced_qp(Eigen::VectorXd& u_bar, Eigen::VectorXd& lam
   return true;
 }
 
-void OnlineSolver::back_substitute(Eigen::VectorXd& x) const {
-  // By columns of U = L': each step an axpy on contiguous memory. Eigen's row-wise solve with
-  // the transposed view chains one reduction per row: about twice the time at N ~ 50.
-  for (Eigen::Index i = N_ - 1; i >= 0; --i) {
-    x(i) *= inv_diag_(i);
-    x.head(i).noalias() -= x(i) * U_.col(i).head(i);
-  }
-}
-
 double OnlineSolver::relative_inf_sup() const {
   // The singular values of L^-1 D' (N x R, A_hat = L L'), not the eigenvalues of Q = D A^-1 D':
   // those would square the condition and put the round-off floor at sqrt(eps) instead of eps.
   if (R_ > N_) return 0.0;
-  const Eigen::MatrixXd E = llt_.matrixL().solve(Dt_);
+  Eigen::MatrixXd E = Dt_;
+  whitening_.solve_factor(E);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(E);
   const Eigen::VectorXd& sigma = svd.singularValues();
   if (!(sigma(0) > 0.0)) return 0.0;

@@ -31,6 +31,7 @@
 #include "contactrb/contact/contact_pair.hpp"
 #include "contactrb/contact/projection.hpp"
 #include "contactrb/mesh/mesh.hpp"
+#include "contactrb/online/affine_whitening.hpp"
 #include "contactrb/online/error_estimator.hpp"
 #include "contactrb/online/online_magic.hpp"
 #include "contactrb/model/reduced_model.hpp"
@@ -194,7 +195,8 @@ class OnlineSolver {
   // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
   bool prepare(const cases::Mu& mu, bool restricted, bool exact_rows, std::string& message);
   // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
-  void exact_operators(const Eigen::VectorXd& u_hat);
+  // with_d false: Et_ and dg_ only (pointwise rows, not registered), Dt_ left as it is.
+  void exact_operators(const Eigen::VectorXd& u_hat, bool with_d = true);
   bool exact_rows(ContactRows choice) const;
   // Xi(mu) of the registered cone at mu, and the kept rows where it is not zero (xi_rows_, Xi_rows_).
   void set_registered_basis(const cases::Mu& mu);
@@ -243,8 +245,6 @@ class OnlineSolver {
   // lambda_max(Q)) with Q = D A_hat^-1 D' (R x R): 0 when some pressure generator is invisible to
   // V_N (R > N, or the supremizer that sees it cut by the N truncation).
   double relative_inf_sup() const;
-  // x <- U^-1 x with U = L' (A_hat = L L', prepare).
-  void back_substitute(Eigen::VectorXd& x) const;
   std::string undetermined_message(double beta) const;
   // D vanishes: the primal basis has no component the contact rows see (K Theta_c = 0).
   std::string blind_contact_message(double d_norm) const;
@@ -313,10 +313,8 @@ class OnlineSolver {
   // Workspaces, sized in the constructor: a query allocates nothing of size N, R per step
   // (the contact-surface projection and the QP's message aside).
   Eigen::MatrixXd A_;                    // A_hat(mu)
-  Eigen::LLT<Eigen::MatrixXd> llt_;      // A_hat(mu) = L L'
+  AffineWhitening whitening_;            // A_hat(mu) = L L'
   Eigen::VectorXd f_, z_, zl_;           // f_hat(mu), A_hat(mu)^-1 f_hat(mu), L^-1 f_hat(mu)
-  Eigen::MatrixXd U_;                    // L' (column-major: back_substitute reads its columns)
-  Eigen::VectorXd inv_diag_;             // 1 / U_ii
   double E_D_ = 0.0;
   bool restricted_ = true;
   bool exact_rows_ = false;              // this solve's ContactRows, resolved
@@ -327,6 +325,7 @@ class OnlineSolver {
   Eigen::VectorXd gamma_kept_;           // R_kept: g(w) - K(w) u_D on the kept rows (exact_rows_; registered: xi_rows_)
   cases::Mu prepared_mu_;                // the mu of the last successful prepare (surface_gap)
   bool prepared_ = false;
+  bool blind_checked_ = false;           // this query's D' passed the blind test (step)
   bool pointwise_magic_ = true;          // restricted_ and rows that are W * pointwise rows
   Eigen::VectorXd lift_mu_;              // u_D,c(mu) on the contact DOFs
   Eigen::VectorXd w_, kappa_hat_, gamma_hat_, phi_, phi_gamma_, dg_, c_, t_;
