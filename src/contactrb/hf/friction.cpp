@@ -12,6 +12,7 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/number_text.hpp"
 #include "contactrb/fem/elasticity.hpp"
+#include "contactrb/fem/floating_bodies.hpp"
 #include "contactrb/hf/frictional_newton.hpp"
 
 namespace contactrb::hf {
@@ -220,6 +221,16 @@ void set_final(BasicFrictionalSolution<Dim>& sol, const FrictionStepResult<Dim>&
   sol.slip_nodes = last.report.slip;
 }
 
+// A converged step with every row open while a body is held by the contact alone: that body's
+// rigid motion is free, so its position is no answer (it slid off the other body by steps below
+// max_slip, and its residual is zero in every position).
+void flag_slid_free(FrictionStepReport& report) {
+  if (report.status != FrictionStatus::Converged || report.stick + report.slip > 0) return;
+  report.status = FrictionStatus::FullSliding;
+  report.message = "converged with no node in contact (" + std::to_string(report.open) +
+                   " open) while a body is held by the contact alone: it slid free, no equilibrium";
+}
+
 }  // namespace
 
 template <int Dim>
@@ -250,9 +261,12 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
   BasicFrictionalSolution<Dim> sol;
   sol.slip = Eigen::VectorXd::Zero(M * R);
   // A_00 is that of every step (the same free DOFs): factorized once for the path. Not SPD (a
-  // body held by the contact alone): the whole system by a sparse LU at each iteration.
+  // body held by the contact alone): the whole system by a sparse LU at each iteration. A body
+  // the Dirichlet conditions leave free makes A_00 singular, though a factorization may pass at
+  // round-off: it is told from the mesh and the conditions (fem/floating_bodies.hpp).
+  const bool floating = !fem::floating_bodies(mesh, solver.dofs()).empty();
   std::optional<solve::SelectedInverse> inverse;
-  if (friction.linear_solver == FrictionLinearSolver::Schur) {
+  if (friction.linear_solver == FrictionLinearSolver::Schur && !floating) {
     inverse.emplace();
     if (inverse->compute(solver.dofs().restrict_matrix(solver.stiffness()), friction.ordering) !=
         solve::SelectedInverseStatus::Success) {
@@ -271,6 +285,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.b = &a.b;
     const FrictionState<Dim> start = start_of_step(solver, np, path[i], state, friction, frictionless);
     FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
+    if (floating) flag_slid_free(step.report);
     step.report.time_s = seconds_since(t_step);  // FrictionStepReport::time_s: the whole step
     sol.steps.push_back(step.report);
     sol.slip += step.slip;
