@@ -63,7 +63,7 @@ TEST(AffineWhitening, OneTermIsDiagonalAndWhitens) {
   const std::vector<Eigen::MatrixXd> terms{spd(12, 1, 1.0)};
   online::AffineWhitening w;
   w.setup(terms);
-  ASSERT_TRUE(w.diagonal());
+  ASSERT_TRUE(w.diagonal_available());
   for (const double t : {0.3, 1.0, 7.5}) {
     const Eigen::VectorXd theta = Eigen::VectorXd::Constant(1, t);
     ASSERT_TRUE(w.factor(theta, assemble(terms, theta)));
@@ -78,7 +78,7 @@ TEST(AffineWhitening, TwoBodiesOfTwoModuliAreDiagonalizedTogether) {
   ASSERT_LT(terms[0].selfadjointView<Eigen::Lower>().eigenvalues().minCoeff(), 1e-10 * terms[0].norm());
   online::AffineWhitening w;
   w.setup(terms);
-  ASSERT_TRUE(w.diagonal());
+  ASSERT_TRUE(w.diagonal_available());
   // V diagonalizes each term: V'A_jV diagonal.
   for (const Eigen::MatrixXd& Aj : terms) {
     Eigen::MatrixXd D = w.basis().transpose() * Aj * w.basis();
@@ -88,6 +88,10 @@ TEST(AffineWhitening, TwoBodiesOfTwoModuliAreDiagonalizedTogether) {
   for (const Eigen::Vector2d& theta : {Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.05, 3.0), Eigen::Vector2d(20.0, 0.5)}) {
     const Eigen::MatrixXd A = assemble(terms, theta);
     ASSERT_TRUE(w.factor(theta, A));
+    EXPECT_TRUE(w.diagonal());
+    expect_identity(w, A);
+    ASSERT_TRUE(w.factor(theta, A, false));  // the Cholesky form asked: the same factorization's job
+    EXPECT_FALSE(w.diagonal());
     expect_identity(w, A);
   }
 }
@@ -97,7 +101,7 @@ TEST(AffineWhitening, PositiveDefinitenessVerdictIsTheCholeskyOne) {
   const std::vector<Eigen::MatrixXd> terms{spd(n, 4, 0.5), low_rank(n, 5, 5)};
   online::AffineWhitening w;
   w.setup(terms);
-  ASSERT_TRUE(w.diagonal());
+  ASSERT_TRUE(w.diagonal_available());
   // A negative coefficient of the second term: A(theta) is definite for small |theta_2| only.
   int definite = 0, indefinite = 0;
   for (double t2 = -2.0; t2 <= 0.5; t2 += 0.01) {
@@ -119,14 +123,14 @@ TEST(AffineWhitening, ThreeTermsOrAnIndefiniteSumUseCholesky) {
   const std::vector<Eigen::MatrixXd> three{spd(n, 6, 1.0), spd(n, 7, 1.0), spd(n, 8, 1.0)};
   online::AffineWhitening w;
   w.setup(three);
-  EXPECT_FALSE(w.diagonal());
+  EXPECT_FALSE(w.diagonal_available());
   const Eigen::Vector3d theta(0.5, 2.0, 1.5);
   ASSERT_TRUE(w.factor(theta, assemble(three, theta)));
   expect_identity(w, assemble(three, theta));
 
   const std::vector<Eigen::MatrixXd> indefinite{spd(n, 9, 1.0), -2.0 * spd(n, 9, 1.0)};
   w.setup(indefinite);
-  EXPECT_FALSE(w.diagonal());
+  EXPECT_FALSE(w.diagonal_available());
   const Eigen::Vector2d t(3.0, 1.0);  // 3 A - 2 A = A: definite
   ASSERT_TRUE(w.factor(t, assemble(indefinite, t)));
   expect_identity(w, assemble(indefinite, t));

@@ -5,6 +5,7 @@
 namespace contactrb::online {
 
 void AffineWhitening::setup(const std::vector<Eigen::MatrixXd>& terms) {
+  diagonal_available_ = false;
   diagonal_ = false;
   const Eigen::Index n = terms.empty() ? 0 : terms.front().rows();
   scale_.resize(n);
@@ -26,10 +27,11 @@ void AffineWhitening::setup(const std::vector<Eigen::MatrixXd>& terms) {
     term_diagonal_.col(1) = eig.eigenvalues();
     term_diagonal_.col(0) = Eigen::VectorXd::Ones(n) - eig.eigenvalues();
   }
-  diagonal_ = true;
+  diagonal_available_ = true;
 }
 
-bool AffineWhitening::factor(const Eigen::VectorXd& theta, const Eigen::MatrixXd& A) {
+bool AffineWhitening::factor(const Eigen::VectorXd& theta, const Eigen::MatrixXd& A, bool diagonal) {
+  diagonal_ = diagonal && diagonal_available_;
   if (diagonal_) {
     const Eigen::VectorXd d = term_diagonal_ * theta;
     if (!(d.minCoeff() > 0.0) || !d.allFinite()) return false;
@@ -41,47 +43,6 @@ bool AffineWhitening::factor(const Eigen::VectorXd& theta, const Eigen::MatrixXd
   U_ = llt_.matrixL().transpose();
   inv_diag_ = U_.diagonal().cwiseInverse();
   return true;
-}
-
-void AffineWhitening::solve_factor(Eigen::MatrixXd& x) const {
-  if (diagonal_) {
-    work_m_.noalias() = V_.transpose() * x;
-    x = scale_.asDiagonal() * work_m_;
-    return;
-  }
-  llt_.matrixL().solveInPlace(x);
-}
-
-void AffineWhitening::solve_factor(Eigen::VectorXd& x) const {
-  if (diagonal_) {
-    work_.noalias() = V_.transpose() * x;
-    x = work_.cwiseProduct(scale_);
-    return;
-  }
-  llt_.matrixL().solveInPlace(x);
-}
-
-void AffineWhitening::solve_factor_transpose(Eigen::VectorXd& x) const {
-  if (diagonal_) {
-    work_ = x.cwiseProduct(scale_);
-    x.noalias() = V_ * work_;
-    return;
-  }
-  // By columns of U = L': each step an axpy on contiguous memory. Eigen's row-wise solve with
-  // the transposed view chains one reduction per row: about twice the time at N ~ 50.
-  for (Eigen::Index i = x.size() - 1; i >= 0; --i) {
-    x(i) *= inv_diag_(i);
-    x.head(i).noalias() -= x(i) * U_.col(i).head(i);
-  }
-}
-
-void AffineWhitening::solve_factor_transpose(Eigen::MatrixXd& x) const {
-  if (diagonal_) {
-    work_m_ = scale_.asDiagonal() * x;
-    x.noalias() = V_ * work_m_;
-    return;
-  }
-  llt_.matrixU().solveInPlace(x);
 }
 
 }  // namespace contactrb::online

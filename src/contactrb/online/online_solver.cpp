@@ -149,7 +149,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
   magic_.setup(surface_, kappa_row_, kappa_dof_, gamma_row_, Theta_c_);
   kept_.setup(surface_, {}, {}, kept_rows_, Theta_c_);
   whitening_.setup(A_hat_);
-  if (whitening_.diagonal()) kept_.set_whitening_basis(whitening_.basis());
+  if (whitening_.diagonal_available()) kept_.set_whitening_basis(whitening_.basis());
   {
     std::vector<int> every_row(sz(surface_.num_constraints));
     for (int r = 0; r < surface_.num_constraints; ++r) every_row[sz(r)] = r;
@@ -279,7 +279,8 @@ bool OnlineSolver::prepare(const cases::Mu& mu, bool restricted, bool exact_rows
     for (int k = 0; k < JD; ++k) E_D_ -= tf(j) * tl(k) * lift_f_[sz(j * JD + k)];
   }
   // Once per query: the factor A_hat(mu) = L L' serves every step (affine_whitening.hpp).
-  if (!whitening_.factor(ta, A_)) {
+  // The simultaneous diagonalization where the touched rows of Theta_c L^-T come pre-solved.
+  if (!whitening_.factor(ta, A_, pointwise_magic_ && exact_rows_ && !registered_)) {
     message = "A_hat(mu) is not positive definite";
     return false;
   }
