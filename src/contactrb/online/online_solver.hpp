@@ -16,11 +16,12 @@
 // (contact::integrate_lac_rows with a row list), then the magic entries are picked
 // (docs/offline-online.md).
 //
-// Cost per query (docs/performance.md, "Online query"): A_hat(mu) and its Cholesky factor once; per
-// step the magic points, D' (N x R) assembled and solved against A (exact rows: E = L^-1 D' with
-// A = L L', for pointwise rows assembled from the rows of Theta_c L^-T of the nodes they touch,
-// solved once per query; Q = E'E), Q = D A^-1 D', the QP warm started from the previous step's
-// passive set; no allocation of size N or R per step.
+// Cost per query (docs/performance.md, "Online query"): A_hat(mu) and its factor A_hat = L L' once
+// (affine_whitening.hpp: a simultaneous diagonalization of at most two terms, or Cholesky); per
+// step the magic points, D' (N x R) assembled and solved against A (exact rows: E = L^-1 D', for
+// pointwise rows assembled from the rows of Theta_c L^-T of the nodes they touch, made once per
+// query; Q = E'E), Q = D A^-1 D', the QP warm started from the previous step's passive set; no
+// allocation of size N or R per step.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -191,7 +192,7 @@ class OnlineSolver {
   int Mg() const { return Mg_; }
 
  private:
-  // Per mu: A_hat(mu) (49) and its Cholesky factor, z = A_hat^-1 f_hat(mu), the lift on the contact
+  // Per mu: A_hat(mu) (49) and its factor (whitening_), z = A_hat^-1 f_hat(mu), the lift on the contact
   // surface, the quadrature at mu. Returns false (message set) when A_hat(mu) is not SPD.
   bool prepare(const cases::Mu& mu, bool restricted, bool exact_rows, std::string& message);
   // D' and Xi'gamma of the step from the HF rows at w = u_D + Theta_c u_hat (OnlineSettings::exact_rows).
