@@ -280,8 +280,9 @@ TEST(GreedySweep, AcceleratedSweepKeepsTheNewtonPicks) {
   newton_settings.online.kacanov = contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepTolerance,
                                                                       contactrb::offline::kRowConeSweepIterations};
   accelerated_settings.online.iteration = OnlineIteration::Accelerated;
-  accelerated_settings.online.kacanov = contactrb::solve::KacanovSettings{
-      1.0, contactrb::offline::kRowConeSweepAcceleratedTolerance, contactrb::offline::kRowConeSweepAcceleratedIterations};
+  accelerated_settings.online.kacanov =
+      contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepAcceleratedTolerance,
+                                        contactrb::offline::kRowConeSweepAcceleratedIterations};
   const auto newton = contactrb::offline::run_offline_greedy(spec(), request(), newton_settings);
   const auto accelerated = contactrb::offline::run_offline_greedy(spec(), request(), accelerated_settings);
   ASSERT_EQ(fast.status, contactrb::offline::GreedyOfflineStatus::ToleranceReached);

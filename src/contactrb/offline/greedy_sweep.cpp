@@ -99,7 +99,8 @@ void sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>&
       if (!slot) slot = std::make_unique<OnlineSolver>(model);
       OnlineSolver& solver = *slot;
       OnlineSettings settings = how.online;
-      std::optional<OnlineSettings> fallback = how.fallback ? std::optional<OnlineSettings>(*how.fallback) : std::nullopt;
+      std::optional<OnlineSettings> fallback;
+      if (how.fallback) fallback = *how.fallback;
       for (std::size_t i = next.fetch_add(1); i < end && !stop; i = next.fetch_add(1)) {
         try {
           const OnlineSolution s = solve_point(solver, mus[i], settings, fallback ? &*fallback : nullptr, starts[i]);

@@ -434,7 +434,9 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   g.online.error_estimate = true;
   g.offline.extend_basis = settings.incremental && settings.offline.dual_method == DualConeMethod::Rows &&
                            settings.offline.compression;
-  g.offline.training_jacobians = false;  // the sweep's reduced Newton does not use them: the returned model only
+  // Not for the steps' models, whose sweeps go without the preconditioner (the Jacobians cost
+  // P (N_max + 2) reduced steps a build): the returned model only.
+  g.offline.training_jacobians = false;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
     // The row cone's estimate has no floor but the last step's lag: the sweep solves with the
@@ -444,7 +446,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     g.fallback->iteration = online::OnlineIteration::Newton;
     g.fallback->kacanov = solve::KacanovSettings{1.0, kRowConeSweepTolerance, kRowConeSweepIterations};
     g.online.iteration = online::OnlineIteration::Accelerated;
-    g.online.kacanov = solve::KacanovSettings{1.0, kRowConeSweepAcceleratedTolerance, kRowConeSweepAcceleratedIterations};
+    g.online.kacanov =
+        solve::KacanovSettings{1.0, kRowConeSweepAcceleratedTolerance, kRowConeSweepAcceleratedIterations};
   }
   GreedyProgress progress(settings.progress, settings.progress_stream);
 

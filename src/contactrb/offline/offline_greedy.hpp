@@ -67,7 +67,7 @@ struct GreedyDistribution {
 // settings: the accelerated iteration (OnlineIteration::Accelerated) to this relative fixed-point
 // residual, at most this many steps; where it does not converge, the reduced Newton to this
 // relative increment, at most this many steps. An accelerated step has no contact linearization
-// and no (N+R) LU (hertz-3p, N 48, R 15: about 6.5 us against about 95 us a Newton step); the
+// and no (N+R) LU (hertz-3p, N 48, R 15: about 6.5 us against about 90 us a Newton step); the
 // greedy's hertz-3p sweeps need at most 16 of them a solve at level 0, 17 at level 3, and their
 // estimates are the Newton's to 1e-6 relative (docs/offline-online.md, "Greedy sampling").
 inline constexpr double kRowConeSweepAcceleratedTolerance = 1e-10;
