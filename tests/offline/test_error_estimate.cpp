@@ -299,6 +299,30 @@ TEST_P(ErrorEstimate, VanishesForTheUntruncatedModelAtTrainingValues) {
   }
 }
 
+// The EIM estimate's factor is built at its first use: a solver that answered on the exact rows
+// first (evaluate_exact, which does not use it) gives the EIM estimate of a fresh solver, bit for bit.
+TEST_P(ErrorEstimate, EimEstimateIsTheSameAfterExactRowSolves) {
+  const std::string name = GetParam();
+  const OfflineResult& off = untruncated_model(name);
+  const Eigen::VectorXd mu = Eigen::VectorXd::Constant(1, verification_values().at(name)[1]);
+  contactrb::online::OnlineSettings exact, eim;
+  exact.contact_rows = contactrb::online::ContactRows::Exact;
+  eim.contact_rows = contactrb::online::ContactRows::Eim;
+  OnlineSolver used(off.model), fresh(off.model);
+  const auto first = used.solve(mu, exact);
+  ASSERT_TRUE(first.converged()) << first.message;
+  ASSERT_TRUE(first.estimate.exact);
+  const auto a = used.solve(mu, eim), b = fresh.solve(mu, eim);
+  ASSERT_TRUE(a.converged() && b.converged()) << a.message << " / " << b.message;
+  ASSERT_TRUE(a.estimate.available);
+  EXPECT_FALSE(a.estimate.exact);
+  EXPECT_EQ(a.u_hat, b.u_hat);
+  EXPECT_EQ(a.estimate.residual, b.estimate.residual);
+  EXPECT_EQ(a.estimate.energy, b.estimate.energy);
+  // And again: the factor, once built, is kept.
+  EXPECT_EQ(used.solve(mu, eim).estimate.energy, b.estimate.energy);
+}
+
 // Effectivity on the verification values over truncations of N, R and Mk.
 TEST_P(ErrorEstimate, EffectivityOnVerificationValues) {
   const std::string name = GetParam();

@@ -4,7 +4,9 @@
 // points; saturation +inf is the full sweep; an exact bound of every point costs one chunk.
 // The greedy with the lazy sweep stops only when every training point is below the tolerance,
 // checked here by an independent loop of online solves. Warm starts (each point from its last
-// answer, carried into the extended model's coordinates) keep the picks and save steps.
+// answer, carried into the extended model's coordinates) keep the picks and save steps. The
+// row-cone sweep's accelerated iteration keeps the reduced Newton's picks; where it does not
+// converge, the fallback answers as the Newton alone does.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -236,7 +238,9 @@ TEST(GreedySweep, CoordinateMapCarriesTheSameFieldIntoTheExtendedModel) {
 }
 
 // Warm starts change the sweep's path, not its answers: the same picks and estimates (to the
-// sweep's tolerance) as the solves from the model's own start, in fewer reduced steps.
+// sweep's tolerance) as the solves from the model's own start, in fewer reduced steps. The
+// accelerated iteration stops at a fixed-point residual of 1e-10: two starts give answers 1e-10
+// apart and, at estimates near 1e-3, relative estimates about 1e-7 apart.
 TEST(GreedySweep, WarmStartsKeepThePicksInFewerSteps) {
   contactrb::offline::GreedyOfflineSettings s;
   s.tolerance = 1e-3;
@@ -251,13 +255,96 @@ TEST(GreedySweep, WarmStartsKeepThePicksInFewerSteps) {
     const auto &w = warm.steps[k], &c = cold.steps[k];
     EXPECT_EQ(w.argmax, c.argmax) << "step " << k + 1;
     EXPECT_EQ(w.sweep_solves, c.sweep_solves) << "step " << k + 1;
-    EXPECT_NEAR(w.max_estimate, c.max_estimate, 1e-8 * c.max_estimate) << "step " << k + 1;
+    EXPECT_NEAR(w.max_estimate, c.max_estimate, 1e-6 * c.max_estimate) << "step " << k + 1;
     warm_steps += w.sweep_iterations;
     cold_steps += c.sweep_iterations;
   }
-  std::printf("[ hertz-a ] sweep: %lld reduced Newton steps from warm starts, %lld from the model's start\n",
+  std::printf("[ hertz-a ] sweep: %lld reduced steps from warm starts, %lld from the model's start\n",
               warm_steps, cold_steps);
   EXPECT_LT(warm_steps, cold_steps);
+}
+
+// The row-cone sweep's iteration: the accelerated one (the default's estimates are bit for bit
+// those of a greedy that asks for it), with the picks of the reduced Newton's sweep and its
+// estimates to 1e-6 relative (the accelerated iteration stops at a fixed-point residual of 1e-10,
+// the Newton at round-off), in cheaper steps.
+TEST(GreedySweep, AcceleratedSweepKeepsTheNewtonPicks) {
+  using contactrb::offline::GreedyOfflineSettings;
+  using contactrb::online::OnlineIteration;
+  GreedyOfflineSettings s;
+  s.tolerance = 1e-3;
+  s.max_hf = 20;
+  const auto fast = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  GreedyOfflineSettings newton_settings = s, accelerated_settings = s;
+  newton_settings.online.iteration = OnlineIteration::Newton;
+  newton_settings.online.kacanov = contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepTolerance,
+                                                                      contactrb::offline::kRowConeSweepIterations};
+  accelerated_settings.online.iteration = OnlineIteration::Accelerated;
+  accelerated_settings.online.kacanov =
+      contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepAcceleratedTolerance,
+                                        contactrb::offline::kRowConeSweepAcceleratedIterations};
+  const auto newton = contactrb::offline::run_offline_greedy(spec(), request(), newton_settings);
+  const auto accelerated = contactrb::offline::run_offline_greedy(spec(), request(), accelerated_settings);
+  ASSERT_EQ(fast.status, contactrb::offline::GreedyOfflineStatus::ToleranceReached);
+  ASSERT_EQ(fast.selected, newton.selected);
+  ASSERT_EQ(fast.steps.size(), newton.steps.size());
+  ASSERT_EQ(fast.steps.size(), accelerated.steps.size());
+  EXPECT_EQ(fast.model_step, newton.model_step);
+  for (std::size_t k = 0; k < fast.steps.size(); ++k) {
+    const auto &f = fast.steps[k], &n = newton.steps[k], &a = accelerated.steps[k];
+    EXPECT_EQ(f.argmax, n.argmax) << "step " << k + 1;
+    EXPECT_EQ(f.sweep_solves, n.sweep_solves) << "step " << k + 1;
+    EXPECT_NEAR(f.max_estimate, n.max_estimate, 1e-6 * n.max_estimate) << "step " << k + 1;
+    EXPECT_EQ(f.max_estimate, a.max_estimate) << "step " << k + 1;
+    EXPECT_EQ(f.sweep_iterations, a.sweep_iterations) << "step " << k + 1;
+  }
+}
+
+// A point where the first iteration does not converge is answered by the fallback, from the
+// same start: the fallback's answer, its steps counted after the first iteration's. Without a
+// fallback the point stays a failure.
+TEST(GreedySweep, FallbackAnswersWhereTheFirstIterationDoesNot) {
+  const auto& model = small_greedy().offline.model;
+  const auto mus = training();
+  // From u_hat = 0 (the model's own guess is its converged answer at its training values) one
+  // accelerated step never meets the tolerance.
+  contactrb::online::OnlineSettings stalls = sweep_settings();
+  stalls.initial_guess = contactrb::online::InitialGuess::Zero;
+  contactrb::online::OnlineSettings newton = stalls;
+  stalls.iteration = contactrb::online::OnlineIteration::Accelerated;
+  stalls.kacanov = contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepAcceleratedTolerance, 1};
+  newton.iteration = contactrb::online::OnlineIteration::Newton;
+  newton.kacanov = contactrb::solve::KacanovSettings{1.0, contactrb::offline::kRowConeSweepTolerance,
+                                                     contactrb::offline::kRowConeSweepIterations};
+  contactrb::online::OnlineSolver solver(model), reference(model);
+  const auto& mu = mus[20];
+  auto first = stalls;
+  ASSERT_FALSE(contactrb::offline::solve_point(solver, mu, first, nullptr, nullptr).converged());
+  auto fallback = newton;
+  const auto answered = contactrb::offline::solve_point(solver, mu, first, &fallback, nullptr);
+  const auto alone = reference.solve(mu, newton);
+  ASSERT_TRUE(alone.converged()) << alone.message;
+  ASSERT_TRUE(answered.converged()) << answered.message;
+  EXPECT_EQ(answered.iterations, 1 + alone.iterations);
+  EXPECT_EQ(answered.u_hat, alone.u_hat);
+  EXPECT_EQ(answered.estimate.energy, alone.estimate.energy);
+
+  // A sweep whose every point stalls: each is answered as the Newton sweep answers it.
+  const GreedyDistribution one_process;
+  const std::vector<char> skip(mus.size(), 0);
+  SweepContext with_fallback{model, mus, stalls, 2, one_process, skip};
+  with_fallback.fallback = &newton;
+  const SweepContext newton_only{model, mus, newton, 2, one_process, skip};
+  GreedyEstimates e(mus.size()), n(mus.size());
+  contactrb::offline::sweep_every_point(with_fallback, e);
+  contactrb::offline::sweep_every_point(newton_only, n);
+  EXPECT_EQ(std::count(e.failed.begin(), e.failed.end(), 1), 0);
+  EXPECT_EQ(e.value, n.value);
+  EXPECT_EQ(e.iterations, n.iterations + static_cast<long long>(mus.size()));
+  const SweepContext without{model, mus, stalls, 2, one_process, skip};
+  GreedyEstimates f(mus.size());
+  contactrb::offline::sweep_every_point(without, f);
+  EXPECT_EQ(std::count(f.failed.begin(), f.failed.end(), 1), static_cast<long>(mus.size()));
 }
 
 }  // namespace

@@ -139,8 +139,10 @@ void check_points(const std::vector<ParameterSpec>& parameters, const std::vecto
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::vector<double> key(points[i].data(), points[i].data() + points[i].size());
     const auto [it, fresh] = seen.emplace(key, i);
-    require(fresh, context + ": points " + std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
-                       " are the same, " + mu_values_text(points[i]));
+    if (!fresh) {  // the message only on failure: every problem of a case checks its sets' points
+      throw Error(context + ": points " + std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
+                  " are the same, " + mu_values_text(points[i]));
+    }
   }
 }
 

@@ -58,11 +58,17 @@ struct Sweep {
 
 using SolverPool = std::vector<std::unique_ptr<OnlineSolver>>;
 
+// How each point is solved (SweepContext::online and ::fallback).
+struct SweepSolve {
+  const OnlineSettings& online;
+  const OnlineSettings* fallback;
+};
+
 // The solve at mu from `start` when there is one; where that does not converge, again from the
 // solver's own start, so that a warm start never turns an answered point into a failure (the
 // iterations of both are counted).
-OnlineSolution solve_point(OnlineSolver& solver, const cases::Mu& mu, OnlineSettings& settings,
-                           const Eigen::VectorXd* start) {
+OnlineSolution solve_from(OnlineSolver& solver, const cases::Mu& mu, OnlineSettings& settings,
+                          const Eigen::VectorXd* start) {
   if (start == nullptr || start->size() == 0) {
     settings.start.reset();
     return solver.solve(mu, settings);
@@ -81,7 +87,7 @@ OnlineSolution solve_point(OnlineSolver& solver, const cases::Mu& mu, OnlineSett
 // solved (one process's block); the others keep +inf / not failed. starts: one per point (empty:
 // none), or nullptr.
 void sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>& mus,
-                 const std::vector<const Eigen::VectorXd*>& starts, const OnlineSettings& online, int jobs,
+                 const std::vector<const Eigen::VectorXd*>& starts, const SweepSolve& how, int jobs,
                  std::size_t begin, std::size_t end, SolverPool* pool, Sweep& out) {
   std::vector<std::exception_ptr> errors(mus.size());
   std::atomic<std::size_t> next{begin};
@@ -92,10 +98,12 @@ void sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>&
       std::unique_ptr<OnlineSolver>& slot = pool ? (*pool)[t] : own;
       if (!slot) slot = std::make_unique<OnlineSolver>(model);
       OnlineSolver& solver = *slot;
-      OnlineSettings settings = online;
+      OnlineSettings settings = how.online;
+      std::optional<OnlineSettings> fallback;
+      if (how.fallback) fallback = *how.fallback;
       for (std::size_t i = next.fetch_add(1); i < end && !stop; i = next.fetch_add(1)) {
         try {
-          const OnlineSolution s = solve_point(solver, mus[i], settings, starts[i]);
+          const OnlineSolution s = solve_point(solver, mus[i], settings, fallback ? &*fallback : nullptr, starts[i]);
           out.set(i, relative_estimate(model, mus[i], s), s);
         } catch (...) {  // nothing may escape a worker thread
           errors[i] = std::current_exception();
@@ -122,17 +130,17 @@ void sweep_block(const model::ReducedModel& model, const std::vector<cases::Mu>&
 // The sweep over `mus`: on this process alone, or its block on each process of a distributed
 // run, then gathered (every process gets the same records).
 Sweep sweep_points(const model::ReducedModel& model, const std::vector<cases::Mu>& mus,
-                   const std::vector<const Eigen::VectorXd*>& starts, const OnlineSettings& online, int jobs,
+                   const std::vector<const Eigen::VectorXd*>& starts, const SweepSolve& how, int jobs,
                    const GreedyDistribution& dist, SolverPool* pool) {
   Sweep out(mus.size(), model);
   if (!dist.active()) {
-    sweep_block(model, mus, starts, online, jobs, 0, mus.size(), pool, out);
+    sweep_block(model, mus, starts, how, jobs, 0, mus.size(), pool, out);
     return out;
   }
   const auto [begin, end] = dist.block(mus.size());
   std::exception_ptr error;
   try {
-    sweep_block(model, mus, starts, online, jobs, begin, end, pool, out);
+    sweep_block(model, mus, starts, how, jobs, begin, end, pool, out);
   } catch (...) {  // the other processes wait in the gather: tell them first
     error = std::current_exception();
   }
@@ -152,7 +160,7 @@ void solve_indices(const SweepContext& c, const std::vector<std::size_t>& indice
     mus.push_back(c.mus[i]);
     starts.push_back(c.warm_start ? &e.start[i] : nullptr);
   }
-  const Sweep s = sweep_points(c.model, mus, starts, c.online, c.jobs, c.distribution, c.solvers);
+  const Sweep s = sweep_points(c.model, mus, starts, {c.online, c.fallback}, c.jobs, c.distribution, c.solvers);
   for (std::size_t k = 0; k < indices.size(); ++k) {
     const std::size_t i = indices[k];
     e.value[i] = s.failed(k) ? kInf : s.criterion(k);
@@ -202,6 +210,15 @@ Eigen::MatrixXd generators_on_all_rows(const model::ReducedReconstruction& r) {
 }
 
 }  // namespace
+
+OnlineSolution solve_point(OnlineSolver& solver, const cases::Mu& mu, OnlineSettings& settings,
+                           OnlineSettings* fallback, const Eigen::VectorXd* start) {
+  OnlineSolution first = solve_from(solver, mu, settings, start);
+  if (first.converged() || fallback == nullptr) return first;
+  OnlineSolution second = solve_from(solver, mu, *fallback, start);
+  second.iterations += first.iterations;
+  return second;
+}
 
 std::optional<CoordinateMap> coordinate_map(const OfflineResult& before, const OfflineResult& after) {
   const model::ReducedReconstruction &a = before.reconstruction, &b = after.reconstruction;

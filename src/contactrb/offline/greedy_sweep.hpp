@@ -13,6 +13,11 @@
 // when that model extends the last one (every basis column and cone generator kept as it was),
 // is the start of its next solve (OnlineSettings::start); a point without one, or whose warm
 // solve does not converge, starts as any online solve does.
+//
+// Fallback: a point whose solve does not converge from either start is solved again, from both,
+// with SweepContext::fallback (the row-cone greedy: the accelerated iteration first, the reduced
+// Newton where it does not converge), so that the cheaper iteration never turns a point the
+// other answers into a failure.
 #include <Eigen/Core>
 #include <cstddef>
 #include <memory>
@@ -35,7 +40,7 @@ struct GreedyEstimates {
   std::vector<char> failed;   // 1: the last online solve there did not converge
   std::vector<char> fresh;    // 1: value is the current model's
   int solves = 0;             // online solves of the last sweep
-  long long iterations = 0;   // their reduced iterations (OnlineSolution::iterations), summed
+  long long iterations = 0;   // their reduced iterations (OnlineSolution::iterations, every attempt), summed
   // Per point: its last converged [u_hat; lambda_hat] in the current model's coordinates, the
   // start of its next solve; empty: none.
   std::vector<Eigen::VectorXd> start;
@@ -71,7 +76,17 @@ struct SweepContext {
   std::vector<std::unique_ptr<online::OnlineSolver>>* solvers = nullptr;
   // Start each point from GreedyEstimates::start where it has one.
   bool warm_start = true;
+  // Where `online` does not converge at a point (from its start, then from the solver's own):
+  // the same again with these settings. nullptr: none.
+  const online::OnlineSettings* fallback = nullptr;
 };
+
+// One point of a sweep: the solve at mu with `settings` from `start` (empty or nullptr: the
+// solver's own start), again from the solver's own start where that does not converge, and the
+// same two with `fallback` (when not nullptr) where neither converges; the iterations of every
+// attempt are counted. settings.start and fallback->start are overwritten.
+online::OnlineSolution solve_point(online::OnlineSolver& solver, const cases::Mu& mu, online::OnlineSettings& settings,
+                                   online::OnlineSettings* fallback, const Eigen::VectorXd* start);
 
 // Every point not skipped, with the current model.
 void sweep_every_point(const SweepContext& context, GreedyEstimates& estimates);

@@ -762,6 +762,7 @@ void solve_at_training_values(ReducedModel& m, InitialGuess guess) {
   OnlineSolver solver(m);
   OnlineSettings cold;
   cold.initial_guess = guess;
+  cold.error_estimate = false;  // only u_hat and lambda_hat are kept
   for (Index p = 0; p < m.training_mu.cols(); ++p) {
     const OnlineSolution sol = solver.solve(m.training_mu.col(p), cold);
     if (!sol.converged()) continue;

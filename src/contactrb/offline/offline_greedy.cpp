@@ -202,6 +202,7 @@ struct Greedy {
   GreedyEstimates estimates;  // each training point's last estimate
   GreedyOfflineResult out;
   OfflineBuildCache cache;  // what the steps' builds share
+  std::optional<OnlineSettings> fallback;  // of the sweep's points where `online` does not converge
 };
 
 // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
@@ -281,7 +282,7 @@ std::vector<int> evaluate(Greedy& g, GreedyStep& row) {
   const int P = static_cast<int>(g.training.size());
   std::vector<std::unique_ptr<OnlineSolver>> solvers;  // of this step's model, kept across its chunks
   const SweepContext context{g.out.offline.model, g.training, g.online, g.settings.jobs, g.settings.distribution,
-                             g.excluded, &solvers, g.settings.sweep_warm_start};
+                             g.excluded, &solvers, g.settings.sweep_warm_start, g.fallback ? &*g.fallback : nullptr};
   std::vector<char> eligible(sz(P), 0);
   std::vector<int> candidates;
   for (int i = 0; i < P; ++i) {
@@ -355,7 +356,9 @@ OnlineSolution current_answer(const Greedy& g, int index) {
     return answer;
   }
   OnlineSolver solver(model);
-  return solver.solve(g.training[sz(index)], g.online);
+  OnlineSettings online = g.online;
+  std::optional<OnlineSettings> fallback = g.fallback;
+  return solve_point(solver, g.training[sz(index)], online, fallback ? &*fallback : nullptr, nullptr);
 }
 
 // The step's converged snapshots join the set; a point whose HF solve failed leaves the
@@ -427,17 +430,24 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   require(static_cast<bool>(request.make_problem), "greedy: no problem factory given");
   const std::size_t P = training.size();
   Greedy g{spec, request, settings, settings.offline, training, cases::assemble_affine_terms(spec, cases::reference_mesh(spec, request.level)),
-           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}, {}};
+           cases::theta_functions(spec), settings.online, std::vector<char>(P, 0), std::vector<char>(P, 0), GreedyEstimates(P), {}, {}, {}};
   g.online.error_estimate = true;
   g.offline.extend_basis = settings.incremental && settings.offline.dual_method == DualConeMethod::Rows &&
                            settings.offline.compression;
-  g.offline.training_jacobians = false;  // the sweep's reduced Newton does not use them: the returned model only
+  // Not for the steps' models, whose sweeps go without the preconditioner (the Jacobians cost
+  // P (N_max + 2) reduced steps a build): the returned model only.
+  g.offline.training_jacobians = false;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {
-    // The row cone's estimate has no floor but the last step's lag: the sweep solves to
-    // kRowConeSweepTolerance with the reduced Newton (docs/offline-online.md, "Greedy sampling").
-    g.online.iteration = online::OnlineIteration::Newton;
-    g.online.kacanov = solve::KacanovSettings{1.0, kRowConeSweepTolerance, kRowConeSweepIterations};
+    // The row cone's estimate has no floor but the last step's lag: the sweep solves with the
+    // accelerated iteration to kRowConeSweepAcceleratedTolerance and, where that does not converge,
+    // with the reduced Newton to kRowConeSweepTolerance (docs/offline-online.md, "Greedy sampling").
+    g.fallback = g.online;
+    g.fallback->iteration = online::OnlineIteration::Newton;
+    g.fallback->kacanov = solve::KacanovSettings{1.0, kRowConeSweepTolerance, kRowConeSweepIterations};
+    g.online.iteration = online::OnlineIteration::Accelerated;
+    g.online.kacanov =
+        solve::KacanovSettings{1.0, kRowConeSweepAcceleratedTolerance, kRowConeSweepAcceleratedIterations};
   }
   GreedyProgress progress(settings.progress, settings.progress_stream);
 

@@ -55,7 +55,8 @@ class ErrorEstimator {
  public:
   ErrorEstimator() = default;
   // Copies the leading blocks of model.estimate for (N, R, Mk, Mg) and factors the selected
-  // residual columns. The model must have passed check_model.
+  // residual columns of the exact-rows estimate; those of the EIM estimate are factored at the
+  // first evaluate(). The model must have passed check_model.
   void setup(const contactrb::model::ReducedModel& model, int N, int R, int Mk, int Mg);
   bool available() const { return available_; }
 
@@ -101,7 +102,9 @@ class ErrorEstimator {
   int N_ = 0, R_ = 0, Mk_ = 0, Mg_ = 0;
   cases::AffineThetas thetas_;
   Eigen::VectorXd theta_ref_;
-  Eigen::MatrixXd T_;        // rank x d: R factor of the selected columns of residual_T (pivoted)
+  // rank x d: R factor of the selected columns of residual_T (pivoted); before the first
+  // evaluate() (perm_ empty), those columns unfactored.
+  Eigen::MatrixXd T_;
   std::vector<Eigen::Index> perm_;  // column pivots: (P' y)(k) = y(perm_[k])
   Eigen::MatrixXd QTheta_;   // R_kept x (Mk N): column i N + n = (Q_i Theta_c)[:, n]
   Eigen::MatrixXd Q_gamma_;  // R_kept x Mg
