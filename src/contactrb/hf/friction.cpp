@@ -192,11 +192,13 @@ StepAlgebra<Dim> step_algebra(const BasicHFSolver<Dim>& solver, const Eigen::Vec
 // rest, their touching rows sticking from the first iterate: the frictionless answer would have
 // them all slid, which the iteration must undo (block-on-block-3d level 1: 6 iterations from
 // rest, 8 after the frictionless solve; docs/solvers.md, "Friction").
+// A body held by the contact alone (`floating`) starts from the previous state too: without
+// friction its position is undetermined, and the frictionless solver refuses the problem.
 template <int Dim>
 FrictionState<Dim> start_of_step(const BasicHFSolver<Dim>& solver, const FrictionAlgebra<Dim>& algebra,
                                  const BasicLoadStep<Dim>& step, const FrictionState<Dim>& previous,
-                                 const FrictionSettings& friction, const HFSettings& frictionless) {
-  if ((previous.lambda.array() > 0.0).any()) return previous;
+                                 const FrictionSettings& friction, const HFSettings& frictionless, bool floating) {
+  if (floating || (previous.lambda.array() > 0.0).any()) return previous;
   const std::vector<char> touching = frictional_rows(algebra, previous, friction.linearization.projection);
   if (std::count(touching.begin(), touching.end(), 1) > 1) return previous;
   HFSettings newton = frictionless;
@@ -283,7 +285,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
     np.dofs = &a.dofs;
     np.A00 = &a.A00;
     np.b = &a.b;
-    const FrictionState<Dim> start = start_of_step(solver, np, path[i], state, friction, frictionless);
+    const FrictionState<Dim> start = start_of_step(solver, np, path[i], state, friction, frictionless, floating);
     FrictionStepResult<Dim> step = solve_friction_step(np, state, start, inverse ? &*inverse : nullptr, friction);
     if (floating) flag_slid_free(step.report);
     step.report.time_s = seconds_since(t_step);  // FrictionStepReport::time_s: the whole step

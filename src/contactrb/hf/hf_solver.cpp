@@ -9,6 +9,7 @@
 
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
+#include "contactrb/fem/floating_bodies.hpp"
 #include "contactrb/fem/sparsity.hpp"
 #include "contactrb/fem/traction.hpp"
 #include "contactrb/hf/contact_condensation.hpp"
@@ -71,6 +72,7 @@ struct BasicHFSolver<Dim>::Impl {
   mutable Eigen::VectorXd z;
   mutable Eigen::VectorXd z_c;
   mutable double condensation_time = 0.0;
+  std::vector<int> floating;  // bodies the Dirichlet conditions leave free (fem/floating_bodies.hpp)
 
   void ensure_condensation() const {
     const std::lock_guard<std::mutex> lock(condensation_mutex);
@@ -204,6 +206,7 @@ BasicHFSolver<Dim>::BasicHFSolver(Problem problem, const HFSetupOptions& options
     }
   }
   m.A00_matrix = m.dofs.restrict_matrix(m.A);
+  m.floating = fem::floating_bodies(mesh, m.dofs);
   m.setup_time = seconds_since(t0);
 }
 
@@ -249,6 +252,15 @@ BasicHFSolution<Dim> BasicHFSolver<Dim>::solve(const HFSettings& settings, const
   require(guess.lambda.size() == 0 || guess.lambda.size() == R,
           "HF initial guess: lambda has " + std::to_string(guess.lambda.size()) + " entries for " +
               std::to_string(R) + " constraint rows");
+  // Without friction only the Dirichlet conditions hold a body tangentially: a floating one makes
+  // A_00 singular, which a sparse factorization may or may not notice at round-off.
+  if (!m.floating.empty()) {
+    const int b = m.floating.front();
+    throw Error("body " + std::to_string(b) + " (" + (b == mesh::kSlaveBody ? "slave" : "master") +
+                ") is not held by the Dirichlet conditions: one of its rigid motions moves none of its prescribed "
+                "DOFs, and without friction nothing else holds it (prescribe more components, or solve with "
+                "friction)");
+  }
   const Eigen::VectorXd u0_start =
       guess.u.size() > 0 ? m.dofs.restrict(guess.u) : Eigen::VectorXd::Zero(m.dofs.num_free());
   const Eigen::VectorXd lambda_start = guess.lambda.size() > 0 ? guess.lambda : Eigen::VectorXd::Zero(R);
