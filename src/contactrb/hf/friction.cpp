@@ -12,7 +12,6 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/number_text.hpp"
 #include "contactrb/fem/elasticity.hpp"
-#include "contactrb/fem/floating_bodies.hpp"
 #include "contactrb/hf/frictional_newton.hpp"
 
 namespace contactrb::hf {
@@ -266,7 +265,7 @@ BasicFrictionalSolution<Dim> solve_load_path(const BasicContactProblem<Dim>& pro
   // body held by the contact alone): the whole system by a sparse LU at each iteration. A body
   // the Dirichlet conditions leave free makes A_00 singular, though a factorization may pass at
   // round-off: it is told from the mesh and the conditions (fem/floating_bodies.hpp).
-  const bool floating = !fem::floating_bodies(mesh, solver.dofs()).empty();
+  const bool floating = !solver.floating_bodies().empty();
   std::optional<solve::SelectedInverse> inverse;
   if (friction.linear_solver == FrictionLinearSolver::Schur && !floating) {
     inverse.emplace();

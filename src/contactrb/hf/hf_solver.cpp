@@ -226,6 +226,8 @@ const contact::ContactQuadrature& BasicHFSolver<Dim>::quadrature() const { retur
 template <int Dim>
 const fem::DofMap& BasicHFSolver<Dim>::dofs() const { return impl_->dofs; }
 template <int Dim>
+const std::vector<int>& BasicHFSolver<Dim>::floating_bodies() const { return impl_->floating; }
+template <int Dim>
 const Eigen::SparseMatrix<double>& BasicHFSolver<Dim>::stiffness() const { return impl_->A; }
 template <int Dim>
 const Eigen::VectorXd& BasicHFSolver<Dim>::load() const { return impl_->f; }

@@ -129,6 +129,8 @@ class BasicHFSolver {
   const contact::ContactPairOf<Dim>& pair() const;
   const contact::ContactQuadrature& quadrature() const;
   const fem::DofMap& dofs() const;
+  // The bodies the Dirichlet conditions leave free (fem/floating_bodies.hpp); solve() refuses any.
+  const std::vector<int>& floating_bodies() const;
   const Eigen::SparseMatrix<double>& stiffness() const;  // global A (num_dofs^2)
   const Eigen::VectorXd& load() const;                    // global f
   // Assembly, lifting and checks; plus, once a Kacanov solve has needed it, the factorization
