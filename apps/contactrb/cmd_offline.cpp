@@ -89,6 +89,7 @@ struct OfflineOptions {
   int greedy_batch = offline::GreedyOfflineSettings{}.batch;
   double greedy_saturation = offline::GreedyOfflineSettings{}.saturation;
   bool greedy_rebuild = false;
+  int greedy_preconditioner_points = offline::GreedyOfflineSettings{}.preconditioner_points;
   std::string out;
 };
 
@@ -194,6 +195,8 @@ int run_greedy(const OfflineOptions& opt) {
   require(std::isfinite(opt.greedy_tol) && opt.greedy_tol > 0.0, "--greedy-tol must be a finite number > 0");
   require(opt.max_hf >= 1, "--max-hf must be >= 1 (got " + std::to_string(opt.max_hf) + ")");
   require(opt.greedy_batch >= 1, "--greedy-batch must be >= 1 (got " + std::to_string(opt.greedy_batch) + ")");
+  require(opt.greedy_preconditioner_points >= 0, "--greedy-preconditioner-points must be >= 0 (got " +
+                                                    std::to_string(opt.greedy_preconditioner_points) + ")");
   require(opt.greedy_saturation >= 1.0, "--greedy-saturation must be >= 1, or inf (got " +
                                             number_text(opt.greedy_saturation) + ")");
   require(opt.jobs >= 1, "--jobs must be >= 1 (got " + std::to_string(opt.jobs) + ")");
@@ -207,6 +210,7 @@ int run_greedy(const OfflineOptions& opt) {
   gs.batch = opt.greedy_batch;
   gs.saturation = opt.greedy_saturation;
   gs.incremental = !opt.greedy_rebuild;
+  gs.preconditioner_points = opt.greedy_preconditioner_points;
   gs.jobs = opt.jobs;
   gs.progress = opt.quiet ? offline::ProgressMode::None : offline::ProgressMode::Automatic;
   offline::check_settings(gs);
@@ -464,6 +468,12 @@ Command add_offline_command(CLI::App& app) {
       ->needs(greedy_opt);
   sub->add_flag("--greedy-rebuild", opt->greedy_rebuild,
                 "With --greedy: rebuild each step's model by POD instead of extending the previous one (row cone)")
+      ->needs(greedy_opt);
+  sub->add_option("--greedy-preconditioner-points", opt->greedy_preconditioner_points,
+                  "With --greedy and the row cone: points of the returned model's online start and preconditioner, "
+                  "its snapshots then training points farthest first (the model file grows by N^2 doubles a point); "
+                  "0: the snapshots only")
+      ->capture_default_str()
       ->needs(greedy_opt);
   sub->add_option("--out", opt->out,
                   "Output model file (HDF5); offline.json (greedy.csv, greedy.json with --greedy) goes to the same "

@@ -23,7 +23,9 @@
 #include "contactrb/common/error.hpp"
 #include "contactrb/study/evaluation.hpp"
 #include "contactrb/offline/dual_cone.hpp"
+#include "contactrb/offline/offline_builder.hpp"
 #include "contactrb/offline/offline_greedy.hpp"
+#include "contactrb/online/online_solver.hpp"
 #include "contactrb/online/reconstruction.hpp"
 
 namespace {
@@ -107,6 +109,51 @@ TEST(OfflineGreedy, EstimateFallsAndStopsAtTheTolerance) {
 // floor: the greedy reaches 1e-3 in a few HF solves (measured: 6 of the 61 values), where the CPG
 // greedy stops near 1.5e-2, and the model meets it on the verification set against HF solves
 // (measured e_displ 5.2e-4, e_press 1.7e-3).
+// The row-cone model's start and preconditioner points: its snapshot points first, then the
+// other training values (61 < the default 256: every one that converges), each with its
+// Jacobian; at such a point the online solve starts at its own answer. Farthest first: one more
+// point for a model that holds the snapshot points only is the training value farthest from them.
+void expect_preconditioner_points(const GreedyOfflineResult& g) {
+  const contactrb::model::ReducedModel& m = g.offline.model;
+  const Eigen::Index S = static_cast<Eigen::Index>(g.snapshots.snapshots.size());
+  ASSERT_GT(m.training_mu.cols(), S);
+  EXPECT_LE(m.training_mu.cols(), kTrainingSize);
+  for (Eigen::Index p = 0; p < S; ++p) EXPECT_EQ(m.training_mu(0, p), g.snapshots.snapshots[static_cast<std::size_t>(p)].mu(0));
+  std::vector<double> values(m.training_mu.data(), m.training_mu.data() + m.training_mu.size());
+  std::sort(values.begin(), values.end());
+  EXPECT_EQ(std::adjacent_find(values.begin(), values.end()), values.end());
+  for (double v : values) {
+    EXPECT_TRUE(std::any_of(request().mu.begin(), request().mu.end(), [&](const auto& t) { return t(0) == v; })) << v;
+  }
+  EXPECT_EQ(m.training_jacobian.cols(), m.N_max * m.training_mu.cols());
+  contactrb::online::OnlineSolver solver(m);
+  const contactrb::cases::Mu added = m.training_mu.col(S);
+  const contactrb::online::OnlineSolution at_added = solver.solve(added);
+  ASSERT_TRUE(at_added.converged());
+  EXPECT_LE(at_added.iterations, 2);
+
+  contactrb::model::ReducedModel snapshots_only = m;
+  snapshots_only.training_mu = m.training_mu.leftCols(S);
+  snapshots_only.training_u_hat = m.training_u_hat.leftCols(S);
+  snapshots_only.training_lambda_hat = m.training_lambda_hat.leftCols(S);
+  snapshots_only.training_jacobian = m.training_jacobian.leftCols(m.N_max * S);
+  contactrb::offline::add_preconditioner_points(snapshots_only, request().mu, static_cast<int>(S));
+  EXPECT_EQ(snapshots_only.training_mu.cols(), S);  // as many as it holds: unchanged
+  contactrb::offline::add_preconditioner_points(snapshots_only, request().mu, static_cast<int>(S) + 1);
+  ASSERT_EQ(snapshots_only.training_mu.cols(), S + 1);
+  EXPECT_EQ(snapshots_only.training_jacobian.size(), 0);  // for add_training_jacobians to compute again
+  double farthest = -1.0, chosen = 0.0;
+  for (const auto& t : request().mu) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index p = 0; p < S; ++p) nearest = std::min(nearest, std::abs(t(0) - m.training_mu(0, p)));
+    if (nearest > farthest) {
+      farthest = nearest;
+      chosen = t(0);
+    }
+  }
+  EXPECT_EQ(snapshots_only.training_mu(0, S), chosen);
+}
+
 TEST(OfflineGreedy, RowConeGreedyReachesATightTolerance) {
   GreedyOfflineSettings s = cpg_greedy();
   s.tolerance = 1e-3;
@@ -125,6 +172,7 @@ TEST(OfflineGreedy, RowConeGreedyReachesATightTolerance) {
   EXPECT_EQ(ev.summary.rb_failures, 0);
   EXPECT_LE(ev.summary.max_e_displ, 1e-3);
   EXPECT_LE(ev.summary.max_e_press, 5e-3);
+  expect_preconditioner_points(g);
 }
 
 TEST(OfflineGreedy, EstimateAtTheChosenPointIsNotBelowTheTrueError) {
@@ -340,6 +388,9 @@ TEST(OfflineGreedy, BadSettingsAreRefused) {
   s = {};
   s.batch = 0;
   refused(s, "batch");
+  s = {};
+  s.preconditioner_points = -1;
+  refused(s, "preconditioner points");
   s = {};
   s.online.start = Eigen::VectorXd::Zero(3);
   refused(s, "may not carry a start (OnlineSettings::start)");

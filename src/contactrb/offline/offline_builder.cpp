@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -804,6 +805,60 @@ void add_training_jacobians(ReducedModel& m) {
     if (sol.converged()) J.middleCols(p * n, n) = solver.fixed_point_jacobian(m.training_mu.col(p), sol.u_hat);
   }
   m.training_jacobian = std::move(J);
+}
+
+namespace {
+// Farthest-first choice of `count` candidates away from `fixed` (columns, scaled coordinates).
+std::vector<std::size_t> farthest_first(const Eigen::MatrixXd& fixed, const Eigen::MatrixXd& candidates, Index count) {
+  Eigen::VectorXd d2 = Eigen::VectorXd::Constant(candidates.cols(), std::numeric_limits<double>::infinity());
+  for (Index f = 0; f < fixed.cols(); ++f) d2 = d2.cwiseMin((candidates.colwise() - fixed.col(f)).colwise().squaredNorm().transpose());
+  std::vector<std::size_t> chosen;
+  while (ix(chosen.size()) < count) {
+    Index best = 0;
+    if (!(d2.maxCoeff(&best) > 0.0)) break;  // every candidate is a point already held
+    chosen.push_back(sz(static_cast<int>(best)));
+    d2 = d2.cwiseMin((candidates.colwise() - candidates.col(best)).colwise().squaredNorm().transpose());
+  }
+  return chosen;
+}
+}  // namespace
+
+void add_preconditioner_points(ReducedModel& m, const std::vector<cases::Mu>& candidates, int total) {
+  const Index held = m.training_mu.cols(), p = m.num_parameters();
+  if (m.dual_method != model::kRowCone || m.N_max > model::kMaxJacobianN || total <= held || candidates.empty()) return;
+  Eigen::VectorXd offset(p), scale(p);
+  for (Index k = 0; k < p; ++k) {
+    const cases::ParameterSpec& q = m.parameters[sz(static_cast<int>(k))];
+    offset(k) = q.min;
+    scale(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
+  }
+  Eigen::MatrixXd C(p, ix(candidates.size()));
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    require(candidates[c].size() == p, "add_preconditioner_points: a candidate of the wrong size");
+    C.col(ix(c)) = (candidates[c] - offset).cwiseProduct(scale);
+  }
+  const Eigen::MatrixXd F = (m.training_mu.colwise() - offset).array().colwise() * scale.array();
+  const std::vector<std::size_t> chosen = farthest_first(F, C, total - held);
+  OnlineSolver solver(m);
+  OnlineSettings settings;
+  settings.error_estimate = false;  // only u_hat and lambda_hat are kept
+  std::vector<std::pair<std::size_t, OnlineSolution>> solved;
+  for (std::size_t c : chosen) {
+    OnlineSolution sol = solver.solve(candidates[c], settings);
+    if (sol.converged()) solved.emplace_back(c, std::move(sol));
+  }
+  const Index P = held + ix(solved.size());
+  m.training_mu.conservativeResize(Eigen::NoChange, P);
+  m.training_u_hat.conservativeResize(Eigen::NoChange, P);
+  m.training_lambda_hat.conservativeResize(Eigen::NoChange, P);
+  for (std::size_t k = 0; k < solved.size(); ++k) {
+    const Index col = held + ix(k);
+    m.training_mu.col(col) = candidates[solved[k].first];
+    m.training_u_hat.col(col) = solved[k].second.u_hat;
+    m.training_lambda_hat.col(col).setZero();
+    m.training_lambda_hat.col(col).head(solved[k].second.lambda_hat.size()) = solved[k].second.lambda_hat;
+  }
+  if (!solved.empty()) m.training_jacobian.resize(0, 0);  // one block per point: add_training_jacobians
 }
 
 // What a greedy's builds share (offline_builder.hpp), valid for one case, level, discretization

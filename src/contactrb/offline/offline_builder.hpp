@@ -136,6 +136,17 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
 // converge keeps a zero block, the plain step there). P (N_max + 2) reduced steps.
 void add_training_jacobians(model::ReducedModel& m);
 
+// More points for the online start and preconditioner of a finished row-cone model (up to
+// model::kMaxJacobianN, as the Jacobians): `candidates` chosen farthest first from the model's
+// training points (Euclidean in coordinates scaled to [0, 1] per parameter, ties to the lowest
+// index) until the model holds `total` points, each with its online solution appended to
+// training_mu, training_u_hat and training_lambda_hat (a point whose solve does not converge is
+// left out; the model's Jacobians are dropped when points are added). Call before
+// add_training_jacobians. Why: the preconditioned iteration's steps fall
+// with the distance to the nearest Jacobian, and a greedy has solved the reduced problem over its
+// whole training set (docs/offline-online.md, "Online: the preconditioned iteration").
+void add_preconditioner_points(model::ReducedModel& m, const std::vector<cases::Mu>& candidates, int total);
+
 class OfflineBuildCache {
  public:
   OfflineBuildCache();

@@ -128,6 +128,8 @@ void check_settings(const GreedyOfflineSettings& s) {
   require(s.batch >= 1, "greedy: the batch (HF solves per step) must be >= 1, got " + std::to_string(s.batch));
   require(s.saturation >= 1.0, "greedy: the saturation constant must be >= 1 (+inf: every point every step), got " +
                                    number_text(s.saturation));
+  require(s.preconditioner_points >= 0, "greedy: the number of preconditioner points must be >= 0, got " +
+                                          std::to_string(s.preconditioner_points));
   // Each model has its own sizes: the sweep sets every point's start itself.
   require(!s.online.start, "greedy: the online settings may not carry a start (OnlineSettings::start); the sweep "
                            "starts each point from its own last answer");
@@ -473,7 +475,10 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
     if (stop != nullptr) break;
   }
   g.out.offline = std::move(*best);
-  if (settings.offline.training_jacobians) add_training_jacobians(g.out.offline.model);
+  if (settings.offline.training_jacobians) {
+    add_preconditioner_points(g.out.offline.model, training, settings.preconditioner_points);
+    add_training_jacobians(g.out.offline.model);
+  }
   progress.model(g.out.steps[sz(g.out.model_step - 1)], static_cast<int>(g.out.steps.size()));
   g.out.total_s = seconds_since(t_total);
   return std::move(g.out);

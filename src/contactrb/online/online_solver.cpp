@@ -2,6 +2,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -571,9 +572,21 @@ const Eigen::MatrixXd* OnlineSolver::preconditioner(Eigen::Index p) {
 
 Eigen::Index OnlineSolver::nearest_training(const cases::Mu& point) const {
   if (guess_.cols() == 0) return -1;
+  // A plain loop: a colwise expression over p = 2-3 rows spends its time in per-column reductions.
+  const Eigen::Index P = guess_points_.cols(), p = guess_points_.rows();
   const Eigen::VectorXd x = (point - guess_offset_).cwiseProduct(guess_scale_);
+  const double* xs = x.data();
   Eigen::Index best = 0;
-  (guess_points_.colwise() - x).colwise().squaredNorm().minCoeff(&best);
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (Eigen::Index c = 0; c < P; ++c) {
+    const double* g = guess_points_.col(c).data();
+    double d2 = 0.0;
+    for (Eigen::Index k = 0; k < p; ++k) d2 += (g[k] - xs[k]) * (g[k] - xs[k]);
+    if (d2 < best_d2) {  // ties: the first
+      best_d2 = d2;
+      best = c;
+    }
+  }
   return best;
 }
 
