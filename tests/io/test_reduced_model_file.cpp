@@ -112,6 +112,14 @@ TEST(ReducedModelFile, RoundTripKeepsEveryArrayAndTheOnlineAnswer) {
   EXPECT_TRUE(same(r.training_mu, m.training_mu));
   ASSERT_EQ(m.training_jacobian.rows(), m.N_max);  // the row cone at N_max <= kMaxJacobianN
   EXPECT_TRUE(same(r.training_jacobian, m.training_jacobian));
+  // One parameter: no sensitivities (the start interpolates two training values); a model that
+  // holds them keeps them bit for bit.
+  EXPECT_EQ(m.training_u_sensitivity.size(), 0);
+  ReducedModel with_sensitivity = m;
+  with_sensitivity.training_u_sensitivity = Eigen::MatrixXd::Random(m.N_max, m.training_mu.cols());
+  contactrb::io::write_reduced_model_file(with_sensitivity, dir.file("sensitivity.h5"));
+  EXPECT_TRUE(same(contactrb::io::read_reduced_model_file(dir.file("sensitivity.h5")).training_u_sensitivity,
+                   with_sensitivity.training_u_sensitivity));
   EXPECT_EQ(r.thetas.f.size(), m.thetas.f.size());
   // Format 4: each theta monomial with its factors.
   const auto expect_same_thetas = [](const std::vector<contactrb::cases::ThetaMonomial>& x,

@@ -187,6 +187,10 @@ void visit(V& v, const Loc& root, contactrb::model::ReducedModel& m) {
           {"N_max x (N_max P), or empty: block i is the Jacobian of the reduced Kacanov map at training point i "
            "(the online preconditioner)",
            "1"});
+    v.mat(pr, "training_u_sensitivity", m.training_u_sensitivity,
+          {"N_max x (p P), or empty: block i is the derivative of u_hat with respect to mu at training point i "
+           "(the online start u_hat_i + S_i (mu - mu_i))",
+           "1 / (units of mu)"});
   }
   {
     Handle g = v.group(root, "dual", "the reduced dual cone (Remark 7): lambda = Xi lambda_hat on the kept rows");

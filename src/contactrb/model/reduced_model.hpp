@@ -30,8 +30,9 @@ namespace contactrb::model {
 // training points p x P, theta monomials with one factor per parameter); 5: the self-describing
 // layout (groups, attributes, matrices in their documented shape, docs/file-formats.md); 6: every
 // string a fixed-length UTF-8 attribute (no variable-length data, which HDF5 1.10 cannot read
-// safely from a damaged file); 8: the registered cone (/registration).
-inline constexpr int kReducedModelFormatVersion = 9;
+// safely from a damaged file); 8: the registered cone (/registration); 9: the training Jacobians;
+// 10: the training sensitivities.
+inline constexpr int kReducedModelFormatVersion = 10;
 // ReducedModel::training_jacobian is built for N_max up to this size (its cost offline: N_max + 2
 // reduced steps per training point; its size: N_max^2 P).
 inline constexpr int kMaxJacobianN = 100;
@@ -104,6 +105,11 @@ struct ReducedModel {
   // solution, block i = columns [i N_max, (i + 1) N_max). Empty: none (the EIM and registered
   // cones, N_max above kMaxJacobianN).
   Eigen::MatrixXd training_jacobian;   // N_max x (N_max P), or empty
+  // The first-order online start (p > 1, with the Jacobians): at each training point the
+  // derivative of the reduced solution u_hat with respect to mu, block i = columns [i p, (i + 1) p),
+  // so that the start at mu is u_hat_i + S_i (mu - mu_i) (docs/offline-online.md, "Online: the
+  // preconditioned iteration"). Empty: the nearest training point's u_hat.
+  Eigen::MatrixXd training_u_sensitivity;  // N_max x (p P), or empty
 
   // (49): A_hat(mu) = sum_j theta^a_j A_hat[j];
   // f_hat(mu) = sum_j theta^f_j f_hat[j] - sum_{j,k} theta^a_j theta^lift_k A_lift_hat[j * J^D + k].
@@ -158,6 +164,7 @@ struct ReducedModel {
 // Number of doubles held by the model's arrays (a size figure for the docs and tests).
 inline long long model_doubles(const ReducedModel& m) {
   long long n = m.singular_values.size() + m.training_u_hat.size() + m.training_lambda_hat.size() + m.training_jacobian.size() +
+                m.training_u_sensitivity.size() +
                 m.training_mu.size() + m.Xi.size() + m.B_kappa.size() + m.B_gamma.size() + m.XiQ_gamma.size() +
                 m.Theta_c.size() + m.lift_c.size() + static_cast<long long>(m.lift_AA.size() + m.lift_f.size()) +
                 2 * static_cast<long long>(m.surface.reference_nodes.size());

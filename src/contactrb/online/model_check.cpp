@@ -107,6 +107,11 @@ void check_model(const ReducedModel& m) {
                  "training_jacobian");
     require(m.training_jacobian.allFinite(), "reduced model: training_jacobian holds a value that is not finite");
   }
+  if (m.training_u_sensitivity.size() > 0) {
+    expect_shape(m.training_u_sensitivity, m.N_max, static_cast<Eigen::Index>(m.num_parameters()) * m.training_mu.cols(),
+                 "training_u_sensitivity");
+    require(m.training_u_sensitivity.allFinite(), "reduced model: training_u_sensitivity holds a value that is not finite");
+  }
   require(m.training_u_hat.allFinite() && m.training_lambda_hat.allFinite(),
           "reduced model: the training coordinates are not finite");
   const ContactSurface& s = m.surface;

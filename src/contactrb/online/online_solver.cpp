@@ -83,6 +83,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
     }
     guess_.resize(N_ + R_, static_cast<Eigen::Index>(order.size()));
     guess_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
+    guess_mu_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
     guess_offset_.resize(p_dim);
     guess_scale_.resize(p_dim);
     for (int k = 0; k < p_dim; ++k) {
@@ -92,6 +93,7 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
     }
     for (std::size_t p = 0; p < order.size(); ++p) {
       if (p_dim == 1) guess_mu_.push_back(model.training_mu(0, order[p]));
+      guess_mu_points_.col(static_cast<Eigen::Index>(p)) = model.training_mu.col(order[p]);
       guess_points_.col(static_cast<Eigen::Index>(p)) =
           (model.training_mu.col(order[p]) - guess_offset_).cwiseProduct(guess_scale_);
       guess_.col(static_cast<Eigen::Index>(p)) << model.training_u_hat.col(order[p]).head(N_),
@@ -555,6 +557,14 @@ void OnlineSolver::set_preconditioners(const ReducedModel& model, const std::vec
   }
   preconditioner_.resize(order.size());
   preconditioner_state_.assign(order.size(), 0);
+  sensitivity_.resize(0, 0);
+  const Eigen::Index p_dim = model.num_parameters();
+  if (model.training_u_sensitivity.size() == 0 || p_dim < 2) return;
+  sensitivity_.resize(n, p_dim * static_cast<Eigen::Index>(order.size()));
+  for (std::size_t p = 0; p < order.size(); ++p) {
+    sensitivity_.middleCols(static_cast<Eigen::Index>(p) * p_dim, p_dim) =
+        model.training_u_sensitivity.middleCols(order[p] * p_dim, p_dim);
+  }
 }
 
 const Eigen::MatrixXd* OnlineSolver::preconditioner(Eigen::Index p) {
@@ -623,7 +633,15 @@ Eigen::MatrixXd OnlineSolver::fixed_point_jacobian(const cases::Mu& mu, const Ei
 Eigen::VectorXd OnlineSolver::interpolated_guess(const cases::Mu& point) const {
   const Eigen::Index P = guess_.cols();
   if (P == 0) return Eigen::VectorXd::Zero(N_ + R_);
-  if (point.size() > 1) return guess_.col(nearest_training(point));  // ties: the first
+  if (point.size() > 1) {  // the nearest point (ties: the first), to first order where the model has S
+    const Eigen::Index i = nearest_training(point);
+    Eigen::VectorXd guess = guess_.col(i);
+    if (sensitivity_.size() > 0) {
+      const Eigen::Index p = point.size();
+      guess.head(N_).noalias() += sensitivity_.middleCols(i * p, p) * (point - guess_mu_points_.col(i));
+    }
+    return guess;
+  }
   const double mu = point(0);
   const auto hi = static_cast<Eigen::Index>(std::upper_bound(guess_mu_.begin(), guess_mu_.end(), mu) - guess_mu_.begin());
   if (hi == 0) return guess_.col(0);

@@ -83,7 +83,9 @@ OnlineIteration online_iteration_from_string(const std::string& name);  // throw
 enum class InitialGuess {
   // The reduced solutions at the training values (ReducedModel::training_u_hat and
   // training_lambda_hat, their leading N and R entries), interpolated linearly in mu between the
-  // two nearest training values (the nearest one outside their range). Reduced-size data only.
+  // two nearest training values (the nearest one outside their range); with p > 1 parameters the
+  // nearest training point's, u_hat to first order in mu (training_u_sensitivity) at the model's
+  // maximal sizes. Reduced-size data only.
   Interpolated,
   // u_hat = 0 (the paper's Algorithm 1).
   Zero,
@@ -233,14 +235,15 @@ class OnlineSolver {
   // The column of guess_ (training point) nearest to mu in the scaled coordinates of
   // interpolated_guess (p = 1: the nearer of the two it interpolates between); -1 without any.
   Eigen::Index nearest_training(const cases::Mu& mu) const;
-  // jacobian_ from the model's Jacobians (constructor; guess_'s column order).
+  // jacobian_ and sensitivity_ from the model's (constructor; guess_'s column order).
   void set_preconditioners(const contactrb::model::ReducedModel& model, const std::vector<int>& order);
   // (I - G'_p)^-1 of guess_'s column p, factored at its first use (a function of the model alone:
   // the same bits whatever the queries before); null when I - G'_p is singular.
   const Eigen::MatrixXd* preconditioner(Eigen::Index p);
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
   // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
-  // training point in coordinates scaled to [0, 1] per parameter.
+  // training point in coordinates scaled to [0, 1] per parameter, its u_hat to first order in
+  // mu where the model holds the sensitivities (ReducedModel::training_u_sensitivity).
   Eigen::VectorXd interpolated_guess(const cases::Mu& mu) const;
   // The relative inf-sup constant of the last step's reduced pair, sqrt(lambda_min(Q) /
   // lambda_max(Q)) with Q = D A_hat^-1 D' (R x R): 0 when some pressure generator is invisible to
@@ -260,9 +263,11 @@ class OnlineSolver {
   std::vector<cases::ParameterSpec> parameters_;
   std::vector<double> guess_mu_;  // p = 1: training values, increasing
   Eigen::MatrixXd guess_points_;  // p x P: training points scaled to [0, 1] per parameter
+  Eigen::MatrixXd guess_mu_points_;  // p x P: the same points unscaled
   Eigen::VectorXd guess_offset_, guess_scale_;  // x = (mu - offset) .* scale
   Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
   Eigen::MatrixXd jacobian_;                      // N x (N P), same order: G'_p; empty: no preconditioner
+  Eigen::MatrixXd sensitivity_;                   // N x (p P), same order: d u_hat / d mu; empty: none
   std::vector<Eigen::MatrixXd> preconditioner_;  // P: (I - G'_p)^-1 once factored
   std::vector<char> preconditioner_state_;       // P: 0 not factored, 1 factored, 2 singular
   cases::AffineThetas thetas_;
