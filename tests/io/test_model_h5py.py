@@ -107,7 +107,7 @@ def check_strings(cli, work):
         check(text(s, "format") == "contactrb-snapshots" and int(s.attrs["format_version"]) == 8
               and int(s.attrs["dimension"]) == 2, "snapshot format attributes (bytes decoded), dimension 2")
         check(text(s["settings"], "solver") == "kacanov", "snapshot /settings solver (the default on 2D level 0)")
-        check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 9,
+        check(text(m, "format") == "contactrb-reduced-model" and int(m.attrs["format_version"]) == 10,
               "model format attributes (bytes decoded)")
         check(text(s, "contactrb_version") == version and text(m, "contactrb_version") == version,
               f"contactrb_version is `contactrb --version` ({version})")
