@@ -1,7 +1,7 @@
 // Online query time on a model file over a case's parameter set, without HF solves: the online
 // column of bench_moving_zone (per point the median wall time of --repeats solves, default
 // OnlineSettings, the estimate included; then the median and the worst over the points), with
-// the reduced steps per query. --dump writes per point the steps, the time, the estimate and
+// the reduced steps per query and the time to construct the OnlineSolver. --dump writes per point the steps, the time, the estimate and
 // u_hat, lambda_hat to 17 digits (two builds or settings compared line by line).
 //   build/bench/bench_online_points --model m.h5 --case hertz-3p [--set verification]
 //                                   [--repeats 5] [--dump FILE] [--depth D] [--guess zero]
@@ -92,7 +92,9 @@ int main(int argc, char** argv) {
     const Options opt = parse(argc, argv);
     const model::ReducedModel model = io::read_reduced_model_file(opt.model);
     const std::vector<cases::Mu> points = cases::builtin_case_spec(opt.case_name).set(opt.set);
+    const auto t_build = Clock::now();
     online::OnlineSolver solver(model);
+    const double build_s = std::chrono::duration<double>(Clock::now() - t_build).count();
     std::ofstream dump;
     if (!opt.dump.empty()) dump.open(opt.dump);
     dump << std::setprecision(17);
@@ -116,6 +118,7 @@ int main(int argc, char** argv) {
         dump << '\n';
       }
     }
+    std::cout << "solver built in " << 1e3 * build_s << " ms\n";
     std::cout << "points " << points.size() << ", N " << solver.N() << ", R " << solver.R() << ", failed " << failed
               << "\nonline median " << 1e6 * median(times) << " us, worst "
               << 1e6 * *std::max_element(times.begin(), times.end()) << " us\nsteps median " << median(steps)

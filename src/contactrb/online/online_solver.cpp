@@ -544,20 +544,24 @@ std::string OnlineSolver::undetermined_message(double beta) const {
 }
 
 void OnlineSolver::set_preconditioners(const ReducedModel& model, const std::vector<int>& order) {
-  jacobian_.resize(0, 0);
   preconditioner_.clear();
   preconditioner_state_.clear();
+  sensitivity_.resize(0, 0);
   const int R_model = registered_ ? model.registration.R() : model.R_max;
   // The Jacobians are those of the map at the maximal sizes; a truncated model's map is another.
   if (model.training_jacobian.size() == 0 || N_ != model.N_max || R_ != R_model) return;
   const Eigen::Index n = N_;
-  jacobian_.resize(n, n * static_cast<Eigen::Index>(order.size()));
-  for (std::size_t p = 0; p < order.size(); ++p) {
-    jacobian_.middleCols(static_cast<Eigen::Index>(p) * n, n) = model.training_jacobian.middleCols(order[p] * n, n);
-  }
+  // Factored here rather than at a point's first query: a query then costs the same whichever
+  // queries came before it (one factor costs about five steps).
   preconditioner_.resize(order.size());
   preconditioner_state_.assign(order.size(), 0);
-  sensitivity_.resize(0, 0);
+  for (std::size_t p = 0; p < order.size(); ++p) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(n, n) -
+                                                  model.training_jacobian.middleCols(order[p] * n, n));
+    preconditioner_[p] = lu.inverse();
+    // G'_p with an eigenvalue at 1 (I - G'_p singular): no preconditioner at that point.
+    preconditioner_state_[p] = preconditioner_[p].allFinite() ? 1 : 2;
+  }
   const Eigen::Index p_dim = model.num_parameters();
   if (model.training_u_sensitivity.size() == 0 || p_dim < 2) return;
   sensitivity_.resize(n, p_dim * static_cast<Eigen::Index>(order.size()));
@@ -567,16 +571,9 @@ void OnlineSolver::set_preconditioners(const ReducedModel& model, const std::vec
   }
 }
 
-const Eigen::MatrixXd* OnlineSolver::preconditioner(Eigen::Index p) {
-  if (jacobian_.size() == 0 || p < 0) return nullptr;
+const Eigen::MatrixXd* OnlineSolver::preconditioner(Eigen::Index p) const {
+  if (preconditioner_.empty() || p < 0) return nullptr;
   const std::size_t k = sz(static_cast<int>(p));
-  if (preconditioner_state_[k] == 0) {
-    const Eigen::Index n = N_;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(n, n) - jacobian_.middleCols(p * n, n));
-    preconditioner_[k] = lu.inverse();
-    // G'_p with an eigenvalue at 1 (I - G'_p singular): no preconditioner at that point.
-    preconditioner_state_[k] = preconditioner_[k].allFinite() ? 1 : 2;
-  }
   return preconditioner_state_[k] == 1 ? &preconditioner_[k] : nullptr;
 }
 
@@ -811,7 +808,7 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
       kr = iterate_newton(ks, u_start, lambda_start);
     } else if (accelerated) {
       const Eigen::MatrixXd* pre =
-          settings.preconditioned && exact_rows_ && jacobian_.size() > 0 ? preconditioner(nearest_training(mu)) : nullptr;
+          settings.preconditioned && exact_rows_ && !preconditioner_.empty() ? preconditioner(nearest_training(mu)) : nullptr;
       kr = iterate_accelerated(ks, settings.anderson_depth, u_start, lambda_start, pre);
     } else {
       const solve::KacanovStep step_fn = [this](const Eigen::VectorXd& u_hat, const Eigen::VectorXd&,

@@ -235,11 +235,11 @@ class OnlineSolver {
   // The column of guess_ (training point) nearest to mu in the scaled coordinates of
   // interpolated_guess (p = 1: the nearer of the two it interpolates between); -1 without any.
   Eigen::Index nearest_training(const cases::Mu& mu) const;
-  // jacobian_ and sensitivity_ from the model's (constructor; guess_'s column order).
+  // preconditioner_ and sensitivity_ from the model's Jacobians and sensitivities (constructor;
+  // guess_'s column order).
   void set_preconditioners(const contactrb::model::ReducedModel& model, const std::vector<int>& order);
-  // (I - G'_p)^-1 of guess_'s column p, factored at its first use (a function of the model alone:
-  // the same bits whatever the queries before); null when I - G'_p is singular.
-  const Eigen::MatrixXd* preconditioner(Eigen::Index p);
+  // (I - G'_p)^-1 of guess_'s column p; null when I - G'_p is singular or the model has none.
+  const Eigen::MatrixXd* preconditioner(Eigen::Index p) const;
   // InitialGuess::Interpolated at mu: [u_hat; lambda_hat] (N + R; zero when the model holds no
   // training values): p = 1, linear between the two nearest training values; p > 1, the nearest
   // training point in coordinates scaled to [0, 1] per parameter, its u_hat to first order in
@@ -266,10 +266,9 @@ class OnlineSolver {
   Eigen::MatrixXd guess_mu_points_;  // p x P: the same points unscaled
   Eigen::VectorXd guess_offset_, guess_scale_;  // x = (mu - offset) .* scale
   Eigen::MatrixXd guess_;         // (N + R) x P: their [u_hat; lambda_hat], in the same order
-  Eigen::MatrixXd jacobian_;                      // N x (N P), same order: G'_p; empty: no preconditioner
   Eigen::MatrixXd sensitivity_;                   // N x (p P), same order: d u_hat / d mu; empty: none
-  std::vector<Eigen::MatrixXd> preconditioner_;  // P: (I - G'_p)^-1 once factored
-  std::vector<char> preconditioner_state_;       // P: 0 not factored, 1 factored, 2 singular
+  std::vector<Eigen::MatrixXd> preconditioner_;  // P, guess_'s order: (I - G'_p)^-1; empty: no preconditioner
+  std::vector<char> preconditioner_state_;       // P: 1 factored, 2 singular
   cases::AffineThetas thetas_;
   double kacanov_alpha_ = 0.3, kacanov_tolerance_ = 1e-3;
   int kacanov_max_iterations_ = 500;
