@@ -232,6 +232,19 @@ const Eigen::SparseMatrix<double>& BasicHFSolver<Dim>::stiffness() const { retur
 template <int Dim>
 const Eigen::VectorXd& BasicHFSolver<Dim>::load() const { return impl_->f; }
 template <int Dim>
+std::optional<Eigen::MatrixXd> BasicHFSolver<Dim>::held_inverse_block(const std::vector<int>& idx) const {
+  const Impl& m = *impl_;
+  const std::lock_guard<std::mutex> lock(m.condensation_mutex);
+  if (!m.A00) return std::nullopt;
+  std::vector<Eigen::Index> at;
+  at.reserve(idx.size());
+  for (int fi : idx) {
+    if (fi < 0 || fi >= m.dofs.num_free() || m.free_to_contact[static_cast<std::size_t>(fi)] < 0) return std::nullopt;
+    at.push_back(m.free_to_contact[static_cast<std::size_t>(fi)]);
+  }
+  return Eigen::MatrixXd(m.A00->contact_inverse()(at, at));
+}
+template <int Dim>
 double BasicHFSolver<Dim>::setup_time_s() const {
   const std::lock_guard<std::mutex> lock(impl_->condensation_mutex);
   return impl_->setup_time + impl_->condensation_time;

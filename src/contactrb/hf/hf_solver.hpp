@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,12 @@ class BasicHFSolver {
   // The bodies the Dirichlet conditions leave free (fem/floating_bodies.hpp); solve() refuses any.
   const std::vector<int>& floating_bodies() const;
   const Eigen::SparseMatrix<double>& stiffness() const;  // global A (num_dofs^2)
+  // (A_00^-1)[idx, idx] for free indices idx, from the factorization of A_00 this solver holds:
+  // the block S on the contact DOFs that a Kacanov solve builds (ContactCondensation). nullopt
+  // when it holds none (no Kacanov solve yet: the Newton method keeps no factor) or when idx
+  // leaves the contact DOFs. Why: a caller that needs a few entries of A_00(mu)^-1 at the
+  // snapshot's mu (offline/geometric_term.hpp) takes them instead of factoring A_00 again.
+  std::optional<Eigen::MatrixXd> held_inverse_block(const std::vector<int>& idx) const;
   const Eigen::VectorXd& load() const;                    // global f
   // Assembly, lifting and checks; plus, once a Kacanov solve has needed it, the factorization
   // of A_00 and the condensed block S (built lazily: the Newton method never needs them).

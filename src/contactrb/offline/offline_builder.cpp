@@ -827,6 +827,7 @@ struct OfflineBuildCache::Parts {
 
 OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
 OfflineBuildCache::~OfflineBuildCache() = default;
+void OfflineBuildCache::add_geometric_ratio(const cases::Mu& mu, double eta) { parts_->geometric.emplace_back(mu, eta); }
 
 namespace {
 
@@ -839,7 +840,7 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
   parts.estimate.factored = false;
   parts.estimate.columns_built = false;
   parts.estimate.contact_columns.clear();
-  parts.geometric.clear();
+  if (parts.ref) parts.geometric.clear();  // another problem's (those given before the first build are this one's)
   parts.basis.clear();
   parts.basis.chol.reset();
   parts.ref = assemble_reference_terms(set, spec, product, report);
@@ -854,6 +855,10 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
 }
 
 }  // namespace
+
+bool uses_geometric_ratio(const OfflineSettings& settings) {
+  return settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered;
+}
 
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
 
@@ -914,7 +919,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate,
                                   extension ? &*extension : nullptr);
   // The row and registered cones are solved on the exact rows, whose estimate has the geometric term.
-  if (settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered) {
+  if (uses_geometric_ratio(settings)) {
     m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
                                                      contact::discretization_from_string(set.constraint), &parts.geometric);
   }

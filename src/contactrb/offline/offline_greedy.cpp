@@ -19,6 +19,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/csv_writer.hpp"
+#include "contactrb/offline/geometric_term.hpp"
 #include "contactrb/offline/greedy_sweep.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/common/number_text.hpp"
@@ -205,6 +206,14 @@ struct Greedy {
   std::optional<OnlineSettings> fallback;  // of the sweep's points where `online` does not converge
 };
 
+// The run options of the greedy's HF solves.
+SnapshotRunOptions hf_run_options(const GreedyOfflineSettings& settings) {
+  SnapshotRunOptions run;
+  run.jobs = settings.jobs;
+  run.warm_start = SnapshotRunOptions::WarmStart::Off;
+  return run;
+}
+
 // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
 // starts (no warm start between the points of a step), so that each snapshot depends on its
 // point only, not on the threads or processes that share the step out.
@@ -214,14 +223,32 @@ io::SnapshotSet hf_solve(Greedy& g, const std::vector<int>& indices) {
   for (int i : indices) step.mu.push_back(g.training[sz(i)]);
   g.out.hf_solves += static_cast<int>(indices.size());
   const GreedyOfflineSettings& settings = g.settings;
-  const auto solve = [&settings](const SnapshotRequest& part) {
-    SnapshotRunOptions run;
-    run.jobs = settings.jobs;
-    run.warm_start = SnapshotRunOptions::WarmStart::Off;
-    return generate_snapshots(part, run);
-  };
-  // Distributed: each process solves its share, every process gets all (the same set everywhere).
-  return settings.distribution.share ? settings.distribution.share(solve, step) : solve(step);
+  // Distributed: each process solves its share, every process gets all (the same set everywhere);
+  // the builds then factor A_00(mu_p) for the geometric ratios themselves, so that every process
+  // has the same ones.
+  if (settings.distribution.share) {
+    const auto solve = [&settings](const SnapshotRequest& part) {
+      return generate_snapshots(part, hf_run_options(settings));
+    };
+    return settings.distribution.share(solve, step);
+  }
+  // One process: each new snapshot's eta_p from its own HF solver's factor of A_00(mu_p).
+  const bool ratios = uses_geometric_ratio(settings.offline) && step.dimension == 2;
+  std::vector<std::optional<double>> eta(indices.size());
+  SnapshotRunOptions run = hf_run_options(settings);
+  if (ratios) {
+    run.after_solve = [&eta](std::size_t k, const io::Snapshot& snapshot, const hf::HFSolver& solver) {
+      try {
+        eta[k] = geometric_ratio(solver, snapshot);
+      } catch (const std::exception&) {  // left to the build, which reports it
+      }
+    };
+  }
+  io::SnapshotSet set = generate_snapshots(step, run);
+  for (std::size_t k = 0; k < eta.size(); ++k) {
+    if (eta[k] && set.snapshots[k].converged) g.cache.add_geometric_ratio(set.snapshots[k].mu, *eta[k]);
+  }
+  return set;
 }
 
 // Start: one HF solve at the training point nearest the domain centre.
