@@ -310,8 +310,10 @@ struct PrimalSnapshots {
   PODResult pod;
 };
 
+// weight: the factor of `inner` a greedy's builds share (factored here when empty). With
+// extend_basis the POD gives the singular values and N only: the basis is the extended one.
 PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<double>& inner,
-                         const OfflineSettings& settings, OfflineReport& report) {
+                         const OfflineSettings& settings, OfflineReport& report, std::optional<PODWeight>& weight) {
   PrimalSnapshots out;
   const int P = static_cast<int>(set.snapshots.size());
   out.U0.resize(ix(set.free_dofs.size()), P);
@@ -320,7 +322,9 @@ PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<d
   pod_settings.tolerance = settings.eps_pod;
   pod_settings.relative = settings.eps_pod_relative;
   pod_settings.max_modes = settings.pod_modes;
-  out.pod = pod(out.U0, inner, pod_settings);
+  pod_settings.basis = !settings.extend_basis;
+  if (!weight) weight.emplace(inner);
+  out.pod = pod(out.U0, *weight, pod_settings);
   const PODResult& r = out.pod;
   require(r.N >= 1, "offline: POD kept no mode (eps_pod = " + number_text(settings.eps_pod) +
                         (settings.eps_pod_relative ? " relative" : " absolute") +
@@ -823,6 +827,7 @@ struct OfflineBuildCache::Parts {
   EstimateBase estimate;
   GeometricRatios geometric;
   BasisExtension basis;
+  std::optional<PODWeight> pod_weight;  // of ref->inner
 };
 
 OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
@@ -843,6 +848,7 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
   if (parts.ref) parts.geometric.clear();  // another problem's (those given before the first build are this one's)
   parts.basis.clear();
   parts.basis.chol.reset();
+  parts.pod_weight.reset();
   parts.ref = assemble_reference_terms(set, spec, product, report);
   parts.case_name = spec.name;
   parts.constraint = set.constraint;
@@ -891,7 +897,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   OfflineBuildCache own;
   OfflineBuildCache::Parts& parts = cache ? *cache->parts_ : *own.parts_;
   const ReferenceTerms& ref = cached_reference_terms(set, spec, settings.inner_product, rep, parts);
-  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
+  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep, parts.pod_weight);  // (T2)
   const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
   const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
   ReducedModel& m = out.model;
