@@ -267,6 +267,7 @@ struct ReferenceTerms {
   cases::AffineTerms terms;
   cases::AffineThetas thetas;
   Eigen::SparseMatrix<double> free_selection;  // P: P' A P = A_00
+  std::vector<Eigen::SparseMatrix<double>> A00;  // P' A_j P, j < J^a (a greedy's builds share them)
   Eigen::SparseMatrix<double> inner;           // M on the free DOFs
   Eigen::MatrixXd lift_c;                      // u_D terms on the contact DOFs, one column per term
   std::vector<int> global_to_free;             // -1 on a Dirichlet DOF
@@ -288,6 +289,7 @@ ReferenceTerms assemble_reference_terms(const io::SnapshotSet& set, const cases:
           "offline: affine terms and theta functions disagree in number");
   ref.free_selection = free_selection(set.num_dofs, set.free_dofs);
   const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
+  for (const fem::SparseMatrix& A : ref.terms.A) ref.A00.push_back(Psel.transpose() * A * Psel);
   if (product == InnerProduct::Energy) {
     const fem::SparseMatrix A_ref =
         cases::combine(ref.terms.A, cases::evaluate(ref.thetas.a, cases::reference_mu(spec.parameters)));
@@ -629,13 +631,11 @@ void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, 
 void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Theta, const std::vector<int>& free_dofs,
                           ReducedModel& m) {
   const cases::AffineTerms& terms = ref.terms;
-  const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
   const int Ja = static_cast<int>(terms.A.size());
   const int Jf = static_cast<int>(terms.f.size());
   const int JD = static_cast<int>(terms.lift.size());
   for (int j = 0; j < Ja; ++j) {
-    const Eigen::SparseMatrix<double> A00 = Psel.transpose() * terms.A[sz(j)] * Psel;
-    Eigen::MatrixXd Ah = Theta.transpose() * (A00 * Theta);
+    Eigen::MatrixXd Ah = Theta.transpose() * (ref.A00[sz(j)] * Theta);
     m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
   }
   for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], free_dofs));
