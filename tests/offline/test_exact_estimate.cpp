@@ -376,6 +376,43 @@ TEST(GeometricRatio, FromTheSolversOwnFactorEqualsTheFreshlyFactoredOne) {
   }
 }
 
+// The Newton method's factor (CHOLMOD, supernodal), kept with the solver for after_solve: the
+// block of A_00^-1 on any free DOFs against the dense inverse, and eta_p from it against eta_p
+// from a fresh factorization. A solver not asked to keep it holds none.
+TEST(GeometricRatio, FromTheNewtonSolversFactorEqualsTheFreshlyFactoredOne) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");
+  const auto reference = cases::reference_mesh(spec, 0);
+  const cases::Mu mu = cases::Mu::Constant(1, 0.4);
+  offline::SnapshotRequest r =
+      offline::make_snapshot_request(spec, "training", 0, std::nullopt, std::vector<cases::Mu>{mu});
+  r.settings.method = contactrb::hf::HFMethod::Newton;
+  double held = -1.0, block_error = -1.0;
+  offline::SnapshotRunOptions options;
+  options.after_solve = [&](std::size_t, const contactrb::io::Snapshot& snap, const contactrb::hf::HFSolver& solver) {
+    const auto& dofs = solver.dofs();
+    const std::vector<int> idx{0, 7, dofs.num_free() / 2, dofs.num_free() - 1};
+    const std::optional<Eigen::MatrixXd> block = solver.held_inverse_block(idx);
+    if (!block) return;
+    const Eigen::MatrixXd inverse = Eigen::MatrixXd(dofs.restrict_matrix(solver.stiffness()))
+                                        .ldlt()
+                                        .solve(Eigen::MatrixXd::Identity(dofs.num_free(), dofs.num_free()));
+    const std::vector<Index> at(idx.begin(), idx.end());
+    block_error = (*block - inverse(at, at)).cwiseAbs().maxCoeff() / inverse(at, at).cwiseAbs().maxCoeff();
+    held = offline::geometric_ratio(solver, snap);
+  };
+  const contactrb::io::SnapshotSet set = offline::generate_snapshots(r, options);
+  ASSERT_TRUE(set.snapshots.front().converged);
+  ASSERT_GE(held, 0.0) << "the Newton solver kept no factor";
+  EXPECT_LT(block_error, 1e-10);
+  const auto d = contactrb::contact::discretization_from_string(set.constraint);
+  const double fresh = offline::geometric_ratio(spec, reference, d, set.snapshots.front());
+  EXPECT_NEAR(held, fresh, 1e-10 * fresh);
+
+  const contactrb::hf::HFSolver plain(cases::make_problem(spec, reference, mu, d));
+  ASSERT_TRUE(plain.solve(r.settings).converged);
+  EXPECT_FALSE(plain.held_inverse_block({0}));
+}
+
 // A solver that has not solved holds no factor: the ratio from it factors A_00 itself.
 TEST(GeometricRatio, FromASolverWithoutAFactorFactorsAZeroZeroItself) {
   const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");

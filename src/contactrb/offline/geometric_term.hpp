@@ -31,9 +31,10 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
 
 // The same from the HF solver that computed the snapshot (at its mu, on its discretization), with
 // the block of A_00(mu_p)^-1 taken from the factor the solver holds (hf::BasicHFSolver::
-// held_inverse_block: the Kacanov method's) instead of a second factorization; A_00(mu_p) is
-// factored here only when the solver holds none. Equal to the other form to round-off (the
-// factors differ: Eigen's simplicial LLT and CHOLMOD's supernodal one; tests/offline/
+// held_inverse_block: the Kacanov method's condensation, or the Newton method's supernodal
+// factor when the solver keeps it) instead of a second factorization; A_00(mu_p) is factored
+// here only when the solver holds none. Equal to the other form to round-off (the Kacanov
+// factor is Eigen's simplicial LLT, this one's CHOLMOD's supernodal one; tests/offline/
 // test_exact_estimate.cpp).
 double geometric_ratio(const hf::HFSolver& solver, const io::Snapshot& snapshot);
 

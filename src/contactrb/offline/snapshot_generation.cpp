@@ -163,7 +163,9 @@ void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& 
   out.mu = request.mu[index];
   std::optional<hf::BasicHFSolver<Dim>> held;  // kept for after_solve
   try {
-    const hf::BasicHFSolver<Dim>& solver = held.emplace(factory_of<Dim>(request)(out.mu));
+    hf::HFSetupOptions setup;  // after_solve may read the Newton solve's factor of A_00
+    setup.keep_newton_factor = after != nullptr && static_cast<bool>(*after);
+    const hf::BasicHFSolver<Dim>& solver = held.emplace(factory_of<Dim>(request)(out.mu), setup);
     layout = layout_of(solver);
     const hf::HFInitialGuess guess = initial_guess(request, out.mu, solver, start);
     hf::BasicHFSolution<Dim> s = solver.solve(request.settings, guess);
