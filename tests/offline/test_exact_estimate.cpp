@@ -337,7 +337,8 @@ TEST(GeometricRatio, FromTheSolversOwnFactorEqualsTheFreshlyFactoredOne) {
     ASSERT_EQ(r.settings.method, contactrb::hf::HFMethod::Kacanov) << name;  // level 0: the condensation's factor
     std::vector<double> held(points.size(), -1.0), block_error(points.size(), -1.0);
     offline::SnapshotRunOptions options;
-    options.after_solve = [&](std::size_t k, const contactrb::io::Snapshot& snap, const contactrb::hf::HFSolver& solver) {
+    options.after_solve = [&](std::size_t k, const contactrb::io::Snapshot& snap,
+                              const contactrb::hf::HFSolver& solver) {
       const auto& dofs = solver.dofs();
       std::vector<int> idx;  // every free DOF of the slave boundary
       for (int node : solver.pair().slave) {
@@ -355,7 +356,9 @@ TEST(GeometricRatio, FromTheSolversOwnFactorEqualsTheFreshlyFactoredOne) {
       block_error[k] = (*block - inverse(at, at)).cwiseAbs().maxCoeff() / inverse(at, at).cwiseAbs().maxCoeff();
       std::vector<char> on_contact(static_cast<std::size_t>(dofs.num_dofs()), 0);
       for (const std::vector<int>* nodes : {&solver.pair().slave, &solver.pair().master}) {
-        for (int node : *nodes) on_contact[static_cast<std::size_t>(2 * node)] = on_contact[static_cast<std::size_t>(2 * node + 1)] = 1;
+        for (int node : *nodes) {
+          for (int c = 0; c < 2; ++c) on_contact[static_cast<std::size_t>(2 * node + c)] = 1;
+        }
       }
       int outside = 0;  // a free DOF off the contact boundaries: no entry of the held block
       while (on_contact[static_cast<std::size_t>(dofs.free_dofs()[static_cast<std::size_t>(outside)])]) ++outside;

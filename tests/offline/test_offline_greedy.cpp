@@ -217,9 +217,9 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
 }
 
 // One process takes each new snapshot's geometric ratio from its own HF solver's factor of
-// A_00(mu_p); a distributed greedy (GreedyDistribution::share, here one process sharing with
-// itself) factors A_00(mu_p) again in the builds. The same picks, ratios and estimates to
-// round-off.
+// A_00(mu_p); a distribution without GreedyDistribution::max (here one process sharing with
+// itself) leaves the ratios to the builds, which factor A_00(mu_p) again. The same picks, ratios
+// and estimates to round-off.
 TEST(OfflineGreedy, RatiosFromTheHfSolversEqualTheBuildsOwn) {
   GreedyOfflineSettings s = cpg_greedy();
   s.offline.dual_method = contactrb::offline::DualConeMethod::Rows;

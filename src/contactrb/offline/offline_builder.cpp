@@ -832,7 +832,9 @@ struct OfflineBuildCache::Parts {
 
 OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
 OfflineBuildCache::~OfflineBuildCache() = default;
-void OfflineBuildCache::add_geometric_ratio(const cases::Mu& mu, double eta) { parts_->geometric.emplace_back(mu, eta); }
+void OfflineBuildCache::add_geometric_ratio(const cases::Mu& mu, double eta) {
+  parts_->geometric.emplace_back(mu, eta);
+}
 
 namespace {
 

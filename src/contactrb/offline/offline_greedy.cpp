@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -223,30 +224,34 @@ io::SnapshotSet hf_solve(Greedy& g, const std::vector<int>& indices) {
   for (int i : indices) step.mu.push_back(g.training[sz(i)]);
   g.out.hf_solves += static_cast<int>(indices.size());
   const GreedyOfflineSettings& settings = g.settings;
-  // Distributed: each process solves its share, every process gets all (the same set everywhere);
-  // the builds then factor A_00(mu_p) for the geometric ratios themselves, so that every process
-  // has the same ones.
-  if (settings.distribution.share) {
-    const auto solve = [&settings](const SnapshotRequest& part) {
-      return generate_snapshots(part, hf_run_options(settings));
-    };
-    return settings.distribution.share(solve, step);
-  }
-  // One process: each new snapshot's eta_p from its own HF solver's factor of A_00(mu_p).
-  const bool ratios = uses_geometric_ratio(settings.offline) && step.dimension == 2;
-  std::vector<std::optional<double>> eta(indices.size());
-  SnapshotRunOptions run = hf_run_options(settings);
-  if (ratios) {
-    run.after_solve = [&eta](std::size_t k, const io::Snapshot& snapshot, const hf::HFSolver& solver) {
-      try {
-        eta[k] = geometric_ratio(solver, snapshot);
-      } catch (const std::exception&) {  // left to the build, which reports it
-      }
-    };
-  }
-  io::SnapshotSet set = generate_snapshots(step, run);
+  const GreedyDistribution& dist = settings.distribution;
+  // Each new snapshot's eta_p from its own HF solver's factor of A_00(mu_p), by the point's
+  // position in the step (-inf: none); distributed without `max`, left to the builds.
+  const bool ratios = uses_geometric_ratio(settings.offline) && step.dimension == 2 && (!dist.share || dist.max);
+  std::vector<double> eta(indices.size(), -kInf);
+  std::mutex eta_mutex;  // a process's part writes the step's positions of its points
+  const auto solve = [&](const SnapshotRequest& part) {
+    SnapshotRunOptions run = hf_run_options(settings);
+    if (ratios) {
+      run.after_solve = [&](std::size_t k, const io::Snapshot& snapshot, const hf::HFSolver& solver) {
+        double value = -kInf;
+        try {
+          value = geometric_ratio(solver, snapshot);
+        } catch (const std::exception&) {  // left to the build, which reports it
+        }
+        const auto at = std::find(step.mu.begin(), step.mu.end(), part.mu[k]);
+        const std::lock_guard<std::mutex> lock(eta_mutex);
+        if (at != step.mu.end()) eta[static_cast<std::size_t>(at - step.mu.begin())] = value;
+      };
+    }
+    return generate_snapshots(part, run);
+  };
+  // Distributed: each process solves its share, every process gets all (the same set everywhere).
+  io::SnapshotSet set = dist.share ? dist.share(solve, step) : solve(step);
+  if (!ratios) return set;
+  if (dist.share) dist.max(eta);
   for (std::size_t k = 0; k < eta.size(); ++k) {
-    if (eta[k] && set.snapshots[k].converged) g.cache.add_geometric_ratio(set.snapshots[k].mu, *eta[k]);
+    if (eta[k] > -kInf && set.snapshots[k].converged) g.cache.add_geometric_ratio(set.snapshots[k].mu, eta[k]);
   }
   return set;
 }
