@@ -174,6 +174,12 @@ offline::GreedyDistribution mpi_greedy_distribution(MpiWorld& world) {
   d.share = [w](const offline::GreedyDistribution::SolveFn& solve, const offline::SnapshotRequest& step) {
     return share(*w, solve, step);
   };
+  d.max = [](std::vector<double>& values) {
+    MPI_Request pending = MPI_REQUEST_NULL;
+    MPI_Iallreduce(MPI_IN_PLACE, values.data(), to_int(values.size(), "values of a max over the ranks"), MPI_DOUBLE,
+                   MPI_MAX, MPI_COMM_WORLD, &pending);
+    wait_polling(pending);
+  };
   return d;
 }
 

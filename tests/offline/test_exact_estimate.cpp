@@ -15,6 +15,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -376,6 +377,118 @@ TEST(GeometricRatio, BoundsRandomDirectionsThatKeepTheActiveRowsClosed) {
     largest = std::max(largest, ratio);
   }
   std::printf("[ hertz-a mu 0.4 ] eta_p %.4f, largest random ratio %.4f\n", eta, largest);
+}
+
+// The block of A_00^-1 a Kacanov solver holds against the dense inverse of A_00, and eta_p from
+// the snapshot's own solver (that block, no second factorization) against eta_p from a fresh
+// factorization (CHOLMOD): the same to round-off, on the greedy's three-parameter case.
+TEST(GeometricRatio, FromTheSolversOwnFactorEqualsTheFreshlyFactoredOne) {
+  for (const char* name : {"hertz-a", "hertz-3p"}) {
+    const cases::CaseSpec spec = cases::builtin_case_spec(name);
+    const auto reference = cases::reference_mesh(spec, 0);
+    std::vector<cases::Mu> points;
+    for (double t : {0.3, 0.7}) {
+      cases::Mu mu(static_cast<Index>(spec.parameters.size()));
+      for (Index k = 0; k < mu.size(); ++k) {
+        const auto& q = spec.parameters[static_cast<std::size_t>(k)];
+        mu(k) = q.min + t * (q.max - q.min);
+      }
+      points.push_back(mu);
+    }
+    offline::SnapshotRequest r = offline::make_snapshot_request(spec, "training", 0, std::nullopt, points);
+    ASSERT_EQ(r.settings.method, contactrb::hf::HFMethod::Kacanov) << name;  // level 0: the condensation's factor
+    std::vector<double> held(points.size(), -1.0), block_error(points.size(), -1.0);
+    offline::SnapshotRunOptions options;
+    options.after_solve = [&](std::size_t k, const contactrb::io::Snapshot& snap,
+                              const contactrb::hf::HFSolver& solver) {
+      const auto& dofs = solver.dofs();
+      std::vector<int> idx;  // every free DOF of the slave boundary
+      for (int node : solver.pair().slave) {
+        for (int c = 0; c < 2; ++c) {
+          const auto at = std::find(dofs.free_dofs().begin(), dofs.free_dofs().end(), 2 * node + c);
+          if (at != dofs.free_dofs().end()) idx.push_back(static_cast<int>(at - dofs.free_dofs().begin()));
+        }
+      }
+      const std::optional<Eigen::MatrixXd> block = solver.held_inverse_block(idx);
+      if (!block) return;
+      const Eigen::MatrixXd inverse =
+          Eigen::MatrixXd(dofs.restrict_matrix(solver.stiffness())).ldlt().solve(
+              Eigen::MatrixXd::Identity(dofs.num_free(), dofs.num_free()));
+      const std::vector<Index> at(idx.begin(), idx.end());
+      block_error[k] = (*block - inverse(at, at)).cwiseAbs().maxCoeff() / inverse(at, at).cwiseAbs().maxCoeff();
+      std::vector<char> on_contact(static_cast<std::size_t>(dofs.num_dofs()), 0);
+      for (const std::vector<int>* nodes : {&solver.pair().slave, &solver.pair().master}) {
+        for (int node : *nodes) {
+          for (int c = 0; c < 2; ++c) on_contact[static_cast<std::size_t>(2 * node + c)] = 1;
+        }
+      }
+      int outside = 0;  // a free DOF off the contact boundaries: no entry of the held block
+      while (on_contact[static_cast<std::size_t>(dofs.free_dofs()[static_cast<std::size_t>(outside)])]) ++outside;
+      EXPECT_FALSE(solver.held_inverse_block({outside})) << name;
+      held[k] = offline::geometric_ratio(solver, snap);
+    };
+    const contactrb::io::SnapshotSet set = offline::generate_snapshots(r, options);
+    const auto d = contactrb::contact::discretization_from_string(set.constraint);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      ASSERT_TRUE(set.snapshots[k].converged) << name << " point " << k;
+      ASSERT_GE(held[k], 0.0) << name << " point " << k << ": the solver held no factor";
+      EXPECT_LT(block_error[k], 1e-10) << name << " point " << k;
+      const double fresh = offline::geometric_ratio(spec, reference, d, set.snapshots[k]);
+      EXPECT_GT(fresh, 0.0);
+      EXPECT_NEAR(held[k], fresh, 1e-10 * fresh) << name << " point " << k;
+      std::printf("[ %s point %zu ] eta_p from the held factor %.17g, fresh %.17g\n", name, k, held[k], fresh);
+    }
+  }
+}
+
+// The Newton method's factor (CHOLMOD, supernodal), kept with the solver for after_solve: the
+// block of A_00^-1 on any free DOFs against the dense inverse, and eta_p from it against eta_p
+// from a fresh factorization. A solver not asked to keep it holds none.
+TEST(GeometricRatio, FromTheNewtonSolversFactorEqualsTheFreshlyFactoredOne) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");
+  const auto reference = cases::reference_mesh(spec, 0);
+  const cases::Mu mu = cases::Mu::Constant(1, 0.4);
+  offline::SnapshotRequest r =
+      offline::make_snapshot_request(spec, "training", 0, std::nullopt, std::vector<cases::Mu>{mu});
+  r.settings.method = contactrb::hf::HFMethod::Newton;
+  double held = -1.0, block_error = -1.0;
+  offline::SnapshotRunOptions options;
+  options.after_solve = [&](std::size_t, const contactrb::io::Snapshot& snap, const contactrb::hf::HFSolver& solver) {
+    const auto& dofs = solver.dofs();
+    const std::vector<int> idx{0, 7, dofs.num_free() / 2, dofs.num_free() - 1};
+    const std::optional<Eigen::MatrixXd> block = solver.held_inverse_block(idx);
+    if (!block) return;
+    const Eigen::MatrixXd inverse = Eigen::MatrixXd(dofs.restrict_matrix(solver.stiffness()))
+                                        .ldlt()
+                                        .solve(Eigen::MatrixXd::Identity(dofs.num_free(), dofs.num_free()));
+    const std::vector<Index> at(idx.begin(), idx.end());
+    block_error = (*block - inverse(at, at)).cwiseAbs().maxCoeff() / inverse(at, at).cwiseAbs().maxCoeff();
+    held = offline::geometric_ratio(solver, snap);
+  };
+  const contactrb::io::SnapshotSet set = offline::generate_snapshots(r, options);
+  ASSERT_TRUE(set.snapshots.front().converged);
+  ASSERT_GE(held, 0.0) << "the Newton solver kept no factor";
+  EXPECT_LT(block_error, 1e-10);
+  const auto d = contactrb::contact::discretization_from_string(set.constraint);
+  const double fresh = offline::geometric_ratio(spec, reference, d, set.snapshots.front());
+  EXPECT_NEAR(held, fresh, 1e-10 * fresh);
+
+  const contactrb::hf::HFSolver plain(cases::make_problem(spec, reference, mu, d));
+  ASSERT_TRUE(plain.solve(r.settings).converged);
+  EXPECT_FALSE(plain.held_inverse_block({0}));
+}
+
+// A solver that has not solved holds no factor: the ratio from it factors A_00 itself.
+TEST(GeometricRatio, FromASolverWithoutAFactorFactorsAZeroZeroItself) {
+  const cases::CaseSpec spec = cases::builtin_case_spec("hertz-a");
+  const cases::Mu mu = cases::Mu::Constant(1, 0.4);
+  const contactrb::io::SnapshotSet set = snapshots_at(spec, {mu});
+  const auto reference = cases::reference_mesh(spec, 0);
+  const auto d = contactrb::contact::discretization_from_string(set.constraint);
+  const contactrb::hf::HFSolver solver(cases::make_problem(spec, reference, mu, d));
+  EXPECT_FALSE(solver.held_inverse_block({0}));
+  EXPECT_EQ(offline::geometric_ratio(solver, set.snapshots.front()),
+            offline::geometric_ratio(spec, reference, d, set.snapshots.front()));
 }
 
 // eta_p against an independent dense computation of its definition over every free DOF (no Schur

@@ -264,6 +264,30 @@ TEST(OfflineGreedy, SameResultWhateverTheThreadsAndBudgetStatus) {
   EXPECT_EQ(std::vector<int>(greedy().selected.begin(), greedy().selected.begin() + 3), a.selected);
 }
 
+// One process takes each new snapshot's geometric ratio from its own HF solver's factor of
+// A_00(mu_p); a distribution without GreedyDistribution::max (here one process sharing with
+// itself) leaves the ratios to the builds, which factor A_00(mu_p) again. The same picks, ratios
+// and estimates to round-off.
+TEST(OfflineGreedy, RatiosFromTheHfSolversEqualTheBuildsOwn) {
+  GreedyOfflineSettings s = cpg_greedy();
+  s.offline.dual_method = contactrb::offline::DualConeMethod::Rows;
+  s.tolerance = 1e-6;
+  s.max_hf = 6;
+  const GreedyOfflineResult held = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  s.distribution.share = [](const auto& solve, const contactrb::offline::SnapshotRequest& step) { return solve(step); };
+  const GreedyOfflineResult fresh = contactrb::offline::run_offline_greedy(spec(), request(), s);
+  ASSERT_EQ(held.steps.size(), 6u);
+  EXPECT_EQ(held.selected, fresh.selected);
+  ASSERT_EQ(held.steps.size(), fresh.steps.size());
+  for (std::size_t k = 0; k < held.steps.size(); ++k) {
+    EXPECT_EQ(held.steps[k].argmax, fresh.steps[k].argmax) << k;
+    EXPECT_NEAR(held.steps[k].max_estimate, fresh.steps[k].max_estimate, 1e-10 * fresh.steps[k].max_estimate) << k;
+  }
+  const double eta = fresh.offline.model.estimate.geometric_ratio;
+  EXPECT_GT(eta, 0.0);
+  EXPECT_NEAR(held.offline.model.estimate.geometric_ratio, eta, 1e-10 * eta);
+}
+
 // The returned model is the best step's: no step has fewer online failures, or as many and a
 // smaller max estimate; its sizes and snapshots are that step's.
 void expect_best_model_returned(const GreedyOfflineResult& g) {

@@ -116,6 +116,37 @@ TEST(POD, BasisIsMOrthonormalAndSingularValuesMatchWeightedSVD) {
   for (int i = 1; i < P; ++i) EXPECT_LE(r.singular_values(i), r.singular_values(i - 1));
 }
 
+// One weight for several PODs (a greedy's builds) gives each the bits of pod(S, M); without the
+// basis, the same singular values and truncation, and no modes.
+TEST(POD, SharedWeightAndSingularValuesOnlyGiveTheSameBits) {
+  const int n = 30;
+  const auto M = h1_like(n);
+  const PODWeight weight(M);
+  PODSettings s;
+  s.tolerance = 1e-3;
+  for (int P : {4, 7, 10}) {
+    const MatrixXd S = decaying_snapshots(n, P, 0.2, 7 + static_cast<unsigned>(P));
+    const PODResult a = pod(S, M, s);
+    const PODResult b = pod(S, weight, s);
+    EXPECT_EQ(a.N, b.N);
+    EXPECT_EQ(a.rank, b.rank);
+    EXPECT_EQ((a.singular_values - b.singular_values).cwiseAbs().maxCoeff(), 0.0) << P;
+    EXPECT_EQ((a.basis - b.basis).cwiseAbs().maxCoeff(), 0.0) << P;
+    PODSettings values_only = s;
+    values_only.basis = false;
+    const PODResult c = pod(S, weight, values_only);
+    EXPECT_EQ(c.N, a.N);
+    EXPECT_EQ(c.threshold, a.threshold);
+    EXPECT_EQ(c.discarded_energy, a.discarded_energy);
+    EXPECT_EQ((c.singular_values - a.singular_values).cwiseAbs().maxCoeff(), 0.0) << P;
+    EXPECT_EQ(c.basis.size(), 0);
+  }
+  Eigen::SparseMatrix<double> indefinite = M;
+  indefinite.coeffRef(3, 3) = -1.0;
+  EXPECT_THROW(PODWeight{indefinite}, contactrb::Error);
+  EXPECT_THROW(pod(MatrixXd::Ones(n + 1, 2), weight, s), contactrb::Error);
+}
+
 TEST(POD, AbsoluteThresholdKeepsSingularValuesAboveIt) {
   const int n = 30, P = 10;
   const auto M = h1_like(n);

@@ -73,6 +73,10 @@ struct BasicHFSolver<Dim>::Impl {
   mutable Eigen::VectorXd z_c;
   mutable double condensation_time = 0.0;
   std::vector<int> floating;  // bodies the Dirichlet conditions leave free (fem/floating_bodies.hpp)
+  // HFSetupOptions::keep_newton_factor: the last Newton solve's factor of A_00 (under
+  // condensation_mutex).
+  bool keep_newton_factor = false;
+  mutable std::shared_ptr<solve::SelectedInverse> newton_factor;
 
   void ensure_condensation() const {
     const std::lock_guard<std::mutex> lock(condensation_mutex);
@@ -150,6 +154,7 @@ BasicHFSolver<Dim>::BasicHFSolver(Problem problem, const HFSetupOptions& options
   check_problem(problem);
   Impl& m = *impl_;
   m.problem = std::move(problem);
+  m.keep_newton_factor = options.keep_newton_factor;
   const mesh::SimplexMesh<Dim>& mesh = m.problem.mesh;
   m.dofs = fem::DofMap(mesh, m.problem.dirichlet);
   require(m.dofs.num_free() > 0, "every DOF is prescribed: nothing to solve");
@@ -231,6 +236,25 @@ template <int Dim>
 const Eigen::SparseMatrix<double>& BasicHFSolver<Dim>::stiffness() const { return impl_->A; }
 template <int Dim>
 const Eigen::VectorXd& BasicHFSolver<Dim>::load() const { return impl_->f; }
+template <int Dim>
+std::optional<Eigen::MatrixXd> BasicHFSolver<Dim>::held_inverse_block(const std::vector<int>& idx) const {
+  const Impl& m = *impl_;
+  const std::lock_guard<std::mutex> lock(m.condensation_mutex);
+  if (!m.A00 && m.newton_factor) {
+    for (int fi : idx) {
+      if (fi < 0 || fi >= m.dofs.num_free()) return std::nullopt;
+    }
+    return m.newton_factor->block(idx);
+  }
+  if (!m.A00) return std::nullopt;
+  std::vector<Eigen::Index> at;
+  at.reserve(idx.size());
+  for (int fi : idx) {
+    if (fi < 0 || fi >= m.dofs.num_free() || m.free_to_contact[static_cast<std::size_t>(fi)] < 0) return std::nullopt;
+    at.push_back(m.free_to_contact[static_cast<std::size_t>(fi)]);
+  }
+  return Eigen::MatrixXd(m.A00->contact_inverse()(at, at));
+}
 template <int Dim>
 double BasicHFSolver<Dim>::setup_time_s() const {
   const std::lock_guard<std::mutex> lock(impl_->condensation_mutex);
@@ -415,7 +439,13 @@ BasicHFSolution<Dim> BasicHFSolver<Dim>::Impl::solve_newton(const NewtonSettings
   np.A00 = &A00_matrix;
   np.b = &b;
   np.a00_analysis = [this] { return prepared_analysis(); };
-  const NewtonResult nr = semismooth_newton(np, u0_start, lambda_start, settings);
+  NewtonSettings run = settings;
+  run.keep_factor = keep_newton_factor;
+  NewtonResult nr = semismooth_newton(np, u0_start, lambda_start, run);
+  if (nr.a00_factor) {
+    const std::lock_guard<std::mutex> lock(condensation_mutex);
+    newton_factor = std::move(nr.a00_factor);
+  }
   BasicHFSolution<Dim> sol;
   sol.method = HFMethod::Newton;
   sol.status = nr.status;

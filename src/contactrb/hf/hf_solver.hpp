@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,9 @@ struct HFSetupOptions {
   // NewtonLinearSolver::Auto: no analysis where the solve will take Amg (resolved_linear_solver
   // with this threshold; -1: analyse).
   int amg_from_free_dofs = -1;
+  // A Newton solve (ActiveSchur) leaves its factor of A_00 with the solver, for
+  // held_inverse_block (NewtonSettings::keep_factor); off: the factor goes with the solve.
+  bool keep_newton_factor = false;
 };
 // newton_analysis for a Newton ActiveSchur (or Auto) method, with its ordering; off for Kacanov.
 HFSetupOptions setup_options_for(const HFSettings& settings);
@@ -132,6 +136,13 @@ class BasicHFSolver {
   // The bodies the Dirichlet conditions leave free (fem/floating_bodies.hpp); solve() refuses any.
   const std::vector<int>& floating_bodies() const;
   const Eigen::SparseMatrix<double>& stiffness() const;  // global A (num_dofs^2)
+  // (A_00^-1)[idx, idx] for free indices idx, from the factorization of A_00 this solver holds:
+  // the block S on the contact DOFs that a Kacanov solve builds (ContactCondensation; nullopt
+  // when idx leaves the contact DOFs), else the last Newton solve's supernodal factor
+  // (HFSetupOptions::keep_newton_factor; any free indices). nullopt when it holds neither. Why: a
+  // caller that needs a few entries of A_00(mu)^-1 at the snapshot's mu
+  // (offline/geometric_term.hpp) takes them instead of factoring A_00 again.
+  std::optional<Eigen::MatrixXd> held_inverse_block(const std::vector<int>& idx) const;
   const Eigen::VectorXd& load() const;                    // global f
   // Assembly, lifting and checks; plus, once a Kacanov solve has needed it, the factorization
   // of A_00 and the condensed block S (built lazily: the Newton method never needs them).

@@ -112,6 +112,11 @@ bool NewtonLinearSystem::factorize(NewtonTimings& timings, std::string& message)
   return true;
 }
 
+std::shared_ptr<solve::SelectedInverse> NewtonLinearSystem::release_inverse() {
+  if (!schur_ || inverse_.rows() == 0 || inverse_.status() != solve::SelectedInverseStatus::Success) return nullptr;
+  return std::make_shared<solve::SelectedInverse>(std::move(inverse_));
+}
+
 void NewtonLinearSystem::set_read_dofs(const RowSparse& K0, NewtonLinearization& lin) {
   lin.read_dofs.clear();
   if (!schur_) return;

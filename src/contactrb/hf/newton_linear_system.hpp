@@ -84,6 +84,8 @@ class NewtonLinearSystem {
   // The whole du of a step known on the read DOFs only.
   void complete(NewtonStep& step, const SystemPoint& at) const;
   const solve::SelectedInverse& inverse() const { return inverse_; }
+  // ActiveSchur after a successful factorize(): the factor, moved out (null otherwise).
+  std::shared_ptr<solve::SelectedInverse> release_inverse();
 
  private:
   struct Reduced;

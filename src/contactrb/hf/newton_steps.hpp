@@ -41,7 +41,10 @@ class NewtonSolve {
   void kacanov_safeguard();       // step 4
   void chord_corrections();       // step 4
   bool line_search();             // step 5
-  NewtonResult result() { return std::move(res_); }
+  NewtonResult result() {
+    if (s_.keep_factor) res_.a00_factor = system_.release_inverse();
+    return std::move(res_);
+  }
 
  private:
   bool finish(solve::KacanovStatus status, std::string message);

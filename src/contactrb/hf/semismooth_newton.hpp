@@ -29,6 +29,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@
 #include "contactrb/fem/dirichlet.hpp"
 #include "contactrb/mesh/mesh.hpp"
 #include "contactrb/solve/amg_preconditioner.hpp"
+#include "contactrb/solve/selected_inverse.hpp"
 #include "contactrb/solve/kacanov.hpp"
 #include "contactrb/solve/saddle_point_krylov.hpp"
 #include "contactrb/solve/selected_inverse.hpp"
@@ -166,6 +168,9 @@ struct NewtonSettings {
   // ("Newton: analytic linearization"); both in 3D too (docs/solvers.md, "Three dimensions").
   contact::LinearizationOptions linearization;
   NewtonTuning tuning;
+  // ActiveSchur: the result keeps the solve's factor of A_00 (NewtonResult::a00_factor), for a
+  // caller that needs entries of A_00^-1 at the same mu (hf::HFSetupOptions::keep_newton_factor).
+  bool keep_factor = false;
 };
 // Throws contactrb::Error for a non-positive tolerance, max_iterations < 1, an armijo
 // outside (0, 1/2), a min_step outside (0, 1], a negative kacanov_safeguard or
@@ -249,6 +254,9 @@ struct NewtonResult {
   Eigen::VectorXd u0;      // free part
   Eigen::VectorXd lambda;  // R
   double stationarity = 0.0, primal = 0.0, dual = 0.0, complementarity = 0.0;  // final HFKKT
+  // NewtonSettings::keep_factor with ActiveSchur: the factor of A_00 the solve used (its cached
+  // columns of the inverse included); null otherwise.
+  std::shared_ptr<solve::SelectedInverse> a00_factor;
 };
 
 // u0_start (num_free) and lambda_start (R): the initial guess (zeros: u = u_D, lambda = 0).

@@ -45,6 +45,50 @@ double contact_load_norm(const Eigen::VectorXd& c, const EstimateInputs& in, con
   return pv.norm();
 }
 
+// |L^-1 P E_c' c_M| for the loads c_M = KtL - QtL[:, :M] a[:M], M = 0 .. Mk (a the coefficients
+// of the largest EIM: those of a leading size are its head, B being lower triangular). When
+// K'lambda and every Q_i'lambda vanish off the base's contact columns, so does every c_M, and
+// R_c c_M,u = R_c KtL_u - sum_{i<M} a_i R_c QtL_u,i: one triangular product for all M, then an
+// axpy per M, instead of a product per M (contact_load_norm).
+Eigen::VectorXd eim_load_norms(const Eigen::VectorXd& KtL, const Eigen::MatrixXd& QtL, const Eigen::VectorXd& a,
+                               const EstimateInputs& in, const EstimateBase& base) {
+  const Index Mk = QtL.cols();
+  Eigen::VectorXd norms(Mk + 1);
+  const std::vector<Index>& columns = base.contact_columns;
+  const Index n_u = ix(columns.size());
+  bool inside = base.columns_built;
+  std::size_t next = 0;
+  for (Index r = 0; inside && r < KtL.size(); ++r) {
+    if (next < columns.size() && columns[next] == r) {
+      ++next;
+    } else if (base.global_to_free[sz((*in.contact_dofs)[sz(r)])] >= 0) {
+      inside = KtL(r) == 0.0 && (QtL.row(r).array() == 0.0).all();
+    }
+  }
+  if (!inside) {
+    for (Index M = 0; M <= Mk; ++M) {
+      norms(M) = contact_load_norm(KtL - QtL.leftCols(M) * a.head(M), in, base);
+    }
+    return norms;
+  }
+  Eigen::VectorXd ku(n_u);
+  Eigen::MatrixXd qu(n_u, Mk);
+  for (Index j = 0; j < n_u; ++j) {
+    ku(j) = KtL(columns[sz(j)]);
+    qu.row(j) = QtL.row(columns[sz(j)]);
+  }
+  // R_fixed's contact columns are [R_c; 0], R_c upper triangular (EstimateBase).
+  const auto Rc = base.R_fixed.topRightCorner(n_u, n_u).triangularView<Eigen::Upper>();
+  Eigen::VectorXd y = Rc * ku;
+  const Eigen::MatrixXd Y = Rc * qu;
+  norms(0) = y.norm();
+  for (Index M = 1; M <= Mk; ++M) {
+    y -= a(M - 1) * Y.col(M - 1);
+    norms(M) = y.norm();
+  }
+  return norms;
+}
+
 // The EIM errors on the training snapshots (EstimateData::eim_residual, eim_slack), for every
 // leading size: I_M F = Q[:, :M] a_M, a_M = B[:M, :M]^-1 F(magic[:M]) (B lower triangular). The
 // two products the bound needs are linear in F, so they are formed from the snapshot's and the
@@ -92,19 +136,15 @@ void calibrate_eim(const EstimateInputs& in, const EstimateBase& base, EstimateD
       QU.col(i) = Qit.transpose() * u0_c;
     }
     const Eigen::VectorXd KtL = Kt * lambda, Ku = K * u0_c;
+    Eigen::VectorXd values(Mk);
+    for (int i = 0; i < Mk; ++i) values(i) = F((*in.kappa_magic)[sz(i)]);
+    // The coefficients of every leading size M are the head of these (forward substitution).
+    const Eigen::VectorXd a = in.B_kappa->topLeftCorner(Mk, Mk).triangularView<Eigen::Lower>().solve(values);
     std::vector<Eigen::VectorXd> dKu(sz(Mk + 1));
-    for (int M = 0; M <= Mk; ++M) {
-      Eigen::VectorXd coefficients = Eigen::VectorXd::Zero(M);
-      if (M > 0) {
-        Eigen::VectorXd values(M);
-        for (int i = 0; i < M; ++i) values(i) = F((*in.kappa_magic)[sz(i)]);
-        coefficients = in.B_kappa->topLeftCorner(M, M).triangularView<Eigen::Lower>().solve(values);
-      }
-      dKu[sz(M)] = Ku - QU.leftCols(M) * coefficients;
-      if (lambda_norm > 0.0) {
-        const Eigen::VectorXd c = KtL - QtL.leftCols(M) * coefficients;  // (K - I_M K)' lambda
-        e.eim_residual(M) = std::max(e.eim_residual(M), contact_load_norm(c, in, base) / lambda_norm);
-      }
+    for (int M = 0; M <= Mk; ++M) dKu[sz(M)] = Ku - QU.leftCols(M) * a.head(M);
+    if (lambda_norm > 0.0) {  // (K - I_M K)' lambda
+      const Eigen::VectorXd norms = eim_load_norms(KtL, QtL, a, in, base);
+      e.eim_residual = e.eim_residual.cwiseMax(norms / lambda_norm);
     }
     for (int Mp = 0; Mp <= Mg; ++Mp) {
       Eigen::VectorXd dG = G;

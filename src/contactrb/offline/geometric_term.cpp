@@ -1,6 +1,8 @@
 #include "contactrb/offline/geometric_term.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -114,15 +116,12 @@ TouchedPencil touched_pencil(const contact::ContactLinearization& lin, const Eig
   return p;
 }
 
-double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
-                       const io::Snapshot& snapshot, InverseBlocks& inverse) {
-  // One BLAS thread: the supernodal factor and block are then the same bitwise whatever the
-  // machine's threads (a model built on each MPI rank is the serial one).
-  const solve::ScopedBlasThreads blas(1);
-  const hf::ContactProblem problem = cases::make_problem(spec, reference, snapshot.mu, d);
-  const fem::DofMap dofs(problem.mesh, problem.dirichlet);
-  const contact::ContactPair pair = contact::make_contact_pair(problem.mesh);
-  const contact::ContactQuadrature quadrature = contact::make_quadrature(problem.mesh, pair, d);
+// (A_00(mu_p)^-1)[idx, idx] on free indices idx.
+using InverseBlock = std::function<Eigen::MatrixXd(const std::vector<int>& idx)>;
+
+// eta_p on the snapshot's discretization at mu_p (its mesh, pair, quadrature and DOF map).
+double ratio_on(const mesh::Mesh& mesh, const contact::ContactPair& pair, const contact::ContactQuadrature& quadrature,
+                const fem::DofMap& dofs, const io::Snapshot& snapshot, const InverseBlock& inverse) {
   require(snapshot.u.size() == dofs.num_dofs() && snapshot.lambda.size() == quadrature.weight.size(),
           "geometric_ratio: the snapshot does not match the case's discretization");
   std::vector<int> to_free(sz(dofs.num_dofs()), -1);
@@ -132,7 +131,7 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
     movable[sz(dofs.free_dofs()[i])] = 1;
   }
   const contact::ContactLinearization lin =
-      contact::linearize_contact(problem.mesh, pair, quadrature, snapshot.u, snapshot.lambda, movable);
+      contact::linearize_contact(mesh, pair, quadrature, snapshot.u, snapshot.lambda, movable);
   const std::vector<Index> cd = touched_dofs(lin, snapshot.lambda, to_free);
   if (cd.empty()) return 0.0;
   const Index m = static_cast<Index>(cd.size());
@@ -141,11 +140,24 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
   const TouchedPencil pencil = touched_pencil(lin, snapshot.lambda, to_free, slot, m);
   // C = (A_00^-1) on cd, the inverse of the Schur complement there (the minimum energy of an
   // extension), so that eta_p = max { v'Mv / v'C^-1 v : D_A v = 0 } over cd alone.
-  const Eigen::MatrixXd C = inverse.block(problem, dofs, std::vector<int>(cd.begin(), cd.end()));
+  const Eigen::MatrixXd C = inverse(std::vector<int>(cd.begin(), cd.end()));
   const solve::ConstrainedEigenvalueResult eig = solve::largest_constrained_eigenvalue(C, pencil.M, pencil.DA);
   require(eig.converged, "geometric_ratio: the Lanczos iteration did not converge (" +
                              std::to_string(eig.iterations) + " steps, residual " + std::to_string(eig.residual) + ")");
   return std::max(0.0, eig.value);
+}
+
+double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
+                       const io::Snapshot& snapshot, InverseBlocks& inverse) {
+  // One BLAS thread: the supernodal factor and block are then the same bitwise whatever the
+  // machine's threads (a model built on each MPI rank is the serial one).
+  const solve::ScopedBlasThreads blas(1);
+  const hf::ContactProblem problem = cases::make_problem(spec, reference, snapshot.mu, d);
+  const fem::DofMap dofs(problem.mesh, problem.dirichlet);
+  const contact::ContactPair pair = contact::make_contact_pair(problem.mesh);
+  const contact::ContactQuadrature quadrature = contact::make_quadrature(problem.mesh, pair, d);
+  return ratio_on(problem.mesh, pair, quadrature, dofs, snapshot,
+                  [&](const std::vector<int>& idx) { return inverse.block(problem, dofs, idx); });
 }
 
 }  // namespace
@@ -154,6 +166,17 @@ double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference,
                        const io::Snapshot& snapshot) {
   InverseBlocks inverse;
   return geometric_ratio(spec, reference, d, snapshot, inverse);
+}
+
+double geometric_ratio(const hf::HFSolver& solver, const io::Snapshot& snapshot) {
+  const solve::ScopedBlasThreads blas(1);  // as above
+  const hf::ContactProblem& problem = solver.problem();
+  std::optional<InverseBlocks> own;  // A_00 factored here when the solver holds no factor
+  return ratio_on(problem.mesh, solver.pair(), solver.quadrature(), solver.dofs(), snapshot,
+                  [&](const std::vector<int>& idx) {
+                    if (std::optional<Eigen::MatrixXd> held = solver.held_inverse_block(idx)) return std::move(*held);
+                    return own.emplace().block(problem, solver.dofs(), idx);
+                  });
 }
 
 double max_geometric_ratio(const io::SnapshotSet& set, const cases::CaseSpec& spec, const mesh::Mesh& reference,

@@ -19,6 +19,7 @@
 
 #include "contactrb/cases/case_spec.hpp"
 #include "contactrb/contact/contact_pair.hpp"
+#include "contactrb/hf/hf_solver.hpp"
 #include "contactrb/io/snapshot_file.hpp"
 #include "contactrb/mesh/mesh.hpp"
 
@@ -27,6 +28,15 @@ namespace contactrb::offline {
 // eta_p at one converged snapshot (its mu, u and lambda), on the case's problem at mu_p.
 double geometric_ratio(const cases::CaseSpec& spec, const mesh::Mesh& reference, contact::Discretization d,
                        const io::Snapshot& snapshot);
+
+// The same from the HF solver that computed the snapshot (at its mu, on its discretization), with
+// the block of A_00(mu_p)^-1 taken from the factor the solver holds (hf::BasicHFSolver::
+// held_inverse_block: the Kacanov method's condensation, or the Newton method's supernodal
+// factor when the solver keeps it) instead of a second factorization; A_00(mu_p) is factored
+// here only when the solver holds none. Equal to the other form to round-off (the Kacanov
+// factor is Eigen's simplicial LLT, this one's CHOLMOD's supernodal one; tests/offline/
+// test_exact_estimate.cpp).
+double geometric_ratio(const hf::HFSolver& solver, const io::Snapshot& snapshot);
 
 // eta_p of the snapshots already seen, by parameter value (a greedy's builds share them: each
 // snapshot's eta_p is computed once).

@@ -268,6 +268,7 @@ struct ReferenceTerms {
   cases::AffineTerms terms;
   cases::AffineThetas thetas;
   Eigen::SparseMatrix<double> free_selection;  // P: P' A P = A_00
+  std::vector<Eigen::SparseMatrix<double>> A00;  // P' A_j P, j < J^a (a greedy's builds share them)
   Eigen::SparseMatrix<double> inner;           // M on the free DOFs
   Eigen::MatrixXd lift_c;                      // u_D terms on the contact DOFs, one column per term
   std::vector<int> global_to_free;             // -1 on a Dirichlet DOF
@@ -289,6 +290,7 @@ ReferenceTerms assemble_reference_terms(const io::SnapshotSet& set, const cases:
           "offline: affine terms and theta functions disagree in number");
   ref.free_selection = free_selection(set.num_dofs, set.free_dofs);
   const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
+  for (const fem::SparseMatrix& A : ref.terms.A) ref.A00.push_back(Psel.transpose() * A * Psel);
   if (product == InnerProduct::Energy) {
     const fem::SparseMatrix A_ref =
         cases::combine(ref.terms.A, cases::evaluate(ref.thetas.a, cases::reference_mu(spec.parameters)));
@@ -311,8 +313,10 @@ struct PrimalSnapshots {
   PODResult pod;
 };
 
+// weight: the factor of `inner` a greedy's builds share (factored here when empty). With
+// extend_basis the POD gives the singular values and N only: the basis is the extended one.
 PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<double>& inner,
-                         const OfflineSettings& settings, OfflineReport& report) {
+                         const OfflineSettings& settings, OfflineReport& report, std::optional<PODWeight>& weight) {
   PrimalSnapshots out;
   const int P = static_cast<int>(set.snapshots.size());
   out.U0.resize(ix(set.free_dofs.size()), P);
@@ -321,7 +325,9 @@ PrimalSnapshots pod_step(const io::SnapshotSet& set, const Eigen::SparseMatrix<d
   pod_settings.tolerance = settings.eps_pod;
   pod_settings.relative = settings.eps_pod_relative;
   pod_settings.max_modes = settings.pod_modes;
-  out.pod = pod(out.U0, inner, pod_settings);
+  pod_settings.basis = !settings.extend_basis;
+  if (!weight) weight.emplace(inner);
+  out.pod = pod(out.U0, *weight, pod_settings);
   const PODResult& r = out.pod;
   require(r.N >= 1, "offline: POD kept no mode (eps_pod = " + number_text(settings.eps_pod) +
                         (settings.eps_pod_relative ? " relative" : " absolute") +
@@ -626,13 +632,11 @@ void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, 
 void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Theta, const std::vector<int>& free_dofs,
                           ReducedModel& m) {
   const cases::AffineTerms& terms = ref.terms;
-  const Eigen::SparseMatrix<double>& Psel = ref.free_selection;
   const int Ja = static_cast<int>(terms.A.size());
   const int Jf = static_cast<int>(terms.f.size());
   const int JD = static_cast<int>(terms.lift.size());
   for (int j = 0; j < Ja; ++j) {
-    const Eigen::SparseMatrix<double> A00 = Psel.transpose() * terms.A[sz(j)] * Psel;
-    Eigen::MatrixXd Ah = Theta.transpose() * (A00 * Theta);
+    Eigen::MatrixXd Ah = Theta.transpose() * (ref.A00[sz(j)] * Theta);
     m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
   }
   for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], free_dofs));
@@ -916,10 +920,14 @@ struct OfflineBuildCache::Parts {
   EstimateBase estimate;
   GeometricRatios geometric;
   BasisExtension basis;
+  std::optional<PODWeight> pod_weight;  // of ref->inner
 };
 
 OfflineBuildCache::OfflineBuildCache() : parts_(std::make_unique<Parts>()) {}
 OfflineBuildCache::~OfflineBuildCache() = default;
+void OfflineBuildCache::add_geometric_ratio(const cases::Mu& mu, double eta) {
+  parts_->geometric.emplace_back(mu, eta);
+}
 
 namespace {
 
@@ -932,9 +940,10 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
   parts.estimate.factored = false;
   parts.estimate.columns_built = false;
   parts.estimate.contact_columns.clear();
-  parts.geometric.clear();
+  if (parts.ref) parts.geometric.clear();  // another problem's (those given before the first build are this one's)
   parts.basis.clear();
   parts.basis.chol.reset();
+  parts.pod_weight.reset();
   parts.ref = assemble_reference_terms(set, spec, product, report);
   parts.case_name = spec.name;
   parts.constraint = set.constraint;
@@ -947,6 +956,10 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
 }
 
 }  // namespace
+
+bool uses_geometric_ratio(const OfflineSettings& settings) {
+  return settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered;
+}
 
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
 
@@ -979,7 +992,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   OfflineBuildCache own;
   OfflineBuildCache::Parts& parts = cache ? *cache->parts_ : *own.parts_;
   const ReferenceTerms& ref = cached_reference_terms(set, spec, settings.inner_product, rep, parts);
-  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep);  // (T2)
+  const PrimalSnapshots primal = pod_step(set, ref.inner, settings, rep, parts.pod_weight);  // (T2)
   const DualSnapshots dual_snapshots = compression_step(set, settings, rep);  // Remark 7
   const DualConeResult dual = dual_cone_step(dual_snapshots, settings, rep);  // (T3)
   ReducedModel& m = out.model;
@@ -1007,7 +1020,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate,
                                   extension ? &*extension : nullptr);
   // The row and registered cones are solved on the exact rows, whose estimate has the geometric term.
-  if (settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered) {
+  if (uses_geometric_ratio(settings)) {
     m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
                                                      contact::discretization_from_string(set.constraint), &parts.geometric);
   }

@@ -125,8 +125,13 @@ struct OfflineResult {
 // `cache`: what successive builds on growing sets of one case, level and discretization share (a
 // greedy's steps): the reference terms, the energy product's factor and the constant residual
 // columns of the estimate, and each snapshot's geometric ratio, computed at the first build that
-// needs them. The model is the same bits as without it.
+// needs them. The model is the same bits as without it, but for the ratios given to it
+// (OfflineBuildCache::add_geometric_ratio: the same to round-off).
 class OfflineBuildCache;
+
+// Whether the models of these settings carry the geometric term of the estimate (the cones on the
+// exact rows: Rows, Registered; geometric_term.hpp).
+bool uses_geometric_ratio(const OfflineSettings& settings);
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {}, OfflineBuildCache* cache = nullptr);
 
@@ -155,6 +160,11 @@ class OfflineBuildCache {
   ~OfflineBuildCache();
   OfflineBuildCache(const OfflineBuildCache&) = delete;
   OfflineBuildCache& operator=(const OfflineBuildCache&) = delete;
+  // eta_p of the snapshot at mu (geometric_term.hpp), computed by the caller from that
+  // snapshot's HF solver (geometric_ratio(solver, snapshot): its factor of A_00(mu), not a
+  // second one); the builds on this cache take it instead of computing it. Valid for the problem
+  // of the builds to come; dropped with the rest when the cache restarts on another problem.
+  void add_geometric_ratio(const cases::Mu& mu, double eta);
   struct Parts;
 
  private:

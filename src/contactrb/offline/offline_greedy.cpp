@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/io/csv_writer.hpp"
+#include "contactrb/offline/geometric_term.hpp"
 #include "contactrb/offline/greedy_sweep.hpp"
 #include "contactrb/online/reconstruction.hpp"
 #include "contactrb/common/number_text.hpp"
@@ -207,6 +209,14 @@ struct Greedy {
   std::optional<OnlineSettings> fallback;  // of the sweep's points where `online` does not converge
 };
 
+// The run options of the greedy's HF solves.
+SnapshotRunOptions hf_run_options(const GreedyOfflineSettings& settings) {
+  SnapshotRunOptions run;
+  run.jobs = settings.jobs;
+  run.warm_start = SnapshotRunOptions::WarmStart::Off;
+  return run;
+}
+
 // The HF solves at some training points: one snapshot set in the order of `indices`. Cold
 // starts (no warm start between the points of a step), so that each snapshot depends on its
 // point only, not on the threads or processes that share the step out.
@@ -216,14 +226,36 @@ io::SnapshotSet hf_solve(Greedy& g, const std::vector<int>& indices) {
   for (int i : indices) step.mu.push_back(g.training[sz(i)]);
   g.out.hf_solves += static_cast<int>(indices.size());
   const GreedyOfflineSettings& settings = g.settings;
-  const auto solve = [&settings](const SnapshotRequest& part) {
-    SnapshotRunOptions run;
-    run.jobs = settings.jobs;
-    run.warm_start = SnapshotRunOptions::WarmStart::Off;
+  const GreedyDistribution& dist = settings.distribution;
+  // Each new snapshot's eta_p from its own HF solver's factor of A_00(mu_p), by the point's
+  // position in the step (-inf: none); distributed without `max`, left to the builds.
+  const bool ratios = uses_geometric_ratio(settings.offline) && step.dimension == 2 && (!dist.share || dist.max);
+  std::vector<double> eta(indices.size(), -kInf);
+  std::mutex eta_mutex;  // a process's part writes the step's positions of its points
+  const auto solve = [&](const SnapshotRequest& part) {
+    SnapshotRunOptions run = hf_run_options(settings);
+    if (ratios) {
+      run.after_solve = [&](std::size_t k, const io::Snapshot& snapshot, const hf::HFSolver& solver) {
+        double value = -kInf;
+        try {
+          value = geometric_ratio(solver, snapshot);
+        } catch (const std::exception&) {  // left to the build, which reports it
+        }
+        const auto at = std::find(step.mu.begin(), step.mu.end(), part.mu[k]);
+        const std::lock_guard<std::mutex> lock(eta_mutex);
+        if (at != step.mu.end()) eta[static_cast<std::size_t>(at - step.mu.begin())] = value;
+      };
+    }
     return generate_snapshots(part, run);
   };
   // Distributed: each process solves its share, every process gets all (the same set everywhere).
-  return settings.distribution.share ? settings.distribution.share(solve, step) : solve(step);
+  io::SnapshotSet set = dist.share ? dist.share(solve, step) : solve(step);
+  if (!ratios) return set;
+  if (dist.share) dist.max(eta);
+  for (std::size_t k = 0; k < eta.size(); ++k) {
+    if (eta[k] > -kInf && set.snapshots[k].converged) g.cache.add_geometric_ratio(set.snapshots[k].mu, eta[k]);
+  }
+  return set;
 }
 
 // Start: one HF solve at the training point nearest the domain centre.

@@ -60,6 +60,11 @@ struct GreedyDistribution {
   // as solve(step) would (an exception on any process is thrown on every process).
   using SolveFn = std::function<io::SnapshotSet(const SnapshotRequest& part)>;
   std::function<io::SnapshotSet(const SolveFn& solve, const SnapshotRequest& step)> share;
+  // Elementwise max of `values` (the same size on every process) over the processes: each
+  // process's geometric ratios of the step's snapshots it solved (-inf for the others) become
+  // every process's, so that the builds take each ratio from its HF solve's factor as one process
+  // does. Empty: the builds compute the ratios themselves on every process.
+  std::function<void(std::vector<double>& values)> max;
   bool active() const { return static_cast<bool>(gather); }
 };
 

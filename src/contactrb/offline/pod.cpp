@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -119,9 +120,11 @@ PODResult pod_impl(Eigen::MatrixXd B, const PODSettings& settings, const ToModes
   result.N = N;
   result.discarded_energy = sigma.tail(P - N).squaredNorm();
 
-  Eigen::MatrixXd basis = to_modes(svd.left_vectors(N));
-  reorthonormalize(basis, apply_M(basis));
-  result.basis = std::move(basis);
+  if (settings.basis) {
+    Eigen::MatrixXd basis = to_modes(svd.left_vectors(N));
+    reorthonormalize(basis, apply_M(basis));
+    result.basis = std::move(basis);
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }
@@ -137,15 +140,35 @@ void check_settings(const PODSettings& s) {
           "pod: rank_tolerance must lie in [0, 1), got " + number_text(s.rank_tolerance));
 }
 
+// P M P' = L L' (AMD ordering), so u' M u = |L' P u|^2: W = L' P.
+struct PODWeight::Impl {
+  explicit Impl(const Eigen::SparseMatrix<double>& matrix) : M(matrix), llt(matrix) {}
+  Eigen::SparseMatrix<double> M;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt;
+};
+
+PODWeight::PODWeight(const Eigen::SparseMatrix<double>& M) : impl_(std::make_unique<Impl>(M)) {
+  require(impl_->llt.info() == Eigen::Success, "pod: the inner-product matrix M is not symmetric positive definite");
+}
+PODWeight::~PODWeight() = default;
+
 PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M, const PODSettings& settings) {
   check_settings(settings);
   require(M.rows() == snapshots.rows() && M.cols() == snapshots.rows(),
           "pod: the inner-product matrix M is " + dims(M.rows(), M.cols()) + " but the snapshots are " +
               dims(snapshots.rows(), snapshots.cols()) + " (M must be N_hf x N_hf)");
   require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
-  // P M P' = L L' (AMD ordering), so u' M u = |L' P u|^2: W = L' P.
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(M);
-  require(llt.info() == Eigen::Success, "pod: the inner-product matrix M is not symmetric positive definite");
+  return pod(snapshots, PODWeight(M), settings);
+}
+
+PODResult pod(const Eigen::MatrixXd& snapshots, const PODWeight& weight, const PODSettings& settings) {
+  check_settings(settings);
+  const Eigen::SparseMatrix<double>& M = weight.impl().M;
+  const auto& llt = weight.impl().llt;
+  require(M.rows() == snapshots.rows(), "pod: the inner-product matrix M is " + dims(M.rows(), M.cols()) +
+                                            " but the snapshots are " + dims(snapshots.rows(), snapshots.cols()) +
+                                            " (M must be N_hf x N_hf)");
+  require(snapshots.allFinite(), "pod: the snapshots have non-finite entries");
   Eigen::MatrixXd B = llt.permutationP() * snapshots;
   B = llt.matrixU() * B;
   const auto to_modes = [&](const Eigen::MatrixXd& U) {

@@ -7,6 +7,7 @@
 // the SVD keeps them down to about 1e-15 sigma_1 (tests/offline/test_pod.cpp).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct PODSettings {
   // Singular values <= rank_tolerance * sigma_1 are round-off (the SVD's accuracy is about
   // 1e-16 sigma_1 times a small factor): those modes are never kept (numerical rank).
   double rank_tolerance = 1e-13;
+  // false: the singular values, rank, N, threshold and discarded energy only, the basis left
+  // empty (the N_hf x N modes and their re-orthonormalization not computed), for a caller whose
+  // basis comes from elsewhere (a greedy's extended basis, offline_builder.hpp).
+  bool basis = true;
 };
 // Throws contactrb::Error for a negative or non-finite tolerance, max_modes < -1 or a bad rank_tolerance.
 void check_settings(const PODSettings& settings);
@@ -52,6 +57,23 @@ struct PODResult {
 // snapshots: N_hf x P (one snapshot per column); M: N_hf x N_hf sparse SPD (only M * vector is used).
 PODResult pod(const Eigen::MatrixXd& snapshots, const Eigen::SparseMatrix<double>& M,
               const PODSettings& settings = {});
+
+// The weight of the M-product, P M P' = L L' (W = L' P, W'W = M), factored once for several PODs
+// on one M (a greedy's builds): pod(S, weight) is pod(S, M) bitwise.
+class PODWeight {
+ public:
+  // Throws contactrb::Error when M is not symmetric positive definite.
+  explicit PODWeight(const Eigen::SparseMatrix<double>& M);
+  ~PODWeight();
+  PODWeight(const PODWeight&) = delete;
+  PODWeight& operator=(const PODWeight&) = delete;
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+PODResult pod(const Eigen::MatrixXd& snapshots, const PODWeight& weight, const PODSettings& settings = {});
 // Euclidean inner product (M = identity).
 PODResult pod(const Eigen::MatrixXd& snapshots, const PODSettings& settings = {});
 

@@ -133,14 +133,39 @@ hf::HFInitialGuess initial_guess(const SnapshotRequest& request, const cases::Mu
 }
 
 // One parameter value: build, solve, extract. Exceptions become a failed snapshot.
+using AfterSolve = std::function<void(std::size_t, const io::Snapshot&, const hf::HFSolver&)>;
+
+// SnapshotRunOptions::after_solve on a converged 2D snapshot; its exception fails the snapshot.
+template <int Dim>
+void call_after_solve(const AfterSolve* after, std::size_t index, io::Snapshot& out,
+                      const std::optional<hf::BasicHFSolver<Dim>>& solver) {
+  if constexpr (Dim == 2) {
+    if (after == nullptr || !*after || !out.converged || !solver) return;
+    try {
+      (*after)(index, out, *solver);
+    } catch (const std::exception& e) {
+      out.converged = false;
+      out.status = "exception";
+      out.message = e.what();
+    } catch (...) {  // nothing may escape a worker thread
+      out.converged = false;
+      out.status = "exception";
+      out.message = "unknown exception after the solve";
+    }
+  }
+}
+
 template <int Dim>
 void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
-               const io::Snapshot* start) {
+               const io::Snapshot* start, const AfterSolve* after) {
   const auto t0 = Clock::now();
   const double cpu0 = thread_cpu_seconds();
   out.mu = request.mu[index];
+  std::optional<hf::BasicHFSolver<Dim>> held;  // kept for after_solve
   try {
-    const hf::BasicHFSolver<Dim> solver(factory_of<Dim>(request)(out.mu));
+    hf::HFSetupOptions setup;  // after_solve may read the Newton solve's factor of A_00
+    setup.keep_newton_factor = after != nullptr && static_cast<bool>(*after);
+    const hf::BasicHFSolver<Dim>& solver = held.emplace(factory_of<Dim>(request)(out.mu), setup);
     layout = layout_of(solver);
     const hf::HFInitialGuess guess = initial_guess(request, out.mu, solver, start);
     hf::BasicHFSolution<Dim> s = solver.solve(request.settings, guess);
@@ -176,14 +201,15 @@ void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& 
   }
   out.time_s = seconds_since(t0);
   out.cpu_time_s = thread_cpu_seconds() - cpu0;
+  call_after_solve(after, index, out, held);
 }
 
 void solve_one(const SnapshotRequest& request, std::size_t index, io::Snapshot& out, Layout& layout,
-               const io::Snapshot* start) {
+               const io::Snapshot* start, const AfterSolve* after = nullptr) {
   if (request.dimension == 3) {
-    solve_one<3>(request, index, out, layout, start);
+    solve_one<3>(request, index, out, layout, start, after);
   } else {
-    solve_one<2>(request, index, out, layout, start);
+    solve_one<2>(request, index, out, layout, start, after);
   }
 }
 
@@ -392,7 +418,8 @@ io::SnapshotSet generate_snapshots(const SnapshotRequest& request, const Snapsho
     const auto work = [&] {
       for (std::size_t k = next.fetch_add(1); k < wave.size(); k = next.fetch_add(1)) {
         const std::size_t i = wave[k];
-        solve_one(request, i, snapshots[i], layouts[i], start[i] ? &snapshots[*start[i]] : nullptr);
+        solve_one(request, i, snapshots[i], layouts[i], start[i] ? &snapshots[*start[i]] : nullptr,
+                  &options.after_solve);
         progress.finished(snapshots[i]);
       }
     };

@@ -117,6 +117,12 @@ struct SnapshotRunOptions {
   WarmStart warm_start = WarmStart::Automatic;
   ProgressMode progress = ProgressMode::None;
   std::ostream* progress_stream = nullptr;  // nullptr: std::cerr
+  // Called after each converged 2D solve, on its worker thread (concurrently for different
+  // indices), with the snapshot and its solver, which lives only for the call and then holds its
+  // factor of A_00 (hf::BasicHFSolver::held_inverse_block; HFSetupOptions::keep_newton_factor):
+  // what the caller computes from the solver's data at that mu (the greedy's geometric ratio).
+  // Not in the snapshot's times. An exception from it fails the snapshot (status "exception").
+  std::function<void(std::size_t index, const io::Snapshot& snapshot, const hf::HFSolver& solver)> after_solve;
 };
 const char* to_string(SnapshotRunOptions::WarmStart value);  // "auto" | "on" | "off"
 SnapshotRunOptions::WarmStart warm_start_from_string(const std::string& name);  // throws contactrb::Error

@@ -122,7 +122,10 @@ void ErrorEstimator::setup_exact(const ReducedModel& m, const std::vector<Index>
   std::vector<Index> sel = affine;
   const Index first_load = ix(m.J_f() + m.J_a() * m.J_lift() + m.J_a() * m.N_max);
   for (std::size_t k = 0; k < exact_dofs_.size(); ++k) sel.push_back(first_load + ix(k));
-  factor_selected(selected_columns(e.residual_exact, sel), T_exact_, perm_exact_);
+  // Factored at the first evaluate_exact(), as T_ at the first evaluate(): a solver that gives no
+  // estimate (the training-value solves of an offline build) never needs it.
+  T_exact_ = selected_columns(e.residual_exact, sel);
+  perm_exact_.clear();
   y_exact_.resize(ix(sel.size()));
   correction_.setup(e.residual_exact.middleCols(first_load, ix(exact_dofs_.size())), exact_dofs_,
                     m.surface.num_dofs());
@@ -259,6 +262,10 @@ ErrorEstimate ErrorEstimator::evaluate_exact(const Eigen::VectorXd& mu, const Ei
           "ErrorEstimator::evaluate_exact: sizes disagree with the setup");
   for (Index a = 0; a < contact.load.size(); ++a) {
     if (contact.load(a) != 0.0 && !is_exact_dof_[sz(a)]) return est;  // a load the model cannot measure
+  }
+  if (perm_exact_.empty()) {  // T_exact_ holds the selected columns, not yet their factor (setup_exact)
+    const Eigen::MatrixXd selected = std::move(T_exact_);
+    factor_selected(selected, T_exact_, perm_exact_);
   }
   double alpha = 0.0;
   const Index k = fill_affine(mu, u_hat, y_exact_, alpha);

@@ -113,7 +113,9 @@ class ErrorEstimator {
   double geometric_ratio_ = 0.0;  // the calibrated EIM terms at (Mk, Mg)
   Eigen::VectorXd y_, v_, phi_u_, s_, lam_;  // workspaces
   bool exact_available_ = false;
-  Eigen::MatrixXd T_exact_;                // rank x d_exact: R factor of the selected residual_exact columns
+  // rank x d_exact: R factor of the selected residual_exact columns; before the first
+  // evaluate_exact() (perm_exact_ empty), those columns unfactored.
+  Eigen::MatrixXd T_exact_;
   std::vector<Eigen::Index> perm_exact_;
   std::vector<int> exact_dofs_;            // contact DOF of each exact load column
   std::vector<char> is_exact_dof_;         // n_c flags
