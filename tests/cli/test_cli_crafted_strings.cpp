@@ -21,6 +21,7 @@
 #include "support/file_bytes.hpp"
 #include "cli_runner.hpp"
 #include "contactrb/common/file_seal.hpp"
+#include "contactrb/model/reduced_model.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -188,7 +189,9 @@ TEST_F(CliCraftedStrings, OlderModelFormatIsRefusedWithoutReadingItsStrings) {
   set_format_version(path, 5);
   for (bool fields : {false, true}) {
     expect_one_error(online(path, fields),
-                     {"m_old.h5", "model format 5 is no longer read (this build reads format 9)",
+                     {"m_old.h5",
+                      "model format 5 is no longer read (this build reads format " +
+                          std::to_string(contactrb::model::kReducedModelFormatVersion) + ")",
                       "rebuild it with `contactrb offline`"});
   }
   const CliResult e = run_cli("evaluate --model " + shell_quote(path) + " --set verification --repeats 1 -q --out " +
