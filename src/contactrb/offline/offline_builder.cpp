@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "contactrb/cases/unit_box.hpp"
 #include "contactrb/cases/affine_assembly.hpp"
 #include "contactrb/cases/case_problem.hpp"
 #include "contactrb/cases/theta.hpp"
@@ -865,19 +866,13 @@ std::vector<std::size_t> farthest_first(const Eigen::MatrixXd& fixed, const Eige
 void add_preconditioner_points(ReducedModel& m, const std::vector<cases::Mu>& candidates, int total) {
   const Index held = m.training_mu.cols(), p = m.num_parameters();
   if (m.dual_method != model::kRowCone || m.N_max > model::kMaxJacobianN || total <= held || candidates.empty()) return;
-  Eigen::VectorXd offset(p), scale(p);
-  for (Index k = 0; k < p; ++k) {
-    const cases::ParameterSpec& q = m.parameters[sz(static_cast<int>(k))];
-    offset(k) = q.min;
-    scale(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
-  }
   Eigen::MatrixXd C(p, ix(candidates.size()));
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     require(candidates[c].size() == p, "add_preconditioner_points: a candidate of the wrong size");
-    C.col(ix(c)) = (candidates[c] - offset).cwiseProduct(scale);
+    C.col(ix(c)) = candidates[c];
   }
-  const Eigen::MatrixXd F = (m.training_mu.colwise() - offset).array().colwise() * scale.array();
-  const std::vector<std::size_t> chosen = farthest_first(F, C, total - held);
+  const cases::UnitBox box = cases::unit_box(m.parameters);
+  const std::vector<std::size_t> chosen = farthest_first(box(m.training_mu), box(C), total - held);
   OnlineSolver solver(m);
   OnlineSettings settings;
   settings.error_estimate = false;  // only u_hat and lambda_hat are kept

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "contactrb/cases/unit_box.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
 #include "contactrb/offline/cpg.hpp"
@@ -86,14 +87,10 @@ RegistrationResult build_registration(const model::ContactSurface& surface, cons
     for (std::size_t i = 0; i < kept.size(); ++i) lambda_rows(kept[i]) = Lambda(ix(i), j);
     profiles.col(j) = registered_profile(lambda_rows, order, s_rows, reg.support.col(j), reg.grid);
   }
-  reg.point_offset.resize(p);
-  reg.point_scale.resize(p);
-  for (Index k = 0; k < p; ++k) {
-    const cases::ParameterSpec& q = parameters[sz(static_cast<int>(k))];
-    reg.point_offset(k) = q.min;
-    reg.point_scale(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
-  }
-  reg.points = (training_mu.colwise() - reg.point_offset).array().colwise() * reg.point_scale.array();
+  const cases::UnitBox box = cases::unit_box(parameters);
+  reg.point_offset = box.offset;
+  reg.point_scale = box.scale;
+  reg.points = box(training_mu);
 
   DualConeSettings cs = settings;
   cs.weights.resize(0);  // the grid's uniform L2 norm

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <string>
 
+#include "contactrb/cases/unit_box.hpp"
 #include "contactrb/cases/geometric_map.hpp"
 #include "contactrb/common/enum_names.hpp"
 #include "contactrb/common/error.hpp"
@@ -84,13 +85,9 @@ OnlineSolver::OnlineSolver(const ReducedModel& model, const OnlineSizes& sizes) 
     guess_.resize(N_ + R_, static_cast<Eigen::Index>(order.size()));
     guess_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
     guess_mu_points_.resize(p_dim, static_cast<Eigen::Index>(order.size()));
-    guess_offset_.resize(p_dim);
-    guess_scale_.resize(p_dim);
-    for (int k = 0; k < p_dim; ++k) {
-      const cases::ParameterSpec& q = parameters_[sz(k)];
-      guess_offset_(k) = q.min;
-      guess_scale_(k) = q.max > q.min ? 1.0 / (q.max - q.min) : 0.0;
-    }
+    const cases::UnitBox box = cases::unit_box(parameters_);
+    guess_offset_ = box.offset;
+    guess_scale_ = box.scale;
     for (std::size_t p = 0; p < order.size(); ++p) {
       if (p_dim == 1) guess_mu_.push_back(model.training_mu(0, order[p]));
       guess_mu_points_.col(static_cast<Eigen::Index>(p)) = model.training_mu.col(order[p]);
