@@ -168,7 +168,8 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
                                  int level, const std::optional<std::string>& constraint, double alpha,
                                  double tolerance, int max_iterations, const std::optional<std::string>& solver,
                                  int sequence, double greedy_tol, int max_hf, int greedy_batch,
-                                 double greedy_saturation, const std::optional<std::string>& path, const std::optional<bool>& progress,
+                                 double greedy_saturation, int greedy_preconditioner_points,
+                                 const std::optional<std::string>& path, const std::optional<bool>& progress,
                                  const py::kwargs& kw) {
   for (const auto& item : kw) {
     static const std::vector<std::string> known = {"eps_pod", "N", "inner_product", "dual", "R", "eps_du",
@@ -208,6 +209,7 @@ std::shared_ptr<PyModel> offline(const py::object& source, const std::string& me
     gs.max_hf = max_hf;
     gs.batch = greedy_batch;
     gs.saturation = greedy_saturation;
+    gs.preconditioner_points = greedy_preconditioner_points;
     gs.jobs = jobs;
     gs.progress = progress_mode(progress);
     contactrb::offline::check_settings(gs);
@@ -318,12 +320,15 @@ void bind_offline(py::module_& m) {
         py::arg("max_hf") = contactrb::offline::GreedyOfflineSettings{}.max_hf,
         py::arg("greedy_batch") = contactrb::offline::GreedyOfflineSettings{}.batch,
         py::arg("greedy_saturation") = contactrb::offline::GreedyOfflineSettings{}.saturation,
+        py::arg("greedy_preconditioner_points") = contactrb::offline::GreedyOfflineSettings{}.preconditioner_points,
         py::arg("path") = py::none(), py::arg("progress") = py::none(),
         "The offline stage, as `contactrb offline`: returns a Model (saved to path= when given).\n"
         "method='pod': source is a Snapshots, a snapshot file path, or a case (its `set` snapshots are\n"
         "computed first). method='greedy': source is a case; the weak greedy on the error estimate over\n"
         "the set's points (greedy_tol, max_hf; greedy_batch HF solves per step, on `jobs` threads;\n"
-        "greedy_saturation: the lazy sweep's constant, as --greedy-saturation, float('inf') for the full sweep);\n"
+        "greedy_saturation: the lazy sweep's constant, as --greedy-saturation, float('inf') for the full sweep;\n"
+        "greedy_preconditioner_points: the row-cone model's online start and preconditioner points, as\n"
+        "--greedy-preconditioner-points, 0 for the snapshots only);\n"
         "model.greedy holds its table and selected snapshots. solver: the HF method of the snapshots\n"
         "('kacanov' | 'newton'; None: kacanov on 2D level 0, newton otherwise); sequence: their grid\n"
         "sequencing, as --sequence (-1: automatic).\n"

@@ -199,6 +199,13 @@ def test_full_sweep_greedy_equals_cli(tmp_path):
     assert lazy.greedy["steps"][0]["sweep_solves"] == len(values)
     with pytest.raises(Exception, match="saturation"):
         contactrb.offline("hertz-a", "greedy", set=values, max_hf=3, greedy_saturation=0.5)
+    # The row-cone model's start and preconditioner points: every training value by default (fewer
+    # than 256), the snapshots only with 0, as --greedy-preconditioner-points.
+    assert lazy.training_mu.shape[0] == len(values)
+    few = contactrb.offline("hertz-a", "greedy", set=values, max_hf=3, greedy_preconditioner_points=0)
+    assert few.training_mu.shape[0] == len(few.greedy["selected"]) < len(values)
+    with pytest.raises(Exception, match="preconditioner points"):
+        contactrb.offline("hertz-a", "greedy", set=values, max_hf=3, greedy_preconditioner_points=-1)
 
 
 def test_fields_on_the_hf_mesh_match_the_hf_solution(model):
