@@ -79,8 +79,12 @@ Eigen::VectorXd eim_load_norms(const Eigen::VectorXd& KtL, const Eigen::MatrixXd
   }
   // R_fixed's contact columns are [R_c; 0], R_c upper triangular (EstimateBase).
   const auto Rc = base.R_fixed.topRightCorner(n_u, n_u).triangularView<Eigen::Upper>();
-  Eigen::VectorXd y = Rc * ku;
-  const Eigen::MatrixXd Y = Rc * qu;
+  // Eigen's triangular product binds a reference to the data of an empty operand (undefined
+  // behaviour, UBSan): an empty one (no EIM function, no touched DOF) is skipped.
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n_u);
+  Eigen::MatrixXd Y(n_u, Mk);
+  if (n_u > 0) y = Rc * ku;
+  if (n_u > 0 && Mk > 0) Y = Rc * qu;
   norms(0) = y.norm();
   for (Index M = 1; M <= Mk; ++M) {
     y -= a(M - 1) * Y.col(M - 1);
