@@ -84,7 +84,7 @@ TEST_F(CliOutputSets, OfflineCaseKeepsItsSnapshotsAndNothingElseWhenTheOfflineSt
   write_bytes(d / "model.h5", "the earlier model");
   write_bytes(d / "offline.json", "the earlier report");
   const std::string kept = (d / "snapshots.h5").string();
-  const CliResult r = run_cli("offline --case hertz-a --values 0.2,0.3,0.4 -q --eps-eim-k 1e6 --out " +
+  const CliResult r = run_cli("offline --case hertz-a --values 0.2,0.3,0.4 -q --dual cpg --eps-eim-k 1e6 --out " +
                               shell_quote((d / "model.h5").string()));
   expect_one_error(r, "; no model written; the snapshots of this run are kept in " + kept);
   EXPECT_NE(r.err.find("eps"), std::string::npos) << r.err;  // the refused setting is named

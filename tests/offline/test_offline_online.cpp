@@ -253,7 +253,16 @@ TEST_P(OfflineOnline, RowConeWithExactRowsReproducesTheTrainingSnapshots) {
       contactrb::offline::build_reduced_model(set, contactrb::cases::builtin_case_spec(GetParam()), s);
   ASSERT_EQ(off.model.dual_method, "rows");
   ASSERT_EQ(off.model.R_max, off.model.R_kept());
+  // Solved on the exact rows only: no EIM of kappa, and the EIM rows are refused.
+  EXPECT_EQ(off.model.Mk_max, 0);
+  EXPECT_TRUE(off.model.C_kappa.empty());
+  EXPECT_EQ(off.report.eim_kappa_status, "not built: the cone is solved on the exact contact rows");
   OnlineSolver solver(off.model);
+  {
+    OnlineSettings eim = tight_online();
+    eim.contact_rows = contactrb::online::ContactRows::Eim;
+    EXPECT_THROW((void)solver.solve(set.snapshots.front().mu, eim), contactrb::Error);
+  }
   OnlineSettings exact = tight_online();
   OnlineSettings full = exact;
   full.restricted_rows = false;
@@ -653,16 +662,38 @@ TEST(OnlineSolver, ATruncationThatLeavesThePressureUndeterminedIsNotConverged) {
   EXPECT_TRUE(fewer.solve(mu).converged());
 }
 
+// A model whose EIM contact operator (54) vanishes (every C_kappa zero): the first step fails,
+// and the answer is zeros with the status and the reason, not garbage. Without an EIM of kappa at
+// all (M^k = 0, as the row and registered cones) the EIM rows are refused before any step.
 TEST(OnlineSolver, FailedFirstStepReturnsZerosNotGarbage) {
   const SnapshotSet& set = snapshots("hertz-a");
   OfflineResult off = truncated_model(set, "hertz-a");
   contactrb::model::ReducedModel m = off.model;
-  m.Mk_max = 0;
-  m.kappa_row.clear();
-  m.kappa_dof.clear();
-  m.C_kappa.clear();
-  m.B_kappa.resize(0, 0);
-  m.estimate = {};  // sized for the original Mk_max; this artificial model has none
+  ASSERT_NE(m.dual_method, contactrb::model::kRowCone);
+  ASSERT_GT(m.Mk_max, 0);
+  for (Eigen::MatrixXd& C : m.C_kappa) C.setZero();
+  m.estimate = {};  // of the original C_kappa
+  {
+    contactrb::model::ReducedModel none = m;
+    none.Mk_max = 0;
+    none.kappa_row.clear();
+    none.kappa_dof.clear();
+    none.C_kappa.clear();
+    none.B_kappa.resize(0, 0);
+    OnlineSolver without(none);
+    OnlineSettings eim;
+    eim.contact_rows = contactrb::online::ContactRows::Eim;
+    EXPECT_THROW(
+        {
+          try {
+            (void)without.solve(0.3, eim);
+          } catch (const contactrb::Error& e) {
+            EXPECT_NE(std::string(e.what()).find("solved on the exact contact rows only"), std::string::npos) << e.what();
+            throw;
+          }
+        },
+        contactrb::Error);
+  }
   OnlineSolver solver(m);
   for (auto iteration : {contactrb::online::OnlineIteration::Accelerated, contactrb::online::OnlineIteration::Relaxed,
                          contactrb::online::OnlineIteration::Accelerated}) {

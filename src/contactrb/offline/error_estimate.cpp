@@ -405,27 +405,61 @@ Eigen::MatrixXd whitened_residual_factor(const EstimateInputs& in, const Estimat
 // A column whose part outside Q_t's span is below this fraction of its norm adds no row to R_t.
 constexpr double kExtensionRankTolerance = 1e-13;
 
-// Appends z to the thin QR Q_t R_t (classical Gram-Schmidt twice): R_t gains the column
-// [Q_t' z; rho] and Q_t the column z_perp / rho when rho = |z_perp| leaves the span.
-void append_to_thin_qr(Eigen::VectorXd z, Eigen::MatrixXd& Q, Eigen::MatrixXd& R) {
-  const double norm0 = z.norm();
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(Q.cols());
-  for (int pass = 0; pass < 2; ++pass) {
-    const Eigen::VectorXd c = Q.transpose() * z;
-    z -= Q * c;
-    r += c;
+// Room for at least `cols` columns in Q_t, doubling: the columns in use are not copied at every build.
+void reserve_thin_q(EstimateBase& base, Index cols) {
+  if (cols <= base.Q_t.cols()) return;
+  Eigen::MatrixXd grown(base.Q_t.rows(), std::min(base.Q_t.rows(), std::max(cols, 2 * base.Q_t.cols())));
+  grown.leftCols(base.q_t) = base.Q_t.leftCols(base.q_t);
+  base.Q_t = std::move(grown);
+}
+
+// Each column of Zt against the columns of Q_t from `from` on (classical Gram-Schmidt twice), Q_t
+// gaining the column z_perp / rho when rho = |z_perp| leaves the span (kExtensionRankTolerance,
+// relative to norm0): Zt's coefficients on those columns, one row per column of Q_t from `from`.
+Eigen::MatrixXd append_each(Eigen::MatrixXd& Zt, const Eigen::VectorXd& norm0, EstimateBase& base, Index from) {
+  const Index b = Zt.cols();
+  Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(b, b);
+  for (Index i = 0; i < b; ++i) {
+    const Index added = base.q_t - from;
+    if (added > 0) {
+      const auto Qn = base.Q_t.middleCols(from, added);
+      for (int pass = 0; pass < 2; ++pass) {
+        const Eigen::VectorXd c = Qn.transpose() * Zt.col(i);
+        Zt.col(i).noalias() -= Qn * c;
+        coef.col(i).head(added) += c;
+      }
+    }
+    const double rho = Zt.col(i).norm();
+    if (rho > kExtensionRankTolerance * norm0(i) && base.q_t < base.Q_t.rows()) {
+      base.Q_t.col(base.q_t++) = Zt.col(i) / rho;
+      coef(added, i) = rho;
+    }
   }
-  const double rho = z.norm();
-  const bool grows = rho > kExtensionRankTolerance * norm0 && Q.cols() < Q.rows();
-  const Index k = Q.cols() + (grows ? 1 : 0), n = R.cols();
-  R.conservativeResize(k, n + 1);
-  R.bottomLeftCorner(k - Q.cols(), n).setZero();
-  R.col(n).head(Q.cols()) = r;
-  if (grows) {
-    R(k - 1, n) = rho;
-    Q.conservativeResize(Eigen::NoChange, k);
-    Q.col(k - 1) = z / rho;
+  return coef.topRows(base.q_t - from);
+}
+
+// Appends the columns of Zt to the thin QR Q_t R_t by classical Gram-Schmidt twice: the block
+// against the columns Q_t had (two matrix products a pass), then each column against the ones the
+// block added before it (append_each). R_t gains the columns [Q_t' Zt; R_block].
+void append_to_thin_qr(Eigen::MatrixXd Zt, EstimateBase& base) {
+  const Index old_q = base.q_t, b = Zt.cols(), n = base.R_t.cols();
+  const Eigen::VectorXd norm0 = Zt.colwise().norm().transpose();
+  Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(old_q, b);
+  if (old_q > 0) {
+    const auto Q = base.Q_t.leftCols(old_q);
+    for (int pass = 0; pass < 2; ++pass) {
+      const Eigen::MatrixXd c = Q.transpose() * Zt;
+      Zt.noalias() -= Q * c;
+      coef += c;
+    }
   }
+  reserve_thin_q(base, std::min(Zt.rows(), old_q + b));
+  const Eigen::MatrixXd block = append_each(Zt, norm0, base, old_q);
+  const Index k = base.q_t;
+  base.R_t.conservativeResize(k, n + b);
+  base.R_t.bottomLeftCorner(k - old_q, n).setZero();
+  base.R_t.block(0, n, old_q, b) = coef;
+  base.R_t.block(old_q, n, k - old_q, b) = block;
 }
 
 // The split basis columns of an extension build: the base's columns of the reused basis vectors,
@@ -434,10 +468,11 @@ void extend_split_columns(const EstimateInputs& in, EstimateBase& base) {
   const std::vector<int>& order = *in.extension_order;
   const Index n_free = ix(in.free_dofs->size()), kc = base.R_fixed.rows();
   const int Ja = static_cast<int>(in.terms->A.size()), N = static_cast<int>(order.size());
-  if (base.extended > in.extension_reused || base.Z.rows() != n_free) base.extended = 0;  // another basis
+  if (base.extended > in.extension_reused || base.Q_t.rows() != n_free - kc) base.extended = 0;  // another basis
   if (base.extended == 0) {
-    base.Z.resize(n_free, 0);
+    base.Z_fixed.resize(kc, 0);
     base.Q_t.resize(n_free - kc, 0);
+    base.q_t = 0;
     base.R_t.resize(0, 0);
   }
   std::vector<int> column_of(sz(N), -1);  // growth index -> column of Theta
@@ -449,15 +484,17 @@ void extend_split_columns(const EstimateInputs& in, EstimateBase& base) {
   EstimateInputs part = in;
   part.Theta = &theta;
   const Eigen::MatrixXd Z = split_against_fixed(base, whitened_basis_columns(part, base));  // column j fresh + i
-  const Index first = base.Z.cols();
-  base.Z.conservativeResize(Eigen::NoChange, first + static_cast<Index>(Ja) * fresh);
+  const Index first = base.Z_fixed.cols(), b = static_cast<Index>(Ja) * fresh;
+  base.Z_fixed.conservativeResize(Eigen::NoChange, first + b);
+  Eigen::MatrixXd Zt(n_free - kc, b);  // growth order: column J^a i + j
   for (int i = 0; i < fresh; ++i) {
     for (int j = 0; j < Ja; ++j) {
-      const Eigen::VectorXd z = Z.col(static_cast<Index>(j) * fresh + i);
-      base.Z.col(first + static_cast<Index>(Ja) * i + j) = z;
-      append_to_thin_qr(z.tail(n_free - kc), base.Q_t, base.R_t);
+      const Index from = static_cast<Index>(j) * fresh + i, to = static_cast<Index>(Ja) * i + j;
+      base.Z_fixed.col(first + to) = Z.col(from).head(kc);
+      Zt.col(to) = Z.col(from).tail(n_free - kc);
     }
   }
+  append_to_thin_qr(std::move(Zt), base);
   base.extended = N;
 }
 
@@ -476,7 +513,7 @@ Eigen::MatrixXd extended_residual_factor(const EstimateInputs& in, EstimateBase&
   for (int j = 0; j < Ja; ++j) {
     for (int n = 0; n < N; ++n) {
       const Index internal = static_cast<Index>(Ja) * order[sz(n)] + j, layout = nf + static_cast<Index>(j) * N + n;
-      S.col(layout).head(kc) = base.Z.col(internal).head(kc);
+      S.col(layout).head(kc) = base.Z_fixed.col(internal);
       S.col(layout).tail(kt) = base.R_t.col(internal);
     }
   }

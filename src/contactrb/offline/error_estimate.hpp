@@ -89,11 +89,13 @@ struct EstimateBase {
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_interior;  // of W_fixed's interior rows
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_contact;   // of L_cc^-1
   Eigen::MatrixXd R_fixed;
-  // Extension builds: Z = H' L^-1 P (-A_j,00 theta_i) for the first `extended` basis vectors in
-  // growth order (column J^a i + j), and the thin QR of its rows below R_fixed's, Q_t R_t (Q_t
-  // orthonormal; R_t gains a row only for a column that leaves Q_t's span). Reset when the fixed
-  // columns are refactored.
-  Eigen::MatrixXd Z, Q_t, R_t;
+  // Extension builds: with Z = H' L^-1 P (-A_j,00 theta_i) for the first `extended` basis vectors
+  // in growth order (column J^a i + j), its rows in R_fixed's frame (Z_fixed, R_fixed.rows() rows:
+  // all the residual factor reads of them) and the thin QR of its rows below, Q_t R_t (Q_t
+  // orthonormal, its first q_t columns used: the rest is room to grow without copying; R_t gains
+  // a row only for a column that leaves Q_t's span). Reset when the fixed columns are refactored.
+  Eigen::MatrixXd Z_fixed, Q_t, R_t;
+  Eigen::Index q_t = 0;
   int extended = 0;
 };
 

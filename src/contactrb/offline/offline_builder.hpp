@@ -129,9 +129,11 @@ struct OfflineResult {
 // (OfflineBuildCache::add_geometric_ratio: the same to round-off).
 class OfflineBuildCache;
 
-// Whether the models of these settings carry the geometric term of the estimate (the cones on the
-// exact rows: Rows, Registered; geometric_term.hpp).
-bool uses_geometric_ratio(const OfflineSettings& settings);
+// Whether the models of these settings are solved on the exact contact rows only (Rows,
+// Registered): they carry no EIM of kappa (M^k = 0) and their estimate has the geometric term
+// (geometric_term.hpp).
+bool solved_on_exact_rows(const OfflineSettings& settings);
+bool uses_geometric_ratio(const OfflineSettings& settings);  // solved_on_exact_rows
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {}, OfflineBuildCache* cache = nullptr);
 

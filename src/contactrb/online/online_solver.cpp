@@ -777,9 +777,12 @@ OnlineSolution OnlineSolver::solve(const cases::Mu& mu, const OnlineSettings& se
                            (settings.iteration == OnlineIteration::Automatic && !settings.kacanov);
   qp_.set_settings(settings.qp);
 
-  // The EIM arrays of a registered model are those of its rows, not of Xi(mu).
-  require(!registered_ || exact_rows(settings.contact_rows),
-          "OnlineSolver: a registered-cone model is solved on the exact contact rows only (ContactRows::Eim asked)");
+  // The EIM arrays of a registered model are those of its rows, not of Xi(mu); a model without
+  // an EIM of kappa (M^k = 0: the row and registered cones) has no EIM contact operator (54).
+  require(exact_rows(settings.contact_rows) || (!registered_ && Mk_ > 0),
+          registered_ ? "OnlineSolver: a registered-cone model is solved on the exact contact rows only (ContactRows::Eim asked)"
+                      : "OnlineSolver: a model without an EIM of kappa (M^k = 0: the row cone) is solved on the exact "
+                        "contact rows only (ContactRows::Eim asked)");
   OnlineSolution sol;
   if (!prepare(mu, settings.restricted_rows, exact_rows(settings.contact_rows), sol.message)) {
     sol.u_hat = Eigen::VectorXd::Zero(N_);
