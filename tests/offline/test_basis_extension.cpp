@@ -99,8 +99,10 @@ Answer answer(const OfflineResult& r, const Mu& mu) {
           contactrb::online::reconstruct_multipliers(r.reconstruction, mu, s.lambda_hat), s.estimate.energy};
 }
 
-// Two models give the same fields (relative max-norm difference) and estimates (relative).
-void expect_same_answers(const OfflineResult& a, const OfflineResult& b, double tol) {
+// Two models give the same fields (relative max-norm difference, tol) and estimates (relative,
+// estimate_tol: a residual norm 1e-4 to 1e-5 of the loads', it carries the round-off of the reduced
+// arrays amplified by that ratio).
+void expect_same_answers(const OfflineResult& a, const OfflineResult& b, double tol, double estimate_tol) {
   std::vector<Mu> points = training();
   for (const Mu& mu : {at({0.2, 0.4, 0.6}), at({0.8, 0.6, 0.3}), at({0.05, 0.05, 0.05})}) points.push_back(mu);
   for (const Mu& mu : points) {
@@ -108,7 +110,7 @@ void expect_same_answers(const OfflineResult& a, const OfflineResult& b, double 
     EXPECT_LE((x.u - y.u).lpNorm<Eigen::Infinity>(), tol * x.u.lpNorm<Eigen::Infinity>()) << mu.transpose();
     EXPECT_LE((x.lambda - y.lambda).lpNorm<Eigen::Infinity>(), tol * x.lambda.lpNorm<Eigen::Infinity>())
         << mu.transpose();
-    EXPECT_NEAR(x.estimate, y.estimate, tol * std::max(x.estimate, y.estimate) + 1e-14) << mu.transpose();
+    EXPECT_NEAR(x.estimate, y.estimate, estimate_tol * std::max(x.estimate, y.estimate) + 1e-14) << mu.transpose();
   }
 }
 
@@ -132,7 +134,14 @@ TEST(BasisExtension, GrownModelAnswersAsTheModelBuiltFromScratch) {
   ASSERT_EQ(g.model.R_max, scratch.model.R_max);
   EXPECT_EQ(g.report.N_supremizers, scratch.report.N_supremizers);
   EXPECT_EQ(g.report.N_pod, static_cast<int>(snapshots().snapshots.size()));
-  expect_same_answers(g, scratch, 1e-9);
+  // (49)'s stiffness terms, bordered at each build, are the projection of the whole basis.
+  ASSERT_EQ(g.model.A_hat.size(), scratch.model.A_hat.size());
+  for (std::size_t j = 0; j < g.model.A_hat.size(); ++j) {
+    EXPECT_LE((g.model.A_hat[j] - scratch.model.A_hat[j]).cwiseAbs().maxCoeff(),
+              1e-13 * scratch.model.A_hat[j].cwiseAbs().maxCoeff())
+        << "A_hat " << j;
+  }
+  expect_same_answers(g, scratch, 1e-9, 1e-7);
 }
 
 // Independent of the extension code: the POD model keeping every mode spans the same snapshots,
@@ -144,7 +153,7 @@ TEST(BasisExtension, GrownModelAnswersAsThePodModelOfEveryMode) {
   const OfflineResult& g = grown();
   ASSERT_EQ(reference.report.N_pod, pod.pod_modes);
   ASSERT_EQ(g.model.N_max, reference.model.N_max);
-  expect_same_answers(g, reference, 1e-7);
+  expect_same_answers(g, reference, 1e-7, 1e-7);
 }
 
 // The grown basis is orthonormal in the energy product M = A_00(reference mu), assembled here from
@@ -178,7 +187,7 @@ TEST(BasisExtension, CacheOfAnotherSetStartsAgain) {
   (void)contactrb::offline::build_reduced_model(leading(3), spec(), extension(), &cache);
   const OfflineResult from_cache = contactrb::offline::build_reduced_model(reordered, spec(), extension(), &cache);
   const OfflineResult scratch = contactrb::offline::build_reduced_model(reordered, spec(), extension());
-  expect_same_answers(from_cache, scratch, 1e-9);
+  expect_same_answers(from_cache, scratch, 1e-9, 1e-7);
 }
 
 TEST(BasisExtension, OtherConesAreRefused) {

@@ -431,11 +431,16 @@ struct BasisExtension {
   Eigen::MatrixXd Theta;             // n_free x N, M-orthonormal, in growth order
   std::vector<char> supremizer;      // per column of Theta: a supremizer, else a snapshot's component
   std::unique_ptr<fem::SparseCholesky> chol;  // of M, for the supremizers
+  // (49)'s Theta' A_j,00 Theta in growth order, for the first `projected` basis vectors.
+  std::vector<Eigen::MatrixXd> A_growth;
+  int projected = 0;
   void clear() {
     u0.clear();
     rows.clear();
     Theta.resize(0, 0);
     supremizer.clear();
+    A_growth.clear();
+    projected = 0;
   }
 };
 
@@ -631,15 +636,52 @@ void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, 
 
 // (49): A_hat_j = Theta' A_j,00 Theta and f_hat_j = Theta' f_j on the free DOFs, and the lift
 // terms u_D(mu) enters through (A_j u_D,k, f_j . u_D,k, u_D,l . A_j u_D,k).
+// (49)'s stiffness terms Theta' A_j,00 Theta of an extension build: the cache's terms of the
+// basis vectors it held, bordered by the new vectors' rows and columns (products with the new
+// columns only: the basis vectors already held are the same bits), then in Theta's layout.
+std::vector<Eigen::MatrixXd> extended_stiffness_terms(const ReferenceTerms& ref, const ExtendedBasis& extension,
+                                                      BasisExtension& ext) {
+  const Index N = ext.Theta.cols(), Ja = ix(ref.A00.size());
+  if (ext.projected > extension.reused || ix(ext.A_growth.size()) != Ja) {
+    ext.A_growth.assign(sz(static_cast<int>(Ja)), Eigen::MatrixXd(0, 0));
+    ext.projected = 0;
+  }
+  const Index old = ext.projected, fresh = N - old;
+  std::vector<Eigen::MatrixXd> out;
+  for (Index j = 0; j < Ja; ++j) {
+    Eigen::MatrixXd& Ag = ext.A_growth[sz(static_cast<int>(j))];
+    if (fresh > 0) {
+      const Eigen::MatrixXd B = ext.Theta.transpose() * (ref.A00[sz(static_cast<int>(j))] * ext.Theta.rightCols(fresh));
+      Ag.conservativeResize(N, N);
+      Ag.rightCols(fresh) = B;
+      Ag.bottomLeftCorner(fresh, old) = B.topRows(old).transpose();
+      Ag.bottomRightCorner(fresh, fresh) = 0.5 * (B.bottomRows(fresh) + B.bottomRows(fresh).transpose());
+    }
+    Eigen::MatrixXd Ah(N, N);
+    for (Index c = 0; c < N; ++c) {
+      for (Index r = 0; r < N; ++r) Ah(r, c) = Ag(extension.order[sz(static_cast<int>(r))], extension.order[sz(static_cast<int>(c))]);
+    }
+    out.push_back(std::move(Ah));
+  }
+  ext.projected = static_cast<int>(N);
+  return out;
+}
+
+// (49): the reduced affine terms; the stiffness ones given (`A_hat`, an extension build's) or
+// projected here.
 void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Theta, const std::vector<int>& free_dofs,
-                          ReducedModel& m) {
+                          std::optional<std::vector<Eigen::MatrixXd>> A_hat, ReducedModel& m) {
   const cases::AffineTerms& terms = ref.terms;
   const int Ja = static_cast<int>(terms.A.size());
   const int Jf = static_cast<int>(terms.f.size());
   const int JD = static_cast<int>(terms.lift.size());
-  for (int j = 0; j < Ja; ++j) {
-    Eigen::MatrixXd Ah = Theta.transpose() * (ref.A00[sz(j)] * Theta);
-    m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
+  if (A_hat) {
+    m.A_hat = std::move(*A_hat);
+  } else {
+    for (int j = 0; j < Ja; ++j) {
+      Eigen::MatrixXd Ah = Theta.transpose() * (ref.A00[sz(j)] * Theta);
+      m.A_hat.push_back(0.5 * (Ah + Ah.transpose()));
+    }
   }
   for (int j = 0; j < Jf; ++j) m.f_hat.push_back(Theta.transpose() * restrict_to(terms.f[sz(j)], free_dofs));
   for (int j = 0; j < Ja; ++j) {
@@ -838,7 +880,11 @@ void add_training_jacobians(ReducedModel& m) {
   OnlineSolver solver(m);
   OnlineSettings settings;
   settings.error_estimate = false;
+  Eigen::VectorXd start(n + m.R_max);
   for (Index i = 0; i < m.training_mu.cols(); ++i) {
+    // From the stored answer at the point (converged there: one step).
+    start << m.training_u_hat.col(i), m.training_lambda_hat.col(i);
+    settings.start = start;
     const OnlineSolution sol = solver.solve(m.training_mu.col(i), settings);
     if (!sol.converged()) continue;
     J.middleCols(i * n, n) = solver.fixed_point_jacobian(m.training_mu.col(i), sol.u_hat);
@@ -1013,7 +1059,9 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.Mk_max = rep.Mk;
   m.Mg_max = rep.Mg;
   m.singular_values = primal.pod.singular_values;
-  project_affine_terms(ref, Theta, set.free_dofs, m);  // (49)
+  project_affine_terms(ref, Theta, set.free_dofs,
+                       extension ? std::optional(extended_stiffness_terms(ref, *extension, parts.basis)) : std::nullopt,
+                       m);  // (49)
   contact_arrays(set, ref, Theta, dual_snapshots.kept, dual.generators, eim_k, eim_g, m);  // (54)-(55)
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate,
                                   extension ? &*extension : nullptr);
