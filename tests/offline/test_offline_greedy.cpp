@@ -152,6 +152,26 @@ void expect_preconditioner_points(const GreedyOfflineResult& g) {
     }
   }
   EXPECT_EQ(snapshots_only.training_mu(0, S), chosen);
+
+  // Shared out over threads: the same points, answers and Jacobians, bit for bit.
+  contactrb::model::ReducedModel one = m, three = m;
+  for (contactrb::model::ReducedModel* x : {&one, &three}) {
+    x->training_mu = m.training_mu.leftCols(S);
+    x->training_u_hat = m.training_u_hat.leftCols(S);
+    x->training_lambda_hat = m.training_lambda_hat.leftCols(S);
+    x->training_jacobian.resize(0, 0);
+    x->training_u_sensitivity.resize(0, 0);
+  }
+  contactrb::offline::add_preconditioner_points(one, request().mu, kTrainingSize, 1);
+  contactrb::offline::add_training_jacobians(one, 1);
+  contactrb::offline::add_preconditioner_points(three, request().mu, kTrainingSize, 3);
+  contactrb::offline::add_training_jacobians(three, 3);
+  ASSERT_GT(one.training_mu.cols(), S);
+  EXPECT_EQ(one.training_mu, three.training_mu);
+  EXPECT_EQ(one.training_u_hat, three.training_u_hat);
+  EXPECT_EQ(one.training_lambda_hat, three.training_lambda_hat);
+  EXPECT_EQ(one.training_jacobian, three.training_jacobian);
+  EXPECT_EQ(one.training_u_sensitivity, three.training_u_sensitivity);
 }
 
 TEST(OfflineGreedy, RowConeGreedyReachesATightTolerance) {

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -18,6 +19,7 @@
 #include "contactrb/cases/theta.hpp"
 #include "contactrb/common/error.hpp"
 #include "contactrb/common/index_cast.hpp"
+#include "contactrb/common/run_threads.hpp"
 #include "contactrb/fem/cholesky.hpp"
 #include "contactrb/fem/elasticity.hpp"
 #include "contactrb/offline/angle_greedy.hpp"
@@ -867,7 +869,20 @@ Eigen::MatrixXd u_sensitivity(const ReducedModel& m, OnlineSolver& solver, const
 }
 }  // namespace
 
-void add_training_jacobians(ReducedModel& m) {
+namespace {
+// work(solver, i) for i = 0 .. count - 1, shared out round-robin over `threads` threads, each with
+// its own OnlineSolver of m.
+void for_each_point(const ReducedModel& m, Index count, int threads,
+                    const std::function<void(OnlineSolver&, Index)>& work) {
+  const Index T = std::max<Index>(1, std::min<Index>(threads, count));
+  run_threads(static_cast<std::size_t>(T), [&](std::size_t t) {
+    OnlineSolver solver(m);
+    for (Index i = static_cast<Index>(t); i < count; i += T) work(solver, i);
+  });
+}
+}  // namespace
+
+void add_training_jacobians(ReducedModel& m, int threads) {
   m.training_jacobian.resize(0, 0);
   m.training_u_sensitivity.resize(0, 0);
   // The registered cone's steps cost a thousand times more on the fine meshes it is for.
@@ -877,19 +892,18 @@ void add_training_jacobians(ReducedModel& m) {
   const bool sensitivities = p > 1;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n * m.training_mu.cols());
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, sensitivities ? p * m.training_mu.cols() : 0);
-  OnlineSolver solver(m);
-  OnlineSettings settings;
-  settings.error_estimate = false;
-  Eigen::VectorXd start(n + m.R_max);
-  for (Index i = 0; i < m.training_mu.cols(); ++i) {
+  for_each_point(m, m.training_mu.cols(), threads, [&](OnlineSolver& solver, Index i) {
+    OnlineSettings settings;
+    settings.error_estimate = false;
     // From the stored answer at the point (converged there: one step).
+    Eigen::VectorXd start(n + m.R_max);
     start << m.training_u_hat.col(i), m.training_lambda_hat.col(i);
-    settings.start = start;
+    settings.start = std::move(start);
     const OnlineSolution sol = solver.solve(m.training_mu.col(i), settings);
-    if (!sol.converged()) continue;
+    if (!sol.converged()) return;
     J.middleCols(i * n, n) = solver.fixed_point_jacobian(m.training_mu.col(i), sol.u_hat);
     if (sensitivities) S.middleCols(i * p, p) = u_sensitivity(m, solver, m.training_mu.col(i), sol);
-  }
+  });
   m.training_jacobian = std::move(J);
   m.training_u_sensitivity = std::move(S);
 }
@@ -910,7 +924,7 @@ std::vector<std::size_t> farthest_first(const Eigen::MatrixXd& fixed, const Eige
 }
 }  // namespace
 
-void add_preconditioner_points(ReducedModel& m, const std::vector<cases::Mu>& candidates, int total) {
+void add_preconditioner_points(ReducedModel& m, const std::vector<cases::Mu>& candidates, int total, int threads) {
   const Index held = m.training_mu.cols(), p = m.num_parameters();
   if (m.dual_method != model::kRowCone || m.N_max > model::kMaxJacobianN || total <= held || candidates.empty()) return;
   Eigen::MatrixXd C(p, ix(candidates.size()));
@@ -920,13 +934,15 @@ void add_preconditioner_points(ReducedModel& m, const std::vector<cases::Mu>& ca
   }
   const cases::UnitBox box = cases::unit_box(m.parameters);
   const std::vector<std::size_t> chosen = farthest_first(box(m.training_mu), box(C), total - held);
-  OnlineSolver solver(m);
-  OnlineSettings settings;
-  settings.error_estimate = false;  // only u_hat and lambda_hat are kept
+  std::vector<std::optional<OnlineSolution>> answers(chosen.size());
+  for_each_point(m, ix(chosen.size()), threads, [&](OnlineSolver& solver, Index k) {
+    OnlineSettings settings;
+    settings.error_estimate = false;  // only u_hat and lambda_hat are kept
+    answers[sz(static_cast<int>(k))] = solver.solve(candidates[chosen[sz(static_cast<int>(k))]], settings);
+  });
   std::vector<std::pair<std::size_t, OnlineSolution>> solved;
-  for (std::size_t c : chosen) {
-    OnlineSolution sol = solver.solve(candidates[c], settings);
-    if (sol.converged()) solved.emplace_back(c, std::move(sol));
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    if (answers[k]->converged()) solved.emplace_back(chosen[k], std::move(*answers[k]));
   }
   const Index P = held + ix(solved.size());
   m.training_mu.conservativeResize(Eigen::NoChange, P);

@@ -142,8 +142,10 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
 // up to model::kMaxJacobianN (empty otherwise; a training value whose reduced solve does not
 // converge keeps a zero block, the plain step there). P (N_max + 2) reduced steps. With p > 1
 // parameters also ReducedModel::training_u_sensitivity, by one-sided differences of the online
-// solution (p more online solves per training point, each started from its answer).
-void add_training_jacobians(model::ReducedModel& m);
+// solution (p more online solves per training point, each started from its answer). The points
+// are shared out over `threads` threads, one OnlineSolver each (each point's blocks are its own:
+// the result does not depend on the thread count).
+void add_training_jacobians(model::ReducedModel& m, int threads = 1);
 
 // More points for the online start and preconditioner of a finished row-cone model (up to
 // model::kMaxJacobianN, as the Jacobians): `candidates` chosen farthest first from the model's
@@ -153,8 +155,10 @@ void add_training_jacobians(model::ReducedModel& m);
 // left out; the model's Jacobians are dropped when points are added). Call before
 // add_training_jacobians. Why: the preconditioned iteration's steps fall
 // with the distance to the nearest Jacobian, and a greedy has solved the reduced problem over its
-// whole training set (docs/offline-online.md, "Online: the preconditioned iteration").
-void add_preconditioner_points(model::ReducedModel& m, const std::vector<cases::Mu>& candidates, int total);
+// whole training set (docs/offline-online.md, "Online: the preconditioned iteration"). The
+// solves are shared out over `threads` threads, as add_training_jacobians.
+void add_preconditioner_points(model::ReducedModel& m, const std::vector<cases::Mu>& candidates, int total,
+                               int threads = 1);
 
 class OfflineBuildCache {
  public:

@@ -508,8 +508,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   }
   g.out.offline = std::move(*best);
   if (settings.offline.training_jacobians) {
-    add_preconditioner_points(g.out.offline.model, training, settings.preconditioner_points);
-    add_training_jacobians(g.out.offline.model);
+    add_preconditioner_points(g.out.offline.model, training, settings.preconditioner_points, settings.jobs);
+    add_training_jacobians(g.out.offline.model, settings.jobs);
   }
   progress.model(g.out.steps[sz(g.out.model_step - 1)], static_cast<int>(g.out.steps.size()));
   g.out.total_s = seconds_since(t_total);
