@@ -318,16 +318,52 @@ void factor_fixed_columns(const EstimateInputs& in, const std::vector<Index>& co
   base.extended = 0;  // the split basis columns were against the former factor
 }
 
+// The free contact DOFs (sorted) of the contact nodes within `pad` chain nodes of those of
+// `dofs` (2D: contact DOF a is component a % 2 of contact node a / 2).
+std::vector<Index> padded_contact_dofs(const EstimateInputs& in, const std::vector<Index>& dofs, int pad,
+                                       const std::vector<Index>& global_to_free) {
+  const model::ContactSurface& surface = *in.surface;
+  const Index n_c = ix(in.contact_dofs->size());
+  std::vector<char> node_needed(surface.reference_nodes.size(), 0), node_kept(surface.reference_nodes.size(), 0);
+  for (Index a : dofs) node_needed[sz(static_cast<int>(a / 2))] = 1;
+  for (const std::vector<int>* chain : {&surface.slave, &surface.master}) {
+    const int n = static_cast<int>(chain->size());
+    for (int k = 0; k < n; ++k) {
+      if (!node_needed[sz((*chain)[sz(k)])]) continue;
+      for (int d = std::max(0, k - pad); d <= std::min(n - 1, k + pad); ++d) node_kept[sz((*chain)[sz(d)])] = 1;
+    }
+  }
+  std::vector<Index> out;
+  for (Index a = 0; a < n_c; ++a) {
+    if ((node_kept[sz(static_cast<int>(a / 2))] || std::binary_search(dofs.begin(), dofs.end(), a)) &&
+        global_to_free[sz((*in.contact_dofs)[sz(a)])] >= 0) {
+      out.push_back(a);
+    }
+  }
+  return out;
+}
+
 // The base holding at least the contact DOFs `needed` (sorted): factored again, with the union,
-// when a model needs a contact DOF it misses.
+// when a model needs a contact DOF it misses. A later build that misses some (a greedy's new
+// snapshot activating rows next to the contact zone) is likely to miss their neighbours at the
+// next steps: such a refactor also takes the contact DOFs within pad_nodes chain nodes of the
+// needed ones, the margin doubling at each refactor (from kFirstPadNodes), so that a greedy
+// refactors a few times rather than at each widening of the zone (every basis column is whitened
+// and split again at a refactor).
+constexpr int kFirstPadNodes = 4;
 void ensure_estimate_base(const EstimateInputs& in, const std::vector<Index>& needed, EstimateBase& base) {
   if (!base.factored) map_free_dofs(in, base);
   if (base.columns_built && std::includes(base.contact_columns.begin(), base.contact_columns.end(), needed.begin(),
                                           needed.end())) {
     return;
   }
+  std::vector<Index> wanted = needed;
+  if (base.columns_built) {
+    base.pad_nodes = base.pad_nodes == 0 ? kFirstPadNodes : 2 * base.pad_nodes;
+    wanted = padded_contact_dofs(in, needed, base.pad_nodes, base.global_to_free);
+  }
   std::vector<Index> all;
-  std::set_union(base.contact_columns.begin(), base.contact_columns.end(), needed.begin(), needed.end(),
+  std::set_union(base.contact_columns.begin(), base.contact_columns.end(), wanted.begin(), wanted.end(),
                  std::back_inserter(all));
   factor_fixed_columns(in, all, base);
   base.columns_built = true;

@@ -97,6 +97,9 @@ struct EstimateBase {
   Eigen::MatrixXd Z_fixed, Q_t, R_t;
   Eigen::Index q_t = 0;
   int extended = 0;
+  // Chain nodes of margin around the needed contact DOFs when the fixed columns are factored again
+  // for a later build (ensure_estimate_base): doubled at each such refactor.
+  int pad_nodes = 0;
 };
 
 // Throws contactrb::Error for inconsistent sizes or an X that is not positive definite.

@@ -997,6 +997,7 @@ const ReferenceTerms& cached_reference_terms(const io::SnapshotSet& set, const c
   if (parts.matches(set, spec, product)) return *parts.ref;
   parts.estimate.factored = false;
   parts.estimate.columns_built = false;
+  parts.estimate.pad_nodes = 0;
   parts.estimate.contact_columns.clear();
   if (parts.ref) parts.geometric.clear();  // another problem's (those given before the first build are this one's)
   parts.basis.clear();
