@@ -309,6 +309,36 @@ TEST(PreconditionedIteration, JacobianDependsOnItsArgumentsOnly) {
   EXPECT_THROW((void)solver.fixed_point_jacobian(mu, Eigen::VectorXd::Zero(m.N_max + 1)), contactrb::Error);
 }
 
+// The linearized Jacobian (one KKT system from the reduced Newton's contact linearization) is the
+// difference one at converged points: relative Frobenius difference at the level of the
+// differences' error (step 1e-7 |u_hat|) on hertz-3p's training points, and of the wrong sizes
+// refused.
+TEST(PreconditionedIteration, LinearizedJacobianIsTheDifferenceOne) {
+  const offline::OfflineResult& off = row_cone_model(EstimateCase{"hertz-3p", 1e-7, 40});
+  const auto& m = off.model;
+  contactrb::online::OnlineSolver solver(m);
+  contactrb::online::OnlineSettings tight;
+  tight.kacanov = contactrb::solve::KacanovSettings{1.0, 1e-12, 200};
+  tight.error_estimate = false;
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < std::min<Eigen::Index>(m.training_mu.cols(), 8); ++i) {
+    const cases::Mu mu = m.training_mu.col(i);
+    const auto sol = solver.solve(mu, tight);
+    ASSERT_TRUE(sol.converged()) << sol.message;
+    const Eigen::MatrixXd differences = solver.fixed_point_jacobian(mu, sol.u_hat);
+    const Eigen::MatrixXd linearized = solver.linearized_fixed_point_jacobian(mu, sol.u_hat, sol.lambda_hat);
+    ASSERT_EQ(linearized.rows(), m.N_max);
+    ASSERT_EQ(linearized.cols(), m.N_max);
+    ASSERT_GT(differences.norm(), 0.0);
+    worst = std::max(worst, (linearized - differences).norm() / differences.norm());
+  }
+  std::printf("[ hertz-3p ] linearized against difference Jacobian: max relative difference %.2e\n", worst);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_THROW((void)solver.linearized_fixed_point_jacobian(m.training_mu.col(0), Eigen::VectorXd::Zero(m.N_max),
+                                                            Eigen::VectorXd::Zero(m.R_max + 1)),
+               contactrb::Error);
+}
+
 // Below the model's N the map is another one: no preconditioner, the plain iteration's bits; a
 // model whose Jacobians have the wrong shape is refused by name.
 TEST(PreconditionedIteration, TruncatedSizesAndMalformedJacobians) {

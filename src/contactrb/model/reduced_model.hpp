@@ -33,8 +33,8 @@ namespace contactrb::model {
 // safely from a damaged file); 8: the registered cone (/registration); 9: the training Jacobians;
 // 10: the training sensitivities.
 inline constexpr int kReducedModelFormatVersion = 10;
-// ReducedModel::training_jacobian is built for N_max up to this size (its cost offline: N_max + 2
-// reduced steps per training point; its size: N_max^2 P).
+// ReducedModel::training_jacobian is built for N_max up to this size (its cost offline: a dense
+// LU of size N_max + R_max per training point; its size: N_max^2 P).
 inline constexpr int kMaxJacobianN = 100;
 
 // The two contact boundaries in Omega (reference configuration), the only geometry online.

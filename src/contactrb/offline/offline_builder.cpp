@@ -901,7 +901,7 @@ void add_training_jacobians(ReducedModel& m, int threads) {
     settings.start = std::move(start);
     const OnlineSolution sol = solver.solve(m.training_mu.col(i), settings);
     if (!sol.converged()) return;
-    J.middleCols(i * n, n) = solver.fixed_point_jacobian(m.training_mu.col(i), sol.u_hat);
+    J.middleCols(i * n, n) = solver.linearized_fixed_point_jacobian(m.training_mu.col(i), sol.u_hat, sol.lambda_hat);
     if (sensitivities) S.middleCols(i * p, p) = u_sensitivity(m, solver, m.training_mu.col(i), sol);
   });
   m.training_jacobian = std::move(J);

@@ -140,7 +140,8 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
 // ReducedModel::training_jacobian of a finished model (its training points and reduced
 // solutions): the Jacobian of the reduced Kacanov map at each training point, for the row cone
 // up to model::kMaxJacobianN (empty otherwise; a training value whose reduced solve does not
-// converge keeps a zero block, the plain step there). P (N_max + 2) reduced steps. With p > 1
+// converge keeps a zero block, the plain step there), from the linearized step
+// (OnlineSolver::linearized_fixed_point_jacobian): one KKT system per point. With p > 1
 // parameters also ReducedModel::training_u_sensitivity, by one-sided differences of the online
 // solution (p more online solves per training point, each started from its answer). The points
 // are shared out over `threads` threads, one OnlineSolver each (each point's blocks are its own:

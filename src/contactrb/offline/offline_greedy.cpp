@@ -468,8 +468,8 @@ GreedyOfflineResult run_offline_greedy(const cases::CaseSpec& spec, const Snapsh
   g.online.error_estimate = true;
   g.offline.extend_basis = settings.incremental && settings.offline.dual_method == DualConeMethod::Rows &&
                            settings.offline.compression;
-  // Not for the steps' models, whose sweeps go without the preconditioner (the Jacobians cost
-  // P (N_max + 2) reduced steps a build): the returned model only.
+  // Not for the steps' models, whose sweeps start from warm starts without the preconditioner:
+  // the returned model only.
   g.offline.training_jacobians = false;
   if (settings.offline.dual_method == DualConeMethod::Rows && g.online.iteration == online::OnlineIteration::Automatic &&
       !g.online.kacanov) {

@@ -134,6 +134,40 @@ void OnlineSolver::newton_system(const Eigen::VectorXd& u_hat, const Eigen::Vect
   sys.F.noalias() += sys.B.transpose() * lambda_hat;
 }
 
+// At the fixed point u_bar = u_hat of the step with the active generators a fixed: the step
+// solves [A_hat B_a(u)'; B_a(u) 0] [u_bar; l_a] = [f_hat; gamma_a(u)], and its derivative at
+// u_bar = u_hat is [A_hat B_a'; B_a 0] [du_bar; dl_a] = [-Theta_c' H Theta_c du; (G_a + B_a) du]
+// (d(B'l)/du = Theta_c' H Theta_c, d(gamma - B u)/du = G at u_bar = u).
+Eigen::MatrixXd OnlineSolver::linearized_fixed_point_jacobian(const cases::Mu& mu, const Eigen::VectorXd& u_hat,
+                                                              const Eigen::VectorXd& lambda_hat) {
+  cases::check_mu(parameters_, mu, "the reduced model");
+  require(u_hat.size() == N_ && lambda_hat.size() == R_,
+          "OnlineSolver::linearized_fixed_point_jacobian: u_hat and lambda_hat must have sizes N = " +
+              std::to_string(N_) + " and R = " + std::to_string(R_));
+  require(exact_rows(ContactRows::Automatic) && !registered_,
+          "OnlineSolver::linearized_fixed_point_jacobian: the model's dual cone is not the row cone");
+  std::string message;
+  require(prepare(mu, true, true, message), "OnlineSolver::linearized_fixed_point_jacobian: " + message);
+  NewtonSystem sys;
+  newton_system(u_hat, lambda_hat, sys);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(N_ + R_, N_ + R_), rhs = Eigen::MatrixXd::Zero(N_ + R_, N_);
+  M.topLeftCorner(N_, N_) = A_;
+  M.topRightCorner(N_, R_) = sys.B.transpose();
+  rhs.topRows(N_) = A_ - sys.J;
+  for (int i = 0; i < R_; ++i) {
+    if (lambda_hat(i) > 0.0) {
+      M.block(N_ + i, 0, 1, N_) = sys.B.row(i);
+      rhs.row(N_ + i) = sys.G.row(i) + sys.B.row(i);
+    } else {
+      M(N_ + i, N_ + i) = 1.0;
+    }
+  }
+  const Eigen::MatrixXd J = Eigen::PartialPivLU<Eigen::MatrixXd>(M).solve(rhs).topRows(N_);
+  require(J.allFinite(), "OnlineSolver::linearized_fixed_point_jacobian: the linearized step is singular");
+  prepared_ = false;  // surface_gap refers to the last solve
+  return J;
+}
+
 solve::KacanovResult OnlineSolver::iterate_newton(const solve::KacanovSettings& ks, const Eigen::VectorXd& u_start,
                                                   const Eigen::VectorXd& lambda_start) {
   solve::KacanovResult result;

@@ -187,6 +187,14 @@ class OnlineSolver {
   // ReducedModel::training_jacobian. Throws contactrb::Error for a model without exact rows (EIM
   // cones), a mu or u_hat of the wrong size, or a step that fails.
   Eigen::MatrixXd fixed_point_jacobian(const cases::Mu& mu, const Eigen::VectorXd& u_hat);
+  // The same Jacobian at a fixed point (u_hat, lambda_hat) of G, from the linearization of the
+  // contact rows the reduced Newton uses (online_newton.cpp): with the active generators
+  // lambda_hat > 0 kept active, one KKT system [A_hat B_a'; B_a 0] with N right-hand sides
+  // [-Theta_c' H Theta_c; G_a + B_a] (H the geometric stiffness, G the gap rows' derivative)
+  // instead of N + 1 steps. Agrees with fixed_point_jacobian to its difference error where no
+  // generator is degenerate (tests/offline/test_preconditioned_iteration.cpp).
+  Eigen::MatrixXd linearized_fixed_point_jacobian(const cases::Mu& mu, const Eigen::VectorXd& u_hat,
+                                                  const Eigen::VectorXd& lambda_hat);
 
   int N() const { return N_; }
   int R() const { return R_; }
