@@ -636,8 +636,6 @@ void record_provenance(const io::SnapshotSet& set, const cases::CaseSpec& spec, 
   m.kacanov_max_iterations = set.kacanov_max_iterations;
 }
 
-// (49): A_hat_j = Theta' A_j,00 Theta and f_hat_j = Theta' f_j on the free DOFs, and the lift
-// terms u_D(mu) enters through (A_j u_D,k, f_j . u_D,k, u_D,l . A_j u_D,k).
 // (49)'s stiffness terms Theta' A_j,00 Theta of an extension build: the cache's terms of the
 // basis vectors it held, bordered by the new vectors' rows and columns (products with the new
 // columns only: the basis vectors already held are the same bits), then in Theta's layout.
@@ -661,7 +659,8 @@ std::vector<Eigen::MatrixXd> extended_stiffness_terms(const ReferenceTerms& ref,
     }
     Eigen::MatrixXd Ah(N, N);
     for (Index c = 0; c < N; ++c) {
-      for (Index r = 0; r < N; ++r) Ah(r, c) = Ag(extension.order[sz(static_cast<int>(r))], extension.order[sz(static_cast<int>(c))]);
+      const int oc = extension.order[sz(static_cast<int>(c))];
+      for (Index r = 0; r < N; ++r) Ah(r, c) = Ag(extension.order[sz(static_cast<int>(r))], oc);
     }
     out.push_back(std::move(Ah));
   }
@@ -669,8 +668,9 @@ std::vector<Eigen::MatrixXd> extended_stiffness_terms(const ReferenceTerms& ref,
   return out;
 }
 
-// (49): the reduced affine terms; the stiffness ones given (`A_hat`, an extension build's) or
-// projected here.
+// (49): A_hat_j = Theta' A_j,00 Theta and f_hat_j = Theta' f_j on the free DOFs, and the lift
+// terms u_D(mu) enters through (A_j u_D,k, f_j . u_D,k, u_D,l . A_j u_D,k); the stiffness terms
+// given (`A_hat`, an extension build's: extended_stiffness_terms) or projected here.
 void project_affine_terms(const ReferenceTerms& ref, const Eigen::MatrixXd& Theta, const std::vector<int>& free_dofs,
                           std::optional<std::vector<Eigen::MatrixXd>> A_hat, ReducedModel& m) {
   const cases::AffineTerms& terms = ref.terms;
@@ -1020,8 +1020,6 @@ bool solved_on_exact_rows(const OfflineSettings& settings) {
   return settings.dual_method == DualConeMethod::Rows || settings.dual_method == DualConeMethod::Registered;
 }
 
-bool uses_geometric_ratio(const OfflineSettings& settings) { return solved_on_exact_rows(settings); }
-
 const char* to_string(InnerProduct p) { return p == InnerProduct::Energy ? "energy" : "h1"; }
 
 void check_settings(const OfflineSettings& s) {
@@ -1083,7 +1081,7 @@ OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseS
   m.estimate = estimate_data_step(set, spec, ref, Theta, m, dual_snapshots, eim_k, eim_g, &parts.estimate,
                                   extension ? &*extension : nullptr);
   // The row and registered cones are solved on the exact rows, whose estimate has the geometric term.
-  if (uses_geometric_ratio(settings)) {
+  if (solved_on_exact_rows(settings)) {
     m.estimate.geometric_ratio = max_geometric_ratio(set, spec, ref.mesh,
                                                      contact::discretization_from_string(set.constraint), &parts.geometric);
   }

@@ -133,7 +133,6 @@ class OfflineBuildCache;
 // Registered): they carry no EIM of kappa (M^k = 0) and their estimate has the geometric term
 // (geometric_term.hpp).
 bool solved_on_exact_rows(const OfflineSettings& settings);
-bool uses_geometric_ratio(const OfflineSettings& settings);  // solved_on_exact_rows
 OfflineResult build_reduced_model(const io::SnapshotSet& set, const cases::CaseSpec& spec,
                                   const OfflineSettings& settings = {}, OfflineBuildCache* cache = nullptr);
 

@@ -229,7 +229,7 @@ io::SnapshotSet hf_solve(Greedy& g, const std::vector<int>& indices) {
   const GreedyDistribution& dist = settings.distribution;
   // Each new snapshot's eta_p from its own HF solver's factor of A_00(mu_p), by the point's
   // position in the step (-inf: none); distributed without `max`, left to the builds.
-  const bool ratios = uses_geometric_ratio(settings.offline) && step.dimension == 2 && (!dist.share || dist.max);
+  const bool ratios = solved_on_exact_rows(settings.offline) && step.dimension == 2 && (!dist.share || dist.max);
   std::vector<double> eta(indices.size(), -kInf);
   std::mutex eta_mutex;  // a process's part writes the step's positions of its points
   const auto solve = [&](const SnapshotRequest& part) {
